@@ -1,0 +1,69 @@
+// One interface for every broad phase: the N-objects octree (the seed's index), and the
+// references it is measured against (all pairs, uniform grid, rebuild-every-cycle,
+// delete-and-reinsert). Any of them can be swapped in by configuration and tested against the
+// others: they must return exactly the same candidate pairs.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "arm_collision_monitor/broadphase/compatibility_matrix.h"
+#include "arm_collision_monitor/geometry/primitives.h"
+
+namespace arm_collision_monitor {
+
+/// Dense primitive ids 0..n-1, assigned by the caller (the scene).
+using PrimitiveId = std::uint32_t;
+
+/// A candidate pair, a < b.
+struct CandidatePair {
+  PrimitiveId a = 0;
+  PrimitiveId b = 0;
+  bool operator==(const CandidatePair& o) const { return a == o.a && b == o.b; }
+  bool operator<(const CandidatePair& o) const { return a < o.a || (a == o.a && b < o.b); }
+};
+
+/// Work done, accumulated since the last ResetCounters(): for benchmarks and diagnostics.
+struct BroadPhaseCounters {
+  std::uint64_t object_node_tests = 0;    ///< box-vs-cell tests
+  std::uint64_t object_object_tests = 0;  ///< box-vs-box tests between primitives
+  std::uint64_t neighbours_visited = 0;   ///< neighbour cells examined during updates
+  std::uint64_t splits = 0;
+  std::uint64_t merges = 0;
+  std::uint64_t reinsert_fallbacks = 0;   ///< moves too large for the incremental update
+  std::uint64_t outside_world = 0;        ///< moves that left (part of) the box outside the world
+};
+
+enum class Motion : std::uint8_t { kStatic, kMoving };
+
+class BroadPhase {
+ public:
+  virtual ~BroadPhase() = default;
+
+  /// Short name ("octree", "naive", "grid", "rebuild", "reinsert").
+  virtual std::string name() const = 0;
+
+  /// Start-up: adds primitive `id` with tight box `box_W`; it is indexed by
+  /// box_W.Inflated(tolerance_m). `id` must not be present already.
+  virtual void Add(PrimitiveId id, const Aabb& box_W, double tolerance_m, Motion motion) = 0;
+  /// Removes primitive `id` (model switching, detaching). No-op if absent.
+  virtual void Remove(PrimitiveId id) = 0;
+  /// Primitive `id` now has tight box `box_W` (same tolerance as when added).
+  virtual void Move(PrimitiveId id, const Aabb& box_W) = 0;
+
+  /// The candidate pairs now: every pair of present primitives whose inflated boxes overlap
+  /// (Aabb::Overlaps), each once with a < b, leaving out pairs marked in `compatible` and pairs
+  /// of two static primitives. Replaces the contents of `pairs` (its capacity is reused).
+  virtual void FindPairs(const CompatibilityMatrix& compatible,
+                         std::vector<CandidatePair>* pairs) = 0;
+
+  const BroadPhaseCounters& counters() const { return counters_; }
+  void ResetCounters() { counters_ = BroadPhaseCounters{}; }
+
+ protected:
+  BroadPhaseCounters counters_;
+};
+
+}  // namespace arm_collision_monitor

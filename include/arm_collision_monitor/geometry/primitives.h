@@ -1,0 +1,71 @@
+// The collision primitives: capsules (the seed's "cylspheres") for links, oriented boxes (its
+// "rectangular solids") for the environment, and the axis-aligned bounding boxes the broad
+// phase indexes them by. All coordinates in metres, in the world frame W unless named otherwise.
+#pragma once
+
+#include <variant>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+namespace arm_collision_monitor {
+
+/// Axis-aligned bounding box, closed: a box touching another at a face, edge or corner
+/// overlaps it. Every broad phase decides pairs with these same predicates, so their answers
+/// can be compared exactly.
+struct Aabb {
+  Eigen::Vector3d min_W = Eigen::Vector3d::Zero();
+  Eigen::Vector3d max_W = Eigen::Vector3d::Zero();
+
+  /// True iff the closed boxes share at least one point.
+  bool Overlaps(const Aabb& other) const {
+    return (min_W.array() <= other.max_W.array()).all() &&
+           (other.min_W.array() <= max_W.array()).all();
+  }
+  /// True iff `other` lies inside this box (boundaries may touch).
+  bool Contains(const Aabb& other) const {
+    return (min_W.array() <= other.min_W.array()).all() &&
+           (other.max_W.array() <= max_W.array()).all();
+  }
+  /// This box grown by `margin_m` (>= 0) on every side.
+  Aabb Inflated(double margin_m) const {
+    return Aabb{(min_W.array() - margin_m).matrix(), (max_W.array() + margin_m).matrix()};
+  }
+};
+
+/// A capsule (cylsphere): every point within `radius_m` of the segment p0_W--p1_W.
+/// A zero-length segment makes it a sphere.
+struct Capsule {
+  Eigen::Vector3d p0_W = Eigen::Vector3d::Zero();
+  Eigen::Vector3d p1_W = Eigen::Vector3d::Zero();
+  double radius_m = 0.0;
+
+  /// Tight AABB: the endpoints' min/max grown by the radius (exact for a capsule).
+  Aabb ComputeAabb() const {
+    return Aabb{(p0_W.cwiseMin(p1_W).array() - radius_m).matrix(),
+                (p0_W.cwiseMax(p1_W).array() + radius_m).matrix()};
+  }
+};
+
+/// An oriented box: pose of the box frame B in W (centre at the origin of B, edges along B's
+/// axes) and the half extents along those axes (each >= 0).
+struct Box {
+  Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
+  Eigen::Vector3d half_extents_m = Eigen::Vector3d::Zero();
+
+  /// Tight AABB: centre +/- |R_WB| * half extents (exact for a box).
+  Aabb ComputeAabb() const {
+    const Eigen::Vector3d reach_W = X_WB.linear().cwiseAbs() * half_extents_m;
+    return Aabb{X_WB.translation() - reach_W, X_WB.translation() + reach_W};
+  }
+};
+
+/// Any primitive. New primitive types are added here and to every pairwise routine.
+using Shape = std::variant<Capsule, Box>;
+
+/// Tight AABB of any primitive.
+inline Aabb ComputeAabb(const Shape& shape) {
+  return std::visit([](const auto& s) { return s.ComputeAabb(); }, shape);
+}
+
+}  // namespace arm_collision_monitor

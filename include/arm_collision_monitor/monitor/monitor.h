@@ -1,0 +1,115 @@
+// The per-cycle Monitor: joint positions in -> kinematics -> broad-phase update -> narrow phase
+// on candidate pairs -> a report of every non-compatible pair closer than the sum of its
+// tolerances, and a stop flag. ROS-free; the node only translates messages to and from it.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "arm_collision_monitor/broadphase/broad_phase.h"
+#include "arm_collision_monitor/geometry/primitives.h"
+#include "arm_collision_monitor/scene/workcell.h"
+
+namespace arm_collision_monitor {
+
+/// Why a cycle's input was refused. Anything but kOk makes the cycle fail safe (stop = true)
+/// and leaves the model at its last good state.
+enum class InputStatus : std::uint8_t {
+  kOk,
+  kWrongSize,   ///< not one position per model joint
+  kNonFinite,   ///< a NaN or inf position
+  kOutOfLimits  ///< a position outside its joint's limits by more than the configured margin
+};
+
+/// One non-compatible pair closer than the sum of its tolerances.
+struct Warning {
+  PrimitiveId a = 0;  ///< a < b
+  PrimitiveId b = 0;
+  double distance_m = 0.0;   ///< between the real (uninflated) surfaces; 0 when overlapping
+  double threshold_m = 0.0;  ///< tolerance(a) + tolerance(b) this cycle
+  Eigen::Vector3d p_WA = Eigen::Vector3d::Zero();  ///< closest point on a, world frame
+  Eigen::Vector3d p_WB = Eigen::Vector3d::Zero();  ///< closest point on b, world frame
+};
+
+/// The result of one cycle. Lives in the Monitor's preallocated data: valid until the next
+/// Update().
+struct CycleReport {
+  std::uint64_t cycle = 0;  ///< number of Update() calls so far, refused ones included
+  InputStatus input = InputStatus::kOk;
+  std::vector<Warning> warnings;  ///< sorted by (a, b)
+  bool stop = false;              ///< warnings non-empty, or the input was refused
+  std::uint32_t moved_primitives = 0;
+  BroadPhaseCounters counters;  ///< broad-phase work done during this cycle only
+};
+
+/// A leaf cell of the spatial index, for visualisation.
+struct IndexCell {
+  Aabb box_W;
+  std::uint32_t primitive_count = 0;
+  bool holds_moving = false;
+};
+
+class Monitor {
+ public:
+  /// Start-up: builds the live model from a loaded workcell (see scene/workcell.h) and the
+  /// monitor options. Throws LoadError on inconsistent options.
+  Monitor(std::shared_ptr<const Workcell> workcell, const MonitorOptions& options);
+  ~Monitor();
+  Monitor(const Monitor&) = delete;
+  Monitor& operator=(const Monitor&) = delete;
+
+  const Workcell& workcell() const;
+  const MonitorOptions& options() const;
+
+  /// One cycle. `q` holds one position per Workcell::joint_names() entry (rad or m). Never
+  /// throws and does not allocate in the steady state; a malformed `q` is refused (see
+  /// InputStatus), counted, and fails safe.
+  const CycleReport& Update(const Eigen::Ref<const Eigen::VectorXd>& q);
+  /// The last report (cycle 0 and stop = true before the first good Update()).
+  const CycleReport& report() const;
+
+  /// Generate-and-test for planners: the report `q` would give, computed on a copy; the live
+  /// model is not touched. Allocates.
+  CycleReport Check(const Eigen::Ref<const Eigen::VectorXd>& q) const;
+
+  // --- run-time changes to the scene (none allocates) -------------------------------------
+  /// Object `object` is held by link `link` and moves with it from now on, in its current pose
+  /// relative to the link; it becomes compatible with that link. False (with `error`) on
+  /// unknown names.
+  bool Attach(const std::string& object, const std::string& link, std::string* error);
+  bool Detach(const std::string& object, std::string* error);
+  /// Declares (or clears) `object` a grasp target of `link`: compatible while set.
+  bool SetGraspTarget(const std::string& link, const std::string& object, bool is_target,
+                      std::string* error);
+  /// Replaces a link's primitives by its model variant `variant` (declared in the scene file;
+  /// "" is the default), e.g. one coarse gripper capsule in gross motion, a detailed set while
+  /// grasping.
+  bool SwitchModel(const std::string& link, const std::string& variant, std::string* error);
+  /// Moves a free object (for one bound to a TF frame) to pose X_WO.
+  bool SetObjectPose(const std::string& object, const Eigen::Isometry3d& X_WO,
+                     std::string* error);
+
+  // --- read access for visualisation and diagnostics ---------------------------------------
+  std::uint32_t primitive_count() const;
+  /// Current world-frame shape of primitive `id` (uninflated).
+  const Shape& shape_W(PrimitiveId id) const;
+  /// Whether primitive `id` is currently part of the checked scene (false for inactive model
+  /// variants and primitives no moving part can reach).
+  bool is_active(PrimitiveId id) const;
+  /// Leaf cells of the spatial index (empty when the broad phase has no cells).
+  void CollectIndexCells(std::vector<IndexCell>* cells) const;
+  /// Counters accumulated over the whole run.
+  const BroadPhaseCounters& total_counters() const;
+  std::uint64_t refused_inputs() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace arm_collision_monitor
