@@ -3,22 +3,16 @@
 // environment (from a scene YAML file) and the compatibility matrix; plus the Monitor's options.
 #pragma once
 
-#include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "arm_collision_monitor/broadphase/broad_phase_factory.h"
 #include "arm_collision_monitor/broadphase/compatibility_matrix.h"
+#include "arm_collision_monitor/core/load_error.h"
 #include "arm_collision_monitor/geometry/primitives.h"
 #include "arm_collision_monitor/kinematics/kinematic_model.h"
 
 namespace arm_collision_monitor {
-
-/// Start-up input error. what() names the file, the element and what was expected, e.g.
-/// "config/scene.yaml: objects[3] 'front_table': size must be 3 positive numbers".
-class LoadError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 /// One primitive of the model, in the frame of its owner.
 struct PrimitiveSpec {
@@ -43,15 +37,14 @@ struct Workcell {
   CompatibilityMatrix compatible;        ///< pairs excused at start-up
 };
 
-/// Which broad phase the Monitor uses.
-enum class BroadPhaseMethod { kOctree, kNaive, kGrid, kRebuild, kReinsert, kAuto };
-
 struct MonitorOptions {
-  BroadPhaseMethod method = BroadPhaseMethod::kOctree;
-  int max_objects_per_leaf = 10;   ///< the seed's N
+  /// The broad phase; world_W and min_cell_size_m are filled in from the workcell and from
+  /// max_speed_mps * cycle_period_s.
+  BroadPhaseOptions broad_phase;
+  /// Let the Monitor pick the faster of octree and naive for the scene at start-up.
+  bool auto_broad_phase = false;
   double max_speed_mps = 0.61;     ///< 24 in/s: bounds the per-cycle motion
   double cycle_period_s = 0.05;    ///< 20 Hz
-  int grid_cells_per_axis = 16;    ///< G, for the uniform grid
   /// Optional speed-dependent tolerance (ISO/TS 15066 protective separation distance): each
   /// moving primitive's tolerance grows by its current speed times (reaction + stopping time).
   bool speed_scaled_tolerance = false;

@@ -1,0 +1,40 @@
+// Chooses and configures a broad phase by name, so the Monitor, the replay tool and the
+// benchmarks can swap implementations by a parameter.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "arm_collision_monitor/broadphase/broad_phase.h"
+
+namespace arm_collision_monitor {
+
+enum class BroadPhaseMethod { kOctree, kNaive, kGrid, kRebuild, kReinsert };
+
+/// Parses "octree", "naive", "grid", "rebuild", "reinsert". False if unknown.
+bool ParseBroadPhaseMethod(const std::string& name, BroadPhaseMethod* method);
+std::string BroadPhaseMethodName(BroadPhaseMethod method);
+
+/// The seed's performance techniques; each can be switched off for the ablation benchmark.
+/// Switching one off changes the work done, never the pairs returned.
+struct BroadPhaseTechniques {
+  bool directional_neighbours = true;  ///< only neighbours in the direction of motion
+  bool inside_node_exit = true;        ///< skip neighbours when the box stays inside its leaf
+  bool pair_deduplication = true;      ///< test each pair once per cycle
+  bool bounding_box_pretests = true;   ///< box tests before object-node / object-object work
+};
+
+struct BroadPhaseOptions {
+  BroadPhaseMethod method = BroadPhaseMethod::kOctree;
+  Aabb world_W;                   ///< the world cube (octree root, grid extent)
+  int max_objects_per_leaf = 10;  ///< the seed's decomposition rule N
+  /// No cell is split below this edge length: the maximum speed times the cycle period (the
+  /// farthest any primitive moves in one cycle). The octree rounds it up to root / 2^k.
+  double min_cell_size_m = 0.61 * 0.05;
+  int grid_cells_per_axis = 16;   ///< G for the uniform grid
+  BroadPhaseTechniques techniques;
+};
+
+std::unique_ptr<BroadPhase> MakeBroadPhase(const BroadPhaseOptions& options);
+
+}  // namespace arm_collision_monitor

@@ -1,0 +1,61 @@
+// Forward kinematics of a URDF joint tree with Eigen (Model/Data split: the model is built once
+// from the URDF; link poses are written into caller-owned storage, no allocation per call).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "arm_collision_monitor/core/load_error.h"
+
+namespace arm_collision_monitor {
+
+enum class JointType { kFixed, kRevolute, kContinuous, kPrismatic };
+
+/// The joint that connects a link to its parent link.
+struct JointSpec {
+  std::string name;
+  JointType type = JointType::kFixed;
+  Eigen::Isometry3d X_PJ = Eigen::Isometry3d::Identity();  ///< joint origin in parent link P
+  Eigen::Vector3d axis_J = Eigen::Vector3d::UnitZ();        ///< unit axis in the joint frame
+  int q_index = -1;           ///< index into q for actuated joints, -1 for fixed
+  double lower = 0.0;         ///< position limits (rad or m); +/-inf for continuous
+  double upper = 0.0;
+  double max_velocity = 0.0;  ///< rad/s or m/s
+};
+
+class KinematicModel {
+ public:
+  /// Links in topological order: a link's parent always has a smaller index; link 0 is the
+  /// root (its pose is X_WRoot).
+  int link_count() const { return static_cast<int>(link_names_.size()); }
+  const std::string& link_name(int link) const { return link_names_[link]; }
+  /// -1 if unknown.
+  int FindLink(const std::string& name) const;
+  /// Parent link index, -1 for the root.
+  int parent_link(int link) const { return parent_link_[link]; }
+  /// The joint from parent_link(link) to `link` (unused for the root).
+  const JointSpec& joint(int link) const { return joints_[link]; }
+  /// Number of actuated joints (the size of q).
+  int q_size() const { return q_size_; }
+
+  /// X_WL for every link, given actuated positions q (size q_size()). `X_WL` must already have
+  /// link_count() entries.
+  void ComputeLinkPoses(const Eigen::Ref<const Eigen::VectorXd>& q,
+                        std::vector<Eigen::Isometry3d>* X_WL) const;
+
+  /// Builds the model from a URDF file. Throws LoadError naming the file and element.
+  static KinematicModel FromUrdfFile(const std::string& urdf_path);
+
+  Eigen::Isometry3d X_WRoot = Eigen::Isometry3d::Identity();
+
+ private:
+  std::vector<std::string> link_names_;
+  std::vector<int> parent_link_;
+  std::vector<JointSpec> joints_;
+  int q_size_ = 0;
+};
+
+}  // namespace arm_collision_monitor
