@@ -38,6 +38,13 @@ struct BroadPhaseCounters {
 
 enum class Motion : std::uint8_t { kStatic, kMoving };
 
+/// A leaf cell of a spatial index, for visualisation and statistics.
+struct IndexCell {
+  Aabb box_W;
+  std::uint32_t primitive_count = 0;
+  bool holds_moving = false;
+};
+
 class BroadPhase {
  public:
   virtual ~BroadPhase() = default;
@@ -58,6 +65,9 @@ class BroadPhase {
   /// of two static primitives. Replaces the contents of `pairs` (its capacity is reused).
   virtual void FindPairs(const CompatibilityMatrix& compatible,
                          std::vector<CandidatePair>* pairs) = 0;
+
+  /// The leaf cells (left empty by structures without cells, e.g. all pairs).
+  virtual void CollectCells(std::vector<IndexCell>* cells) const { cells->clear(); }
 
   const BroadPhaseCounters& counters() const { return counters_; }
   void ResetCounters() { counters_ = BroadPhaseCounters{}; }

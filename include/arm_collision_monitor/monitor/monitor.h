@@ -47,13 +47,6 @@ struct CycleReport {
   BroadPhaseCounters counters;  ///< broad-phase work done during this cycle only
 };
 
-/// A leaf cell of the spatial index, for visualisation.
-struct IndexCell {
-  Aabb box_W;
-  std::uint32_t primitive_count = 0;
-  bool holds_moving = false;
-};
-
 class Monitor {
  public:
   /// Start-up: builds the live model from a loaded workcell (see scene/workcell.h) and the
