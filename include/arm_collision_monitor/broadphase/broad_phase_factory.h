@@ -32,6 +32,9 @@ struct BroadPhaseOptions {
   /// farthest any primitive moves in one cycle). The octree rounds it up to root / 2^k.
   double min_cell_size_m = 0.61 * 0.05;
   int grid_cells_per_axis = 16;   ///< G for the uniform grid
+  /// Pools (node, location link, per-primitive arrays) are reserved at construction for this
+  /// many primitive ids, so the cycle does not allocate; more still work (the pools grow once).
+  std::uint32_t reserve_primitives = 256;
   BroadPhaseTechniques techniques;
 };
 

@@ -11,16 +11,93 @@ namespace arm_collision_monitor {
 // Geometry (distance routines)
 // ---------------------------------------------------------------------------------------------
 
+// A segment is treated as a point when its length is below this fraction of the other
+// segment's length (dimensionless; typical 1e-15). Below it the direction is noise at double
+// precision, and collapsing it costs at most that length in distance.
+constexpr double kSegmentDegenerateLengthRel = 1e-15;
+// Squared lengths below this (m^2; the smallest normal double, ~2.2e-308) are treated as zero:
+// dividing by them would overflow. Lengths below ~1.5e-154 m therefore count as points.
+constexpr double kSegmentMinSquaredLength_m2 = 2.2250738585072014e-308;
+// Segments whose squared sine of the angle between them is below this are handled as parallel
+// (dimensionless; typical 1e-36, i.e. 1e-18 rad). Picking any closest point of the overlap then
+// errs by at most length * sin(angle) <= 1e-18 * length, and it keeps s = num/denom finite.
+constexpr double kSegmentParallelSinSquared = 1e-36;
+// Below this squared sine (dimensionless; typical 1e-2, i.e. ~0.1 rad) the cross product of the
+// two directions is recomputed with error-free products: the plain one carries a relative error
+// ~eps/sin(angle), which would otherwise reach the closest-point parameters.
+constexpr double kSegmentNearParallelSinSquared = 1e-2;
+// Error bounds stated by the distance routines, as a multiple of the unit roundoff times the
+// local length scale S of a query (dimensionless). S = the largest of: the distance between the
+// shapes' reference points (segment start, box centre), the segment lengths, the box diagonals
+// and the radii. The test suites pin the observed worst error against these bounds.
+constexpr double kSegmentDistanceErrorUlps = 16.0;
+constexpr double kBoxDistanceErrorUlps = 64.0;
+
 // ---------------------------------------------------------------------------------------------
 // Broad phase (octree, grid)
 // ---------------------------------------------------------------------------------------------
+
+/// Deepest octree level (the root is level 0). Bounds the integer cell coordinates (2^16 units
+/// per axis) and the recursion depth; a 6.35 m world at this depth has 0.1 mm cells, far below
+/// any useful minimum cell size, so in practice min_cell_size_m decides the depth.
+constexpr int kOctreeMaxDepth = 16;
+
+/// Cell boundaries are computed in floating point as origin + i * spacing, so adjacent
+/// boundaries are spaced by the nominal spacing within a few ulps of the coordinates. The
+/// incremental update is exact only for moves strictly shorter than the spacing, so moves of
+/// at least spacing * (1 - this) (dimensionless; typical 1e-6, far above the 1e-13 relative
+/// rounding of metre-scale coordinates) take the full re-insert path instead.
+constexpr double kCellSpacingMarginRel = 1e-6;
+
+/// Location links reserved per primitive at start-up (dimensionless). A primitive smaller than
+/// a leaf lies in at most 8 leaves; larger ones in more. Only a reserve: exceeding it grows the
+/// pool once, during warm-up.
+constexpr int kReservedLinksPerPrimitive = 8;
 
 // ---------------------------------------------------------------------------------------------
 // Kinematics and scene loading
 // ---------------------------------------------------------------------------------------------
 
+/// A URDF joint axis shorter than this (dimensionless, the axis is a direction) cannot be
+/// normalised reliably: rejected at load. Typical axes have norm 1.
+constexpr double kMinJointAxisNorm = 1e-9;
+
+/// The "cylinder plus two end spheres" capsule idiom is recognised when the spheres' radii
+/// and centres match the cylinder's radius and end centres within this fraction of the
+/// cylinder's length plus radius (dimensionless). URDF numbers are printed with ~6 digits, so
+/// 1e-6 tolerates their rounding and still rejects deliberately different spheres.
+constexpr double kCapsuleIdiomMatchRel = 1e-6;
+
+/// Default tolerance zone around each arm capsule, metres: 1.2 in, the seed's buffer beyond
+/// the approximated surface of each arm (TR 90-28, section 3).
+constexpr double kDefaultArmTolerance_m = 0.0305;
+
+/// Start-up check for pairs that overlap in every configuration: this many seeded random
+/// configurations (plus the home pose) are sampled. 256 makes a pair that is clear in 5% of
+/// the joint space escape with probability 0.95^256 < 1e-5.
+constexpr int kAlwaysOverlappingSamples = 256;
+/// The seed of that sampling (printed in each warning it produces, so it can be reproduced).
+constexpr std::uint64_t kAlwaysOverlappingSeed = 20260521;
+
 // ---------------------------------------------------------------------------------------------
 // Monitor
 // ---------------------------------------------------------------------------------------------
+
+/// How far (rad for revolute, m for prismatic joints) a joint position may lie outside its URDF
+/// limits before the cycle's input is refused. Typical 0.01: encoders and controllers overshoot
+/// limits by a few milliradians; a larger excursion means a corrupt or mis-ordered message.
+inline constexpr double kJointLimitMargin = 0.01;
+
+/// auto_broad_phase rule: with at least this many primitives in the broad phase at start-up
+/// the octree is chosen, below it the all-pairs (naive) broad phase, whose per-cycle cost is
+/// moving x present box tests and wins on small scenes. Typical 64 (dimensionless count);
+/// provisional until the benchmark calibrates it (bench_broadphase_*).
+inline constexpr std::uint32_t kAutoOctreeMinPrimitives = 64;
+
+/// Largest gap (m) between a held object and its holding link's geometry that Attach accepts.
+/// Bounds how far an attached object can reach beyond its arm, which the start-up reach
+/// analysis (statics no moving primitive can reach are left out) relies on. Typical 0.10: a
+/// grasped object touches the gripper; 10 cm absorbs perception error.
+inline constexpr double kAttachMaxGap_m = 0.10;
 
 }  // namespace arm_collision_monitor

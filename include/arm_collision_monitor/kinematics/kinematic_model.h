@@ -24,6 +24,11 @@ struct JointSpec {
   double lower = 0.0;         ///< position limits (rad or m); +/-inf for continuous
   double upper = 0.0;
   double max_velocity = 0.0;  ///< rad/s or m/s
+  /// A URDF <mimic> joint is not actuated (q_index = -1): its position is
+  /// mimic_multiplier * q[mimic_q_index] + mimic_offset. -1 when the joint mimics nothing.
+  int mimic_q_index = -1;
+  double mimic_multiplier = 1.0;
+  double mimic_offset = 0.0;
 };
 
 class KinematicModel {
@@ -40,6 +45,14 @@ class KinematicModel {
   const JointSpec& joint(int link) const { return joints_[link]; }
   /// Number of actuated joints (the size of q).
   int q_size() const { return q_size_; }
+  /// Names of the actuated joints in q order (depth-first over the tree, siblings by joint
+  /// name, so the order does not depend on the order of elements in the file).
+  std::vector<std::string> ActuatedJointNames() const;
+  /// The link whose parent joint is named `joint_name`, -1 if unknown.
+  int FindJointChildLink(const std::string& joint_name) const;
+  /// True iff link `link` can move relative to the root (an actuated or mimic joint lies
+  /// between them).
+  bool is_moving(int link) const { return is_moving_[link]; }
 
   /// X_WL for every link, given actuated positions q (size q_size()). `X_WL` must already have
   /// link_count() entries.
@@ -55,6 +68,7 @@ class KinematicModel {
   std::vector<std::string> link_names_;
   std::vector<int> parent_link_;
   std::vector<JointSpec> joints_;
+  std::vector<char> is_moving_;  // char, not bool: plain storage, indexed per link
   int q_size_ = 0;
 };
 

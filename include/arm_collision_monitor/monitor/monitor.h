@@ -99,6 +99,14 @@ class Monitor {
   /// Counters accumulated over the whole run.
   const BroadPhaseCounters& total_counters() const;
   std::uint64_t refused_inputs() const;
+  /// The broad phase in use ("octree", "naive", ...; auto_broad_phase decides at start-up).
+  std::string broad_phase_name() const;
+  /// Tolerance of primitive `id` in the last cycle (speed-scaled when enabled), metres.
+  double tolerance_m(PrimitiveId id) const;
+
+  /// Checks the live model's invariants (shapes follow their carriers, compatibility matches
+  /// the attach / grasp state, the report is sorted). False with a message in `error`.
+  bool Validate(std::string* error) const;
 
  private:
   struct Impl;

@@ -6,8 +6,10 @@
 #include <string>
 #include <vector>
 
+#include "arm_collision_monitor/broadphase/broad_phase.h"
 #include "arm_collision_monitor/broadphase/broad_phase_factory.h"
 #include "arm_collision_monitor/broadphase/compatibility_matrix.h"
+#include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/core/load_error.h"
 #include "arm_collision_monitor/geometry/primitives.h"
 #include "arm_collision_monitor/kinematics/kinematic_model.h"
@@ -23,7 +25,45 @@ struct PrimitiveSpec {
   std::string variant;  ///< model variant of its link ("" = default, active at start)
   Shape shape_L;        ///< geometry in the owner's frame (link frame, or world for objects)
   double tolerance_m = 0.0;  ///< tolerance zone beyond the surface
-  bool is_static = true;     ///< environment object not attached and not frame-bound
+  /// Never moves: a link primitive with only fixed joints to the root, or an object that is
+  /// neither attachable nor frame-bound. Attachable and frame-bound objects are not static.
+  bool is_static = true;
+  int object_index = -1;  ///< index into Workcell::objects, -1 for a link primitive
+};
+
+/// An arm: a subtree of the URDF whose capsules get one tolerance.
+struct ArmSpec {
+  std::string name;       ///< "left", "right"
+  std::string root_link;  ///< every link at or below it belongs to the arm
+  double tolerance_m = kDefaultArmTolerance_m;
+};
+
+/// An environment object of the scene file: one box, whose frame O is the box frame (centre,
+/// edges along O's axes). Its primitive's shape_L is the box at X_WO_start in W.
+struct ObjectSpec {
+  std::string name;
+  PrimitiveId primitive = 0;
+  Eigen::Isometry3d X_WO_start = Eigen::Isometry3d::Identity();
+  bool is_attachable = false;  ///< a link may pick it up at run time (Monitor::Attach)
+  std::string frame;           ///< TF frame its pose follows at run time; "" if none
+};
+
+/// A (link, object) pair the Monitor may excuse while the link grasps the object.
+struct GraspTargetSpec {
+  std::string link;
+  int link_index = -1;
+  std::string object;
+  int object_index = -1;
+};
+
+/// A non-default model of a link (Monitor::SwitchModel). Its primitives carry
+/// PrimitiveSpec::variant == name; the default model ("") is the link's primitives with
+/// variant "".
+struct ModelVariantSpec {
+  std::string link;
+  int link_index = -1;
+  std::string name;
+  std::vector<PrimitiveId> primitives;
 };
 
 struct Workcell {
@@ -35,7 +75,22 @@ struct Workcell {
   std::vector<std::string> joint_names;  ///< actuated joints, in the order of Monitor's q
   std::vector<PrimitiveSpec> primitives; ///< PrimitiveId = index
   CompatibilityMatrix compatible;        ///< pairs excused at start-up
+  std::vector<ArmSpec> arms;
+  std::vector<ObjectSpec> objects;
+  std::vector<GraspTargetSpec> grasp_targets;
+  std::vector<ModelVariantSpec> variants;
+  /// Start-up findings that do not stop loading but must be shown to the user, e.g. pairs that
+  /// are within their tolerances in every sampled configuration (they would warn every cycle).
+  std::vector<std::string> warnings;
+
+  /// Index of the primitive, object or variant with that name; -1 if none.
+  int FindPrimitive(const std::string& name) const;
+  int FindObject(const std::string& name) const;
+  int FindVariant(const std::string& link, const std::string& variant) const;
 };
+
+/// The shape `shape_L`, given in frame L, expressed in W (rigid transform X_WL).
+Shape TransformShape(const Eigen::Isometry3d& X_WL, const Shape& shape_L);
 
 struct MonitorOptions {
   /// The broad phase; world_W and min_cell_size_m are filled in from the workcell and from
@@ -50,10 +105,17 @@ struct MonitorOptions {
   bool speed_scaled_tolerance = false;
   double reaction_time_s = 0.1;
   double stopping_time_s = 0.02;
+  /// Default tolerance of an arm whose scene entry gives none (pass it to LoadWorkcell).
+  double tolerance_m = kDefaultArmTolerance_m;
+  /// The frame reports are expressed in (the URDF root link).
+  std::string fixed_frame = "world";
 };
 
-/// Loads a URDF and a scene YAML file into a workcell. Throws LoadError.
-Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_path);
+/// Loads a URDF and a scene YAML file into a workcell (format: comment block at the top of
+/// config/scene.yaml). `default_arm_tolerance_m` applies to arms whose scene entry gives no
+/// tolerance_m. Throws LoadError naming the file, the element and what was expected.
+Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_path,
+                      double default_arm_tolerance_m = kDefaultArmTolerance_m);
 /// Loads Monitor options from a YAML file. Throws LoadError.
 MonitorOptions LoadMonitorOptions(const std::string& path);
 

@@ -1,0 +1,152 @@
+// What the octree and the uniform grid share: the primitive table, the location links between
+// primitives and cells (the seed's Figure 4), the list of primitives outside the world cube,
+// the visit and pair stamps, and the per-cycle pair scan. The cell structure itself (which
+// cells exist, where a box goes, how cells split and merge) is left to the derived class.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "arm_collision_monitor/broadphase/broad_phase.h"
+#include "arm_collision_monitor/broadphase/broad_phase_factory.h"
+
+namespace arm_collision_monitor {
+
+/// How a cell structure follows a moving primitive.
+enum class CellUpdateStrategy : std::uint8_t {
+  kIncremental,  ///< the seed's update: neighbours of the old cells only, split/merge on demand
+  kReinsert,     ///< delete and re-insert every moved primitive (the seed's second approach)
+  kRebuild,      ///< clear and rebuild the whole structure once per cycle (its first approach)
+};
+
+/// Base of the cell-based broad phases. Not for direct use: see OctreeBroadPhase and
+/// GridBroadPhase.
+class CellBroadPhase : public BroadPhase {
+ public:
+  void Add(PrimitiveId id, const Aabb& box_W, double tolerance_m, Motion motion) override;
+  void Remove(PrimitiveId id) override;
+  void Move(PrimitiveId id, const Aabb& box_W) override;
+  void FindPairs(const CompatibilityMatrix& compatible,
+                 std::vector<CandidatePair>* pairs) override;
+
+  /// True iff every invariant holds (location links equal exactly the cells each primitive's
+  /// inflated box overlaps, counts, lists, stamps, plus the derived structure's own rules);
+  /// otherwise false with the first violation described in `why`. Slow: for tests.
+  bool Validate(std::string* why) const;
+
+  /// Test hook for the wrap-around of the 32-bit stamps: the next visit (per update), pair scan
+  /// (per moving primitive per FindPairs) and distinct-count (per merge check) stamps will be
+  /// `value` + 1. Precondition: called before any Add (no stamp may exceed the counters).
+  void SetStampsForTest(std::uint32_t value) {
+    visit_stamp_ = value;
+    scan_stamp_ = value;
+    union_stamp_ = value;
+  }
+
+  CellUpdateStrategy strategy() const { return strategy_; }
+  /// Number of present primitives whose inflated box is not inside the world cube.
+  std::size_t outside_count() const { return outside_ids_.size(); }
+
+ protected:
+  static constexpr std::uint32_t kNone = 0xffffffffu;
+
+  struct Record {
+    Aabb box_W;  // inflated by the tolerance: what cells and pairs are decided on
+    double tolerance_m = 0.0;
+    Motion motion = Motion::kStatic;
+    bool present = false;
+    bool outside = false;  // box not inside the world cube: kept in outside_ids_, no links
+    std::uint32_t first_link = kNone;
+    std::uint32_t link_count = 0;
+    std::uint32_t pair_stamp = 0;   // scan stamp of the last pair test in this cycle
+    std::uint32_t union_stamp = 0;  // distinct-primitive counting (merges, splits' bookkeeping)
+    std::uint32_t present_slot = 0, moving_slot = 0, outside_slot = 0;
+  };
+  // A location link: primitive `prim` lies in cell `cell`. Each link is on two doubly linked
+  // lists, the cell's and the primitive's, so it is added and removed in O(1).
+  struct Link {
+    PrimitiveId prim = 0;
+    std::uint32_t cell = 0;
+    std::uint32_t next_in_cell = kNone, prev_in_cell = kNone;
+    std::uint32_t next_of_prim = kNone, prev_of_prim = kNone;
+  };
+
+  CellBroadPhase(const Aabb& world_W, const BroadPhaseTechniques& techniques,
+                 CellUpdateStrategy strategy, double cell_spacing_m);
+
+  // --- Hooks of the cell structure (one virtual call per primitive update, none per cell) ---
+  /// Links `id` (inside the world) into every cell its box overlaps, splitting as needed.
+  virtual void InsertIntoCells(PrimitiveId id) = 0;
+  /// Brings the links of `id` from `old_box_W` to its current box. Precondition: every face
+  /// moved by less than the cell spacing (see ShortMove).
+  virtual void UpdateCells(PrimitiveId id, const Aabb& old_box_W) = 0;
+  /// Unlinks `id` from all its cells (merging where the structure allows).
+  virtual void RemoveFromCells(PrimitiveId id) = 0;
+  /// Empties the structure: every cell and link gone (rebuild strategy).
+  virtual void ClearCells() = 0;
+  /// The structure's own invariants, including that the links of each primitive are exactly
+  /// the cells its box overlaps.
+  virtual bool ValidateCells(std::string* why) const = 0;
+
+  // --- Shared machinery ---
+  void ResizeCells(std::size_t cell_count);
+  void ReserveShared(std::uint32_t max_primitives, std::uint32_t max_links,
+                     std::uint32_t max_cells);
+  void AddLink(PrimitiveId prim, std::uint32_t cell);
+  void RemoveLink(std::uint32_t link);
+  void ClearLinks();
+  /// A fresh visit stamp for one primitive update; on wrap-around every cell's stamp is reset
+  /// (the seed's ThisCheckNo / lastCheckNo).
+  std::uint32_t NextVisitStamp();
+  /// A fresh stamp for counting distinct primitives (Record::union_stamp), wrap handled.
+  std::uint32_t NextUnionStamp();
+  /// True when no face of the box moved by the cell spacing (with margin) or more: then the
+  /// neighbour search from the old cells is exact (argument in cell_broad_phase.cpp).
+  bool ShortMove(const Aabb& old_box_W, const Aabb& new_box_W) const;
+
+  /// Bit a (0..2) set: the box reaches the upper face of `cell_W` on axis a (box max >= face);
+  /// bit 3 + a: it reaches the lower face. A neighbour on side d can hold the box only if every
+  /// non-zero component of d has its bit set.
+  static unsigned ReachMask(const Aabb& box_W, const Aabb& cell_W);
+  /// The 26 directions to face, edge and corner neighbours, and the ReachMask bits each needs.
+  struct Direction {
+    int d[3];
+    unsigned needed_mask;
+  };
+  static const std::array<Direction, 26>& Directions();
+
+  std::vector<Record> records_;  // by id
+  std::vector<Link> links_;
+  std::uint32_t free_link_ = kNone;
+  std::uint32_t live_links_ = 0;
+  // Per cell (cell ids are the derived structure's: node indices, grid indices).
+  std::vector<std::uint32_t> cell_head_;
+  std::vector<std::uint32_t> cell_count_;
+  std::vector<std::uint32_t> cell_visit_;  // lastCheckNo
+
+  std::vector<PrimitiveId> present_ids_;
+  std::vector<PrimitiveId> moving_ids_;
+  std::vector<PrimitiveId> outside_ids_;
+  std::vector<std::uint32_t> scratch_cells_;  // merge candidates, reserved at start-up
+
+  Aabb world_W_;
+  BroadPhaseTechniques techniques_;
+  CellUpdateStrategy strategy_;
+  double jump_limit_m_;  // cell spacing * (1 - margin)
+  std::uint32_t visit_stamp_ = 0;
+  std::uint32_t scan_stamp_ = 0;
+  std::uint32_t union_stamp_ = 0;
+  bool needs_rebuild_ = false;
+
+ private:
+  void AddToList(std::vector<PrimitiveId>* list, std::uint32_t Record::*slot, PrimitiveId id);
+  void RemoveFromList(std::vector<PrimitiveId>* list, std::uint32_t Record::*slot,
+                      PrimitiveId id);
+  void SetOutside(PrimitiveId id, bool outside);
+  void Rebuild();
+  bool ValidateShared(std::string* why) const;
+};
+
+}  // namespace arm_collision_monitor

@@ -1,0 +1,19 @@
+// Conversions from urdfdom types, shared by the kinematics and the scene loader.
+#pragma once
+
+#include <string>
+
+#include <Eigen/Geometry>
+#include <urdf_model/model.h>
+#include <urdf_world/types.h>
+
+namespace arm_collision_monitor {
+
+/// The rigid transform an URDF <origin> states (rpy applied as fixed-axis roll, pitch, yaw).
+Eigen::Isometry3d UrdfPoseToIsometry(const urdf::Pose& pose);
+
+/// Parses the URDF at `urdf_path`. Throws LoadError naming the file when it cannot be opened or
+/// urdfdom rejects it.
+urdf::ModelInterfaceSharedPtr ParseUrdfFile(const std::string& urdf_path);
+
+}  // namespace arm_collision_monitor

@@ -1,0 +1,65 @@
+#include "arm_collision_monitor/broadphase/broad_phase_factory.h"
+
+#include "arm_collision_monitor/broadphase/grid_broad_phase.h"
+#include "arm_collision_monitor/broadphase/naive_broad_phase.h"
+#include "arm_collision_monitor/broadphase/octree_broad_phase.h"
+
+namespace arm_collision_monitor {
+
+bool ParseBroadPhaseMethod(const std::string& name, BroadPhaseMethod* method) {
+  static constexpr BroadPhaseMethod kAll[] = {BroadPhaseMethod::kOctree, BroadPhaseMethod::kNaive,
+                                              BroadPhaseMethod::kGrid, BroadPhaseMethod::kRebuild,
+                                              BroadPhaseMethod::kReinsert};
+  for (const BroadPhaseMethod m : kAll) {
+    if (name == BroadPhaseMethodName(m)) {
+      *method = m;
+      return true;
+    }
+  }
+  return false;
+}
+
+std::string BroadPhaseMethodName(BroadPhaseMethod method) {
+  switch (method) {
+    case BroadPhaseMethod::kOctree: return "octree";
+    case BroadPhaseMethod::kNaive: return "naive";
+    case BroadPhaseMethod::kGrid: return "grid";
+    case BroadPhaseMethod::kRebuild: return "rebuild";
+    case BroadPhaseMethod::kReinsert: return "reinsert";
+  }
+  return "unknown";
+}
+
+namespace {
+std::unique_ptr<BroadPhase> MakeOctree(const BroadPhaseOptions& options,
+                                       CellUpdateStrategy strategy) {
+  auto octree = std::make_unique<OctreeBroadPhase>(options, strategy);
+  // Nodes: a generous multiple of the primitives (the seed's 35 primitives needed 33 nodes).
+  octree->Reserve(options.reserve_primitives, 8 * options.reserve_primitives + 1);
+  return octree;
+}
+}  // namespace
+
+std::unique_ptr<BroadPhase> MakeBroadPhase(const BroadPhaseOptions& options) {
+  switch (options.method) {
+    case BroadPhaseMethod::kNaive: {
+      auto naive = std::make_unique<NaiveBroadPhase>();
+      naive->Reserve(options.reserve_primitives);
+      return naive;
+    }
+    case BroadPhaseMethod::kGrid: {
+      auto grid = std::make_unique<GridBroadPhase>(options);
+      grid->Reserve(options.reserve_primitives);
+      return grid;
+    }
+    case BroadPhaseMethod::kOctree:
+      return MakeOctree(options, CellUpdateStrategy::kIncremental);
+    case BroadPhaseMethod::kRebuild:
+      return MakeOctree(options, CellUpdateStrategy::kRebuild);
+    case BroadPhaseMethod::kReinsert:
+      return MakeOctree(options, CellUpdateStrategy::kReinsert);
+  }
+  return nullptr;
+}
+
+}  // namespace arm_collision_monitor

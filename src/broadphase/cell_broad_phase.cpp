@@ -1,0 +1,450 @@
+#include "arm_collision_monitor/broadphase/cell_broad_phase.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "arm_collision_monitor/broadphase/broad_phase_util.h"
+#include "arm_collision_monitor/core/constants.h"
+
+namespace arm_collision_monitor {
+
+// Why the neighbour search of the incremental update is exact (the seed's "an object cannot
+// move through a node", made precise). Every cell boundary lies on the lattice
+// origin + i * s, s = the minimum cell edge (octree: root / 2^depth; grid: the cell edge),
+// and cells are closed boxes. Let the inflated box move from B0 to B1 with every face moving
+// by less than s. Take a cell X that B1 overlaps, at a point p. Clamp p into B0 axis by axis to
+// get q; on each axis |p - q| < s, because the face of B0 that q lies on is within s of the
+// matching face of B1, which lies beyond p. q lies in some cell Y that B0 overlaps. On each
+// axis the intervals of X and Y meet: were they disjoint, a gap between two lattice points
+// would separate them, at least s wide, yet p and q are less than s apart. So the closed
+// cells X and Y share a point: X is Y, or a face, edge or corner neighbour of Y (or a
+// descendant of one lying on the common face, edge or corner). Searching the 26 neighbour
+// directions of every old cell therefore finds every new cell. Moves of s or more (jumps), and
+// boxes leaving or re-entering the world cube, take the full remove-and-insert path instead.
+// Floating point: boundaries are spaced s within rounding, hence the margin in jump_limit_m_.
+
+CellBroadPhase::CellBroadPhase(const Aabb& world_W, const BroadPhaseTechniques& techniques,
+                               CellUpdateStrategy strategy, double cell_spacing_m)
+    : world_W_(world_W),
+      techniques_(techniques),
+      strategy_(strategy),
+      jump_limit_m_(cell_spacing_m * (1.0 - kCellSpacingMarginRel)) {}
+
+void CellBroadPhase::ResizeCells(std::size_t cell_count) {
+  cell_head_.resize(cell_count, kNone);
+  cell_count_.resize(cell_count, 0);
+  cell_visit_.resize(cell_count, 0);
+}
+
+void CellBroadPhase::ReserveShared(std::uint32_t max_primitives, std::uint32_t max_links,
+                                   std::uint32_t max_cells) {
+  cell_head_.reserve(max_cells);
+  cell_count_.reserve(max_cells);
+  cell_visit_.reserve(max_cells);
+  if (records_.size() < max_primitives) records_.resize(max_primitives);
+  present_ids_.reserve(max_primitives);
+  moving_ids_.reserve(max_primitives);
+  outside_ids_.reserve(max_primitives);
+  links_.reserve(max_links);
+  scratch_cells_.reserve(max_links);
+}
+
+void CellBroadPhase::AddLink(PrimitiveId prim, std::uint32_t cell) {
+  std::uint32_t l;
+  if (free_link_ != kNone) {
+    l = free_link_;
+    free_link_ = links_[l].next_in_cell;
+  } else {
+    l = static_cast<std::uint32_t>(links_.size());
+    links_.emplace_back();
+  }
+  Record& r = records_[prim];
+  Link& link = links_[l];
+  link.prim = prim;
+  link.cell = cell;
+  link.prev_in_cell = kNone;
+  link.next_in_cell = cell_head_[cell];
+  if (link.next_in_cell != kNone) links_[link.next_in_cell].prev_in_cell = l;
+  cell_head_[cell] = l;
+  ++cell_count_[cell];
+  link.prev_of_prim = kNone;
+  link.next_of_prim = r.first_link;
+  if (link.next_of_prim != kNone) links_[link.next_of_prim].prev_of_prim = l;
+  r.first_link = l;
+  ++r.link_count;
+  ++live_links_;
+}
+
+void CellBroadPhase::RemoveLink(std::uint32_t l) {
+  Link& link = links_[l];
+  if (link.prev_in_cell != kNone) {
+    links_[link.prev_in_cell].next_in_cell = link.next_in_cell;
+  } else {
+    cell_head_[link.cell] = link.next_in_cell;
+  }
+  if (link.next_in_cell != kNone) links_[link.next_in_cell].prev_in_cell = link.prev_in_cell;
+  --cell_count_[link.cell];
+  Record& r = records_[link.prim];
+  if (link.prev_of_prim != kNone) {
+    links_[link.prev_of_prim].next_of_prim = link.next_of_prim;
+  } else {
+    r.first_link = link.next_of_prim;
+  }
+  if (link.next_of_prim != kNone) links_[link.next_of_prim].prev_of_prim = link.prev_of_prim;
+  --r.link_count;
+  --live_links_;
+  link.next_in_cell = free_link_;  // the free list reuses next_in_cell
+  free_link_ = l;
+}
+
+void CellBroadPhase::ClearLinks() {
+  links_.clear();  // keeps the capacity
+  free_link_ = kNone;
+  live_links_ = 0;
+  for (Record& r : records_) {
+    r.first_link = kNone;
+    r.link_count = 0;
+  }
+  std::fill(cell_head_.begin(), cell_head_.end(), kNone);
+  std::fill(cell_count_.begin(), cell_count_.end(), 0u);
+}
+
+std::uint32_t CellBroadPhase::NextVisitStamp() {
+  if (visit_stamp_ == std::numeric_limits<std::uint32_t>::max()) {
+    // The seed: "the tree should be traversed and every node's lastCheckNo reset".
+    std::fill(cell_visit_.begin(), cell_visit_.end(), 0u);
+    visit_stamp_ = 0;
+  }
+  return ++visit_stamp_;
+}
+
+std::uint32_t CellBroadPhase::NextUnionStamp() {
+  if (union_stamp_ == std::numeric_limits<std::uint32_t>::max()) {
+    for (Record& r : records_) r.union_stamp = 0;
+    union_stamp_ = 0;
+  }
+  return ++union_stamp_;
+}
+
+bool CellBroadPhase::ShortMove(const Aabb& old_box_W, const Aabb& new_box_W) const {
+  return ((new_box_W.min_W - old_box_W.min_W).array().abs() < jump_limit_m_).all() &&
+         ((new_box_W.max_W - old_box_W.max_W).array().abs() < jump_limit_m_).all();
+}
+
+unsigned CellBroadPhase::ReachMask(const Aabb& box_W, const Aabb& cell_W) {
+  unsigned mask = 0;
+  for (int a = 0; a < 3; ++a) {
+    if (box_W.max_W[a] > cell_W.max_W[a]) mask |= 1u << a;
+    if (box_W.min_W[a] <= cell_W.min_W[a]) mask |= 1u << (3 + a);
+  }
+  return mask;
+}
+
+const std::array<CellBroadPhase::Direction, 26>& CellBroadPhase::Directions() {
+  static const std::array<Direction, 26> kDirections = [] {
+    std::array<Direction, 26> out{};
+    int n = 0;
+    for (int dx = -1; dx <= 1; ++dx) {
+      for (int dy = -1; dy <= 1; ++dy) {
+        for (int dz = -1; dz <= 1; ++dz) {
+          if (dx == 0 && dy == 0 && dz == 0) continue;
+          Direction& dir = out[n++];
+          dir.d[0] = dx;
+          dir.d[1] = dy;
+          dir.d[2] = dz;
+          dir.needed_mask = 0;
+          for (int a = 0; a < 3; ++a) {
+            if (dir.d[a] > 0) dir.needed_mask |= 1u << a;
+            if (dir.d[a] < 0) dir.needed_mask |= 1u << (3 + a);
+          }
+        }
+      }
+    }
+    return out;
+  }();
+  return kDirections;
+}
+
+void CellBroadPhase::AddToList(std::vector<PrimitiveId>* list, std::uint32_t Record::*slot,
+                               PrimitiveId id) {
+  records_[id].*slot = static_cast<std::uint32_t>(list->size());
+  list->push_back(id);
+}
+
+void CellBroadPhase::RemoveFromList(std::vector<PrimitiveId>* list,
+                                    std::uint32_t Record::*slot, PrimitiveId id) {
+  const std::uint32_t index = records_[id].*slot;
+  const PrimitiveId last = list->back();
+  (*list)[index] = last;
+  records_[last].*slot = index;
+  list->pop_back();
+}
+
+void CellBroadPhase::SetOutside(PrimitiveId id, bool outside) {
+  Record& r = records_[id];
+  if (r.outside == outside) return;
+  r.outside = outside;
+  if (outside) {
+    AddToList(&outside_ids_, &Record::outside_slot, id);
+  } else {
+    RemoveFromList(&outside_ids_, &Record::outside_slot, id);
+  }
+}
+
+void CellBroadPhase::Add(PrimitiveId id, const Aabb& box_W, double tolerance_m, Motion motion) {
+  if (id >= records_.size()) records_.resize(static_cast<std::size_t>(id) + 1);
+  if (records_[id].present) return;  // precondition violated: keep the first registration
+  Record& r = records_[id];
+  r.box_W = box_W.Inflated(tolerance_m);
+  r.tolerance_m = tolerance_m;
+  r.motion = motion;
+  r.present = true;
+  r.outside = false;
+  AddToList(&present_ids_, &Record::present_slot, id);
+  if (motion == Motion::kMoving) AddToList(&moving_ids_, &Record::moving_slot, id);
+  const bool inside = world_W_.Contains(r.box_W);
+  if (!inside) {
+    ++counters_.outside_world;
+    SetOutside(id, true);
+  }
+  if (strategy_ == CellUpdateStrategy::kRebuild) {
+    needs_rebuild_ = true;
+  } else if (inside) {
+    InsertIntoCells(id);
+  }
+}
+
+void CellBroadPhase::Remove(PrimitiveId id) {
+  if (id >= records_.size() || !records_[id].present) return;
+  Record& r = records_[id];
+  if (r.link_count > 0) RemoveFromCells(id);
+  if (r.outside) SetOutside(id, false);
+  RemoveFromList(&present_ids_, &Record::present_slot, id);
+  if (r.motion == Motion::kMoving) RemoveFromList(&moving_ids_, &Record::moving_slot, id);
+  r.present = false;
+  if (strategy_ == CellUpdateStrategy::kRebuild) needs_rebuild_ = true;
+}
+
+void CellBroadPhase::Move(PrimitiveId id, const Aabb& box_W) {
+  if (id >= records_.size() || !records_[id].present) return;  // refused: unknown primitive
+  Record& r = records_[id];
+  const Aabb old_box_W = r.box_W;
+  r.box_W = box_W.Inflated(r.tolerance_m);
+  // Contains() is false for NaN coordinates: a corrupt box goes to the outside list, where
+  // Overlaps() is false for it too. Nothing is lost and nothing crashes.
+  const bool inside = world_W_.Contains(r.box_W);
+  if (!inside) ++counters_.outside_world;
+  if (strategy_ == CellUpdateStrategy::kRebuild) {
+    SetOutside(id, !inside);
+    needs_rebuild_ = true;
+    return;
+  }
+  if (r.outside) {
+    if (inside) {  // re-entering the world cube
+      ++counters_.reinsert_fallbacks;
+      SetOutside(id, false);
+      InsertIntoCells(id);
+    }
+    return;
+  }
+  if (!inside) {  // leaving the world cube
+    RemoveFromCells(id);
+    SetOutside(id, true);
+    return;
+  }
+  if (strategy_ == CellUpdateStrategy::kReinsert) {
+    RemoveFromCells(id);
+    InsertIntoCells(id);
+  } else if (ShortMove(old_box_W, r.box_W)) {
+    UpdateCells(id, old_box_W);
+  } else {
+    ++counters_.reinsert_fallbacks;
+    RemoveFromCells(id);
+    InsertIntoCells(id);
+  }
+}
+
+void CellBroadPhase::Rebuild() {
+  ClearCells();
+  for (const PrimitiveId id : present_ids_) {
+    if (!records_[id].outside) InsertIntoCells(id);
+  }
+}
+
+void CellBroadPhase::FindPairs(const CompatibilityMatrix& compatible,
+                               std::vector<CandidatePair>* pairs) {
+  if (needs_rebuild_) {
+    Rebuild();
+    needs_rebuild_ = false;
+  }
+  pairs->clear();
+  const bool dedup = techniques_.pair_deduplication;
+  // Moving primitives inside the world: every partner inside the world shares a cell with them
+  // (two closed boxes that overlap share a point, and that point lies in some closed cell).
+  for (const PrimitiveId m : moving_ids_) {
+    const Record& rm = records_[m];
+    if (rm.outside) continue;
+    if (scan_stamp_ == std::numeric_limits<std::uint32_t>::max()) {
+      for (Record& r : records_) r.pair_stamp = 0;
+      scan_stamp_ = 0;
+    }
+    const std::uint32_t stamp = ++scan_stamp_;
+    for (std::uint32_t l = rm.first_link; l != kNone; l = links_[l].next_of_prim) {
+      for (std::uint32_t k = cell_head_[links_[l].cell]; k != kNone;
+           k = links_[k].next_in_cell) {
+        const PrimitiveId q = links_[k].prim;
+        if (q == m) continue;
+        Record& rq = records_[q];
+        // A pair of two moving primitives is met from both; take it from the smaller id.
+        if (rq.motion == Motion::kMoving && q < m) continue;
+        if (dedup) {
+          // One test per pair per cycle even when the two share several cells.
+          if (rq.pair_stamp == stamp) continue;
+          rq.pair_stamp = stamp;
+        }
+        ++counters_.object_object_tests;
+        if (!rm.box_W.Overlaps(rq.box_W)) continue;
+        if (IsCompatiblePair(compatible, m, q)) continue;
+        pairs->push_back(MakeOrderedPair(m, q));
+      }
+    }
+  }
+  // Primitives (partly) outside the world cube have no cells: brute force against all.
+  for (const PrimitiveId o : outside_ids_) {
+    const Record& ro = records_[o];
+    for (const PrimitiveId x : present_ids_) {
+      if (x == o) continue;
+      const Record& rx = records_[x];
+      if (ro.motion == Motion::kStatic && rx.motion == Motion::kStatic) continue;
+      if (rx.outside && x < o) continue;  // both outside: taken from the smaller id
+      ++counters_.object_object_tests;
+      if (!ro.box_W.Overlaps(rx.box_W)) continue;
+      if (IsCompatiblePair(compatible, o, x)) continue;
+      pairs->push_back(MakeOrderedPair(o, x));
+    }
+  }
+  std::sort(pairs->begin(), pairs->end());
+  if (!dedup) pairs->erase(std::unique(pairs->begin(), pairs->end()), pairs->end());
+}
+
+namespace {
+bool Fail(std::string* why, const std::string& message) {
+  if (why != nullptr) *why = message;
+  return false;
+}
+}  // namespace
+
+bool CellBroadPhase::Validate(std::string* why) const {
+  if (!ValidateShared(why)) return false;
+  if (needs_rebuild_) return true;  // rebuild strategy between Move and FindPairs: stale cells
+  return ValidateCells(why);
+}
+
+bool CellBroadPhase::ValidateShared(std::string* why) const {
+  std::ostringstream msg;
+  std::size_t present = 0, moving = 0, outside = 0;
+  std::uint64_t prim_links = 0;
+  for (PrimitiveId id = 0; id < records_.size(); ++id) {
+    const Record& r = records_[id];
+    if (r.pair_stamp > scan_stamp_ || r.union_stamp > union_stamp_) {
+      msg << "primitive " << id << " has a stamp from the future";
+      return Fail(why, msg.str());
+    }
+    if (!r.present) {
+      if (r.link_count != 0 || r.first_link != kNone) {
+        msg << "absent primitive " << id << " still has links";
+        return Fail(why, msg.str());
+      }
+      continue;
+    }
+    ++present;
+    if (present_ids_.size() <= r.present_slot || present_ids_[r.present_slot] != id) {
+      msg << "primitive " << id << " not at its slot of the present list";
+      return Fail(why, msg.str());
+    }
+    if (r.motion == Motion::kMoving) {
+      ++moving;
+      if (moving_ids_.size() <= r.moving_slot || moving_ids_[r.moving_slot] != id) {
+        msg << "primitive " << id << " not at its slot of the moving list";
+        return Fail(why, msg.str());
+      }
+    }
+    if (r.outside) {
+      ++outside;
+      if (outside_ids_.size() <= r.outside_slot || outside_ids_[r.outside_slot] != id) {
+        msg << "primitive " << id << " not at its slot of the outside list";
+        return Fail(why, msg.str());
+      }
+    }
+    if (!needs_rebuild_) {
+      if (r.outside == world_W_.Contains(r.box_W)) {
+        msg << "primitive " << id << " outside flag " << r.outside << " disagrees with its box";
+        return Fail(why, msg.str());
+      }
+      if (r.outside && r.link_count != 0) {
+        msg << "primitive " << id << " is outside the world but has links";
+        return Fail(why, msg.str());
+      }
+    }
+    std::uint32_t count = 0;
+    std::uint32_t prev = kNone;
+    for (std::uint32_t l = r.first_link; l != kNone; l = links_[l].next_of_prim) {
+      if (l >= links_.size() || links_[l].prim != id || links_[l].prev_of_prim != prev ||
+          count > live_links_) {
+        msg << "broken location list of primitive " << id;
+        return Fail(why, msg.str());
+      }
+      prev = l;
+      ++count;
+    }
+    if (count != r.link_count) {
+      msg << "primitive " << id << " link count " << r.link_count << " but list has " << count;
+      return Fail(why, msg.str());
+    }
+    prim_links += count;
+  }
+  if (present != present_ids_.size() || moving != moving_ids_.size() ||
+      outside != outside_ids_.size()) {
+    return Fail(why, "present/moving/outside list sizes disagree with the records");
+  }
+  std::uint64_t cell_links = 0;
+  for (std::uint32_t c = 0; c < cell_head_.size(); ++c) {
+    if (cell_visit_[c] > visit_stamp_) {
+      msg << "cell " << c << " visit stamp " << cell_visit_[c] << " > current " << visit_stamp_;
+      return Fail(why, msg.str());
+    }
+    std::uint32_t count = 0;
+    std::uint32_t prev = kNone;
+    for (std::uint32_t l = cell_head_[c]; l != kNone; l = links_[l].next_in_cell) {
+      if (l >= links_.size() || links_[l].cell != c || links_[l].prev_in_cell != prev ||
+          count > live_links_ || !records_[links_[l].prim].present) {
+        msg << "broken member list of cell " << c;
+        return Fail(why, msg.str());
+      }
+      prev = l;
+      ++count;
+    }
+    if (count != cell_count_[c]) {
+      msg << "cell " << c << " count " << cell_count_[c] << " but list has " << count;
+      return Fail(why, msg.str());
+    }
+    cell_links += count;
+  }
+  if (cell_links != live_links_ || prim_links != live_links_) {
+    msg << "link totals disagree: cells " << cell_links << ", primitives " << prim_links
+        << ", live " << live_links_;
+    return Fail(why, msg.str());
+  }
+  std::uint64_t free_links = 0;
+  for (std::uint32_t l = free_link_; l != kNone; l = links_[l].next_in_cell) {
+    if (++free_links > links_.size()) return Fail(why, "cycle in the free link list");
+  }
+  if (free_links + live_links_ != links_.size()) {
+    return Fail(why, "free + live links != link pool size");
+  }
+  return true;
+}
+
+}  // namespace arm_collision_monitor

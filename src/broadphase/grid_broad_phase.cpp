@@ -1,0 +1,188 @@
+#include "arm_collision_monitor/broadphase/grid_broad_phase.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "arm_collision_monitor/broadphase/broad_phase_util.h"
+#include "arm_collision_monitor/core/constants.h"
+
+namespace arm_collision_monitor {
+namespace {
+
+int CellsPerAxis(const BroadPhaseOptions& options) {
+  return std::clamp(options.grid_cells_per_axis, 1, 1 << 10);
+}
+
+double CellSize(const BroadPhaseOptions& options) {
+  const double edge_m = (options.world_W.max_W - options.world_W.min_W).maxCoeff();
+  return std::isfinite(edge_m) && edge_m > 0.0 ? edge_m / CellsPerAxis(options) : 0.0;
+}
+
+Aabb GridCube(const BroadPhaseOptions& options) {
+  Aabb cube_W;
+  cube_W.min_W = options.world_W.min_W;
+  for (int a = 0; a < 3; ++a) {
+    cube_W.max_W[a] = LatticeCoordinate(cube_W.min_W[a],
+                                        static_cast<std::uint32_t>(CellsPerAxis(options)),
+                                        CellSize(options));
+  }
+  return cube_W;
+}
+
+}  // namespace
+
+GridBroadPhase::GridBroadPhase(const BroadPhaseOptions& options)
+    : CellBroadPhase(GridCube(options), options.techniques, CellUpdateStrategy::kIncremental,
+                     CellSize(options)),
+      g_(CellsPerAxis(options)),
+      cell_m_(CellSize(options)),
+      origin_W_(options.world_W.min_W) {
+  ResizeCells(static_cast<std::size_t>(g_) * g_ * g_);
+}
+
+void GridBroadPhase::Reserve(std::uint32_t max_primitives) {
+  ReserveShared(max_primitives,
+                max_primitives * static_cast<std::uint32_t>(kReservedLinksPerPrimitive),
+                static_cast<std::uint32_t>(cell_head_.size()));
+}
+
+Aabb GridBroadPhase::CellBox(int i, int j, int k) const {
+  const int u[3] = {i, j, k};
+  Aabb box_W;
+  for (int a = 0; a < 3; ++a) {
+    box_W.min_W[a] = LatticeCoordinate(origin_W_[a], static_cast<std::uint32_t>(u[a]), cell_m_);
+    box_W.max_W[a] =
+        LatticeCoordinate(origin_W_[a], static_cast<std::uint32_t>(u[a] + 1), cell_m_);
+  }
+  return box_W;
+}
+
+void GridBroadPhase::CandidateRange(const Aabb& box_W, int lo[3], int hi[3]) const {
+  for (int a = 0; a < 3; ++a) {
+    // Precondition: the box is inside the grid cube, so the quotients are finite.
+    lo[a] = std::clamp(static_cast<int>(std::floor((box_W.min_W[a] - origin_W_[a]) / cell_m_)) - 1,
+                       0, g_ - 1);
+    hi[a] = std::clamp(static_cast<int>(std::floor((box_W.max_W[a] - origin_W_[a]) / cell_m_)) + 1,
+                       0, g_ - 1);
+  }
+}
+
+void GridBroadPhase::InsertIntoCells(PrimitiveId id) {
+  int lo[3], hi[3];
+  CandidateRange(records_[id].box_W, lo, hi);
+  for (int i = lo[0]; i <= hi[0]; ++i) {
+    for (int j = lo[1]; j <= hi[1]; ++j) {
+      for (int k = lo[2]; k <= hi[2]; ++k) {
+        ++counters_.object_node_tests;
+        if (records_[id].box_W.Overlaps(CellBox(i, j, k))) AddLink(id, Index(i, j, k));
+      }
+    }
+  }
+}
+
+// The octree's update with the neighbours simplified to the 26 surrounding cells (the seed,
+// section 5). Exactness: the argument at the top of cell_broad_phase.cpp, with s = cell edge.
+void GridBroadPhase::UpdateCells(PrimitiveId id, const Aabb& /*old_box_W*/) {
+  const std::uint32_t stamp = NextVisitStamp();
+  const std::uint32_t old_head = records_[id].first_link;
+  for (std::uint32_t l = old_head; l != kNone; l = links_[l].next_of_prim) {
+    cell_visit_[links_[l].cell] = stamp;
+  }
+  for (std::uint32_t l = old_head; l != kNone; l = links_[l].next_of_prim) {
+    const std::uint32_t cell = links_[l].cell;
+    const int u[3] = {static_cast<int>(cell / (g_ * g_)), static_cast<int>((cell / g_) % g_),
+                      static_cast<int>(cell % g_)};
+    const unsigned reach = ReachMask(records_[id].box_W, CellBox(u[0], u[1], u[2]));
+    if (techniques_.inside_node_exit && reach == 0) continue;
+    for (const Direction& dir : Directions()) {
+      if (techniques_.directional_neighbours && (dir.needed_mask & ~reach) != 0) continue;
+      const int i = u[0] + dir.d[0], j = u[1] + dir.d[1], k = u[2] + dir.d[2];
+      if (i < 0 || j < 0 || k < 0 || i >= g_ || j >= g_ || k >= g_) continue;
+      const std::uint32_t neighbour = Index(i, j, k);
+      ++counters_.neighbours_visited;
+      if (cell_visit_[neighbour] == stamp) continue;
+      cell_visit_[neighbour] = stamp;
+      ++counters_.object_node_tests;
+      if (records_[id].box_W.Overlaps(CellBox(i, j, k))) AddLink(id, neighbour);
+    }
+  }
+  for (std::uint32_t l = old_head; l != kNone;) {
+    const std::uint32_t next = links_[l].next_of_prim;
+    const std::uint32_t cell = links_[l].cell;
+    ++counters_.object_node_tests;
+    if (!records_[id].box_W.Overlaps(CellBox(static_cast<int>(cell / (g_ * g_)),
+                                             static_cast<int>((cell / g_) % g_),
+                                             static_cast<int>(cell % g_)))) {
+      RemoveLink(l);
+    }
+    l = next;
+  }
+}
+
+void GridBroadPhase::RemoveFromCells(PrimitiveId id) {
+  while (records_[id].first_link != kNone) RemoveLink(records_[id].first_link);
+}
+
+void GridBroadPhase::ClearCells() { ClearLinks(); }
+
+bool GridBroadPhase::ValidateCells(std::string* why) const {
+  if (cell_head_.size() != static_cast<std::size_t>(g_) * g_ * g_) {
+    if (why != nullptr) *why = "grid cell arrays have the wrong size";
+    return false;
+  }
+  std::vector<std::uint32_t> expected, actual;
+  for (PrimitiveId id = 0; id < records_.size(); ++id) {
+    const Record& r = records_[id];
+    if (!r.present || r.outside) continue;
+    expected.clear();
+    actual.clear();
+    // Cells two or more away from the box's cell quotient cannot touch it (a wider window
+    // than CandidateRange's, computed independently of it).
+    int lo[3], hi[3];
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = std::max(0, static_cast<int>((r.box_W.min_W[a] - origin_W_[a]) / cell_m_) - 2);
+      hi[a] = std::min(g_ - 1, static_cast<int>((r.box_W.max_W[a] - origin_W_[a]) / cell_m_) + 2);
+    }
+    for (int i = lo[0]; i <= hi[0]; ++i) {
+      for (int j = lo[1]; j <= hi[1]; ++j) {
+        for (int k = lo[2]; k <= hi[2]; ++k) {
+          if (r.box_W.Overlaps(CellBox(i, j, k))) expected.push_back(Index(i, j, k));
+        }
+      }
+    }
+    for (std::uint32_t l = r.first_link; l != kNone; l = links_[l].next_of_prim) {
+      actual.push_back(links_[l].cell);
+    }
+    std::sort(actual.begin(), actual.end());
+    if (expected != actual) {
+      std::ostringstream msg;
+      msg << "primitive " << id << " is linked to " << actual.size() << " cells but overlaps "
+          << expected.size();
+      if (why != nullptr) *why = msg.str();
+      return false;
+    }
+  }
+  return true;
+}
+
+void GridBroadPhase::CollectCells(std::vector<IndexCell>* cells) const {
+  cells->clear();
+  for (int i = 0; i < g_; ++i) {
+    for (int j = 0; j < g_; ++j) {
+      for (int k = 0; k < g_; ++k) {
+        const std::uint32_t c = Index(i, j, k);
+        if (cell_count_[c] == 0) continue;
+        IndexCell cell;
+        cell.box_W = CellBox(i, j, k);
+        cell.primitive_count = cell_count_[c];
+        for (std::uint32_t l = cell_head_[c]; l != kNone; l = links_[l].next_in_cell) {
+          if (records_[links_[l].prim].motion == Motion::kMoving) cell.holds_moving = true;
+        }
+        cells->push_back(cell);
+      }
+    }
+  }
+}
+
+}  // namespace arm_collision_monitor

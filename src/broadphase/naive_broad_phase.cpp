@@ -1,0 +1,68 @@
+#include "arm_collision_monitor/broadphase/naive_broad_phase.h"
+
+#include <algorithm>
+
+#include "arm_collision_monitor/broadphase/broad_phase_util.h"
+
+namespace arm_collision_monitor {
+
+void NaiveBroadPhase::Reserve(std::uint32_t max_primitives) {
+  if (entries_.size() < max_primitives) {
+    entries_.resize(max_primitives);
+    slot_.resize(max_primitives, 0);
+    moving_slot_.resize(max_primitives, 0);
+  }
+  present_ids_.reserve(max_primitives);
+  moving_ids_.reserve(max_primitives);
+}
+
+void NaiveBroadPhase::Add(PrimitiveId id, const Aabb& box_W, double tolerance_m,
+                          Motion motion) {
+  if (id >= entries_.size()) Reserve(id + 1);
+  Entry& e = entries_[id];
+  if (e.present) return;  // precondition violated: keep the first registration
+  e.inflated_W = box_W.Inflated(tolerance_m);
+  e.tolerance_m = tolerance_m;
+  e.motion = motion;
+  e.present = true;
+  slot_[id] = static_cast<std::uint32_t>(present_ids_.size());
+  present_ids_.push_back(id);
+  if (motion == Motion::kMoving) {
+    moving_slot_[id] = static_cast<std::uint32_t>(moving_ids_.size());
+    moving_ids_.push_back(id);
+  }
+}
+
+void NaiveBroadPhase::Remove(PrimitiveId id) {
+  if (id >= entries_.size() || !entries_[id].present) return;
+  Entry& e = entries_[id];
+  SwapRemove(&present_ids_, &slot_, slot_[id]);
+  if (e.motion == Motion::kMoving) SwapRemove(&moving_ids_, &moving_slot_, moving_slot_[id]);
+  e.present = false;
+}
+
+void NaiveBroadPhase::Move(PrimitiveId id, const Aabb& box_W) {
+  if (id >= entries_.size() || !entries_[id].present) return;
+  Entry& e = entries_[id];
+  e.inflated_W = box_W.Inflated(e.tolerance_m);
+}
+
+void NaiveBroadPhase::FindPairs(const CompatibilityMatrix& compatible,
+                                std::vector<CandidatePair>* pairs) {
+  pairs->clear();
+  for (const PrimitiveId a : moving_ids_) {
+    const Aabb& box_a = entries_[a].inflated_W;
+    for (const PrimitiveId b : present_ids_) {
+      if (b == a) continue;
+      // A moving-moving pair is met twice; keep it from the smaller id's side only.
+      if (entries_[b].motion == Motion::kMoving && b < a) continue;
+      ++counters_.object_object_tests;
+      if (!box_a.Overlaps(entries_[b].inflated_W)) continue;
+      if (IsCompatiblePair(compatible, a, b)) continue;
+      pairs->push_back(MakeOrderedPair(a, b));
+    }
+  }
+  std::sort(pairs->begin(), pairs->end());
+}
+
+}  // namespace arm_collision_monitor

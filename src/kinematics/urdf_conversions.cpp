@@ -1,0 +1,37 @@
+#include "arm_collision_monitor/kinematics/urdf_conversions.h"
+
+#include <fstream>
+#include <sstream>
+
+#include <urdf_parser/urdf_parser.h>
+
+#include "arm_collision_monitor/core/load_error.h"
+
+namespace arm_collision_monitor {
+
+Eigen::Isometry3d UrdfPoseToIsometry(const urdf::Pose& pose) {
+  double qx = 0.0, qy = 0.0, qz = 0.0, qw = 1.0;
+  pose.rotation.getQuaternion(qx, qy, qz, qw);
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.linear() = Eigen::Quaterniond(qw, qx, qy, qz).normalized().toRotationMatrix();
+  X.translation() = Eigen::Vector3d(pose.position.x, pose.position.y, pose.position.z);
+  return X;
+}
+
+urdf::ModelInterfaceSharedPtr ParseUrdfFile(const std::string& urdf_path) {
+  std::ifstream in(urdf_path);
+  if (!in) {
+    throw LoadError(urdf_path + ": cannot open the URDF file (expected a readable URDF/XML file)");
+  }
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(buffer.str());
+  if (!model) {
+    throw LoadError(urdf_path +
+                    ": not a valid URDF (urdfdom rejected it; its console message says where); "
+                    "expected a <robot> whose links and joints form one tree");
+  }
+  return model;
+}
+
+}  // namespace arm_collision_monitor

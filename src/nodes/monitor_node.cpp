@@ -1,0 +1,19 @@
+// The collision monitor node: see include/arm_collision_monitor/ros/monitor_node.h.
+#include <exception>
+
+#include <ros/ros.h>
+
+#include "arm_collision_monitor/ros/monitor_node.h"
+
+int main(int argc, char** argv) {
+  ros::init(argc, argv, "arm_collision_monitor");
+  try {
+    arm_collision_monitor::MonitorNode node(ros::NodeHandle(), ros::NodeHandle("~"));
+    ros::spin();
+  } catch (const std::exception& e) {
+    // Start-up errors (LoadError names the file or parameter); the cycle itself never throws.
+    ROS_FATAL("arm_collision_monitor: cannot start: %s", e.what());
+    return 1;
+  }
+  return 0;
+}

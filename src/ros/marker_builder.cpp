@@ -1,0 +1,248 @@
+#include "arm_collision_monitor/ros/marker_builder.h"
+
+#include <cstdio>
+#include <utility>
+
+#include <Eigen/Geometry>
+
+#include "arm_collision_monitor/geometry/distance.h"
+
+namespace arm_collision_monitor {
+namespace {
+
+// Drawing sizes (metres on screen, not physics): thin enough not to hide the primitives.
+constexpr double kLineWidth_m = 0.006;
+constexpr double kCellLineWidth_m = 0.002;
+constexpr double kTextHeight_m = 0.05;
+// Capsules opaque; boxes translucent so the arms stay visible behind tables and walls.
+constexpr float kCapsuleAlpha = 1.0f;
+constexpr float kBoxAlpha = 0.5f;
+// Marker ids per primitive: a capsule is a cylinder plus two end spheres.
+constexpr int kMarkersPerPrimitive = 3;
+// Pairs drawn "near" when closer than this many times their warning threshold.
+constexpr double kNearFactor = 2.0;
+
+std_msgs::ColorRGBA Rgba(const float rgb[3], float alpha) {
+  std_msgs::ColorRGBA c;
+  c.r = rgb[0];
+  c.g = rgb[1];
+  c.b = rgb[2];
+  c.a = alpha;
+  return c;
+}
+
+geometry_msgs::Point ToPoint(const Eigen::Vector3d& p_W) {
+  geometry_msgs::Point p;
+  p.x = p_W.x();
+  p.y = p_W.y();
+  p.z = p_W.z();
+  return p;
+}
+
+void SetPose(const Eigen::Vector3d& p_W, const Eigen::Quaterniond& R_W,
+             visualization_msgs::Marker* m) {
+  m->pose.position = ToPoint(p_W);
+  m->pose.orientation.w = R_W.w();
+  m->pose.orientation.x = R_W.x();
+  m->pose.orientation.y = R_W.y();
+  m->pose.orientation.z = R_W.z();
+}
+
+}  // namespace
+
+MarkerBuilder::MarkerBuilder(const Monitor& monitor, std::string frame_id)
+    : monitor_(monitor), frame_id_(std::move(frame_id)) {}
+
+void MarkerBuilder::ComputeStates(const std::vector<CollisionWarning>& warnings) {
+  const Workcell& workcell = monitor_.workcell();
+  const std::uint32_t n = monitor_.primitive_count();
+  state_.assign(n, PrimitiveState::kClear);
+  // "Near" uses the start-up compatibility matrix: the Monitor exposes no run-time one, so an
+  // attached object or grasp target may show yellow against its link (never red: red comes
+  // from the Monitor's own warnings below).
+  for (std::uint32_t a = 0; a < n; ++a) {
+    if (!monitor_.is_active(a)) {
+      continue;
+    }
+    for (std::uint32_t b = a + 1; b < n; ++b) {
+      const PrimitiveSpec& spec_a = workcell.primitives[a];
+      const PrimitiveSpec& spec_b = workcell.primitives[b];
+      if (!monitor_.is_active(b) || (spec_a.is_static && spec_b.is_static) ||
+          workcell.compatible.AreCompatible(a, b)) {
+        continue;
+      }
+      const double near_m = kNearFactor * (monitor_.tolerance_m(a) + monitor_.tolerance_m(b));
+      if (IsCloserThan(monitor_.shape_W(a), monitor_.shape_W(b), near_m)) {
+        state_[a] = PrimitiveState::kNear;
+        state_[b] = PrimitiveState::kNear;
+      }
+    }
+  }
+  for (const CollisionWarning& w : warnings) {
+    if (w.primitive_a < n && w.primitive_b < n) {
+      state_[w.primitive_a] = PrimitiveState::kWarning;
+      state_[w.primitive_b] = PrimitiveState::kWarning;
+    }
+  }
+}
+
+visualization_msgs::Marker& MarkerBuilder::NextMarker(const std::string& ns, int id, int type,
+                                                      const ros::Time& stamp) {
+  if (used_ == array_.markers.size()) {
+    array_.markers.emplace_back();
+  }
+  visualization_msgs::Marker& m = array_.markers[used_++];
+  m = visualization_msgs::Marker();
+  m.header.frame_id = frame_id_;
+  m.header.stamp = stamp;
+  m.ns = ns;
+  m.id = id;
+  m.type = type;
+  m.action = visualization_msgs::Marker::ADD;
+  m.pose.orientation.w = 1.0;
+  return m;
+}
+
+void MarkerBuilder::AddPrimitive(PrimitiveId id, const ros::Time& stamp) {
+  const int base_id = static_cast<int>(id) * kMarkersPerPrimitive;
+  const bool is_active = monitor_.is_active(id);
+  const Shape& shape = monitor_.shape_W(id);
+  const float* rgb = state_[id] == PrimitiveState::kWarning ? MarkerPalette::kWarningRgb
+                     : state_[id] == PrimitiveState::kNear  ? MarkerPalette::kNearRgb
+                                                            : MarkerPalette::kClearRgb;
+  if (const Capsule* capsule = std::get_if<Capsule>(&shape)) {
+    const Eigen::Vector3d axis_W = capsule->p1_W - capsule->p0_W;
+    const double length_m = axis_W.norm();
+    visualization_msgs::Marker& cylinder =
+        NextMarker("capsules", base_id, visualization_msgs::Marker::CYLINDER, stamp);
+    if (!is_active || length_m <= 0.0) {
+      // rviz rejects zero-size markers: a zero-length capsule is its sphere alone.
+      cylinder.action = visualization_msgs::Marker::DELETE;
+    } else {
+      SetPose(0.5 * (capsule->p0_W + capsule->p1_W),
+              Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), axis_W), &cylinder);
+      cylinder.scale.x = cylinder.scale.y = 2.0 * capsule->radius_m;
+      cylinder.scale.z = length_m;
+      cylinder.color = Rgba(rgb, kCapsuleAlpha);
+    }
+    const Eigen::Vector3d* ends_W[2] = {&capsule->p0_W, &capsule->p1_W};
+    for (int e = 0; e < 2; ++e) {
+      visualization_msgs::Marker& sphere =
+          NextMarker("capsules", base_id + 1 + e, visualization_msgs::Marker::SPHERE, stamp);
+      if (!is_active || capsule->radius_m <= 0.0) {
+        sphere.action = visualization_msgs::Marker::DELETE;
+        continue;
+      }
+      SetPose(*ends_W[e], Eigen::Quaterniond::Identity(), &sphere);
+      sphere.scale.x = sphere.scale.y = sphere.scale.z = 2.0 * capsule->radius_m;
+      sphere.color = Rgba(rgb, kCapsuleAlpha);
+    }
+  } else {
+    const Box& box = std::get<Box>(shape);
+    visualization_msgs::Marker& cube =
+        NextMarker("boxes", base_id, visualization_msgs::Marker::CUBE, stamp);
+    if (!is_active || (box.half_extents_m.array() <= 0.0).any()) {
+      cube.action = visualization_msgs::Marker::DELETE;
+      return;
+    }
+    SetPose(box.X_WB.translation(), Eigen::Quaterniond(box.X_WB.linear()), &cube);
+    cube.scale.x = 2.0 * box.half_extents_m.x();
+    cube.scale.y = 2.0 * box.half_extents_m.y();
+    cube.scale.z = 2.0 * box.half_extents_m.z();
+    cube.color = Rgba(rgb, kBoxAlpha);
+  }
+}
+
+void MarkerBuilder::AddWarnings(const std::vector<CollisionWarning>& warnings,
+                                const ros::Time& stamp) {
+  visualization_msgs::Marker& lines =
+      NextMarker("closest_points", 0, visualization_msgs::Marker::LINE_LIST, stamp);
+  if (warnings.empty()) {
+    lines.action = visualization_msgs::Marker::DELETE;
+  } else {
+    lines.scale.x = kLineWidth_m;
+    lines.color = Rgba(MarkerPalette::kWarningRgb, 1.0f);
+    for (const CollisionWarning& w : warnings) {
+      lines.points.push_back(w.point_a);
+      lines.points.push_back(w.point_b);
+    }
+  }
+  char text[96];
+  for (std::size_t i = 0; i < warnings.size(); ++i) {
+    const CollisionWarning& w = warnings[i];
+    visualization_msgs::Marker& label = NextMarker(
+        "distances", static_cast<int>(i), visualization_msgs::Marker::TEXT_VIEW_FACING, stamp);
+    label.pose.position.x = 0.5 * (w.point_a.x + w.point_b.x);
+    label.pose.position.y = 0.5 * (w.point_a.y + w.point_b.y);
+    label.pose.position.z = 0.5 * (w.point_a.z + w.point_b.z) + kTextHeight_m;
+    label.scale.z = kTextHeight_m;
+    const float white[3] = {1.0f, 1.0f, 1.0f};
+    label.color = Rgba(white, 1.0f);
+    std::snprintf(text, sizeof(text), "%.0f mm (< %.0f)", 1e3 * w.distance_m,
+                  1e3 * w.threshold_m);
+    label.text = text;
+  }
+  for (std::size_t i = warnings.size(); i < previous_text_count_; ++i) {
+    NextMarker("distances", static_cast<int>(i), visualization_msgs::Marker::TEXT_VIEW_FACING,
+               stamp)
+        .action = visualization_msgs::Marker::DELETE;
+  }
+  previous_text_count_ = warnings.size();
+}
+
+void MarkerBuilder::AddIndexCells(const ros::Time& stamp) {
+  monitor_.CollectIndexCells(&cells_);
+  // Marker 0: occupied leaves holding only static primitives; marker 1: leaves holding moving
+  // ones (where the per-cycle update works). Empty leaves are not drawn.
+  const float static_rgb[3] = {0.6f, 0.6f, 0.6f};
+  const float moving_rgb[3] = {0.1f, 0.6f, 1.0f};
+  for (int k = 0; k < 2; ++k) {
+    visualization_msgs::Marker& wire =
+        NextMarker("index_cells", k, visualization_msgs::Marker::LINE_LIST, stamp);
+    wire.scale.x = kCellLineWidth_m;
+    wire.color = Rgba(k == 0 ? static_rgb : moving_rgb, 0.8f);
+  }
+  // Taken after both were added: NextMarker() may reallocate the array.
+  visualization_msgs::Marker* wires[2] = {&array_.markers[used_ - 2], &array_.markers[used_ - 1]};
+  for (const IndexCell& cell : cells_) {
+    if (cell.primitive_count == 0) {
+      continue;
+    }
+    auto& points = wires[cell.holds_moving ? 1 : 0]->points;
+    const Eigen::Vector3d& lo = cell.box_W.min_W;
+    const Eigen::Vector3d& hi = cell.box_W.max_W;
+    // The 12 edges of the cube: corner c has coordinate bit k set -> hi on axis k.
+    auto corner = [&](int c) {
+      return ToPoint(Eigen::Vector3d((c & 1) ? hi.x() : lo.x(), (c & 2) ? hi.y() : lo.y(),
+                                     (c & 4) ? hi.z() : lo.z()));
+    };
+    for (int c = 0; c < 8; ++c) {
+      for (int axis_bit = 1; axis_bit < 8; axis_bit <<= 1) {
+        if (!(c & axis_bit)) {
+          points.push_back(corner(c));
+          points.push_back(corner(c | axis_bit));
+        }
+      }
+    }
+  }
+  for (visualization_msgs::Marker* wire : wires) {
+    if (wire->points.empty()) {
+      wire->action = visualization_msgs::Marker::DELETE;
+    }
+  }
+}
+
+const visualization_msgs::MarkerArray& MarkerBuilder::Build(
+    const std::vector<CollisionWarning>& warnings, const ros::Time& stamp) {
+  used_ = 0;
+  ComputeStates(warnings);
+  for (PrimitiveId id = 0; id < monitor_.primitive_count(); ++id) {
+    AddPrimitive(id, stamp);
+  }
+  AddWarnings(warnings, stamp);
+  AddIndexCells(stamp);
+  array_.markers.resize(used_);
+  return array_;
+}
+
+}  // namespace arm_collision_monitor

@@ -1,0 +1,140 @@
+#include "urdf_collision.h"
+
+#include <cmath>
+
+#include "arm_collision_monitor/core/constants.h"
+#include "arm_collision_monitor/core/load_error.h"
+#include "arm_collision_monitor/kinematics/urdf_conversions.h"
+
+namespace arm_collision_monitor {
+namespace {
+
+// One <collision> element before the capsule idiom is recognised.
+struct CollisionElement {
+  std::string name;
+  decltype(urdf::Geometry::type) type = urdf::Geometry::SPHERE;
+  Eigen::Isometry3d X_LC = Eigen::Isometry3d::Identity();  // collision origin C in link L
+  double radius_m = 0.0;
+  double length_m = 0.0;
+  Eigen::Vector3d size_m = Eigen::Vector3d::Zero();
+  std::string mesh_filename;
+  bool is_absorbed = false;  // a sphere that is an end cap of a capsule-idiom cylinder
+};
+
+// Cylinder axis endpoints in L (the URDF cylinder axis is z of its origin frame).
+std::pair<Eigen::Vector3d, Eigen::Vector3d> CylinderEnds_L(const CollisionElement& c) {
+  const Eigen::Vector3d half_axis_C(0.0, 0.0, 0.5 * c.length_m);
+  return {c.X_LC * (-half_axis_C), c.X_LC * half_axis_C};
+}
+
+// Marks the two spheres (radius r, centred on the cylinder's end faces) of the capsule idiom.
+void AbsorbEndSpheres(const CollisionElement& cylinder, std::vector<CollisionElement>* all) {
+  const auto [end0_L, end1_L] = CylinderEnds_L(cylinder);
+  const double tolerance_m =
+      kCapsuleIdiomMatchRel * (cylinder.length_m + cylinder.radius_m);
+  auto find_cap = [&](const Eigen::Vector3d& end_L, int skip) {
+    for (int i = 0; i < static_cast<int>(all->size()); ++i) {
+      const CollisionElement& e = (*all)[i];
+      if (i == skip || e.is_absorbed || e.type != urdf::Geometry::SPHERE) continue;
+      if (std::abs(e.radius_m - cylinder.radius_m) <= tolerance_m &&
+          (e.X_LC.translation() - end_L).norm() <= tolerance_m) {
+        return i;
+      }
+    }
+    return -1;
+  };
+  const int cap0 = find_cap(end0_L, -1);
+  if (cap0 < 0) return;
+  const int cap1 = find_cap(end1_L, cap0);
+  if (cap1 < 0) return;
+  (*all)[cap0].is_absorbed = true;
+  (*all)[cap1].is_absorbed = true;
+}
+
+}  // namespace
+
+int UrdfLinkGeometry::capsule_count() const {
+  int count = 0;
+  for (const auto& named : shapes_L) count += std::holds_alternative<Capsule>(named.second);
+  return count;
+}
+
+UrdfLinkGeometry ReadUrdfLinkGeometry(const urdf::Link& link, const std::string& urdf_path) {
+  std::vector<urdf::CollisionSharedPtr> collisions = link.collision_array;
+  if (collisions.empty() && link.collision) collisions.push_back(link.collision);
+
+  std::vector<CollisionElement> elements;
+  for (std::size_t i = 0; i < collisions.size(); ++i) {
+    const urdf::Collision& collision = *collisions[i];
+    const std::string where = urdf_path + ": link '" + link.name + "' <collision> " +
+                              std::to_string(i) + ": ";
+    if (!collision.geometry) throw LoadError(where + "expected a <geometry>");
+    CollisionElement e;
+    e.name = collision.name.empty() ? std::to_string(i) : collision.name;
+    e.type = collision.geometry->type;
+    e.X_LC = UrdfPoseToIsometry(collision.origin);
+    if (!e.X_LC.matrix().allFinite()) throw LoadError(where + "<origin> must be finite");
+    switch (e.type) {
+      case urdf::Geometry::SPHERE: {
+        e.radius_m = static_cast<const urdf::Sphere&>(*collision.geometry).radius;
+        if (!std::isfinite(e.radius_m) || e.radius_m < 0.0) {
+          throw LoadError(where + "<sphere radius> must be a finite number >= 0");
+        }
+        break;
+      }
+      case urdf::Geometry::CYLINDER: {
+        const auto& cylinder = static_cast<const urdf::Cylinder&>(*collision.geometry);
+        e.radius_m = cylinder.radius;
+        e.length_m = cylinder.length;
+        if (!std::isfinite(e.radius_m) || e.radius_m < 0.0 || !std::isfinite(e.length_m) ||
+            e.length_m < 0.0) {
+          throw LoadError(where + "<cylinder radius, length> must be finite numbers >= 0");
+        }
+        break;
+      }
+      case urdf::Geometry::BOX: {
+        const urdf::Vector3& dim = static_cast<const urdf::Box&>(*collision.geometry).dim;
+        e.size_m = Eigen::Vector3d(dim.x, dim.y, dim.z);
+        if (!e.size_m.allFinite() || (e.size_m.array() <= 0.0).any()) {
+          throw LoadError(where + "<box size> must be 3 finite numbers > 0");
+        }
+        break;
+      }
+      case urdf::Geometry::MESH:
+        e.mesh_filename = static_cast<const urdf::Mesh&>(*collision.geometry).filename;
+        break;
+      default:
+        throw LoadError(where + "unknown geometry (expected box, cylinder, sphere or mesh)");
+    }
+    elements.push_back(e);
+  }
+
+  for (const CollisionElement& e : elements) {
+    if (e.type == urdf::Geometry::CYLINDER) AbsorbEndSpheres(e, &elements);
+  }
+
+  UrdfLinkGeometry geometry;
+  for (const CollisionElement& e : elements) {
+    if (e.is_absorbed) continue;
+    switch (e.type) {
+      case urdf::Geometry::SPHERE:
+        geometry.shapes_L.emplace_back(
+            e.name, Capsule{e.X_LC.translation(), e.X_LC.translation(), e.radius_m});
+        break;
+      case urdf::Geometry::CYLINDER: {
+        const auto [end0_L, end1_L] = CylinderEnds_L(e);
+        geometry.shapes_L.emplace_back(e.name, Capsule{end0_L, end1_L, e.radius_m});
+        break;
+      }
+      case urdf::Geometry::BOX:
+        geometry.shapes_L.emplace_back(e.name, Box{e.X_LC, 0.5 * e.size_m});
+        break;
+      default:  // MESH
+        if (geometry.mesh_filename.empty()) geometry.mesh_filename = e.mesh_filename;
+        break;
+    }
+  }
+  return geometry;
+}
+
+}  // namespace arm_collision_monitor

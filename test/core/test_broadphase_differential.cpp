@@ -1,0 +1,204 @@
+// Differential tests: over seeded random scenes, every broad phase (the octree with every
+// technique on and off, the rebuild and reinsert schemes, the uniform grid) returns exactly the
+// pairs of the all-pairs reference after every cycle, and passes Validate() after every cycle.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "arm_collision_monitor/broadphase/grid_broad_phase.h"
+#include "arm_collision_monitor/broadphase/naive_broad_phase.h"
+#include "arm_collision_monitor/broadphase/octree_broad_phase.h"
+#include "test_broadphase_scene.h"
+
+namespace arm_collision_monitor {
+namespace {
+
+using test::RandomScene;
+using test::SceneConfig;
+using test::SceneOp;
+
+struct Candidate {
+  std::string label;
+  std::unique_ptr<CellBroadPhase> bp;
+};
+
+std::vector<Candidate> MakeCandidates(const RandomScene& scene, int leaf_capacity) {
+  std::vector<Candidate> out;
+  BroadPhaseOptions options = scene.Options(BroadPhaseMethod::kOctree);
+  options.max_objects_per_leaf = leaf_capacity;
+  auto octree = [&](const std::string& label, const BroadPhaseTechniques& t,
+                    CellUpdateStrategy strategy) {
+    BroadPhaseOptions o = options;
+    o.techniques = t;
+    out.push_back({label, std::make_unique<OctreeBroadPhase>(o, strategy)});
+  };
+  const BroadPhaseTechniques all_on;
+  BroadPhaseTechniques all_off;
+  all_off.directional_neighbours = false;
+  all_off.inside_node_exit = false;
+  all_off.pair_deduplication = false;
+  all_off.bounding_box_pretests = false;
+  octree("octree", all_on, CellUpdateStrategy::kIncremental);
+  octree("octree-all-off", all_off, CellUpdateStrategy::kIncremental);
+  BroadPhaseTechniques t = all_on;
+  t.directional_neighbours = false;
+  octree("octree-no-direction", t, CellUpdateStrategy::kIncremental);
+  t = all_on;
+  t.inside_node_exit = false;
+  octree("octree-no-inside-exit", t, CellUpdateStrategy::kIncremental);
+  octree("rebuild", all_on, CellUpdateStrategy::kRebuild);
+  octree("reinsert", all_on, CellUpdateStrategy::kReinsert);
+  BroadPhaseOptions g = options;
+  out.push_back({"grid", std::make_unique<GridBroadPhase>(g)});
+  g.techniques = all_off;
+  g.grid_cells_per_axis = 13;  // cell edges not on the octree lattice
+  out.push_back({"grid13-all-off", std::make_unique<GridBroadPhase>(g)});
+  return out;
+}
+
+std::string PairsToString(const std::vector<CandidatePair>& pairs) {
+  std::string s;
+  for (const CandidatePair& p : pairs) s += "(" + std::to_string(p.a) + "," + std::to_string(p.b) + ")";
+  return s;
+}
+
+// Runs `cycles` cycles of `config` and checks every candidate against the reference after each.
+// Returns the summed counters of the incremental octree (to check that paths were exercised).
+BroadPhaseCounters RunDifferential(const SceneConfig& config, int cycles, int leaf_capacity,
+                                   std::uint32_t start_visit_stamp = 0) {
+  std::printf("[ seed ] %llu  statics %d movers %d N %d cycles %d\n",
+              static_cast<unsigned long long>(config.seed), config.statics, config.movers,
+              leaf_capacity, cycles);
+  RandomScene scene(config);
+  NaiveBroadPhase reference;
+  std::vector<Candidate> candidates = MakeCandidates(scene, leaf_capacity);
+  for (Candidate& c : candidates) c.bp->SetStampsForTest(start_visit_stamp);
+  std::vector<SceneOp> ops;
+  std::vector<CandidatePair> expected, actual;
+  scene.Initial(&ops);
+  for (int cycle = 0; cycle <= cycles; ++cycle) {
+    if (cycle > 0) scene.Step(&ops);
+    RandomScene::Apply(ops, &reference);
+    reference.FindPairs(scene.compatible(), &expected);
+    for (Candidate& c : candidates) {
+      RandomScene::Apply(ops, c.bp.get());
+      c.bp->FindPairs(scene.compatible(), &actual);
+      std::string why;
+      const bool valid = c.bp->Validate(&why);
+      EXPECT_TRUE(valid) << c.label << " cycle " << cycle << ": " << why;
+      EXPECT_EQ(actual, expected) << c.label << " cycle " << cycle << "\n got      "
+                                  << PairsToString(actual) << "\n expected "
+                                  << PairsToString(expected);
+      if (!valid || actual != expected) return candidates[0].bp->counters();
+    }
+  }
+  const BroadPhaseCounters& c = candidates[0].bp->counters();
+  std::printf("[ octree ] node tests %llu, object tests %llu, neighbours %llu, splits %llu, "
+              "merges %llu, fallbacks %llu, outside %llu\n",
+              static_cast<unsigned long long>(c.object_node_tests),
+              static_cast<unsigned long long>(c.object_object_tests),
+              static_cast<unsigned long long>(c.neighbours_visited),
+              static_cast<unsigned long long>(c.splits), static_cast<unsigned long long>(c.merges),
+              static_cast<unsigned long long>(c.reinsert_fallbacks),
+              static_cast<unsigned long long>(c.outside_world));
+  return c;
+}
+
+TEST(BroadPhaseDifferential, SmallScenesWithinTheSpeedBound) {
+  for (std::uint64_t seed : {11u, 12u, 13u}) {
+    SceneConfig config;
+    config.seed = seed;
+    config.statics = 10 + static_cast<int>(seed % 3) * 20;
+    config.movers = 14;
+    const BroadPhaseCounters c = RunDifferential(config, 1500, 3);
+    EXPECT_GT(c.splits, 0u);
+    EXPECT_GT(c.merges, 0u);
+    EXPECT_EQ(c.reinsert_fallbacks, 0u);  // every move was within the bound
+    if (HasFailure()) return;
+  }
+}
+
+TEST(BroadPhaseDifferential, JumpsLeavingTheWorldAndAddRemove) {
+  for (std::uint64_t seed : {21u, 22u}) {
+    SceneConfig config;
+    config.seed = seed;
+    config.statics = 60;
+    config.movers = 14;
+    config.jump_probability = 0.01;
+    config.leave_probability = 0.01;
+    config.remove_probability = 0.05;
+    config.flip_probability = 0.2;
+    const BroadPhaseCounters c = RunDifferential(config, 1500, 4);
+    EXPECT_GT(c.reinsert_fallbacks, 0u);
+    EXPECT_GT(c.outside_world, 0u);
+    if (HasFailure()) return;
+  }
+}
+
+TEST(BroadPhaseDifferential, CrowdedSmallWorldDeepSplits) {
+  SceneConfig config;
+  config.seed = 31;
+  config.statics = 150;
+  config.movers = 20;
+  config.world_edge_m = 2.0;
+  config.static_half_min_m = 0.005;
+  config.static_half_max_m = 0.08;
+  config.mover_length_m = 0.2;
+  config.mover_radius_m = 0.02;
+  config.jump_probability = 0.002;
+  const BroadPhaseCounters c = RunDifferential(config, 600, 2);
+  EXPECT_GT(c.splits, 0u);
+  EXPECT_GT(c.merges, 0u);
+}
+
+TEST(BroadPhaseDifferential, BoxesExactlyOnCellFacesEdgesAndCorners) {
+  for (std::uint64_t seed : {41u, 42u}) {
+    SceneConfig config;
+    config.seed = seed;
+    config.statics = 40;
+    config.movers = 14;
+    config.world_edge_m = 6.4;
+    config.world_min_W = Eigen::Vector3d(-3.2, -1.6, 0.0);
+    // A quarter of the minimum leaf: coordinates land on leaf faces, edges and corners often.
+    BroadPhaseOptions options = RandomScene(config).Options(BroadPhaseMethod::kOctree);
+    config.snap_m = OctreeBroadPhase(options, CellUpdateStrategy::kIncremental).min_leaf_size_m() / 4;
+    config.leave_probability = 0.005;
+    RunDifferential(config, 1500, 3);
+    if (HasFailure()) return;
+  }
+}
+
+TEST(BroadPhaseDifferential, LargeSceneOfTwoThousand) {
+  SceneConfig config;
+  config.seed = 51;
+  config.statics = 1986;
+  config.movers = 14;
+  config.static_half_min_m = 0.01;
+  config.static_half_max_m = 0.12;
+  config.jump_probability = 0.002;
+  config.remove_probability = 0.05;
+  RunDifferential(config, 60, 10);
+}
+
+TEST(BroadPhaseDifferential, FarFromTheOrigin) {
+  SceneConfig config;
+  config.seed = 61;
+  config.world_min_W = Eigen::Vector3d(1000.0, -2000.0, 512.0);
+  config.jump_probability = 0.005;
+  RunDifferential(config, 800, 3);
+}
+
+TEST(BroadPhaseDifferential, StampsWrapAroundWithoutLosingPairs) {
+  SceneConfig config;
+  config.seed = 71;
+  config.statics = 30;
+  config.movers = 14;
+  // Both 32-bit stamp counters wrap within the first cycles (14 updates and scans per cycle).
+  RunDifferential(config, 200, 3, 0xffffffffu - 40u);
+}
+
+}  // namespace
+}  // namespace arm_collision_monitor

@@ -1,0 +1,69 @@
+// The steady-state cycle allocates nothing: every allocation of the process is counted through
+// a replaced global operator new, over a few thousand moving cycles of both arms.
+#include <atomic>
+#include <cstdlib>
+#include <new>
+
+#include "test_monitor_util.h"
+
+namespace {
+std::atomic<std::uint64_t> g_allocations{0};
+}  // namespace
+
+void* operator new(std::size_t size) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+  throw std::bad_alloc();
+}
+void* operator new[](std::size_t size) { return operator new(size); }
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+
+namespace arm_collision_monitor {
+namespace {
+
+class MonitorAllocation : public ::testing::TestWithParam<BroadPhaseMethod> {};
+
+TEST_P(MonitorAllocation, SteadyStateUpdateDoesNotAllocate) {
+  const auto wc = test::LoadBundledWorkcell();
+  MonitorOptions options = test::OptionsFor(GetParam());
+  for (const bool speed_scaled : {false, true}) {
+    options.speed_scaled_tolerance = speed_scaled;
+    Monitor monitor(wc, options);
+    std::mt19937_64 rng(test::PrintSeed(4242));
+    const test::JointLimits limits = test::LimitsOf(*wc);
+    const test::SmoothTrajectory path(limits, 0.8, &rng);
+    const int cycles = 3000;
+    std::vector<Eigen::VectorXd> qs(2 * cycles);
+    for (int k = 0; k < 2 * cycles; ++k) path.At(k * options.cycle_period_s, &qs[k]);
+    // Warm-up: the first pass may grow pools (octree nodes, location links) once.
+    for (int k = 0; k < cycles; ++k) monitor.Update(qs[k]);
+    std::uint64_t moved = 0, warned = 0;
+    const std::uint64_t before = g_allocations.load();
+    for (int k = cycles; k < 2 * cycles; ++k) {
+      const CycleReport& report = monitor.Update(qs[k]);
+      moved += report.moved_primitives;
+      warned += report.warnings.size();
+    }
+    const std::uint64_t allocations = g_allocations.load() - before;
+    EXPECT_EQ(allocations, 0u) << BroadPhaseMethodName(GetParam())
+                               << (speed_scaled ? " speed-scaled" : "");
+    // The cycles really moved things (every arm primitive, nearly every cycle).
+    EXPECT_GT(moved, static_cast<std::uint64_t>(cycles) * 10);
+    std::printf("%s%s: %llu allocations, %llu primitive moves, %llu warnings\n",
+                BroadPhaseMethodName(GetParam()).c_str(), speed_scaled ? " speed-scaled" : "",
+                static_cast<unsigned long long>(allocations),
+                static_cast<unsigned long long>(moved), static_cast<unsigned long long>(warned));
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(AllBroadPhases, MonitorAllocation,
+                         ::testing::ValuesIn(test::AllMethods()),
+                         [](const ::testing::TestParamInfo<BroadPhaseMethod>& info) {
+                           return BroadPhaseMethodName(info.param);
+                         });
+
+}  // namespace
+}  // namespace arm_collision_monitor

@@ -1,0 +1,405 @@
+// The Monitor on named situations of the bundled workcell: known clear and colliding poses,
+// self and arm-arm collisions, grasp targets, attached objects, model switching, frame-bound
+// objects, refused inputs, speed-scaled tolerance and idle cycles. Every report is also compared
+// with the independent brute force of test_monitor_util.h.
+#include "test_monitor_util.h"
+
+namespace arm_collision_monitor {
+namespace {
+
+using test::ExpectSameWarnings;
+using test::HasWarning;
+using test::LoadBundledWorkcell;
+using test::MakeQ;
+using test::Prim;
+using test::ReferenceScene;
+using test::ReferenceWarnings;
+
+/// Planar inverse kinematics of one arm of the bundled workcell (joints alternate roll and pitch;
+/// 0.3 m from flange to shoulder, 0.65 m shoulder to elbow (links 2+3), 0.65 m elbow to wrist
+/// (links 4+5), 0.305 m wrist to tool tip): puts the tool tip, pointing straight down, at
+/// (x, y, tip_z). Returns {q1, q2, q4, q6}.
+std::array<double, 4> ReachDown(const Eigen::Vector3d& p_W_flange, double x, double y,
+                                double tip_z) {
+  const double a = 0.65, b = 0.65, w = 0.305;
+  const double dx = x - p_W_flange.x(), dy = y - p_W_flange.y();
+  const double r = std::hypot(dx, dy);
+  const double dz = tip_z + w - (p_W_flange.z() + 0.3);
+  const double d2 = r * r + dz * dz;
+  const double q4 = std::acos((d2 - a * a - b * b) / (2 * a * b));
+  const double q2 = std::atan2(r, dz) - std::atan2(b * std::sin(q4), a + b * std::cos(q4));
+  return {std::atan2(dy, dx), q2, q4, M_PI - q2 - q4};
+}
+
+Eigen::VectorXd ArmReachDown(const Workcell& wc, const std::string& arm, double x, double y,
+                             double tip_z) {
+  const Eigen::Vector3d flange(0.0, arm == "left" ? 0.55 : -0.55, 0.8);
+  const auto q = ReachDown(flange, x, y, tip_z);
+  return MakeQ(wc, {{arm + "_joint1", q[0]},
+                    {arm + "_joint2", q[1]},
+                    {arm + "_joint4", q[2]},
+                    {arm + "_joint6", q[3]}});
+}
+
+bool IsArmPrimitive(const Workcell& wc, PrimitiveId id, const std::string& arm) {
+  return wc.primitives[id].link_index >= 0 && wc.primitives[id].group == arm;
+}
+
+void ExpectValid(const Monitor& monitor) {
+  std::string error;
+  EXPECT_TRUE(monitor.Validate(&error)) << error;
+}
+
+TEST(MonitorScene, StopIsRequestedBeforeTheFirstGoodInput) {
+  const auto wc = LoadBundledWorkcell();
+  Monitor monitor(wc, MonitorOptions{});
+  EXPECT_TRUE(monitor.report().stop);
+  EXPECT_EQ(monitor.report().cycle, 0u);
+  EXPECT_TRUE(monitor.Update(Eigen::VectorXd::Zero(3)).stop);
+  EXPECT_TRUE(monitor.Update(MakeQ(*wc, {})).warnings.empty());
+  EXPECT_FALSE(monitor.report().stop);
+}
+
+TEST(MonitorScene, KnownClearAndColliding) {
+  const auto wc = LoadBundledWorkcell();
+  Monitor monitor(wc, MonitorOptions{});
+  // Home: both arms straight up, 1.1 m apart, far from everything.
+  const CycleReport& home = monitor.Update(MakeQ(*wc, {}));
+  EXPECT_TRUE(home.warnings.empty());
+  EXPECT_FALSE(home.stop);
+  const PrimitiveId table = Prim(*wc, "front_table_top");
+  for (const std::string arm : {"left", "right"}) {
+    // Shoulder pitched forward, elbow down: the forearm goes through the front table top.
+    const Eigen::VectorXd q = MakeQ(*wc, {{arm + "_joint2", M_PI / 2}, {arm + "_joint4", M_PI / 2}});
+    const CycleReport& report = monitor.Update(q);
+    ExpectSameWarnings(*wc, ReferenceWarnings(*wc, q), report.warnings, arm);
+    EXPECT_TRUE(report.stop);
+    EXPECT_TRUE(std::any_of(report.warnings.begin(), report.warnings.end(), [&](const Warning& w) {
+      return (w.b == table && IsArmPrimitive(*wc, w.a, arm)) ||
+             (w.a == table && IsArmPrimitive(*wc, w.b, arm));
+    })) << arm;
+    for (const Warning& w : report.warnings) {
+      EXPECT_LT(w.distance_m, w.threshold_m);
+      EXPECT_NEAR((w.p_WA - w.p_WB).norm(), w.distance_m, 1e-9);
+    }
+    // Back home: clear again.
+    EXPECT_FALSE(monitor.Update(MakeQ(*wc, {})).stop) << arm;
+  }
+}
+
+TEST(MonitorScene, SelfCollisionBetweenNonAdjacentLinks) {
+  const auto wc = LoadBundledWorkcell();
+  Monitor monitor(wc, MonitorOptions{});
+  // Elbow and wrist folded fully: the gripper comes back onto the upper arm.
+  const Eigen::VectorXd q = MakeQ(*wc, {{"left_joint4", 2.09}, {"left_joint6", 2.09}});
+  const CycleReport& report = monitor.Update(q);
+  ExpectSameWarnings(*wc, ReferenceWarnings(*wc, q), report.warnings, "folded");
+  const KinematicModel& model = wc->kinematics;
+  bool self = false;
+  for (const Warning& w : report.warnings) {
+    if (!IsArmPrimitive(*wc, w.a, "left") || !IsArmPrimitive(*wc, w.b, "left")) continue;
+    const int la = wc->primitives[w.a].link_index, lb = wc->primitives[w.b].link_index;
+    EXPECT_NE(la, lb);
+    EXPECT_NE(model.parent_link(la), lb);  // adjacent links are compatible
+    EXPECT_NE(model.parent_link(lb), la);
+    self = true;
+  }
+  EXPECT_TRUE(self);
+}
+
+TEST(MonitorScene, ArmAgainstArm) {
+  const auto wc = LoadBundledWorkcell();
+  Monitor monitor(wc, MonitorOptions{});
+  // The left arm turned towards the right one and stretched horizontally through it.
+  const Eigen::VectorXd q = MakeQ(*wc, {{"left_joint1", -M_PI / 2}, {"left_joint2", M_PI / 2}});
+  const CycleReport& report = monitor.Update(q);
+  ExpectSameWarnings(*wc, ReferenceWarnings(*wc, q), report.warnings, "arm-arm");
+  EXPECT_TRUE(std::any_of(report.warnings.begin(), report.warnings.end(), [&](const Warning& w) {
+    return IsArmPrimitive(*wc, w.a, "left") && IsArmPrimitive(*wc, w.b, "right");
+  }));
+}
+
+TEST(MonitorScene, GraspTargetIsExcusedOnlyWhileSet) {
+  const auto wc = LoadBundledWorkcell();
+  Monitor monitor(wc, MonitorOptions{});
+  const PrimitiveId gripper = Prim(*wc, "left_link7");
+  const PrimitiveId box = Prim(*wc, "front_box");
+  // Tool tip 1 cm above the box top (z = 0.95): within the gripper's 3 cm tolerance.
+  const Eigen::VectorXd q = ArmReachDown(*wc, "left", 0.95, 0.0, 0.96);
+  EXPECT_TRUE(HasWarning(monitor.Update(q).warnings, gripper, box));
+
+  std::string error;
+  ASSERT_TRUE(monitor.SetGraspTarget("left_link7", "front_box", true, &error)) << error;
+  ExpectValid(monitor);
+  ReferenceScene scene;
+  scene.grasp.insert({wc->primitives[gripper].link_index, wc->FindObject("front_box")});
+  const CycleReport& excused = monitor.Update(q);
+  EXPECT_FALSE(HasWarning(excused.warnings, gripper, box));
+  ExpectSameWarnings(*wc, ReferenceWarnings(*wc, q, scene), excused.warnings, "grasp set");
+
+  ASSERT_TRUE(monitor.SetGraspTarget("left_link7", "front_box", false, &error)) << error;
+  EXPECT_TRUE(HasWarning(monitor.Update(q).warnings, gripper, box));
+  ExpectValid(monitor);
+
+  // Only declared (link, object) pairs can be excused.
+  EXPECT_FALSE(monitor.SetGraspTarget("left_link7", "right_box", true, &error));
+  EXPECT_NE(error.find("right_box"), std::string::npos);
+  EXPECT_FALSE(monitor.SetGraspTarget("left_link7", "no_such_object", true, &error));
+  EXPECT_FALSE(monitor.SetGraspTarget("no_such_link", "front_box", true, &error));
+}
+
+TEST(MonitorScene, AttachedBoxMovesWithTheGripperAndWarnsAgainstAnotherTable) {
+  const auto wc = LoadBundledWorkcell();
+  Monitor monitor(wc, MonitorOptions{});
+  const PrimitiveId gripper = Prim(*wc, "right_link7");
+  const PrimitiveId box = Prim(*wc, "right_box");
+  const PrimitiveId front_table = Prim(*wc, "front_table_top");
+  const int gripper_link = wc->primitives[gripper].link_index;
+  std::string error;
+  // Attach needs a joint state first.
+  EXPECT_FALSE(monitor.Attach("right_box", "right_link7", &error));
+
+  // The tool tip touching the top of the box on the right table (z = 0.95).
+  Eigen::VectorXd q = ArmReachDown(*wc, "right", 0.1, -1.55, 0.95);
+  ASSERT_TRUE(monitor.SetGraspTarget("right_link7", "right_box", true, &error)) << error;
+  monitor.Update(q);
+  ASSERT_TRUE(monitor.Attach("right_box", "right_link7", &error)) << error;
+  ASSERT_TRUE(monitor.SetGraspTarget("right_link7", "right_box", false, &error)) << error;
+  EXPECT_TRUE(monitor.is_active(box));
+  ExpectValid(monitor);
+
+  std::vector<Eigen::Isometry3d> X_WL(wc->kinematics.link_count());
+  wc->kinematics.ComputeLinkPoses(q, &X_WL);
+  ReferenceScene scene;
+  scene.held[box] = {gripper_link,
+                     TransformShape(X_WL[gripper_link].inverse(), monitor.shape_W(box))};
+
+  // Swing the arm (joint 1) from the right table to the front table in 40 smooth steps: the box
+  // keeps its pose relative to the gripper and never warns against it.
+  const double q1_start = q[test::JointIndex(*wc, "right_joint1")];
+  bool warned_front_table = false;
+  for (int k = 1; k <= 40; ++k) {
+    q[test::JointIndex(*wc, "right_joint1")] = q1_start * (1.0 - k / 40.0);
+    const CycleReport& report = monitor.Update(q);
+    ExpectSameWarnings(*wc, ReferenceWarnings(*wc, q, scene), report.warnings,
+                       "carry step " + std::to_string(k));
+    EXPECT_FALSE(HasWarning(report.warnings, gripper, box));
+    warned_front_table = warned_front_table || HasWarning(report.warnings, box, front_table);
+    wc->kinematics.ComputeLinkPoses(q, &X_WL);
+    const Box& expected = std::get<Box>(TransformShape(X_WL[gripper_link], scene.held[box].shape_L));
+    const Box& actual = std::get<Box>(monitor.shape_W(box));
+    EXPECT_TRUE(actual.X_WB.isApprox(expected.X_WB, 1e-12));
+    ExpectValid(monitor);
+  }
+  // Joint 1 at 0: the box hangs over the front table, its bottom at the table top's height.
+  EXPECT_TRUE(warned_front_table);
+  EXPECT_TRUE(monitor.report().stop);
+
+  // Let go: the box rests on the table, a static touching a static is never tested.
+  ASSERT_TRUE(monitor.Detach("right_box", &error)) << error;
+  EXPECT_FALSE(monitor.Detach("right_box", &error));
+  ExpectValid(monitor);
+  const Eigen::VectorXd home = MakeQ(*wc, {});
+  const CycleReport& after = monitor.Update(home);
+  EXPECT_FALSE(HasWarning(after.warnings, box, front_table));
+  EXPECT_TRUE(after.warnings.empty());
+
+  EXPECT_FALSE(monitor.Attach("front_table_top", "right_link7", &error));  // not attachable
+  EXPECT_FALSE(monitor.Attach("no_such_object", "right_link7", &error));
+  EXPECT_FALSE(monitor.Attach("right_box", "no_such_link", &error));
+  // Too far from the left gripper at home to be held by it.
+  EXPECT_FALSE(monitor.Attach("right_box", "left_link7", &error));
+  EXPECT_NE(error.find("reaches"), std::string::npos) << error;
+}
+
+TEST(MonitorScene, ModelSwitchingReplacesTheLinksPrimitives) {
+  const auto wc = LoadBundledWorkcell();
+  Monitor monitor(wc, MonitorOptions{});
+  const PrimitiveId coarse = Prim(*wc, "left_link7");
+  std::vector<PrimitiveId> detailed;
+  for (PrimitiveId id = 0; id < wc->primitives.size(); ++id) {
+    if (wc->primitives[id].variant == "grasp" && wc->primitives[id].owner == "left_link7") {
+      detailed.push_back(id);
+    }
+  }
+  ASSERT_EQ(detailed.size(), 3u);
+  for (const PrimitiveId id : detailed) EXPECT_FALSE(monitor.is_active(id));
+
+  std::string error;
+  ASSERT_TRUE(monitor.SwitchModel("left_link7", "grasp", &error)) << error;
+  EXPECT_FALSE(monitor.is_active(coarse));
+  for (const PrimitiveId id : detailed) EXPECT_TRUE(monitor.is_active(id));
+  ExpectValid(monitor);
+
+  ReferenceScene scene;
+  scene.variant_of_link[wc->primitives[coarse].link_index] = "grasp";
+  std::mt19937_64 rng(test::PrintSeed(77));
+  const test::JointLimits limits = test::LimitsOf(*wc);
+  for (int k = 0; k < 300; ++k) {
+    const Eigen::VectorXd q = test::RandomQ(limits, &rng);
+    const CycleReport& report = monitor.Update(q);
+    ExpectSameWarnings(*wc, ReferenceWarnings(*wc, q, scene), report.warnings,
+                       "grasp model " + std::to_string(k));
+    EXPECT_FALSE(HasWarning(report.warnings, coarse, coarse + 1));
+  }
+  // The detailed gripper over the box: fingers warn, the coarse capsule does not exist.
+  const Eigen::VectorXd q = ArmReachDown(*wc, "left", 0.95, 0.0, 0.96);
+  const CycleReport& report = monitor.Update(q);
+  ExpectSameWarnings(*wc, ReferenceWarnings(*wc, q, scene), report.warnings, "grasp model over box");
+  for (const Warning& w : report.warnings) EXPECT_TRUE(w.a != coarse && w.b != coarse);
+
+  ASSERT_TRUE(monitor.SwitchModel("left_link7", "", &error)) << error;
+  EXPECT_TRUE(monitor.is_active(coarse));
+  for (const PrimitiveId id : detailed) EXPECT_FALSE(monitor.is_active(id));
+  ExpectSameWarnings(*wc, ReferenceWarnings(*wc, q), monitor.Update(q).warnings, "default again");
+  ExpectValid(monitor);
+
+  EXPECT_FALSE(monitor.SwitchModel("left_link7", "no_such_variant", &error));
+  EXPECT_FALSE(monitor.SwitchModel("no_such_link", "grasp", &error));
+}
+
+TEST(MonitorScene, FrameBoundObjectFollowsItsPose) {
+  const auto wc = LoadBundledWorkcell();
+  Monitor monitor(wc, MonitorOptions{});
+  const PrimitiveId camera = Prim(*wc, "camera");
+  const Eigen::VectorXd home = MakeQ(*wc, {});
+  EXPECT_TRUE(monitor.Update(home).warnings.empty());
+  // Move the camera onto the left arm's upper arm.
+  Eigen::Isometry3d X_WO = Eigen::Isometry3d::Identity();
+  X_WO.translation() << 0.0, 0.55, 1.6;
+  std::string error;
+  ASSERT_TRUE(monitor.SetObjectPose("camera", X_WO, &error)) << error;
+  ReferenceScene scene;
+  const ObjectSpec& spec = wc->objects[wc->FindObject("camera")];
+  scene.moved_objects_W[camera] =
+      TransformShape(X_WO * spec.X_WO_start.inverse(), wc->primitives[camera].shape_L);
+  const CycleReport& report = monitor.Update(home);  // same q, but the scene changed
+  ExpectSameWarnings(*wc, ReferenceWarnings(*wc, home, scene), report.warnings, "camera moved");
+  EXPECT_TRUE(std::any_of(report.warnings.begin(), report.warnings.end(), [&](const Warning& w) {
+    return w.b == camera || w.a == camera;
+  }));
+  // Next to the back wall (left out as unreachable): the wall joins the checked scene.
+  const PrimitiveId wall = Prim(*wc, "back_wall");
+  EXPECT_FALSE(monitor.is_active(wall));
+  X_WO.translation() << -2.9, 0.0, 1.5;
+  ASSERT_TRUE(monitor.SetObjectPose("camera", X_WO, &error)) << error;
+  EXPECT_TRUE(monitor.is_active(wall));
+  ExpectValid(monitor);
+  EXPECT_FALSE(monitor.SetObjectPose("front_table_top", X_WO, &error));  // static
+  EXPECT_FALSE(monitor.SetObjectPose("no_such_object", X_WO, &error));
+}
+
+TEST(MonitorScene, BadInputsAreRefusedCountedAndFailSafe) {
+  const auto wc = LoadBundledWorkcell();
+  Monitor monitor(wc, MonitorOptions{});
+  const Eigen::VectorXd good = MakeQ(*wc, {{"left_joint2", 0.3}});
+  ASSERT_FALSE(monitor.Update(good).stop);
+  const Shape before = monitor.shape_W(Prim(*wc, "left_link7"));
+  const int j2 = test::JointIndex(*wc, "left_joint2");
+  const double upper = test::LimitsOf(*wc).upper[j2];
+
+  Eigen::VectorXd nan = good, inf = good, beyond = good, within = good;
+  nan[3] = std::numeric_limits<double>::quiet_NaN();
+  inf[5] = -std::numeric_limits<double>::infinity();
+  beyond[j2] = upper + 2.0 * kJointLimitMargin;
+  within[j2] = upper + 0.5 * kJointLimitMargin;
+  const std::vector<std::pair<Eigen::VectorXd, InputStatus>> bad = {
+      {Eigen::VectorXd::Zero(good.size() - 1), InputStatus::kWrongSize},
+      {Eigen::VectorXd::Zero(good.size() + 1), InputStatus::kWrongSize},
+      {nan, InputStatus::kNonFinite},
+      {inf, InputStatus::kNonFinite},
+      {beyond, InputStatus::kOutOfLimits}};
+  std::uint64_t refused = 0;
+  for (const auto& [q, status] : bad) {
+    const CycleReport& report = monitor.Update(q);
+    EXPECT_EQ(report.input, status);
+    EXPECT_TRUE(report.stop);
+    EXPECT_EQ(monitor.refused_inputs(), ++refused);
+    EXPECT_EQ(monitor.Check(q).input, status);
+    // The model stays at its last good state.
+    const Capsule& now = std::get<Capsule>(monitor.shape_W(Prim(*wc, "left_link7")));
+    EXPECT_EQ(now.p1_W, std::get<Capsule>(before).p1_W);
+    ExpectValid(monitor);
+  }
+  EXPECT_EQ(monitor.report().cycle, 1u + bad.size());
+  // Good input (even the same q as before the refusals) clears the stop.
+  const CycleReport& cleared = monitor.Update(good);
+  EXPECT_EQ(cleared.input, InputStatus::kOk);
+  EXPECT_FALSE(cleared.stop);
+  // Slightly past a limit, within the margin: accepted.
+  EXPECT_EQ(monitor.Update(within).input, InputStatus::kOk);
+  EXPECT_EQ(monitor.refused_inputs(), refused);
+}
+
+TEST(MonitorScene, IdleCycleReturnsTheSameReport) {
+  const auto wc = LoadBundledWorkcell();
+  Monitor monitor(wc, MonitorOptions{});
+  const Eigen::VectorXd q = MakeQ(*wc, {{"left_joint2", M_PI / 2}, {"left_joint4", M_PI / 2}});
+  const CycleReport first = monitor.Update(q);
+  ASSERT_FALSE(first.warnings.empty());
+  const BroadPhaseCounters total = monitor.total_counters();
+  for (int k = 0; k < 5; ++k) {
+    const CycleReport& idle = monitor.Update(q);
+    EXPECT_EQ(idle.cycle, first.cycle + 1 + k);
+    EXPECT_EQ(idle.moved_primitives, 0u);
+    EXPECT_EQ(idle.stop, first.stop);
+    ASSERT_EQ(idle.warnings.size(), first.warnings.size());
+    for (std::size_t i = 0; i < idle.warnings.size(); ++i) {
+      EXPECT_EQ(idle.warnings[i].a, first.warnings[i].a);
+      EXPECT_EQ(idle.warnings[i].b, first.warnings[i].b);
+      EXPECT_EQ(idle.warnings[i].distance_m, first.warnings[i].distance_m);
+    }
+  }
+  // No broad-phase work was done by the idle cycles.
+  EXPECT_EQ(monitor.total_counters().object_object_tests, total.object_object_tests);
+  EXPECT_EQ(monitor.Check(q).warnings.size(), first.warnings.size());
+}
+
+// Speed-scaled tolerance: the same approach of the left forearm to the front table top, slow
+// and fast; the fast one warns earlier (farther away).
+TEST(MonitorScene, SpeedScaledToleranceWarnsLaterWhenSlow) {
+  const auto wc = LoadBundledWorkcell();
+  MonitorOptions options;
+  options.speed_scaled_tolerance = true;
+  const PrimitiveId table = Prim(*wc, "front_table_top");
+  // Joint 4 sweeps the straight, horizontal forearm down onto the table; returns the angle of
+  // the first warning against the table and the threshold it had.
+  auto first_warning = [&](double joint4_speed_radps) {
+    Monitor monitor(wc, options);
+    Eigen::VectorXd q = MakeQ(*wc, {{"left_joint2", M_PI / 2}});
+    const int j4 = test::JointIndex(*wc, "left_joint4");
+    for (int k = 0; k < 100000; ++k) {
+      q[j4] = k * joint4_speed_radps * options.cycle_period_s;
+      const CycleReport& report = monitor.Update(q);
+      const CycleReport reference_check = monitor.Check(q);  // idle: the same report
+      EXPECT_EQ(reference_check.warnings.size(), report.warnings.size());
+      for (const Warning& w : report.warnings) {
+        if (w.b == table || w.a == table) return std::make_pair(q[j4], w.threshold_m);
+      }
+      if (q[j4] > M_PI / 2) break;
+    }
+    ADD_FAILURE() << "no warning at " << joint4_speed_radps << " rad/s";
+    return std::make_pair(0.0, 0.0);
+  };
+  const auto [slow_angle, slow_threshold] = first_warning(0.05);
+  const auto [fast_angle, fast_threshold] = first_warning(0.6);
+  std::printf("slow: warns at %.4f rad, threshold %.4f m; fast: %.4f rad, %.4f m\n", slow_angle,
+              slow_threshold, fast_angle, fast_threshold);
+  EXPECT_GT(slow_angle, fast_angle);
+  EXPECT_GT(fast_threshold, slow_threshold);
+  const double gain_s = options.reaction_time_s + options.stopping_time_s;
+  EXPECT_LE(fast_threshold, 2 * 0.0305 + options.max_speed_mps * gain_s + 1e-12);
+}
+
+TEST(MonitorScene, InconsistentOptionsAreRejected) {
+  const auto wc = LoadBundledWorkcell();
+  MonitorOptions options;
+  options.cycle_period_s = 0.0;
+  EXPECT_THROW(Monitor(wc, options), LoadError);
+  options = MonitorOptions{};
+  options.max_speed_mps = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(Monitor(wc, options), LoadError);
+}
+
+}  // namespace
+}  // namespace arm_collision_monitor

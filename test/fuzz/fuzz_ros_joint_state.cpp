@@ -1,0 +1,207 @@
+// libFuzzer harness for the run-time tier: a stream of sensor_msgs/JointState messages, as any
+// publisher could send them (random name sets, duplicate and unknown names, mismatched array
+// lengths, NaN/inf/huge positions, stamps in any order, clock jumps), through the node's merge
+// (JointStateInput) and Monitor::Update on the bundled workcell; plus raw joint vectors of any
+// size straight into Monitor::Update. Nothing may crash, throw or invoke undefined behaviour,
+// and every report must keep the CycleReport contract (checked below; a violation aborts).
+//
+// Seeds: test/fuzz/corpus/ros_joint_state/ (any bytes are a valid input).
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <fuzzer/FuzzedDataProvider.h>
+
+#include "arm_collision_monitor/monitor/monitor.h"
+#include "arm_collision_monitor/ros/joint_state_input.h"
+#include "arm_collision_monitor/scene/workcell.h"
+
+namespace arm_collision_monitor {
+namespace {
+
+// Bounds that keep one input fast: messages per input, entries per message.
+constexpr int kMaxMessages = 64;
+constexpr int kMaxEntries = 24;
+// The node's default input timeout (config/monitor.yaml; only the order of magnitude matters).
+constexpr double kInputTimeout_s = 0.5;
+
+struct Fixture {
+  std::shared_ptr<const Workcell> workcell;
+  MonitorOptions options;
+};
+
+const Fixture& BundledWorkcell() {
+  static const Fixture fixture = [] {
+    const std::string root = ACM_SOURCE_DIR;
+    Fixture f;
+    f.options = LoadMonitorOptions(root + "/config/monitor.yaml");
+    f.workcell = std::make_shared<const Workcell>(LoadWorkcell(
+        root + "/urdf/workcell.urdf", root + "/config/scene.yaml", f.options.tolerance_m));
+    return f;
+  }();
+  return fixture;
+}
+
+void Require(bool condition) {
+  if (!condition) std::abort();  // a broken contract: libFuzzer keeps the input
+}
+
+double ConsumePosition(FuzzedDataProvider* in, const JointSpec* joint) {
+  switch (in->ConsumeIntegralInRange<int>(0, 7)) {
+    case 0:
+      return std::numeric_limits<double>::quiet_NaN();
+    case 1:
+      return in->ConsumeBool() ? std::numeric_limits<double>::infinity()
+                               : -std::numeric_limits<double>::infinity();
+    case 2:
+      return in->ConsumeBool() ? std::numeric_limits<double>::max()
+                               : std::numeric_limits<double>::denorm_min();
+    case 3:
+      return in->ConsumeFloatingPoint<double>();  // any finite double
+    default:
+      // Mostly in or near the joint's range, so that the geometry gets exercised too.
+      if (joint != nullptr && std::isfinite(joint->lower) && std::isfinite(joint->upper)) {
+        const double margin = 0.1 * (joint->upper - joint->lower);
+        return in->ConsumeFloatingPointInRange<double>(joint->lower - margin,
+                                                       joint->upper + margin);
+      }
+      return in->ConsumeFloatingPointInRange<double>(-4.0, 4.0);
+  }
+}
+
+// CycleReport's contract (monitor/monitor.h).
+void CheckReport(const CycleReport& report, std::uint64_t expected_cycle) {
+  Require(report.cycle == expected_cycle);
+  if (report.input != InputStatus::kOk || !report.warnings.empty()) Require(report.stop);
+  for (std::size_t k = 0; k < report.warnings.size(); ++k) {
+    const Warning& w = report.warnings[k];
+    Require(w.a < w.b);
+    Require(std::isfinite(w.distance_m) && w.distance_m >= 0.0 && w.distance_m < w.threshold_m);
+    Require(w.p_WA.allFinite() && w.p_WB.allFinite());
+    if (k > 0) {
+      const Warning& v = report.warnings[k - 1];
+      Require(v.a < w.a || (v.a == w.a && v.b < w.b));
+    }
+  }
+}
+
+// Check() answers on a copy of the live model: for the q just applied it must agree exactly
+// (unless tolerances depend on the speed, which the copy does not share).
+void CheckAgainstCheck(const Monitor& monitor, const Eigen::VectorXd& q) {
+  const CycleReport& live = monitor.report();
+  const CycleReport copy = monitor.Check(q);
+  Require(copy.input == live.input && copy.stop == live.stop);
+  Require(copy.warnings.size() == live.warnings.size());
+  for (std::size_t k = 0; k < live.warnings.size(); ++k) {
+    Require(copy.warnings[k].a == live.warnings[k].a && copy.warnings[k].b == live.warnings[k].b);
+  }
+}
+
+}  // namespace
+}  // namespace arm_collision_monitor
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  using namespace arm_collision_monitor;
+  const Fixture& fixture = BundledWorkcell();
+  const std::vector<std::string>& names = fixture.workcell->joint_names;
+  const KinematicModel& model = fixture.workcell->kinematics;
+  std::vector<const JointSpec*> joint_of(names.size(), nullptr);
+  for (int link = 1; link < model.link_count(); ++link) {
+    const int i = model.joint(link).q_index;
+    if (i >= 0 && i < static_cast<int>(names.size())) joint_of[i] = &model.joint(link);
+  }
+
+  FuzzedDataProvider in(data, size);
+  Monitor monitor(fixture.workcell, fixture.options);
+  JointStateInput input(names, kInputTimeout_s);
+  std::uint64_t cycles = 0;
+  ros::Time now(1000, 0);
+  sensor_msgs::JointState msg;
+  for (int m = 0; m < kMaxMessages && in.remaining_bytes() > 0; ++m) {
+    // Receive time: mostly forward by about one cycle, sometimes a jump either way.
+    const int clock = in.ConsumeIntegralInRange<int>(0, 15);
+    double now_s = now.toSec() + (clock == 0 ? -in.ConsumeFloatingPointInRange(0.0, 100.0)
+                                 : clock == 1 ? in.ConsumeFloatingPointInRange(0.0, 100.0)
+                                              : 0.05);
+    now_s = std::max(now_s, 1.0);
+    now = ros::Time(now_s);
+
+    if (in.ConsumeIntegralInRange<int>(0, 9) == 0) {
+      // A raw joint vector of any size straight into the Monitor (its own validation).
+      const int n = in.ConsumeIntegralInRange<int>(0, static_cast<int>(names.size()) + 2);
+      Eigen::VectorXd q(n);
+      for (int i = 0; i < n; ++i) {
+        q[i] = ConsumePosition(&in, i < static_cast<int>(names.size()) ? joint_of[i] : nullptr);
+      }
+      const CycleReport& report = monitor.Update(q);
+      CheckReport(report, ++cycles);
+      if (n != static_cast<int>(names.size())) Require(report.input == InputStatus::kWrongSize);
+      continue;
+    }
+
+    // A JointState message. The stamp is set field by field as deserialisation does, so it may
+    // be anything, including an nsec >= 10^9.
+    msg.header.stamp.sec = 0;
+    msg.header.stamp.nsec = 0;
+    switch (in.ConsumeIntegralInRange<int>(0, 3)) {
+      case 0:
+        break;  // zero: "unknown", replaced by the receive time
+      case 1:
+        msg.header.stamp.sec = in.ConsumeIntegral<std::uint32_t>();
+        msg.header.stamp.nsec = in.ConsumeIntegral<std::uint32_t>();
+        break;
+      default:
+        msg.header.stamp =
+            ros::Time(std::max(0.0, now.toSec() - in.ConsumeFloatingPointInRange(-0.2, 1.0)));
+    }
+    const int entries = in.ConsumeIntegralInRange<int>(0, kMaxEntries);
+    msg.name.clear();
+    std::vector<int> index_of_entry;
+    for (int k = 0; k < entries; ++k) {
+      if (!names.empty() && in.ConsumeIntegralInRange<int>(0, 7) != 0) {
+        const int i = in.ConsumeIntegralInRange<int>(0, static_cast<int>(names.size()) - 1);
+        msg.name.push_back(names[i]);
+        index_of_entry.push_back(i);
+      } else {
+        msg.name.push_back(in.ConsumeRandomLengthString(16));
+        index_of_entry.push_back(-1);
+      }
+    }
+    // Usually one position per name; sometimes a different count.
+    const int positions = in.ConsumeIntegralInRange<int>(0, 9) == 0
+                              ? in.ConsumeIntegralInRange<int>(0, kMaxEntries)
+                              : entries;
+    msg.position.resize(positions);
+    for (int k = 0; k < positions; ++k) {
+      const int i = k < entries ? index_of_entry[k] : -1;
+      msg.position[k] = ConsumePosition(&in, i >= 0 ? joint_of[i] : nullptr);
+    }
+
+    if (in.ConsumeIntegralInRange<int>(0, 15) == 0) {
+      Eigen::VectorXd q_copy;
+      const Eigen::VectorXd q_before = input.q();
+      input.MergeIntoCopy(msg, &q_copy);
+      Require(input.q() == q_before);  // the live state is not touched
+      continue;
+    }
+    const MergeStatus status = input.Merge(msg, now);
+    if (status != MergeStatus::kAccepted || !input.is_complete() || input.IsStale(now)) {
+      continue;  // the node requests a stop without a cycle
+    }
+    // Accepted input is finite: the merge refuses non-finite positions of model joints.
+    Require(input.q().allFinite());
+    const CycleReport& report = monitor.Update(input.q());
+    CheckReport(report, ++cycles);
+    Require(report.input != InputStatus::kNonFinite && report.input != InputStatus::kWrongSize);
+    if (!fixture.options.speed_scaled_tolerance && in.ConsumeIntegralInRange<int>(0, 7) == 0) {
+      CheckAgainstCheck(monitor, input.q());
+    }
+  }
+  Require(monitor.refused_inputs() <= cycles);
+  return 0;
+}

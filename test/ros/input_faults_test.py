@@ -1,0 +1,268 @@
+#!/usr/bin/python3
+"""Fail-safe behaviour of the monitor node on bad input, its services, and one cycle per message
+(test/ros/input_faults.test). The tests run in name order on one node: each starts by driving
+the model to a clear state itself."""
+import random
+import sys
+import time
+import unittest
+
+import rospy
+import rostest
+from sensor_msgs.msg import JointState
+
+from arm_collision_monitor.msg import MonitorReport
+from arm_collision_monitor.srv import (AttachObject, CheckJointState, DetachObject,
+                                       SetGraspTarget)
+
+from acm_test_util import (HOME, LEFT_JOINTS, LEFT_TOWARDS_RIGHT, RIGHT_JOINTS,
+                           RIGHT_TOWARDS_LEFT, MonitorClient, joint_state)
+
+NODE = '/arm_collision_monitor'
+
+
+def left_only(positions, stamp=None, names=None):
+    return joint_state(LEFT_JOINTS if names is None else names, positions, stamp)
+
+
+class InputFaultsTest(unittest.TestCase):
+
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node('input_faults_test')
+        cls.client = MonitorClient(NODE)
+        assert cls.client.wait_connected(), 'the monitor never subscribed to its input topics'
+        for name in ('check', 'attach', 'detach', 'set_grasp_target'):
+            rospy.wait_for_service(NODE + '/' + name, timeout=20.0)
+
+    def refused_with(self, status, message_fn, clear=None):
+        """Clears (unless given the clear report), then publishes message_fn() on the left
+        topic until a report with `status` arrives; asserts the stop and the refusal count,
+        then that good input clears again."""
+        c = self.client
+        clear = clear or c.go_clear()
+        self.assertIsNotNone(clear, 'no clear report on home input')
+        report = c.publish_until(lambda: c.publishers[0].publish(message_fn()),
+                                 lambda r: r.input_status == status)
+        self.assertIsNotNone(report, 'no report with input_status %d' % status)
+        self.assertTrue(report.stop)
+        self.assertNotEqual(report.stop_reason, '')
+        self.assertGreater(report.refused_inputs, clear.refused_inputs)
+        self.assertTrue(c.wait_stop(True), '~stop never went true')
+        self.assertIsNotNone(c.go_clear(), 'good input did not clear the stop')
+        self.assertTrue(c.wait_stop(False), '~stop never went back to false')
+
+    def test_01_incomplete_model_requests_stop(self):
+        c = self.client
+        # Before anything: the latched stop is true.
+        self.assertTrue(c.wait_stop(True))
+        report = c.publish_until(lambda: c.publishers[0].publish(left_only(HOME)),
+                                 lambda r: True)
+        self.assertIsNotNone(report)
+        self.assertEqual(report.input_status, MonitorReport.INPUT_INCOMPLETE)
+        self.assertTrue(report.stop)
+        self.assertIn('right_joint1', report.stop_reason)
+        self.assertEqual(c.last_stop(), True)
+        # The right arm arrives: the model is complete, the stop clears.
+        self.assertIsNotNone(c.go_clear())
+        self.assertTrue(c.wait_stop(False))
+
+    def test_02_one_cycle_per_message(self):
+        c = self.client
+        self.assertIsNotNone(c.go_clear())
+        start = c.report_count()
+        stamps = []
+        for _ in range(20):
+            stamps += c.publish_pose(HOME, HOME)
+            time.sleep(0.005)
+        reports = c.wait_stamps(start, stamps)
+        self.assertIsNotNone(reports, 'a message got no report')
+        self.assertEqual(len(reports), len(stamps), 'one report per message')
+        cycles = [r.cycle for r in reports]
+        self.assertEqual(cycles, list(range(cycles[0], cycles[0] + len(stamps))))
+        for r in reports:
+            self.assertEqual(r.header.frame_id, 'world')
+            self.assertEqual(r.input_status, MonitorReport.INPUT_OK)
+            self.assertGreater(r.cycle_time_s, 0.0)
+
+    def test_03_nan_refused(self):
+        self.refused_with(MonitorReport.INPUT_NON_FINITE,
+                          lambda: left_only([0.0, float('nan'), 0, 0, 0, 0, 0]))
+
+    def test_04_inf_refused(self):
+        self.refused_with(MonitorReport.INPUT_NON_FINITE,
+                          lambda: left_only([0.0, 0, 0, float('-inf'), 0, 0, 0]))
+
+    def test_05_length_mismatch_refused(self):
+        self.refused_with(MonitorReport.INPUT_WRONG_SIZE, lambda: left_only([0.0] * 6))
+
+    def test_06_duplicate_name_refused(self):
+        names = LEFT_JOINTS[:6] + [LEFT_JOINTS[0]]
+        self.refused_with(MonitorReport.INPUT_WRONG_SIZE, lambda: left_only([0.0] * 7, names=names))
+
+    def test_07_stamp_backwards_refused(self):
+        c = self.client
+        c.go_clear()
+        later = rospy.Time.now() + rospy.Duration(0.1)
+        # The left joints accept a stamp slightly ahead; an older one must then be refused.
+        report = c.publish_until(lambda: c.publishers[0].publish(left_only(HOME, stamp=later)),
+                                 lambda r: r.header.stamp == later and not r.stop)
+        self.assertIsNotNone(report)
+        self.refused_with(MonitorReport.INPUT_STAMP_BACKWARDS,
+                          lambda: left_only(HOME, stamp=later - rospy.Duration(0.05)),
+                          clear=report)
+
+    def test_08_old_stamp_refused(self):
+        self.refused_with(MonitorReport.INPUT_STALE,
+                          lambda: left_only(HOME, stamp=rospy.Time.now() - rospy.Duration(5.0)))
+
+    def test_08b_future_stamp_refused(self):
+        self.refused_with(MonitorReport.INPUT_FUTURE_STAMP,
+                          lambda: left_only(HOME, stamp=rospy.Time.now() + rospy.Duration(100.0)))
+
+    def test_09_no_known_joint_refused(self):
+        self.refused_with(MonitorReport.INPUT_NO_KNOWN_JOINTS,
+                          lambda: left_only([0.1, 0.2], names=['elbow', 'wrist']))
+
+    def test_10_unknown_names_ignored_and_counted(self):
+        c = self.client
+        c.go_clear()
+        report = c.publish_until(
+            lambda: c.publishers[0].publish(left_only(HOME + [3.0, 4.0],
+                                                      names=LEFT_JOINTS + ['bogus1', 'bogus2'])),
+            lambda r: r.unknown_joints == 2)
+        self.assertIsNotNone(report)
+        self.assertEqual(report.input_status, MonitorReport.INPUT_OK)
+        self.assertFalse(report.stop)
+
+    def test_11_silence_goes_stale(self):
+        c = self.client
+        self.assertIsNotNone(c.go_clear())
+        start = c.report_count()
+        t0 = time.time()
+        # No more input: the staleness timer must request a stop and report it.
+        self.assertTrue(c.wait_stop(True, timeout_s=10.0), 'no stop after the input stopped')
+        elapsed = time.time() - t0
+        stale = [r for r in c.reports_since(start) if r.input_status == MonitorReport.INPUT_STALE]
+        self.assertEqual(len(stale), 1, 'one stale report per episode')
+        self.assertTrue(stale[0].stop)
+        self.assertIn('not received', stale[0].stop_reason)
+        timeout_s = rospy.get_param(NODE + '/input_timeout_s')
+        self.assertGreaterEqual(elapsed, 0.5 * timeout_s)  # not before the timeout (slack: poll)
+        self.assertIsNotNone(c.go_clear())
+        self.assertTrue(c.wait_stop(False))
+
+    def check(self, left, right):
+        check = rospy.ServiceProxy(NODE + '/check', CheckJointState)
+        return check(joint_state(LEFT_JOINTS + RIGHT_JOINTS, list(left) + list(right)))
+
+    def test_12_jump_beyond_cycle_bound_is_correct_and_reported(self):
+        c = self.client
+        self.assertIsNotNone(c.go_clear())
+        expected = self.check(LEFT_TOWARDS_RIGHT, RIGHT_TOWARDS_LEFT)
+        self.assertTrue(expected.success, expected.message)
+        self.assertTrue(any(w.owner_a.startswith('left') and w.owner_b.startswith('right') or
+                            w.owner_a.startswith('right') and w.owner_b.startswith('left')
+                            for w in expected.report.warnings),
+                        'the test pose must make the arms warn against each other')
+        start = c.report_count()
+        # One message per arm, each a jump of about a metre (the per-cycle bound is 3 cm).
+        reports = c.wait_stamps(start, c.publish_pose(LEFT_TOWARDS_RIGHT, RIGHT_TOWARDS_LEFT))
+        self.assertIsNotNone(reports)
+        self.assertEqual(len(reports), 2)
+        self.assertGreater(sum(r.reinsert_fallbacks for r in reports), 0,
+                           'a jump beyond the per-cycle bound must be reported as a fallback')
+        last = reports[-1]
+        self.assertEqual(last.input_status, MonitorReport.INPUT_OK)
+        self.assertTrue(last.stop)
+        got = [(w.primitive_a, w.primitive_b) for w in last.warnings]
+        want = [(w.primitive_a, w.primitive_b) for w in expected.report.warnings]
+        self.assertEqual(got, want)
+        for g, w in zip(last.warnings, expected.report.warnings):
+            self.assertAlmostEqual(g.distance_m, w.distance_m, places=9)
+        # Back home: another jump, the warnings go away.
+        self.assertIsNotNone(c.go_clear())
+
+    def test_13_check_service_does_not_touch_live_model(self):
+        c = self.client
+        self.assertIsNotNone(c.go_clear())
+        res = self.check(LEFT_TOWARDS_RIGHT, RIGHT_TOWARDS_LEFT)
+        self.assertTrue(res.success)
+        self.assertTrue(res.report.stop)
+        self.assertGreater(len(res.report.warnings), 0)
+        bad = self.check([float('nan')] * 7, HOME)
+        self.assertFalse(bad.success)
+        self.assertEqual(bad.report.input_status, MonitorReport.INPUT_NON_FINITE)
+        # The live model still gives a clear report on home input.
+        report = c.publish_until(lambda: c.publish_pose(HOME, HOME), lambda r: True)
+        self.assertEqual(report.warnings, [])
+
+    def test_14_attach_detach_grasp_services(self):
+        attach = rospy.ServiceProxy(NODE + '/attach', AttachObject)
+        detach = rospy.ServiceProxy(NODE + '/detach', DetachObject)
+        grasp = rospy.ServiceProxy(NODE + '/set_grasp_target', SetGraspTarget)
+        self.assertFalse(attach('no_such_object', 'left_link7').success)
+        self.assertFalse(attach('front_box', 'no_such_link').success)
+        res = attach('front_box', 'left_link7')
+        self.assertTrue(res.success, res.message)
+        res = detach('front_box')
+        self.assertTrue(res.success, res.message)
+        self.assertFalse(detach('no_such_object').success)
+        res = grasp('right_link7', 'right_box', True)
+        self.assertTrue(res.success, res.message)
+        res = grasp('right_link7', 'right_box', False)
+        self.assertTrue(res.success, res.message)
+        self.assertFalse(grasp('right_link7', 'no_such_object', True).success)
+
+    def test_15_random_garbage_never_crashes(self):
+        c = self.client
+        seed = int(rospy.get_param('~seed', 20261121))
+        print('test_15_random_garbage_never_crashes: seed %d' % seed)
+        rng = random.Random(seed)
+        specials = [float('nan'), float('inf'), -float('inf'), 1e308, -1e308, 0.0, 5.0]
+        names = LEFT_JOINTS + RIGHT_JOINTS + ['', 'x' * 300, 'left_joint1 ']
+        clear = c.go_clear()
+        self.assertIsNotNone(clear)
+        sent = 0
+        for _ in range(300):
+            msg = JointState()
+            k = rng.randint(0, 16)
+            msg.name = [rng.choice(names) for _ in range(k)]
+            msg.position = [rng.choice(specials) if rng.random() < 0.3 else rng.uniform(-4, 4)
+                            for _ in range(max(0, k + rng.choice([-1, 0, 0, 0, 1])))]
+            msg.velocity = [rng.uniform(-1, 1) for _ in range(rng.randint(0, 3))]
+            roll = rng.random()
+            if roll < 0.5:
+                msg.header.stamp = rospy.Time.now()
+            elif roll < 0.75:
+                msg.header.stamp = rospy.Time(0)
+            else:
+                msg.header.stamp = rospy.Time(rng.randint(0, 2**32 - 1), rng.randint(0, 999999999))
+            rng.choice(c.publishers).publish(msg)
+            sent += 1
+            time.sleep(0.001)
+        # A good message after the garbage: its report proves the node alive and that every
+        # message before it was processed (one cycle each; a few go_clear() messages may still
+        # have been in flight).
+        start = c.report_count()
+        sentinel = joint_state(LEFT_JOINTS, HOME)
+        c.publishers[0].publish(sentinel)
+        reports = c.wait_stamps(start, [sentinel.header.stamp], timeout_s=20.0)
+        self.assertIsNotNone(reports, 'the node did not answer after the garbage')
+        self.assertGreaterEqual(reports[0].cycle - clear.cycle, sent + 1)
+        self.assertLessEqual(reports[0].cycle - clear.cycle, sent + 4)
+
+    def test_16_combined_topic(self):
+        """A second node reading one combined joint_states topic."""
+        c = MonitorClient('/combined_monitor', topics=('joint_states',))
+        self.assertTrue(c.wait_connected())
+        self.assertIsNotNone(c.go_clear())
+        report = c.publish_until(lambda: c.publish_pose(LEFT_TOWARDS_RIGHT, RIGHT_TOWARDS_LEFT),
+                                 lambda r: len(r.warnings) > 0)
+        self.assertIsNotNone(report)
+        self.assertTrue(report.stop)
+        self.assertEqual(report.input_status, MonitorReport.INPUT_OK)
+
+
+if __name__ == '__main__':
+    rostest.rosrun('arm_collision_monitor', 'input_faults', InputFaultsTest, sys.argv)
