@@ -136,7 +136,7 @@ bool CellBroadPhase::ShortMove(const Aabb& old_box_W, const Aabb& new_box_W) con
 unsigned CellBroadPhase::ReachMask(const Aabb& box_W, const Aabb& cell_W) {
   unsigned mask = 0;
   for (int a = 0; a < 3; ++a) {
-    if (box_W.max_W[a] > cell_W.max_W[a]) mask |= 1u << a;
+    if (box_W.max_W[a] >= cell_W.max_W[a]) mask |= 1u << a;
     if (box_W.min_W[a] <= cell_W.min_W[a]) mask |= 1u << (3 + a);
   }
   return mask;

@@ -297,8 +297,16 @@ DistanceResult CapsuleBoxDistance(const Capsule& a, const Box& b) {
 // one meeting the other (an extreme point of the intersection lies on such an edge), which the
 // clipping finds. Error <= kBoxDistanceErrorUlps * eps * S.
 DistanceResult BoxBoxDistance(const Box& a, const Box& b) {
-  const Eigen::Isometry3d X_AB = a.X_WB.inverse(Eigen::Isometry) * b.X_WB;
-  const Eigen::Isometry3d X_BA = X_AB.inverse(Eigen::Isometry);
+  // Relative poses from the difference of the centres, so far-away pairs keep local accuracy.
+  const Eigen::Matrix3d& R_WA = a.X_WB.linear();
+  const Eigen::Matrix3d& R_WB = b.X_WB.linear();
+  const Vector3d p_AB_W = b.X_WB.translation() - a.X_WB.translation();
+  Eigen::Isometry3d X_AB = Eigen::Isometry3d::Identity();
+  X_AB.linear() = R_WA.transpose() * R_WB;
+  X_AB.translation() = R_WA.transpose() * p_AB_W;
+  Eigen::Isometry3d X_BA = Eigen::Isometry3d::Identity();
+  X_BA.linear() = R_WB.transpose() * R_WA;
+  X_BA.translation() = -(R_WB.transpose() * p_AB_W);
   const std::array<Vector3d, 8> vb_A = BoxVertices(X_AB, b.half_extents_m);
   const std::array<Vector3d, 8> va_B = BoxVertices(X_BA, a.half_extents_m);
   const Vector3d& ha = a.half_extents_m;

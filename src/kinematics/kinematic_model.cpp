@@ -30,6 +30,15 @@ int KinematicModel::FindJointChildLink(const std::string& joint_name) const {
   return -1;
 }
 
+bool KinematicModel::SetPositionLimits(const std::string& joint_name, double lower,
+                                       double upper) {
+  const int link = FindJointChildLink(joint_name);
+  if (link < 0 || joints_[link].q_index < 0) return false;
+  joints_[link].lower = lower;
+  joints_[link].upper = upper;
+  return true;
+}
+
 std::vector<std::string> KinematicModel::ActuatedJointNames() const {
   std::vector<std::string> names(q_size_);
   for (int link = 1; link < link_count(); ++link) {

@@ -3,9 +3,10 @@
 // k cycles, and the process's memory at the start and the end. Exits 1 on any divergence.
 // Two comparisons: (1) a Monitor with the octree against a Monitor with the naive broad phase
 // (reports); (2) since the Monitor owns its broad phase, the wrap-around of the octree's 32-bit
-// stamps is soaked on a second octree that follows the first Monitor's shapes every cycle with
-// its stamps forced near the wrap again and again, against an all-pairs index fed the same
-// (candidate pairs, plus the octree's Validate() after each wrap).
+// stamps is soaked on a second octree that follows the first Monitor's shapes every cycle,
+// rebuilt every few thousand cycles with its stamps set a few steps before the wrap (the hook
+// must be used before any Add), against an all-pairs index fed the same (candidate pairs, plus
+// the octree's Validate() after each wrap).
 //
 //   soak --urdf <file> --scene <file> --config <file> [--cycles N] [--every k] [--seed s]
 //
@@ -53,11 +54,12 @@ constexpr double kMeanCyclesBetweenJumps = 5000.0;
 constexpr double kJointSpeedFraction = 0.15;
 // Joint speed used when the URDF gives no limit, rad/s or m/s.
 constexpr double kDefaultJointSpeed = 1.0;
-// Every this many cycles the stamp soak's visit and scan stamps are set to this many steps
-// before the 32-bit wrap (a few moving-primitive updates: the wrap comes within a cycle or two,
-// the scan stamp's at the next comparison); its Validate() runs kValidateDelayCycles later.
+// Every this many cycles the stamp soak's octree is rebuilt with its stamps set r steps before
+// the 32-bit wrap, r cycling through 0 .. kStampMaxStepsBeforeWrap - 1 so that the wrap falls
+// in the Adds, the Moves, the pair scan or a merge check; its Validate() runs
+// kValidateDelayCycles later.
 constexpr std::uint64_t kStampForceEveryCycles = 4096;
-constexpr std::uint32_t kStampStepsBeforeWrap = 3;
+constexpr std::uint32_t kStampMaxStepsBeforeWrap = 64;
 constexpr std::uint64_t kValidateDelayCycles = 2 * 64;
 
 // One joint's motion: q(t) = centre + amplitude sin(omega t + phase), inside the limits.
@@ -198,27 +200,40 @@ bool SameReports(const CycleReport& a, const CycleReport& b, std::string* differ
 class StampSoak {
  public:
   StampSoak(const Monitor& monitor, const MonitorOptions& options)
-      : compatible_(monitor.workcell().compatible) {
-    BroadPhaseOptions octree_options = options.broad_phase;
-    octree_options.method = BroadPhaseMethod::kOctree;
+      : compatible_(monitor.workcell().compatible), octree_options_(options.broad_phase) {
+    octree_options_.method = BroadPhaseMethod::kOctree;
     // As the Monitor configures its own broad phase (monitor/monitor.h, MonitorOptions).
-    octree_options.world_W = monitor.workcell().world_W;
-    octree_options.min_cell_size_m = options.max_speed_mps * options.cycle_period_s;
-    octree_ = MakeBroadPhase(octree_options);
-    cells_ = dynamic_cast<CellBroadPhase*>(octree_.get());
+    octree_options_.world_W = monitor.workcell().world_W;
+    octree_options_.min_cell_size_m = options.max_speed_mps * options.cycle_period_s;
     naive_.Reserve(monitor.primitive_count());
     for (PrimitiveId id = 0; id < monitor.primitive_count(); ++id) {
       if (!monitor.is_active(id)) continue;
-      const Motion motion = monitor.workcell().primitives[id].is_static ? Motion::kStatic
-                                                                        : Motion::kMoving;
-      const Aabb box_W = ComputeAabb(monitor.shape_W(id));
-      octree_->Add(id, box_W, monitor.tolerance_m(id), motion);
-      naive_.Add(id, box_W, monitor.tolerance_m(id), motion);
-      if (motion == Motion::kMoving) moving_.push_back(id);
+      active_.push_back(id);
+      const bool is_static = monitor.workcell().primitives[id].is_static;
+      naive_.Add(id, ComputeAabb(monitor.shape_W(id)), monitor.tolerance_m(id),
+                 is_static ? Motion::kStatic : Motion::kMoving);
+      if (!is_static) moving_.push_back(id);
     }
+    RestartNearWrap(monitor);
   }
 
   bool is_cell_structure() const { return cells_ != nullptr; }
+
+  /// A new octree holding the primitives at their current shapes in `monitor`, its stamps set
+  /// a few steps before the wrap (the hook's precondition: before any Add).
+  void RestartNearWrap(const Monitor& monitor) {
+    octree_ = MakeBroadPhase(octree_options_);
+    cells_ = dynamic_cast<CellBroadPhase*>(octree_.get());
+    if (cells_ == nullptr) return;
+    const std::uint32_t steps = static_cast<std::uint32_t>(forced_wraps_ % kStampMaxStepsBeforeWrap);
+    cells_->SetStampsForTest(std::numeric_limits<std::uint32_t>::max() - steps);
+    ++forced_wraps_;
+    for (const PrimitiveId id : active_) {
+      const bool is_static = monitor.workcell().primitives[id].is_static;
+      octree_->Add(id, ComputeAabb(monitor.shape_W(id)), monitor.tolerance_m(id),
+                   is_static ? Motion::kStatic : Motion::kMoving);
+    }
+  }
 
   /// Moves every moving primitive to its current shape in `monitor`.
   void Follow(const Monitor& monitor) {
@@ -227,13 +242,6 @@ class StampSoak {
       octree_->Move(id, box_W);
       naive_.Move(id, box_W);
     }
-  }
-
-  void ForceNearWrap() {
-    const std::uint32_t value = std::numeric_limits<std::uint32_t>::max() - kStampStepsBeforeWrap;
-    cells_->SetVisitStampForTest(value);
-    cells_->SetScanStampForTest(value);
-    ++forced_wraps_;
   }
 
   bool SamePairs(std::string* difference) {
@@ -257,10 +265,11 @@ class StampSoak {
 
  private:
   const CompatibilityMatrix& compatible_;
+  BroadPhaseOptions octree_options_;
   std::unique_ptr<BroadPhase> octree_;
   CellBroadPhase* cells_ = nullptr;  // octree_ seen through the class with the stamp hooks
   NaiveBroadPhase naive_;
-  std::vector<PrimitiveId> moving_;
+  std::vector<PrimitiveId> active_, moving_;
   std::vector<CandidatePair> octree_pairs_, naive_pairs_;
   std::uint64_t forced_wraps_ = 0;
 };
@@ -308,7 +317,7 @@ int RunSoak(const SoakOptions& soak) {
     warning_cycles += !report.warnings.empty();
     refused_cycles += report.input != InputStatus::kOk;
     stamp_soak.Follow(monitor);
-    if (cycle % kStampForceEveryCycles == 0) stamp_soak.ForceNearWrap();
+    if (cycle % kStampForceEveryCycles == 0) stamp_soak.RestartNearWrap(monitor);
     const bool is_validate_cycle = cycle % kStampForceEveryCycles == kValidateDelayCycles;
     if (cycle % soak.compare_every == 0 || jumped || is_validate_cycle) {
       ++comparisons;

@@ -122,6 +122,35 @@ std::vector<LinkOverride> ReadLinkOverrides(const YAML::Node& node, const Where&
   return overrides;
 }
 
+// Soft limits: each must lie within the URDF's limits of an actuated joint.
+void ReadJointLimits(const YAML::Node& node, const Where& where, KinematicModel* model) {
+  if (!node.IsDefined()) return;
+  yaml_fields::RequireMap(node, where);
+  for (const auto& entry : node) {
+    const std::string joint_name = entry.first.as<std::string>("");
+    const Where item = where.Child(joint_name);
+    const int link = model->FindJointChildLink(joint_name);
+    if (link < 0 || model->joint(link).q_index < 0) {
+      item.Fail(entry.first, "unknown joint (expected an actuated joint of the URDF)");
+    }
+    yaml_fields::RequireMap(entry.second, item);
+    yaml_fields::CheckKeys(entry.second, {"lower", "upper"}, item);
+    const JointSpec& joint = model->joint(link);
+    const double lower = entry.second["lower"]
+                             ? yaml_fields::ReadFiniteDouble(entry.second["lower"], item.Child("lower"))
+                             : joint.lower;
+    const double upper = entry.second["upper"]
+                             ? yaml_fields::ReadFiniteDouble(entry.second["upper"], item.Child("upper"))
+                             : joint.upper;
+    if (!(joint.lower <= lower && lower <= upper && upper <= joint.upper)) {
+      item.Fail(entry.second, "expected URDF lower (" + std::to_string(joint.lower) +
+                                  ") <= lower <= upper <= URDF upper (" +
+                                  std::to_string(joint.upper) + ")");
+    }
+    model->SetPositionLimits(joint_name, lower, upper);
+  }
+}
+
 // The link's primitives in L after the scene's override.
 std::vector<std::pair<std::string, Shape>> LinkShapes(const urdf::Link& link,
                                                       const LinkOverride& o,
@@ -297,8 +326,11 @@ Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_pat
   const YAML::Node scene = yaml_fields::LoadMapFile(scene_path);
   const Where top{scene_path, ""};
   yaml_fields::CheckKeys(
-      scene, {"world", "arms", "links", "objects", "compatible", "grasp_targets", "variants"},
+      scene,
+      {"world", "arms", "links", "joint_limits", "objects", "compatible", "grasp_targets",
+       "variants"},
       top);
+  ReadJointLimits(scene["joint_limits"], Where{scene_path, "joint_limits"}, &w.kinematics);
   w.world_W = ReadWorld(scene["world"], Where{scene_path, "world"});
   const std::vector<int> arm_of_link = ReadArms(scene["arms"], Where{scene_path, "arms"}, model,
                                                 default_arm_tolerance_m, &w.arms);

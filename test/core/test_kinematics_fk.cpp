@@ -1,7 +1,9 @@
 // Forward kinematics against an independent composition: urdfdom's own urdf::Pose/Rotation
 // (quaternions) walked from each link up to the root, on seeded random configurations.
 #include <cmath>
+#include <cstdlib>
 #include <iostream>
+#include <new>
 #include <random>
 #include <string>
 
@@ -10,6 +12,16 @@
 
 #include "arm_collision_monitor/kinematics/kinematic_model.h"
 #include "arm_collision_monitor/kinematics/urdf_conversions.h"
+
+// Counts heap allocations in this test binary, to check that the FK cycle allocates nothing.
+static long g_allocation_count = 0;
+void* operator new(std::size_t size) {
+  ++g_allocation_count;
+  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 
 namespace arm_collision_monitor {
 namespace {
@@ -135,6 +147,18 @@ TEST(KinematicsFk, WorkcellHomePoseIsStraightUpWithReach1905mm) {
   }
   EXPECT_EQ(model.ActuatedJointNames().front(), "left_joint1");
   EXPECT_EQ(model.ActuatedJointNames().back(), "right_joint7");
+}
+
+TEST(KinematicsFk, ComputeLinkPosesDoesNotAllocate) {
+  const KinematicModel model = KinematicModel::FromUrdfFile(kDataDir + "three_link_arm.urdf");
+  std::vector<Eigen::Isometry3d> X_WL(model.link_count());
+  const Eigen::VectorXd q = Eigen::VectorXd::Constant(model.q_size(), 0.3);
+  const long before = g_allocation_count;
+  for (int i = 0; i < 100; ++i) model.ComputeLinkPoses(q, &X_WL);
+  EXPECT_EQ(g_allocation_count, before);
+  // The counter works: a vector of link poses does allocate.
+  std::vector<Eigen::Isometry3d> copy = X_WL;
+  EXPECT_GT(g_allocation_count, before);
 }
 
 TEST(KinematicsFk, JointTypesLimitsAndMimicAreRead) {

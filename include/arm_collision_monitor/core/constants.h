@@ -32,6 +32,12 @@ constexpr double kSegmentNearParallelSinSquared = 1e-2;
 // and the radii. The test suites pin the observed worst error against these bounds.
 constexpr double kSegmentDistanceErrorUlps = 16.0;
 constexpr double kBoxDistanceErrorUlps = 64.0;
+// Absolute floor added to every distance error bound (m; typical 1e-150): squared lengths below
+// ~2e-308 m^2 underflow, so features smaller than ~1e-154 m are resolved only to about that.
+constexpr double kDistanceErrorFloor_m = 1e-150;
+// Inputs are supported up to this magnitude (m; typical 1e60): products of four lengths (the
+// squared cross product of two directions) must stay below the double overflow at ~1.8e308.
+constexpr double kMaxSupportedCoordinate_m = 1e60;
 
 // ---------------------------------------------------------------------------------------------
 // Broad phase (octree, grid)

@@ -59,6 +59,10 @@ class KinematicModel {
   void ComputeLinkPoses(const Eigen::Ref<const Eigen::VectorXd>& q,
                         std::vector<Eigen::Isometry3d>* X_WL) const;
 
+  /// Start-up only: replaces the position limits of actuated joint `joint_name` (e.g. soft
+  /// limits from the scene file). False if no actuated joint has that name.
+  bool SetPositionLimits(const std::string& joint_name, double lower, double upper);
+
   /// Builds the model from a URDF file. Throws LoadError naming the file and element.
   static KinematicModel FromUrdfFile(const std::string& urdf_path);
 

@@ -1,0 +1,163 @@
+// Latency benchmark driver (a command, not a test): publishes sensor_msgs/JointState for both
+// arms at ~rate_hz on one combined topic and measures, per message, the time from publishing to
+// receiving (a) the echo node's copy and (b) the monitor's report for it, in the same run.
+// Prints p50, p99, max and drops for both, and the monitor's in-node cycle time. Run:
+//   roslaunch arm_collision_monitor latency_benchmark.launch [rate_hz:=1000] [duration_s:=10]
+// Messages are matched by header.stamp (the report carries its input's stamp); the send time is
+// the stamp itself (ros::Time::now(), wall clock without sim time), so latency is receive time
+// minus stamp.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <unordered_map>
+#include <vector>
+
+#include <ros/ros.h>
+#include <sensor_msgs/JointState.h>
+
+#include "arm_collision_monitor/MonitorReport.h"
+
+namespace {
+
+// Joint motion while measuring: each joint swings by this amplitude (rad) about home, slowly
+// enough (kSwingFrequency_hz) that the arms stay far apart: the monitor moves its capsules and
+// updates its index every cycle without warning.
+constexpr double kSwingAmplitude_rad = 0.2;
+constexpr double kSwingFrequency_hz = 0.5;
+// After the last message, replies still in flight get this long to arrive before counting drops.
+constexpr double kDrainTime_s = 1.0;
+
+struct Series {
+  std::vector<double> latency_s;
+  std::vector<double> cycle_time_s;
+};
+
+std::uint64_t Key(const ros::Time& stamp) {
+  return static_cast<std::uint64_t>(stamp.sec) * 1000000000ull + stamp.nsec;
+}
+
+double Percentile(std::vector<double> values, double fraction) {
+  if (values.empty()) return NAN;
+  const std::size_t k =
+      std::min(values.size() - 1, static_cast<std::size_t>(fraction * values.size()));
+  std::nth_element(values.begin(), values.begin() + k, values.end());
+  return values[k];
+}
+
+std::string CpuModel() {
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(cpuinfo, line)) {
+    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
+  }
+  return "unknown CPU";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  ros::init(argc, argv, "latency_probe");
+  ros::NodeHandle nh;
+  ros::NodeHandle private_nh("~");
+  const double rate_hz = private_nh.param("rate_hz", 1000.0);
+  const double duration_s = private_nh.param("duration_s", 10.0);
+  const double warmup_s = private_nh.param("warmup_s", 1.0);
+  std::vector<std::string> joints;
+  for (const char* arm : {"left", "right"}) {
+    for (int i = 1; i <= 7; ++i) joints.push_back(std::string(arm) + "_joint" + std::to_string(i));
+  }
+
+  std::mutex mutex;
+  std::unordered_map<std::uint64_t, bool> echo_pending, report_pending;  // measured messages
+  Series echo, report;
+  const ros::Publisher pub = nh.advertise<sensor_msgs::JointState>("joint_states", 100);
+  auto record = [&](std::unordered_map<std::uint64_t, bool>* pending, Series* series,
+                    const ros::Time& stamp, double cycle_time_s) {
+    const double latency_s = (ros::Time::now() - stamp).toSec();
+    std::lock_guard<std::mutex> lock(mutex);
+    const auto it = pending->find(Key(stamp));
+    if (it == pending->end()) return;  // warm-up, or a duplicate
+    pending->erase(it);
+    series->latency_s.push_back(latency_s);
+    if (cycle_time_s >= 0.0) series->cycle_time_s.push_back(cycle_time_s);
+  };
+  const ros::Subscriber echo_sub = nh.subscribe<sensor_msgs::JointState>(
+      "echo", 10000,
+      [&](const sensor_msgs::JointState::ConstPtr& m) { record(&echo_pending, &echo, m->header.stamp, -1.0); },
+      ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay());
+  const ros::Subscriber report_sub = nh.subscribe<arm_collision_monitor::MonitorReport>(
+      "report", 10000,
+      [&](const arm_collision_monitor::MonitorReport::ConstPtr& m) {
+        record(&report_pending, &report, m->header.stamp, m->cycle_time_s);
+      },
+      ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay());
+  ros::AsyncSpinner spinner(1);
+  spinner.start();
+
+  // Wait (bounded) for both the echo node and the monitor to be connected both ways.
+  const ros::WallTime connect_deadline = ros::WallTime::now() + ros::WallDuration(30.0);
+  while (ros::ok() && (pub.getNumSubscribers() < 2 || echo_sub.getNumPublishers() < 1 ||
+                       report_sub.getNumPublishers() < 1)) {
+    if (ros::WallTime::now() > connect_deadline) {
+      ROS_FATAL("latency_probe: echo node or monitor not connected after 30 s");
+      return 1;
+    }
+    ros::WallDuration(0.01).sleep();
+  }
+
+  sensor_msgs::JointState msg;
+  msg.name = joints;
+  msg.position.assign(joints.size(), 0.0);
+  const long warmup = std::lround(warmup_s * rate_hz);
+  const long total = warmup + std::lround(duration_s * rate_hz);
+  ros::WallRate rate(rate_hz);
+  for (long i = 0; i < total && ros::ok(); ++i) {
+    const double t_s = i / rate_hz;
+    for (std::size_t j = 0; j < joints.size(); ++j) {
+      msg.position[j] = kSwingAmplitude_rad * std::sin(2.0 * M_PI * kSwingFrequency_hz * t_s + j);
+    }
+    msg.header.stamp = ros::Time::now();
+    if (i >= warmup) {
+      std::lock_guard<std::mutex> lock(mutex);
+      echo_pending.emplace(Key(msg.header.stamp), true);
+      report_pending.emplace(Key(msg.header.stamp), true);
+    }
+    pub.publish(msg);
+    rate.sleep();
+  }
+  ros::WallDuration(kDrainTime_s).sleep();
+
+  std::lock_guard<std::mutex> lock(mutex);
+  const long measured = total - warmup;
+  std::printf("latency_probe: %ld JointState messages (14 joints) at %.0f Hz on loopback, "
+              "after %ld warm-up; %s, %u hardware threads\n",
+              measured, rate_hz, warmup, CpuModel().c_str(), std::thread::hardware_concurrency());
+  std::printf("  %-28s %9s %9s %9s %9s %8s\n", "publish -> receive (us)", "p50", "p99", "max",
+              "received", "dropped");
+  const auto row = [](const char* name, const Series& s, std::size_t dropped) {
+    std::printf("  %-28s %9.1f %9.1f %9.1f %9zu %8zu\n", name, 1e6 * Percentile(s.latency_s, 0.5),
+                1e6 * Percentile(s.latency_s, 0.99),
+                s.latency_s.empty() ? NAN : 1e6 * *std::max_element(s.latency_s.begin(), s.latency_s.end()),
+                s.latency_s.size(), dropped);
+  };
+  row("echo node (reference)", echo, echo_pending.size());
+  row("monitor report", report, report_pending.size());
+  std::printf("  monitor cycle time in the node (us): p50 %.1f  p99 %.1f  max %.1f\n",
+              1e6 * Percentile(report.cycle_time_s, 0.5), 1e6 * Percentile(report.cycle_time_s, 0.99),
+              report.cycle_time_s.empty()
+                  ? NAN
+                  : 1e6 * *std::max_element(report.cycle_time_s.begin(), report.cycle_time_s.end()));
+  const double echo_p50 = Percentile(echo.latency_s, 0.5), echo_p99 = Percentile(echo.latency_s, 0.99);
+  const double mon_p50 = Percentile(report.latency_s, 0.5), mon_p99 = Percentile(report.latency_s, 0.99);
+  std::printf("  aims: p50 <= echo + 20 us: %s (%+.1f us); p99 <= 1.2 x echo: %s (%.2f x); "
+              "no drop: %s\n",
+              mon_p50 <= echo_p50 + 20e-6 ? "met" : "missed", 1e6 * (mon_p50 - echo_p50),
+              mon_p99 <= 1.2 * echo_p99 ? "met" : "missed", mon_p99 / echo_p99,
+              report_pending.empty() ? "met" : "missed");
+  std::fflush(stdout);
+  return 0;
+}

@@ -1,0 +1,430 @@
+// LoadWorkcell and LoadMonitorOptions: the bundled workcell, a third-party-style URDF, and every
+// kind of bad input, each rejected with a message naming the file and the element.
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "arm_collision_monitor/scene/workcell.h"
+
+namespace arm_collision_monitor {
+namespace {
+
+const std::string kSource = ACM_SOURCE_DIR;
+const std::string kUrdf = kSource + "/urdf/workcell.urdf";
+const std::string kScene = kSource + "/config/scene.yaml";
+const std::string kMonitorYaml = kSource + "/config/monitor.yaml";
+const std::string kData = kSource + "/test/data/";
+const std::string kArmUrdf = kData + "three_link_arm.urdf";
+const std::string kArmMeshUrdf = kData + "three_link_arm_mesh.urdf";
+
+// A world cube for the small scenes written by the tests.
+const std::string kWorldLine = "world: {center_m: [0, 0, 1], edge_m: 4}\n";
+
+std::string WriteFile(const std::string& name, const std::string& text) {
+  const std::string path = ::testing::TempDir() + "acm_scene_test_" + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+// Expects LoadError whose message contains every one of `parts`.
+template <typename Load>
+void ExpectLoadError(Load load, const std::vector<std::string>& parts) {
+  try {
+    load();
+    ADD_FAILURE() << "expected a LoadError mentioning " << parts.front();
+  } catch (const LoadError& e) {
+    const std::string message = e.what();
+    for (const std::string& part : parts) {
+      EXPECT_NE(message.find(part), std::string::npos) << "'" << part << "' not in: " << message;
+    }
+  }
+}
+
+void ExpectSceneError(const std::string& urdf, const std::string& scene_text,
+                      const std::vector<std::string>& parts) {
+  const std::string path = WriteFile("scene.yaml", scene_text);
+  std::vector<std::string> all = parts;
+  all.push_back(path);
+  ExpectLoadError([&] { LoadWorkcell(urdf, path); }, all);
+}
+
+int CountIf(const Workcell& w, bool (*predicate)(const PrimitiveSpec&)) {
+  int count = 0;
+  for (const PrimitiveSpec& p : w.primitives) count += predicate(p);
+  return count;
+}
+
+bool IsDefaultCapsule(const PrimitiveSpec& p) {
+  return p.variant.empty() && std::holds_alternative<Capsule>(p.shape_L);
+}
+bool IsDefaultBox(const PrimitiveSpec& p) {
+  return p.variant.empty() && std::holds_alternative<Box>(p.shape_L);
+}
+bool IsVariant(const PrimitiveSpec& p) { return !p.variant.empty(); }
+
+bool Compatible(const Workcell& w, const std::string& a, const std::string& b) {
+  const int ia = w.FindPrimitive(a);
+  const int ib = w.FindPrimitive(b);
+  EXPECT_GE(ia, 0) << a;
+  EXPECT_GE(ib, 0) << b;
+  return ia >= 0 && ib >= 0 && w.compatible.AreCompatible(ia, ib);
+}
+
+// ------------------------------------------------------------------ the bundled workcell ---
+
+TEST(SceneLoader, BundledWorkcellHasTheSeeds35Primitives) {
+  const Workcell w = LoadWorkcell(kUrdf, kScene);
+  EXPECT_EQ(CountIf(w, IsDefaultCapsule), 14);
+  EXPECT_EQ(CountIf(w, IsDefaultBox), 21);
+  EXPECT_EQ(CountIf(w, IsVariant), 6);  // palm + 2 fingers per gripper, inactive at start
+  EXPECT_EQ(w.compatible.size(), w.primitives.size());
+  EXPECT_TRUE(w.warnings.empty()) << w.warnings.front();
+  ASSERT_EQ(w.joint_names.size(), 14u);
+  for (int i = 0; i < 7; ++i) {
+    EXPECT_EQ(w.joint_names[i], "left_joint" + std::to_string(i + 1));
+    EXPECT_EQ(w.joint_names[7 + i], "right_joint" + std::to_string(i + 1));
+  }
+  EXPECT_EQ(w.fixed_frame, "world");
+  EXPECT_NEAR((w.world_W.max_W - w.world_W.min_W).maxCoeff(), 6.35, 1e-12);
+  EXPECT_NEAR((w.world_W.max_W - w.world_W.min_W).minCoeff(), 6.35, 1e-12);
+  for (const PrimitiveSpec& p : w.primitives) {
+    // Every primitive of a moving link gets its arm's tolerance, everything else 0.
+    const bool is_arm = p.group == "left" || p.group == "right";
+    EXPECT_EQ(is_arm, std::holds_alternative<Capsule>(p.shape_L)) << p.name;
+    EXPECT_EQ(p.tolerance_m, is_arm ? 0.0305 : 0.0) << p.name;
+    EXPECT_EQ(p.is_static, !is_arm && p.name != "front_box" && p.name != "right_box" &&
+                               p.name != "camera")
+        << p.name;
+  }
+  ASSERT_EQ(w.arms.size(), 2u);
+  EXPECT_EQ(w.grasp_targets.size(), 3u);
+  ASSERT_EQ(w.variants.size(), 2u);
+  EXPECT_EQ(w.variants[0].primitives.size(), 3u);
+  ASSERT_GE(w.FindObject("camera"), 0);
+  EXPECT_EQ(w.objects[w.FindObject("camera")].frame, "camera_link");
+  EXPECT_TRUE(w.objects[w.FindObject("front_box")].is_attachable);
+  EXPECT_FALSE(w.objects[w.FindObject("front_table_top")].is_attachable);
+  for (const ObjectSpec& o : w.objects) {
+    EXPECT_EQ(w.primitives[o.primitive].name, o.name);
+    EXPECT_EQ(w.primitives[o.primitive].object_index, w.FindObject(o.name));
+  }
+}
+
+TEST(SceneLoader, BundledGripperIsOneCapsuleEndingAtTheToolTip) {
+  const Workcell w = LoadWorkcell(kUrdf, kScene);
+  // The "cylinder plus two end spheres" idiom became one capsule named after its link.
+  ASSERT_GE(w.FindPrimitive("left_link7"), 0);
+  EXPECT_LT(w.FindPrimitive("left_link7/0"), 0);
+  const Capsule& c = std::get<Capsule>(w.primitives[w.FindPrimitive("left_link7")].shape_L);
+  EXPECT_NEAR(c.radius_m, 0.06, 1e-12);
+  EXPECT_NEAR(c.p0_W.z(), 0.06, 1e-12);
+  EXPECT_NEAR(c.p1_W.z(), 0.145, 1e-12);
+  // Home pose: the capsule's top is the tool tip, 0.8 m pedestal + 1.905 m reach.
+  std::vector<Eigen::Isometry3d> X_WL(w.kinematics.link_count());
+  w.kinematics.ComputeLinkPoses(Eigen::VectorXd::Zero(14), &X_WL);
+  const Shape tip_W = TransformShape(X_WL[w.kinematics.FindLink("left_link7")],
+                                     w.primitives[w.FindPrimitive("left_link7")].shape_L);
+  EXPECT_NEAR(ComputeAabb(tip_W).max_W.z(), 0.8 + 1.905, 1e-12);
+}
+
+TEST(SceneLoader, BundledCompatibility) {
+  const Workcell w = LoadWorkcell(kUrdf, kScene);
+  for (const std::string side : {"left", "right"}) {
+    EXPECT_TRUE(Compatible(w, side + "_pedestal", side + "_link1"));  // through fixed base
+    EXPECT_FALSE(Compatible(w, side + "_pedestal", side + "_link2"));
+    for (int i = 1; i < 7; ++i) {
+      const std::string a = side + "_link" + std::to_string(i);
+      EXPECT_TRUE(Compatible(w, a, side + "_link" + std::to_string(i + 1)));
+      if (i < 6) EXPECT_FALSE(Compatible(w, a, side + "_link" + std::to_string(i + 2)));
+    }
+    EXPECT_TRUE(Compatible(w, side + "_link6", side + "_link7/palm"));
+    EXPECT_TRUE(Compatible(w, side + "_link7", side + "_link7/finger1"));
+    EXPECT_FALSE(Compatible(w, side + "_link7", "front_box"));  // only while grasping
+  }
+  // Both pedestals are fixed to the world frame, yet they are separate parts.
+  EXPECT_FALSE(Compatible(w, "left_pedestal", "right_link1"));
+  EXPECT_FALSE(Compatible(w, "left_link1", "right_link1"));
+  EXPECT_FALSE(Compatible(w, "left_link7", "right_link7"));
+  EXPECT_TRUE(Compatible(w, "front_box", "front_table_top"));  // listed in the scene file
+  EXPECT_TRUE(Compatible(w, "right_box", "right_table_top"));
+  EXPECT_FALSE(Compatible(w, "front_box", "right_table_top"));
+  EXPECT_FALSE(Compatible(w, "left_link7", "front_table_top"));
+}
+
+TEST(SceneLoader, BundledMonitorOptions) {
+  const MonitorOptions o = LoadMonitorOptions(kMonitorYaml);
+  EXPECT_EQ(o.broad_phase.method, BroadPhaseMethod::kOctree);
+  EXPECT_EQ(o.broad_phase.max_objects_per_leaf, 10);
+  EXPECT_EQ(o.tolerance_m, 0.0305);
+  EXPECT_EQ(o.max_speed_mps, 0.61);
+  EXPECT_EQ(o.cycle_period_s, 0.05);
+  EXPECT_NEAR(o.broad_phase.min_cell_size_m, 0.0305, 1e-15);
+  EXPECT_FALSE(o.speed_scaled_tolerance);
+  EXPECT_FALSE(o.auto_broad_phase);
+  EXPECT_EQ(o.fixed_frame, "world");
+}
+
+TEST(SceneLoader, MonitorOptionsOverridesAndErrors) {
+  const MonitorOptions o = LoadMonitorOptions(WriteFile(
+      "monitor.yaml", "broad_phase: grid\ngrid_cells_per_axis: 8\nmax_speed_mps: 1.0\n"
+                      "cycle_period_s: 0.01\ntechniques: {inside_node_exit: false}\n"));
+  EXPECT_EQ(o.broad_phase.method, BroadPhaseMethod::kGrid);
+  EXPECT_EQ(o.broad_phase.grid_cells_per_axis, 8);
+  EXPECT_NEAR(o.broad_phase.min_cell_size_m, 0.01, 1e-15);
+  EXPECT_FALSE(o.broad_phase.techniques.inside_node_exit);
+  EXPECT_TRUE(o.broad_phase.techniques.directional_neighbours);
+
+  const struct {
+    std::string text;
+    std::vector<std::string> parts;
+  } bad[] = {
+      {"broad_phase: kdtree\n", {"broad_phase", "kdtree", "octree"}},
+      {"max_speed_mps: -1\n", {"max_speed_mps", "> 0"}},
+      {"cycle_period_s: .nan\n", {"cycle_period_s", "finite"}},
+      {"max_objects_per_leaf: 0\n", {"max_objects_per_leaf", "positive integer"}},
+      {"tolerence_m: 0.03\n", {"unknown key 'tolerence_m'"}},
+      {"speed_scaled_tolerance: maybe\n", {"speed_scaled_tolerance", "true or false"}},
+      {"max_speed_mps: [1, 2\n", {"malformed YAML"}},
+  };
+  for (const auto& b : bad) {
+    const std::string path = WriteFile("monitor_bad.yaml", b.text);
+    std::vector<std::string> parts = b.parts;
+    parts.push_back(path);
+    ExpectLoadError([&] { LoadMonitorOptions(path); }, parts);
+  }
+  ExpectLoadError([&] { LoadMonitorOptions(kData + "no_such_monitor.yaml"); },
+                  {"no_such_monitor.yaml", "cannot open"});
+}
+
+// ------------------------------------------------------------------ third-party URDFs ------
+
+TEST(SceneLoader, ThirdPartyCylinderArmLoads) {
+  const Workcell w = LoadWorkcell(kArmUrdf, kData + "three_link_scene.yaml");
+  EXPECT_EQ(w.joint_names, (std::vector<std::string>{"shoulder", "elbow", "spin", "slide"}));
+  // base box, upper_arm, forearm, wrist sphere, two finger boxes, the table.
+  ASSERT_EQ(w.primitives.size(), 7u);
+  const PrimitiveSpec& base = w.primitives[w.FindPrimitive("base_link")];
+  EXPECT_TRUE(std::holds_alternative<Box>(base.shape_L));
+  EXPECT_TRUE(base.is_static);
+  EXPECT_EQ(base.tolerance_m, 0.0);
+  const PrimitiveSpec& upper = w.primitives[w.FindPrimitive("upper_arm")];
+  const Capsule& upper_capsule = std::get<Capsule>(upper.shape_L);
+  EXPECT_TRUE(upper_capsule.p0_W.isApprox(Eigen::Vector3d(0, 0, 0), 1e-15));
+  EXPECT_NEAR((upper_capsule.p1_W - Eigen::Vector3d(0, 0, 0.4)).norm(), 0.0, 1e-15);
+  EXPECT_EQ(upper_capsule.radius_m, 0.05);
+  EXPECT_EQ(upper.tolerance_m, 0.0305);
+  EXPECT_EQ(upper.group, "arm");
+  // The forearm cylinder is rotated onto x by its origin: the capsule follows.
+  const Capsule& forearm = std::get<Capsule>(w.primitives[w.FindPrimitive("forearm")].shape_L);
+  EXPECT_NEAR((forearm.p0_W - Eigen::Vector3d(0, 0, 0)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((forearm.p1_W - Eigen::Vector3d(0.35, 0, 0)).norm(), 0.0, 1e-12);
+  const Capsule& wrist = std::get<Capsule>(w.primitives[w.FindPrimitive("wrist")].shape_L);
+  EXPECT_EQ(wrist.p0_W, wrist.p1_W);  // a sphere: zero-length capsule
+  EXPECT_EQ(wrist.radius_m, 0.045);
+  EXPECT_TRUE(Compatible(w, "base_link", "upper_arm"));
+  EXPECT_TRUE(Compatible(w, "wrist", "finger_a"));
+  EXPECT_FALSE(Compatible(w, "finger_a", "finger_b"));  // siblings
+  EXPECT_FALSE(Compatible(w, "upper_arm", "wrist"));
+  EXPECT_FALSE(Compatible(w, "base_link", "forearm"));
+}
+
+TEST(SceneLoader, MeshWithoutOverrideFailsNamingLinkAndFile) {
+  ExpectLoadError([&] { LoadWorkcell(kArmMeshUrdf, kData + "three_link_scene.yaml"); },
+                  {kArmMeshUrdf, "link 'forearm'", "package://third_party_arm/meshes/forearm.stl",
+                   "links: 'forearm'"});
+}
+
+TEST(SceneLoader, MeshWorksThroughAnOverride) {
+  const Workcell w = LoadWorkcell(kArmMeshUrdf, kData + "three_link_mesh_override.yaml");
+  const PrimitiveSpec& forearm = w.primitives[w.FindPrimitive("forearm")];
+  const Capsule& c = std::get<Capsule>(forearm.shape_L);
+  EXPECT_EQ(c.p1_W, Eigen::Vector3d(0.35, 0, 0));
+  EXPECT_EQ(c.radius_m, 0.045);
+  EXPECT_EQ(forearm.tolerance_m, 0.02);  // the arm's tolerance from the scene
+  // Ignoring the link works as well.
+  const std::string ignore = WriteFile(
+      "ignore.yaml", kWorldLine + "links:\n  forearm: {ignore: true}\n");
+  EXPECT_LT(LoadWorkcell(kArmMeshUrdf, ignore).FindPrimitive("forearm"), 0);
+}
+
+TEST(SceneLoader, LinkOverridesRadiusEndpointsAndTolerance) {
+  const Workcell w = LoadWorkcell(
+      kArmUrdf, WriteFile("overrides.yaml",
+                          kWorldLine +
+                              "arms: [{name: arm, root_link: upper_arm}]\n"
+                              "links:\n"
+                              "  upper_arm: {radius_m: 0.07, tolerance_m: 0.05}\n"
+                              "  wrist: {p0_m: [0, 0, 0], p1_m: [0.1, 0, 0]}\n"));
+  const PrimitiveSpec& upper = w.primitives[w.FindPrimitive("upper_arm")];
+  EXPECT_EQ(std::get<Capsule>(upper.shape_L).radius_m, 0.07);
+  EXPECT_EQ(upper.tolerance_m, 0.05);
+  EXPECT_EQ(w.primitives[w.FindPrimitive("forearm")].tolerance_m, 0.0305);
+  // Endpoints without a radius keep the link's single capsule's radius.
+  const Capsule& wrist = std::get<Capsule>(w.primitives[w.FindPrimitive("wrist")].shape_L);
+  EXPECT_EQ(wrist.p1_W, Eigen::Vector3d(0.1, 0, 0));
+  EXPECT_EQ(wrist.radius_m, 0.045);
+}
+
+TEST(SceneLoader, CapsuleIdiomNeedsMatchingSpheres) {
+  const std::string link_template =
+      "<?xml version=\"1.0\"?>\n<robot name=\"r\">\n  <link name=\"base\">\n"
+      "    <collision><origin xyz=\"0 0 0.5\"/><geometry><cylinder radius=\"0.1\" "
+      "length=\"1\"/></geometry></collision>\n"
+      "    <collision><origin xyz=\"0 0 0\"/><geometry><sphere radius=\"RADIUS\"/></geometry>"
+      "</collision>\n"
+      "    <collision><origin xyz=\"0 0 1\"/><geometry><sphere radius=\"0.1\"/></geometry>"
+      "</collision>\n  </link>\n</robot>\n";
+  const std::string scene = WriteFile("idiom.yaml", kWorldLine);
+  auto with_radius = [&](const std::string& radius) {
+    std::string text = link_template;
+    text.replace(text.find("RADIUS"), 6, radius);
+    return LoadWorkcell(WriteFile("idiom_" + radius + ".urdf", text), scene);
+  };
+  const Workcell merged = with_radius("0.1");
+  ASSERT_EQ(merged.primitives.size(), 1u);
+  const Capsule& c = std::get<Capsule>(merged.primitives[0].shape_L);
+  EXPECT_NEAR((c.p0_W - Eigen::Vector3d(0, 0, 0)).norm(), 0.0, 1e-15);
+  EXPECT_NEAR((c.p1_W - Eigen::Vector3d(0, 0, 1)).norm(), 0.0, 1e-15);
+  // A larger end sphere is not a cap: three primitives named by their index in the link.
+  const Workcell separate = with_radius("0.2");
+  ASSERT_EQ(separate.primitives.size(), 3u);
+  EXPECT_EQ(separate.primitives[1].name, "base/1");
+}
+
+TEST(SceneLoader, PairsOverlappingInEveryConfigurationAreReported) {
+  const std::string scene_text = kWorldLine +
+                                 "arms: [{name: arm, root_link: upper_arm}]\n"
+                                 "links: {upper_arm: {radius_m: 0.5}}\n";
+  const Workcell w = LoadWorkcell(kArmUrdf, WriteFile("always.yaml", scene_text));
+  ASSERT_FALSE(w.warnings.empty());
+  bool found = false;
+  for (const std::string& warning : w.warnings) {
+    found |= warning.find("'upper_arm' and 'wrist'") != std::string::npos;
+    EXPECT_NE(warning.find("seed"), std::string::npos) << warning;
+  }
+  EXPECT_TRUE(found) << w.warnings.front();
+  // Declaring them compatible silences it.
+  const Workcell excused = LoadWorkcell(
+      kArmUrdf, WriteFile("always_excused.yaml",
+                          scene_text + "compatible: [[upper_arm, wrist], [upper_arm, finger_a], "
+                                       "[upper_arm, finger_b]]\n"));
+  for (const std::string& warning : excused.warnings) {
+    EXPECT_EQ(warning.find("'upper_arm' and"), std::string::npos) << warning;
+  }
+}
+
+TEST(SceneLoader, JointLimitOverrides) {
+  const Workcell w = LoadWorkcell(
+      kArmUrdf, WriteFile("limits.yaml", kWorldLine + "joint_limits: {elbow: {lower: -1.0}}\n"));
+  const JointSpec& elbow = w.kinematics.joint(w.kinematics.FindJointChildLink("elbow"));
+  EXPECT_EQ(elbow.lower, -1.0);
+  EXPECT_EQ(elbow.upper, 2.0);
+  ExpectSceneError(kArmUrdf, kWorldLine + "joint_limits: {elbow: {upper: 3.0}}\n",
+                   {"joint_limits.elbow", "URDF upper"});
+  ExpectSceneError(kArmUrdf, kWorldLine + "joint_limits: {knee: {upper: 1.0}}\n",
+                   {"joint_limits.knee", "unknown joint"});
+}
+
+// ------------------------------------------------------------------ bad input --------------
+
+TEST(SceneLoader, MissingFilesAreRejected) {
+  ExpectLoadError([&] { LoadWorkcell(kUrdf, kData + "no_such_scene.yaml"); },
+                  {"no_such_scene.yaml", "cannot open"});
+  ExpectLoadError([&] { LoadWorkcell(kData + "no_such.urdf", kScene); },
+                  {"no_such.urdf", "cannot open"});
+}
+
+TEST(SceneLoader, MalformedFilesAreRejected) {
+  ExpectSceneError(kUrdf, "world: {center_m: [0, 0, 1], edge_m: 4\narms: [\n", {"malformed YAML"});
+  ExpectSceneError(kUrdf, "- just\n- a list\n", {"expected a map"});
+  ExpectLoadError([&] { LoadWorkcell(kData + "malformed.urdf", kScene); },
+                  {"malformed.urdf", "not a valid URDF"});
+  ExpectLoadError([&] { LoadWorkcell(kData + "floating_joint.urdf", kScene); },
+                  {"floating_joint.urdf", "joint 'free'", "floating"});
+}
+
+TEST(SceneLoader, UnknownNamesAreRejected) {
+  ExpectSceneError(kUrdf, kWorldLine + "links: {left_link9: {ignore: true}}\n",
+                   {"links.left_link9", "unknown link"});
+  ExpectSceneError(kUrdf, kWorldLine + "arms: [{name: left, root_link: left_shoulder}]\n",
+                   {"arms[0] 'left'", "unknown link 'left_shoulder'"});
+  ExpectSceneError(kUrdf, kWorldLine + "joint_limits: {left_joint8: {lower: 0}}\n",
+                   {"joint_limits.left_joint8", "unknown joint"});
+  ExpectSceneError(kUrdf, kWorldLine + "compatible: [[left_link1, teapot]]\n",
+                   {"compatible[0]", "unknown name 'teapot'"});
+  ExpectSceneError(kUrdf, kWorldLine + "grasp_targets: [{link: left_link7, object: teapot}]\n",
+                   {"grasp_targets[0]", "unknown object 'teapot'"});
+  ExpectSceneError(kUrdf,
+                   kWorldLine + "variants: [{link: left_hand, name: grasp, capsules: "
+                                "[{name: palm, p0_m: [0,0,0], p1_m: [0,0,1], radius_m: 0.1}]}]\n",
+                   {"variants[0]", "unknown link 'left_hand'"});
+  ExpectSceneError(kUrdf, kWorldLine + "objetcs: []\n", {"unknown key 'objetcs'"});
+  ExpectSceneError(kUrdf, "arms: []\n", {"world", "missing"});
+}
+
+TEST(SceneLoader, BadRadiiAreRejected) {
+  ExpectSceneError(kUrdf, kWorldLine + "links: {left_link3: {radius_m: -0.1}}\n",
+                   {"links.left_link3.radius_m", ">= 0"});
+  ExpectSceneError(kUrdf, kWorldLine + "links: {left_link3: {radius_m: .nan}}\n",
+                   {"links.left_link3.radius_m", "finite"});
+  ExpectSceneError(kUrdf,
+                   kWorldLine + "variants: [{link: left_link7, name: grasp, capsules: "
+                                "[{name: palm, p0_m: [0,0,0], p1_m: [0,0,1], radius_m: -1}]}]\n",
+                   {"capsules[0].radius_m", ">= 0"});
+  ExpectSceneError(kUrdf, kWorldLine + "links: {left_link3: {p0_m: [0, 0, 0]}}\n",
+                   {"links.left_link3", "p0_m and p1_m"});
+  // A negative radius in the URDF itself.
+  std::ifstream in(kArmUrdf);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  text.replace(text.find("radius=\"0.05\""), 13, "radius=\"-0.05\"");
+  const std::string bad_urdf = WriteFile("negative_radius.urdf", text);
+  ExpectLoadError([&] { LoadWorkcell(bad_urdf, kData + "three_link_scene.yaml"); },
+                  {bad_urdf, "link 'upper_arm'", "cylinder"});
+}
+
+TEST(SceneLoader, DuplicateNamesAreRejected) {
+  ExpectSceneError(kUrdf,
+                   kWorldLine + "objects:\n"
+                                "  - {name: crate, size_m: [1, 1, 1], pose: {xyz_m: [1, 1, 1]}}\n"
+                                "  - {name: crate, size_m: [1, 1, 1], pose: {xyz_m: [1, 1, 1]}}\n",
+                   {"objects[1] 'crate'", "duplicate name 'crate'", "objects[0]"});
+  ExpectSceneError(kUrdf,
+                   kWorldLine + "objects:\n"
+                                "  - {name: left_link2, size_m: [1, 1, 1], pose: {xyz_m: [1, 1, 1]}}\n",
+                   {"duplicate name 'left_link2'", "link 'left_link2'"});
+  ExpectSceneError(kUrdf,
+                   kWorldLine + "arms: [{name: a, root_link: left_base_link}, "
+                                "{name: a, root_link: right_base_link}]\n",
+                   {"arms[1]", "duplicate arm name 'a'"});
+  ExpectSceneError(kUrdf,
+                   kWorldLine + "arms: [{name: a, root_link: left_base_link}, "
+                                "{name: b, root_link: left_link3}]\n",
+                   {"both contain link 'left_link3'"});
+}
+
+TEST(SceneLoader, BadBoxesAreRejected) {
+  ExpectSceneError(kUrdf,
+                   kWorldLine + "objects: [{name: crate, size_m: [1, 0, 1], pose: {xyz_m: [1, 1, 1]}}]\n",
+                   {"objects[0] 'crate'", "size_m", "> 0"});
+  ExpectSceneError(kUrdf,
+                   kWorldLine + "objects: [{name: crate, size_m: [1, -1, 1], pose: {xyz_m: [1, 1, 1]}}]\n",
+                   {"objects[0] 'crate'", "size_m"});
+  ExpectSceneError(kUrdf, kWorldLine + "objects: [{name: crate, size_m: [1, 1], pose: {xyz_m: [1, 1, 1]}}]\n",
+                   {"objects[0] 'crate'.size_m", "3 numbers"});
+  ExpectSceneError(kUrdf, kWorldLine + "objects: [{name: crate, size_m: [1, 1, 1]}]\n",
+                   {"objects[0] 'crate'", "missing pose"});
+  ExpectSceneError(kUrdf,
+                   kWorldLine + "objects: [{name: crate, size_m: [1, 1, 1], pose: {xyz_m: [9, 0, 1]}}]\n",
+                   {"objects[0] 'crate'", "world cube"});
+  std::ifstream in(kArmUrdf);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  text.replace(text.find("size=\"0.3 0.3 0.1\""), 18, "size=\"0.3 0 0.1\"");
+  const std::string bad_urdf = WriteFile("zero_box.urdf", text);
+  ExpectLoadError([&] { LoadWorkcell(bad_urdf, kData + "three_link_scene.yaml"); },
+                  {bad_urdf, "link 'base_link'", "box size"});
+}
+
+}  // namespace
+}  // namespace arm_collision_monitor

@@ -1,0 +1,162 @@
+// The peers (FCL, Bullet) against brute force with our distance routines, on seeded random
+// scenes of moving capsules among static boxes, some boxes with a tolerance zone of their own.
+// kRounded must give exactly our warnings (up to the peers' stated accuracy at the threshold);
+// kSharp must give a superset, every extra pair explained by a sharp edge or corner.
+#include <algorithm>
+#include <cstdio>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "arm_collision_monitor/geometry/distance.h"
+#include "arm_collision_monitor/peers/peer_checker.h"
+
+namespace arm_collision_monitor {
+namespace {
+
+// Pairs whose distance lies within this of the threshold (m) may legitimately be decided
+// either way by a peer: FCL's distance query and Bullet's GJK stop at ~1e-6 m.
+constexpr double kPeerThresholdBand_m = 1e-5;
+
+struct RandomScene {
+  std::vector<PeerPrimitive> primitives;
+  CompatibilityMatrix compatible;
+};
+
+Eigen::Vector3d RandomPoint(std::mt19937_64* rng, double half_edge_m) {
+  std::uniform_real_distribution<double> u(-half_edge_m, half_edge_m);
+  return Eigen::Vector3d(u(*rng), u(*rng), u(*rng));
+}
+
+Capsule RandomCapsule(std::mt19937_64* rng) {
+  std::uniform_real_distribution<double> length(0.0, 0.4), radius(0.02, 0.1);
+  Capsule c;
+  c.p0_W = RandomPoint(rng, 1.0);
+  c.p1_W = c.p0_W + length(*rng) * Eigen::Vector3d::Random(3).normalized();
+  c.radius_m = radius(*rng);
+  return c;
+}
+
+RandomScene MakeScene(std::mt19937_64* rng, int capsules, int boxes) {
+  RandomScene scene;
+  std::uniform_real_distribution<double> half(0.02, 0.3), tolerance(0.0, 0.05), unit(0.0, 1.0);
+  for (int i = 0; i < capsules; ++i) {
+    scene.primitives.push_back(PeerPrimitive{RandomCapsule(rng), tolerance(*rng), true, true});
+  }
+  for (int i = 0; i < boxes; ++i) {
+    Box b;
+    b.X_WB.linear() = Eigen::Quaterniond::UnitRandom().toRotationMatrix();
+    b.X_WB.translation() = RandomPoint(rng, 1.0);
+    b.half_extents_m = Eigen::Vector3d(half(*rng), half(*rng), half(*rng));
+    // Half of the boxes have a zone of their own, where rounded and sharp growth differ.
+    const double tol_m = unit(*rng) < 0.5 ? 0.0 : tolerance(*rng);
+    scene.primitives.push_back(PeerPrimitive{b, tol_m, false, true});
+  }
+  scene.compatible = CompatibilityMatrix(static_cast<std::uint32_t>(scene.primitives.size()));
+  for (int i = 0; i + 1 < capsules; i += 3) scene.compatible.Set(i, i + 1, true);
+  return scene;
+}
+
+double Threshold(const RandomScene& s, PrimitiveId a, PrimitiveId b) {
+  return s.primitives[a].tolerance_m + s.primitives[b].tolerance_m;
+}
+
+// Our answer by brute force, plus the pairs too close to the threshold to call.
+void BruteForce(const RandomScene& s, std::vector<CandidatePair>* sure,
+                std::vector<CandidatePair>* borderline) {
+  sure->clear();
+  borderline->clear();
+  const auto n = static_cast<PrimitiveId>(s.primitives.size());
+  for (PrimitiveId a = 0; a < n; ++a) {
+    for (PrimitiveId b = a + 1; b < n; ++b) {
+      if (!s.primitives[a].is_moving && !s.primitives[b].is_moving) continue;
+      if (s.compatible.AreCompatible(a, b)) continue;
+      const double d = ShapeDistance(s.primitives[a].shape_W, s.primitives[b].shape_W).distance_m;
+      const double t = Threshold(s, a, b);
+      if (std::abs(d - t) <= kPeerThresholdBand_m) {
+        borderline->push_back({a, b});
+      } else if (d < t) {
+        sure->push_back({a, b});
+      }
+    }
+  }
+}
+
+Shape GrownSharp(const PeerPrimitive& p) {
+  if (const auto* c = std::get_if<Capsule>(&p.shape_W)) {
+    Capsule g = *c;
+    g.radius_m += p.tolerance_m;
+    return g;
+  }
+  Box g = std::get<Box>(p.shape_W);
+  g.half_extents_m.array() += p.tolerance_m;
+  return g;
+}
+
+bool Contains(const std::vector<CandidatePair>& v, const CandidatePair& p) {
+  return std::binary_search(v.begin(), v.end(), p);
+}
+
+void MoveCapsules(std::mt19937_64* rng, RandomScene* s, PeerChecker* peer) {
+  for (PrimitiveId id = 0; id < s->primitives.size(); ++id) {
+    if (!s->primitives[id].is_moving) continue;
+    Capsule c = std::get<Capsule>(s->primitives[id].shape_W);
+    // Same length and radius (the peer keeps its shape), new pose.
+    const double length_m = (c.p1_W - c.p0_W).norm();
+    c.p0_W = RandomPoint(rng, 1.0);
+    c.p1_W = c.p0_W + length_m * Eigen::Vector3d::Random(3).normalized();
+    s->primitives[id].shape_W = c;
+    peer->SetShape(id, c);
+  }
+}
+
+class PeersAgreement : public ::testing::TestWithParam<int> {};
+
+TEST_P(PeersAgreement, RandomScenesMatchBruteForce) {
+  const std::uint64_t seed = 20261121u + static_cast<std::uint64_t>(GetParam());
+  std::printf("seed %llu\n", static_cast<unsigned long long>(seed));
+  for (const PeerTolerance mode : {PeerTolerance::kRounded, PeerTolerance::kSharp}) {
+    for (const bool use_fcl : {true, false}) {
+      std::mt19937_64 rng(seed);
+      std::srand(static_cast<unsigned>(seed));  // Eigen's Random() draws from rand()
+      RandomScene scene = MakeScene(&rng, 12, 20);
+      auto peer = use_fcl ? MakeFclChecker(scene.primitives, scene.compatible, mode)
+                          : MakeBulletChecker(scene.primitives, scene.compatible, mode);
+      std::vector<CandidatePair> got, sure, borderline;
+      int warnings_seen = 0, extra_sharp = 0;
+      for (int cycle = 0; cycle < 60; ++cycle) {
+        if (cycle > 0) MoveCapsules(&rng, &scene, peer.get());
+        peer->FindWarnings(&got);
+        BruteForce(scene, &sure, &borderline);
+        warnings_seen += static_cast<int>(sure.size());
+        for (const CandidatePair& p : sure) {
+          EXPECT_TRUE(Contains(got, p)) << peer->name() << " missed (" << p.a << ", " << p.b
+                                        << ") at cycle " << cycle;
+        }
+        for (const CandidatePair& p : got) {
+          if (Contains(sure, p) || Contains(borderline, p)) continue;
+          if (mode == PeerTolerance::kSharp) {
+            // Allowed only where the sharp grown shapes overlap.
+            const double d = ShapeDistance(GrownSharp(scene.primitives[p.a]),
+                                           GrownSharp(scene.primitives[p.b])).distance_m;
+            EXPECT_LE(d, kPeerThresholdBand_m) << peer->name() << " extra (" << p.a << ", "
+                                               << p.b << ") not explained by a sharp edge";
+            ++extra_sharp;
+          } else {
+            ADD_FAILURE() << peer->name() << " false warning (" << p.a << ", " << p.b
+                          << ") at cycle " << cycle;
+          }
+        }
+      }
+      std::printf("%s: %d warnings checked, %d sharp-edge extras\n", peer->name().c_str(),
+                  warnings_seen, extra_sharp);
+      EXPECT_GT(warnings_seen, 20) << "the scenes must exercise warnings";
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Seeds, PeersAgreement, ::testing::Range(0, 4));
+
+}  // namespace
+}  // namespace arm_collision_monitor

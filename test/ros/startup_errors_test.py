@@ -1,0 +1,107 @@
+#!/usr/bin/python3
+"""Start-up tier: the monitor node given a bad URDF, scene, options file or parameter exits
+non-zero with a message naming the file (or parameter) (test/ros/startup_errors.test)."""
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import unittest
+
+import rospkg
+import roslib.packages
+import rostest
+
+PACKAGE = 'arm_collision_monitor'
+TIMEOUT_S = 60.0
+
+
+class StartupErrorsTest(unittest.TestCase):
+
+    @classmethod
+    def setUpClass(cls):
+        cls.root = rospkg.RosPack().get_path(PACKAGE)
+        nodes = roslib.packages.find_node(PACKAGE, 'monitor_node')
+        assert nodes, 'monitor_node executable not found'
+        cls.node = nodes[0]
+        cls.tmp = tempfile.mkdtemp(prefix='acm_startup_')
+        cls.runs = 0
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.tmp, ignore_errors=True)
+
+    def write(self, name, text):
+        path = os.path.join(self.tmp, name)
+        with open(path, 'w') as f:
+            f.write(text)
+        return path
+
+    def run_node(self, urdf=None, scene=None, config=None, extra=()):
+        StartupErrorsTest.runs += 1
+        args = [self.node, '__name:=startup_probe_%d' % self.runs]
+        for key, value in (('urdf', urdf), ('scene', scene), ('config', config)):
+            if value is not None:
+                args.append('_%s:=%s' % (key, value))
+        args += list(extra)
+        proc = subprocess.run(args, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                              timeout=TIMEOUT_S, universal_newlines=True)
+        return proc.returncode, proc.stdout
+
+    def defaults(self):
+        return dict(urdf=os.path.join(self.root, 'urdf', 'workcell.urdf'),
+                    scene=os.path.join(self.root, 'config', 'scene.yaml'),
+                    config=os.path.join(self.root, 'config', 'monitor.yaml'))
+
+    def assert_fails_naming(self, needle, **files):
+        args = self.defaults()
+        args.update(files)
+        code, output = self.run_node(**args)
+        self.assertNotEqual(code, 0, 'the node started anyway:\n' + output)
+        self.assertIn('cannot start', output)
+        self.assertIn(needle, output, 'the message does not name %s:\n%s' % (needle, output))
+
+    def test_missing_urdf_file(self):
+        path = os.path.join(self.tmp, 'no_such_dir', 'workcell.urdf')
+        self.assert_fails_naming(path, urdf=path)
+
+    def test_malformed_urdf(self):
+        path = self.write('broken.urdf', '<robot name="broken"><link name="a"></robot>')
+        self.assert_fails_naming(path, urdf=path)
+
+    def test_missing_scene_file(self):
+        path = os.path.join(self.tmp, 'no_such_scene.yaml')
+        self.assert_fails_naming(path, scene=path)
+
+    def test_scene_with_a_bad_object(self):
+        with open(self.defaults()['scene']) as f:
+            text = f.read()
+        # The bundled scene with one object given a negative size.
+        bad = text.replace('size_m: [0.25, 0.25, 0.2]', 'size_m: [0.25, -0.25, 0.2]', 1)
+        self.assertNotEqual(bad, text, 'the bundled scene changed: update this test')
+        path = self.write('bad_object_scene.yaml', bad)
+        self.assert_fails_naming(path, scene=path)
+
+    def test_scene_not_yaml(self):
+        path = self.write('not_yaml.yaml', 'objects: [ {name: a, size_m: [1, 2\n')
+        self.assert_fails_naming(path, scene=path)
+
+    def test_config_with_unknown_key(self):
+        path = self.write('bad_monitor.yaml', 'broad_phase: octree\nno_such_option: 3\n')
+        self.assert_fails_naming(path, config=path)
+
+    def test_missing_parameter(self):
+        code, output = self.run_node(scene=self.defaults()['scene'],
+                                     config=self.defaults()['config'])
+        self.assertNotEqual(code, 0)
+        self.assertIn('urdf', output)
+
+    def test_bad_parameter_value(self):
+        args = self.defaults()
+        code, output = self.run_node(extra=['_input_timeout_s:=-1.0'], **args)
+        self.assertNotEqual(code, 0)
+        self.assertIn('input_timeout_s', output)
+
+
+if __name__ == '__main__':
+    rostest.rosrun(PACKAGE, 'startup_errors', StartupErrorsTest, sys.argv)
