@@ -204,14 +204,13 @@ void CellBroadPhase::Add(PrimitiveId id, const Aabb& box_W, double tolerance_m, 
   r.outside = false;
   AddToList(&present_ids_, &Record::present_slot, id);
   if (motion == Motion::kMoving) AddToList(&moving_ids_, &Record::moving_slot, id);
-  const bool inside = world_W_.Contains(r.box_W);
-  if (!inside) {
+  if (!world_W_.Contains(r.box_W)) {
     ++counters_.outside_world;
     SetOutside(id, true);
   }
   if (strategy_ == CellUpdateStrategy::kRebuild) {
     needs_rebuild_ = true;
-  } else if (inside) {
+  } else if (world_W_.Overlaps(r.box_W)) {
     InsertIntoCells(id);
   }
 }
@@ -232,44 +231,36 @@ void CellBroadPhase::Move(PrimitiveId id, const Aabb& box_W) {
   Record& r = records_[id];
   const Aabb old_box_W = r.box_W;
   r.box_W = box_W.Inflated(r.tolerance_m);
-  // Contains() is false for NaN coordinates: a corrupt box goes to the outside list, where
-  // Overlaps() is false for it too. Nothing is lost and nothing crashes.
+  // A box not inside the world cube joins the outside list (pairs between two such boxes are
+  // found by brute force); whatever part of it overlaps the cube stays indexed in the cells, so
+  // pairs with primitives inside are found there. Contains() and Overlaps() are false for NaN
+  // coordinates: a corrupt box is parked outside, unindexed, overlapping nothing; no crash.
   const bool inside = world_W_.Contains(r.box_W);
   if (!inside) ++counters_.outside_world;
+  SetOutside(id, !inside);
   if (strategy_ == CellUpdateStrategy::kRebuild) {
-    SetOutside(id, !inside);
     needs_rebuild_ = true;
     return;
   }
-  if (r.outside) {
-    if (inside) {  // re-entering the world cube
-      ++counters_.reinsert_fallbacks;
-      SetOutside(id, false);
-      InsertIntoCells(id);
-    }
-    return;
-  }
-  if (!inside) {  // leaving the world cube
-    RemoveFromCells(id);
-    SetOutside(id, true);
-    return;
-  }
-  if (strategy_ == CellUpdateStrategy::kReinsert) {
-    RemoveFromCells(id);
-    InsertIntoCells(id);
-  } else if (ShortMove(old_box_W, r.box_W)) {
+  const bool was_indexed = world_W_.Overlaps(old_box_W);
+  const bool is_indexed = world_W_.Overlaps(r.box_W);
+  if (strategy_ == CellUpdateStrategy::kIncremental && was_indexed && is_indexed &&
+      ShortMove(old_box_W, r.box_W)) {
+    // Both boxes meet the cube: the exactness argument above holds within it.
     UpdateCells(id, old_box_W);
-  } else {
-    ++counters_.reinsert_fallbacks;
-    RemoveFromCells(id);
-    InsertIntoCells(id);
+    return;
   }
+  if (strategy_ == CellUpdateStrategy::kIncremental && is_indexed) {
+    ++counters_.reinsert_fallbacks;  // a jump, or re-entering the cube from wholly outside
+  }
+  if (was_indexed) RemoveFromCells(id);
+  if (is_indexed) InsertIntoCells(id);
 }
 
 void CellBroadPhase::Rebuild() {
   ClearCells();
   for (const PrimitiveId id : present_ids_) {
-    if (!records_[id].outside) InsertIntoCells(id);
+    if (world_W_.Overlaps(records_[id].box_W)) InsertIntoCells(id);
   }
 }
 
@@ -281,11 +272,12 @@ void CellBroadPhase::FindPairs(const CompatibilityMatrix& compatible,
   }
   pairs->clear();
   const bool dedup = techniques_.pair_deduplication;
-  // Moving primitives inside the world: every partner inside the world shares a cell with them
-  // (two closed boxes that overlap share a point, and that point lies in some closed cell).
+  // Moving primitives: every partner with an overlap inside the world cube shares a cell with
+  // them (the two closed boxes share a point of the cube, and it lies in some closed cell). An
+  // overlap can lie wholly outside the cube only if both boxes are outside it: brute force below.
   for (const PrimitiveId m : moving_ids_) {
     const Record& rm = records_[m];
-    if (rm.outside) continue;
+    if (rm.first_link == kNone) continue;
     if (scan_stamp_ == std::numeric_limits<std::uint32_t>::max()) {
       for (Record& r : records_) r.pair_stamp = 0;
       scan_stamp_ = 0;
@@ -299,6 +291,7 @@ void CellBroadPhase::FindPairs(const CompatibilityMatrix& compatible,
         Record& rq = records_[q];
         // A pair of two moving primitives is met from both; take it from the smaller id.
         if (rq.motion == Motion::kMoving && q < m) continue;
+        if (rm.outside && rq.outside) continue;  // the brute force below takes this pair
         if (dedup) {
           // One test per pair per cycle even when the two share several cells.
           if (rq.pair_stamp == stamp) continue;
@@ -311,14 +304,15 @@ void CellBroadPhase::FindPairs(const CompatibilityMatrix& compatible,
       }
     }
   }
-  // Primitives (partly) outside the world cube have no cells: brute force against all.
+  // Pairs of two primitives (partly) outside the world cube: brute force over the outside list,
+  // from its moving members, each moving-moving pair from the smaller id.
   for (const PrimitiveId o : outside_ids_) {
     const Record& ro = records_[o];
-    for (const PrimitiveId x : present_ids_) {
+    if (ro.motion != Motion::kMoving) continue;
+    for (const PrimitiveId x : outside_ids_) {
       if (x == o) continue;
       const Record& rx = records_[x];
-      if (ro.motion == Motion::kStatic && rx.motion == Motion::kStatic) continue;
-      if (rx.outside && x < o) continue;  // both outside: taken from the smaller id
+      if (rx.motion == Motion::kMoving && x < o) continue;
       ++counters_.object_object_tests;
       if (!ro.box_W.Overlaps(rx.box_W)) continue;
       if (IsCompatiblePair(compatible, o, x)) continue;
@@ -383,8 +377,8 @@ bool CellBroadPhase::ValidateShared(std::string* why) const {
         msg << "primitive " << id << " outside flag " << r.outside << " disagrees with its box";
         return Fail(why, msg.str());
       }
-      if (r.outside && r.link_count != 0) {
-        msg << "primitive " << id << " is outside the world but has links";
+      if (!world_W_.Overlaps(r.box_W) && r.link_count != 0) {
+        msg << "primitive " << id << " is wholly outside the world but has links";
         return Fail(why, msg.str());
       }
     }

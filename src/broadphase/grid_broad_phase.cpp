@@ -59,12 +59,13 @@ Aabb GridBroadPhase::CellBox(int i, int j, int k) const {
 }
 
 void GridBroadPhase::CandidateRange(const Aabb& box_W, int lo[3], int hi[3]) const {
+  // Clamped as doubles first: a box reaching far beyond the cube must not overflow the cast.
+  const double last = g_ - 1;
   for (int a = 0; a < 3; ++a) {
-    // Precondition: the box is inside the grid cube, so the quotients are finite.
-    lo[a] = std::clamp(static_cast<int>(std::floor((box_W.min_W[a] - origin_W_[a]) / cell_m_)) - 1,
-                       0, g_ - 1);
-    hi[a] = std::clamp(static_cast<int>(std::floor((box_W.max_W[a] - origin_W_[a]) / cell_m_)) + 1,
-                       0, g_ - 1);
+    lo[a] = static_cast<int>(
+        std::clamp(std::floor((box_W.min_W[a] - origin_W_[a]) / cell_m_) - 1, 0.0, last));
+    hi[a] = static_cast<int>(
+        std::clamp(std::floor((box_W.max_W[a] - origin_W_[a]) / cell_m_) + 1, 0.0, last));
   }
 }
 
@@ -134,15 +135,25 @@ bool GridBroadPhase::ValidateCells(std::string* why) const {
   std::vector<std::uint32_t> expected, actual;
   for (PrimitiveId id = 0; id < records_.size(); ++id) {
     const Record& r = records_[id];
-    if (!r.present || r.outside) continue;
+    if (!r.present) continue;
     expected.clear();
     actual.clear();
     // Cells two or more away from the box's cell quotient cannot touch it (a wider window
     // than CandidateRange's, computed independently of it).
+    if (!r.box_W.Overlaps(world_W_)) {
+      if (r.link_count != 0) {
+        if (why != nullptr) *why = "a box wholly outside the grid has cells";
+        return false;
+      }
+      continue;
+    }
     int lo[3], hi[3];
+    const double last = g_ - 1;
     for (int a = 0; a < 3; ++a) {
-      lo[a] = std::max(0, static_cast<int>((r.box_W.min_W[a] - origin_W_[a]) / cell_m_) - 2);
-      hi[a] = std::min(g_ - 1, static_cast<int>((r.box_W.max_W[a] - origin_W_[a]) / cell_m_) + 2);
+      lo[a] = static_cast<int>(
+          std::clamp((r.box_W.min_W[a] - origin_W_[a]) / cell_m_ - 2, 0.0, last));
+      hi[a] = static_cast<int>(
+          std::clamp((r.box_W.max_W[a] - origin_W_[a]) / cell_m_ + 2, 0.0, last));
     }
     for (int i = lo[0]; i <= hi[0]; ++i) {
       for (int j = lo[1]; j <= hi[1]; ++j) {

@@ -446,7 +446,7 @@ bool OctreeBroadPhase::ValidateCells(std::string* why) const {
   std::vector<std::uint32_t> expected, actual;
   for (PrimitiveId id = 0; id < records_.size(); ++id) {
     const Record& r = records_[id];
-    if (!r.present || r.outside) continue;
+    if (!r.present) continue;
     expected.clear();
     actual.clear();
     CollectOverlappedLeaves(r.box_W, 0, &expected);
@@ -486,11 +486,12 @@ OctreeStatistics OctreeBroadPhase::ComputeStatistics() const {
       nonempty_links += cell_count_[n];
     }
   }
-  const std::size_t inside = present_ids_.size() - outside_ids_.size();
+  std::size_t indexed = 0;
+  for (const PrimitiveId id : present_ids_) indexed += records_[id].link_count > 0 ? 1 : 0;
   stats.mean_primitives_per_nonempty_leaf =
       nonempty > 0 ? static_cast<double>(nonempty_links) / nonempty : 0.0;
   stats.mean_leaves_per_primitive =
-      inside > 0 ? static_cast<double>(live_links_) / static_cast<double>(inside) : 0.0;
+      indexed > 0 ? static_cast<double>(live_links_) / static_cast<double>(indexed) : 0.0;
   return stats;
 }
 

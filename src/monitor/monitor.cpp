@@ -397,7 +397,8 @@ void Monitor::Impl::ComputeReachability() {
         break;
       }
       const Capsule sphere{centre_W[link], centre_W[link], reach_m[link]};
-      reachable = ShapeDistance(sphere, shape_W[id]).distance_m <
+      // <=, as the broad phase's closed boxes: touching counts.
+      reachable = ShapeDistance(sphere, shape_W[id]).distance_m <=
                   tol_base[id] + max_moving_tol_m;
     }
     is_reachable[id] = reachable ? 1 : 0;
@@ -411,7 +412,7 @@ void Monitor::Impl::ComputeReachability() {
 void Monitor::Impl::MarkStaticsNearReachable(PrimitiveId mover) {
   for (PrimitiveId id = 0; id < n; ++id) {
     if (is_moving[id] || is_reachable[id]) continue;
-    if (ShapeDistance(shape_W[mover], shape_W[id]).distance_m <
+    if (ShapeDistance(shape_W[mover], shape_W[id]).distance_m <=
         tol_base[id] + BroadTolerance(mover, true)) {
       is_reachable[id] = 1;
       if (broad_phase && ShouldBeInBroadPhase(id)) AddToBroadPhase(id);
@@ -816,9 +817,11 @@ bool Monitor::Validate(std::string* error) const {
     const int link = m.carrier[id];
     if (link >= 0 && !m.moved[id] && m.IsActiveVariant(id)) {
       const Shape expected = TransformShape(m.X_WL[link], m.shape_C[id]);
+      // Attach re-expresses the shape in the link frame: equal up to rounding, not bit for bit.
       const Aabb a = ComputeAabb(expected);
       const Aabb b = ComputeAabb(m.shape_W[id]);
-      if (a.min_W != b.min_W || a.max_W != b.max_W) {
+      if (!a.min_W.isApprox(b.min_W, kValidateShapeTolerance_rel) ||
+          !a.max_W.isApprox(b.max_W, kValidateShapeTolerance_rel)) {
         msg << "primitive " << id << " does not follow link " << link;
         break;
       }

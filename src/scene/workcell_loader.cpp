@@ -228,8 +228,9 @@ std::vector<PrimitiveId> ResolveNames(const Workcell& w, const KinematicModel& m
   return ids;
 }
 
-// Pairs that are within their tolerances in the home pose and in every sampled configuration.
-void FindAlwaysOverlappingPairs(Workcell* w) {
+// Start-up findings from sampled configurations: primitives outside the world cube in the home
+// pose, and pairs within their tolerances in the home pose and in every sampled configuration.
+void CheckSampledConfigurations(Workcell* w) {
   const KinematicModel& model = w->kinematics;
   const std::size_t n = w->primitives.size();
   std::vector<std::pair<PrimitiveId, PrimitiveId>> candidates;
@@ -246,7 +247,8 @@ void FindAlwaysOverlappingPairs(Workcell* w) {
   std::vector<Eigen::Isometry3d> X_WL(model.link_count());
   std::vector<Shape> shapes_W(n);
   Eigen::VectorXd q = Eigen::VectorXd::Zero(model.q_size());
-  for (int sample = 0; sample <= kAlwaysOverlappingSamples && !candidates.empty(); ++sample) {
+  for (int sample = 0; sample <= kAlwaysOverlappingSamples && (sample == 0 || !candidates.empty());
+       ++sample) {
     if (sample > 0) {  // sample 0 is the home pose
       for (int link = 1; link < model.link_count(); ++link) {
         const JointSpec& joint = model.joint(link);
@@ -260,6 +262,11 @@ void FindAlwaysOverlappingPairs(Workcell* w) {
     for (std::size_t i = 0; i < n; ++i) {
       const PrimitiveSpec& p = w->primitives[i];
       shapes_W[i] = p.link_index >= 0 ? TransformShape(X_WL[p.link_index], p.shape_L) : p.shape_L;
+      if (sample == 0 && !w->world_W.Contains(ComputeAabb(shapes_W[i]).Inflated(p.tolerance_m))) {
+        w->warnings.push_back(w->urdf_path + ", " + w->scene_path + ": '" + p.name +
+                              "' with its tolerance is not inside the world cube in the home "
+                              "pose (expected world: to enclose the workcell)");
+      }
     }
     candidates.erase(std::remove_if(candidates.begin(), candidates.end(),
                                     [&](const auto& pair) {
@@ -552,7 +559,7 @@ Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_pat
     }
   }
 
-  FindAlwaysOverlappingPairs(&w);
+  CheckSampledConfigurations(&w);
   return w;
 }
 

@@ -165,6 +165,9 @@ TEST(Octree, InsideExitAndDirectionCutTheWorkButNotTheAnswer) {
 
 TEST(Octree, JumpsTakeTheFallbackAndOutsidePrimitivesAreNeverLost) {
   OctreeBroadPhase octree(SmallWorld(2), CellUpdateStrategy::kIncremental);
+  const CompatibilityMatrix none(2);
+  std::vector<CandidatePair> pairs;
+  const std::vector<CandidatePair> both = {{0, 1}};
   octree.Add(0, Box(7.5, 1, 1, 9, 2, 2), 0.0, Motion::kStatic);  // straddles the x = 8 face
   octree.Add(1, Box(1, 1, 1, 2, 2, 2), 0.0, Motion::kMoving);
   EXPECT_EQ(octree.outside_count(), 1u);
@@ -173,29 +176,34 @@ TEST(Octree, JumpsTakeTheFallbackAndOutsidePrimitivesAreNeverLost) {
   octree.Move(1, Box(6.5, 1, 1, 7.6, 2, 2));  // a jump of 5.5 m > the 1 m leaf
   EXPECT_EQ(octree.counters().reinsert_fallbacks, 1u);
   ExpectValid(octree);
-  std::vector<CandidatePair> pairs;
-  octree.FindPairs(CompatibilityMatrix(2), &pairs);
-  EXPECT_EQ(pairs, (std::vector<CandidatePair>{{0, 1}}));  // found by the outside brute force
-  octree.Move(1, Box(7.5, 1, 1, 8.5, 2, 2));  // the mover leaves too
+  octree.FindPairs(none, &pairs);
+  EXPECT_EQ(pairs, both);  // the straddler's part inside the cube is indexed
+  octree.Move(1, Box(7.3, 1, 1, 8.3, 2, 2));  // straddles too: still the incremental update
   EXPECT_EQ(octree.outside_count(), 2u);
+  EXPECT_EQ(octree.counters().reinsert_fallbacks, 1u);
   ExpectValid(octree);
-  octree.FindPairs(CompatibilityMatrix(2), &pairs);
-  EXPECT_EQ(pairs, (std::vector<CandidatePair>{{0, 1}}));
-  octree.Move(1, Box(7.2, 1, 1, 7.9, 2, 2));  // and re-enters: a full re-insert
-  EXPECT_EQ(octree.outside_count(), 1u);
+  octree.FindPairs(none, &pairs);
+  EXPECT_EQ(pairs, both);
+  octree.Move(1, Box(8.2, 1, 1, 9.0, 2, 2));  // wholly outside: no cell, brute force pairs it
+  ExpectValid(octree);
+  octree.FindPairs(none, &pairs);
+  EXPECT_EQ(pairs, both);
+  octree.Move(1, Box(7.6, 1, 1, 8.4, 2, 2));  // re-entering from wholly outside: full insert
   EXPECT_EQ(octree.counters().reinsert_fallbacks, 2u);
   ExpectValid(octree);
-  octree.FindPairs(CompatibilityMatrix(2), &pairs);
-  EXPECT_EQ(pairs, (std::vector<CandidatePair>{{0, 1}}));
+  octree.FindPairs(none, &pairs);
+  EXPECT_EQ(pairs, both);
   // A corrupt (NaN) box is parked outside, pairs with nothing, and recovers.
   octree.Move(1, Box(std::numeric_limits<double>::quiet_NaN(), 1, 1, 7.9, 2, 2));
   ExpectValid(octree);
-  octree.FindPairs(CompatibilityMatrix(2), &pairs);
+  octree.FindPairs(none, &pairs);
   EXPECT_TRUE(pairs.empty());
   octree.Move(1, Box(7.2, 1, 1, 7.9, 2, 2));
+  EXPECT_EQ(octree.counters().reinsert_fallbacks, 3u);
   ExpectValid(octree);
-  octree.FindPairs(CompatibilityMatrix(2), &pairs);
-  EXPECT_EQ(pairs.size(), 1u);
+  octree.FindPairs(none, &pairs);
+  EXPECT_EQ(pairs, both);
+  EXPECT_EQ(octree.outside_count(), 1u);
 }
 
 TEST(Octree, VisitStampWrapResetsEveryNodeStamp) {

@@ -2,6 +2,7 @@
 // hand (each expected value is in the comment or the expression next to it). The seeded random
 // and extended-precision checks are in test_geometry_stress.cpp.
 #include <cmath>
+#include <limits>
 
 #include <gtest/gtest.h>
 
@@ -485,7 +486,24 @@ TEST(IsCloserThan, EachPairAroundItsDistance) {
   // Overlapping shapes are closer than any positive threshold, never closer than 0.
   EXPECT_TRUE(IsCloserThan(box_a, box_a, 1e-12));
   EXPECT_FALSE(IsCloserThan(box_a, box_a, 0.0));
-  EXPECT_FALSE(IsCloserThan(box_a, box_b, std::nan("")));
+}
+
+TEST(IsCloserThan, NonFiniteInputFailsSafe) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  const Shape box = MakeBox(Vector3d::Zero(), Vector3d(1, 1, 1));
+  const Shape far_capsule = MakeCapsule(Vector3d(0, 0, 30), Vector3d(0, 0, 40), 0.5);
+  ASSERT_FALSE(IsCloserThan(box, far_capsule, 1.0));
+  EXPECT_TRUE(IsCloserThan(box, far_capsule, nan));
+  EXPECT_TRUE(IsCloserThan(box, far_capsule, inf));
+  EXPECT_TRUE(IsCloserThan(box, MakeCapsule(Vector3d(0, 0, 30), Vector3d(nan, 0, 40), 0.5), 1.0));
+  EXPECT_TRUE(IsCloserThan(box, MakeCapsule(Vector3d(0, 0, 30), Vector3d(0, 0, 40), nan), 1.0));
+  EXPECT_TRUE(IsCloserThan(MakeCapsule(Vector3d(0, 0, 30), Vector3d(0, 0, inf), 0.5), box, 1.0));
+  Box bad_box = MakeBox(Vector3d(0, 0, 50), Vector3d(1, 1, 1));
+  bad_box.X_WB.linear()(1, 2) = nan;
+  EXPECT_TRUE(IsCloserThan(box, bad_box, 1.0));
+  bad_box = MakeBox(Vector3d(0, 0, 50), Vector3d(1, nan, 1));
+  EXPECT_TRUE(IsCloserThan(bad_box, box, 1.0));
 }
 
 }  // namespace

@@ -192,7 +192,7 @@ TEST(KinematicsFk, FloatingJointIsRejectedNamingTheJoint) {
 }
 
 TEST(KinematicsFk, MissingAndMalformedUrdfAreRejectedNamingTheFile) {
-  for (const std::string path : {kDataDir + "does_not_exist.urdf", kDataDir + "malformed.urdf"}) {
+  for (const std::string& path : {kDataDir + "does_not_exist.urdf", kDataDir + "malformed.urdf"}) {
     try {
       KinematicModel::FromUrdfFile(path);
       FAIL() << "expected LoadError for " << path;

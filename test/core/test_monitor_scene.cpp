@@ -90,8 +90,9 @@ TEST(MonitorScene, KnownClearAndColliding) {
 TEST(MonitorScene, SelfCollisionBetweenNonAdjacentLinks) {
   const auto wc = LoadBundledWorkcell();
   Monitor monitor(wc, MonitorOptions{});
-  // Elbow and wrist folded fully: the gripper comes back onto the upper arm.
-  const Eigen::VectorXd q = MakeQ(*wc, {{"left_joint4", 2.09}, {"left_joint6", 2.09}});
+  // Shoulder, elbow and wrist folded: the gripper comes back onto the arm's first link.
+  const Eigen::VectorXd q =
+      MakeQ(*wc, {{"left_joint2", 2.0}, {"left_joint4", 2.09}, {"left_joint6", 2.09}});
   const CycleReport& report = monitor.Update(q);
   ExpectSameWarnings(*wc, ReferenceWarnings(*wc, q), report.warnings, "folded");
   const KinematicModel& model = wc->kinematics;

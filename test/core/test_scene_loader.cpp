@@ -137,7 +137,9 @@ TEST(SceneLoader, BundledCompatibility) {
     for (int i = 1; i < 7; ++i) {
       const std::string a = side + "_link" + std::to_string(i);
       EXPECT_TRUE(Compatible(w, a, side + "_link" + std::to_string(i + 1)));
-      if (i < 6) EXPECT_FALSE(Compatible(w, a, side + "_link" + std::to_string(i + 2)));
+      if (i < 6) {
+        EXPECT_FALSE(Compatible(w, a, side + "_link" + std::to_string(i + 2)));
+      }
     }
     EXPECT_TRUE(Compatible(w, side + "_link6", side + "_link7/palm"));
     EXPECT_TRUE(Compatible(w, side + "_link7", side + "_link7/finger1"));
@@ -313,6 +315,17 @@ TEST(SceneLoader, PairsOverlappingInEveryConfigurationAreReported) {
   for (const std::string& warning : excused.warnings) {
     EXPECT_EQ(warning.find("'upper_arm' and"), std::string::npos) << warning;
   }
+}
+
+TEST(SceneLoader, PrimitivesOutsideTheWorldInTheHomePoseAreReported) {
+  const Workcell w = LoadWorkcell(
+      kArmUrdf, WriteFile("small_world.yaml", "world: {center_m: [0, 0, 0.2], edge_m: 0.6}\n"));
+  bool found = false;
+  for (const std::string& warning : w.warnings) {
+    found |= warning.find("'upper_arm' with its tolerance is not inside the world cube") !=
+             std::string::npos;
+  }
+  EXPECT_TRUE(found);
 }
 
 TEST(SceneLoader, JointLimitOverrides) {

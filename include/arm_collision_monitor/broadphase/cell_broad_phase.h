@@ -57,7 +57,7 @@ class CellBroadPhase : public BroadPhase {
     double tolerance_m = 0.0;
     Motion motion = Motion::kStatic;
     bool present = false;
-    bool outside = false;  // box not inside the world cube: kept in outside_ids_, no links
+    bool outside = false;  // box not inside the world cube: also kept in outside_ids_
     std::uint32_t first_link = kNone;
     std::uint32_t link_count = 0;
     std::uint32_t pair_stamp = 0;   // scan stamp of the last pair test in this cycle
@@ -77,10 +77,11 @@ class CellBroadPhase : public BroadPhase {
                  CellUpdateStrategy strategy, double cell_spacing_m);
 
   // --- Hooks of the cell structure (one virtual call per primitive update, none per cell) ---
-  /// Links `id` (inside the world) into every cell its box overlaps, splitting as needed.
+  /// Links `id` (its box meets the world cube) into every cell its box overlaps, splitting as
+  /// needed.
   virtual void InsertIntoCells(PrimitiveId id) = 0;
-  /// Brings the links of `id` from `old_box_W` to its current box. Precondition: every face
-  /// moved by less than the cell spacing (see ShortMove).
+  /// Brings the links of `id` from `old_box_W` to its current box. Preconditions: every face
+  /// moved by less than the cell spacing (see ShortMove); both boxes meet the world cube.
   virtual void UpdateCells(PrimitiveId id, const Aabb& old_box_W) = 0;
   /// Unlinks `id` from all its cells (merging where the structure allows).
   virtual void RemoveFromCells(PrimitiveId id) = 0;

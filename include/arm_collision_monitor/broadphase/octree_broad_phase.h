@@ -20,7 +20,7 @@ struct OctreeStatistics {
   std::uint32_t leaves = 0;
   std::uint32_t empty_leaves = 0;
   double mean_primitives_per_nonempty_leaf = 0.0;
-  double mean_leaves_per_primitive = 0.0;  ///< over primitives inside the world
+  double mean_leaves_per_primitive = 0.0;  ///< over primitives with at least one leaf
   int depth = 0;                           ///< deepest leaf level (root = 0)
 };
 

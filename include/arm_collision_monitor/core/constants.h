@@ -19,13 +19,10 @@ constexpr double kSegmentDegenerateLengthRel = 1e-15;
 // dividing by them would overflow. Lengths below ~1.5e-154 m therefore count as points.
 constexpr double kSegmentMinSquaredLength_m2 = 2.2250738585072014e-308;
 // Segments whose squared sine of the angle between them is below this are handled as parallel
-// (dimensionless; typical 1e-36, i.e. 1e-18 rad). Picking any closest point of the overlap then
-// errs by at most length * sin(angle) <= 1e-18 * length, and it keeps s = num/denom finite.
+// (dimensionless; typical 1e-36, i.e. 1e-18 rad): s = 0 is then taken before the clamping steps,
+// which costs at most length * sin(angle) <= 1e-18 * length. It keeps s = num/denom finite
+// (|s| <= 1e18 |r| / |d1|); above ~1e-32 the computed sine is rounding noise anyway, harmlessly.
 constexpr double kSegmentParallelSinSquared = 1e-36;
-// Below this squared sine (dimensionless; typical 1e-2, i.e. ~0.1 rad) the cross product of the
-// two directions is recomputed with error-free products: the plain one carries a relative error
-// ~eps/sin(angle), which would otherwise reach the closest-point parameters.
-constexpr double kSegmentNearParallelSinSquared = 1e-2;
 // Error bounds stated by the distance routines, as a multiple of the unit roundoff times the
 // local length scale S of a query (dimensionless). S = the largest of: the distance between the
 // shapes' reference points (segment start, box centre), the segment lengths, the box diagonals
@@ -105,5 +102,23 @@ inline constexpr std::uint32_t kAutoOctreeMinPrimitives = 64;
 /// analysis (statics no moving primitive can reach are left out) relies on. Typical 0.10: a
 /// grasped object touches the gripper; 10 cm absorbs perception error.
 inline constexpr double kAttachMaxGap_m = 0.10;
+
+/// Monitor::Validate: a primitive follows its carrier link when its AABB matches the recomputed
+/// one to this relative precision (dimensionless, of the coordinates' magnitude). Typical 1e-9:
+/// re-expressing an attached object in its link frame and back costs a few ulps per transform.
+inline constexpr double kValidateShapeTolerance_rel = 1e-9;
+
+// ---------------------------------------------------------------------------------------------
+// Tasks (the seed's three test trajectories, their bags and the replay tool)
+// ---------------------------------------------------------------------------------------------
+
+/// Period of one task cycle, s: the seed's 20 Hz joint-angle rate (TR 90-28, section 3).
+inline constexpr double kTaskCyclePeriod_s = 0.05;
+/// Speed bound every point of the arms keeps in the task trajectories, m/s: the seed's 24 in/s
+/// end-effector limit, which sizes the tolerance and the octree's smallest cell.
+inline constexpr double kTaskMaxPointSpeed_mps = 0.61;
+/// Header stamp of the first message of every task bag, s since the epoch (fixed, so that a
+/// regenerated bag is byte-identical; 2020-09-13 12:26:40 UTC, an arbitrary round number).
+inline constexpr double kTaskBagStartStamp_s = 1600000000.0;
 
 }  // namespace arm_collision_monitor

@@ -1,0 +1,32 @@
+// Joint trajectories as CSV, for checking recorded or planned motion offline (the replay tool):
+// a header row of joint names, then one row of positions (rad or m) per cycle. An optional
+// first column named "time_s" gives each row's time; without it rows are kTaskCyclePeriod_s
+// apart. Blank lines and lines starting with '#' are skipped.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace arm_collision_monitor {
+
+struct JointCsv {
+  std::string path;
+  std::vector<std::string> joint_names;  ///< the header, "time_s" excluded
+  std::vector<double> time_s;            ///< one per row (filled in when the file has none)
+  std::vector<Eigen::VectorXd> rows;     ///< positions in joint_names order
+};
+
+/// Reads and validates a joint CSV file. Throws LoadError naming the file, the line and the
+/// column (unreadable file, empty header, duplicate name, wrong field count, a field that is
+/// not a finite number, times not increasing).
+JointCsv ReadJointCsv(const std::string& path);
+
+/// The rows re-ordered as `model_joint_names` (Workcell::joint_names), matched by name. Done
+/// once at start-up, so every column must be a model joint and every model joint a column;
+/// otherwise throws LoadError naming the file and the joint.
+std::vector<Eigen::VectorXd> JointCsvInModelOrder(const JointCsv& csv,
+                                                  const std::vector<std::string>& model_joint_names);
+
+}  // namespace arm_collision_monitor

@@ -1,0 +1,523 @@
+// replay: checks a recorded or planned trajectory offline, without ROS running. Reads a bag of
+// sensor_msgs/JointState (any topics, merged by joint name with the node's JointStateInput) or
+// a joint CSV file (tasks/joint_csv.h), runs the Monitor (or a peer checker) once per cycle and
+// prints the warnings, the cycle times and the broad-phase counters, as text or JSON.
+//
+//   rosrun arm_collision_monitor replay [options] <file.bag | file.csv>
+//
+// A bag cycle is one sample of every arm: consecutive messages with the same header stamp are
+// merged, then the Monitor runs once (the node instead runs once per message; see README).
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <ros/package.h>
+#include <rosbag/bag.h>
+#include <rosbag/view.h>
+#include <sensor_msgs/JointState.h>
+
+#include "arm_collision_monitor/geometry/distance.h"
+#include "arm_collision_monitor/monitor/monitor.h"
+#include "arm_collision_monitor/ros/joint_state_input.h"
+#include "arm_collision_monitor/scene/workcell.h"
+#include "arm_collision_monitor/tasks/joint_csv.h"
+#include "arm_collision_monitor/tasks/task_trajectories.h"
+#ifdef ACM_HAVE_PEERS
+#include "arm_collision_monitor/peers/peer_checker.h"
+#endif
+
+namespace arm_collision_monitor {
+namespace {
+
+struct Options {
+  std::string urdf, scene, config;
+  std::string method = "octree";
+  bool json = false;
+  std::vector<TaskGraspTarget> grasp_targets;
+  std::string input;
+};
+
+const char* kUsage =
+    "usage: replay [options] <file.bag | file.csv>\n"
+    "  Runs the collision monitor offline over a trajectory and reports, per cycle, every pair\n"
+    "  closer than its tolerances, plus cycle times and broad-phase counters.\n"
+    "  file.bag: sensor_msgs/JointState on any topics, merged by joint name; messages with\n"
+    "            equal header stamps form one cycle.\n"
+    "  file.csv: a header row of joint names (optionally 'time_s' first), one row per cycle.\n"
+    "options:\n"
+    "  --urdf F --scene F --config F   workcell and monitor options (default: the package's\n"
+    "                                  urdf/workcell.urdf, config/scene.yaml, config/monitor.yaml)\n"
+    "  --method M     octree | naive | grid | rebuild | reinsert"
+#ifdef ACM_HAVE_PEERS
+    " | fcl | bullet"
+#endif
+    "\n"
+    "                 (default octree; overrides the config's broad_phase)\n"
+    "  --grasp L:O    declare object O the grasp target of link L before the first cycle\n"
+    "                 (repeatable)\n"
+    "  --task N       the grasp targets of the seed's task N (task 3: right_link7:front_box)\n"
+    "  --json         machine-readable output\n";
+
+bool ParseOptions(int argc, char** argv, Options* options, std::string* error) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    auto value = [&](std::string* out) {
+      if (i + 1 >= argc) {
+        *error = arg + " needs a value";
+        return false;
+      }
+      *out = argv[++i];
+      return true;
+    };
+    std::string v;
+    if (arg == "--json") {
+      options->json = true;
+    } else if (arg == "--urdf") {
+      if (!value(&options->urdf)) return false;
+    } else if (arg == "--scene") {
+      if (!value(&options->scene)) return false;
+    } else if (arg == "--config") {
+      if (!value(&options->config)) return false;
+    } else if (arg == "--method") {
+      if (!value(&options->method)) return false;
+    } else if (arg == "--grasp") {
+      if (!value(&v)) return false;
+      const std::size_t colon = v.find(':');
+      if (colon == std::string::npos || colon == 0 || colon + 1 == v.size()) {
+        *error = "--grasp expects link:object, got '" + v + "'";
+        return false;
+      }
+      options->grasp_targets.push_back({v.substr(0, colon), v.substr(colon + 1)});
+    } else if (arg == "--task") {
+      if (!value(&v)) return false;
+      const int task = std::atoi(v.c_str());
+      if (task < 1 || task > kTaskCount || v != std::to_string(task)) {
+        *error = "--task expects 1.." + std::to_string(kTaskCount) + ", got '" + v + "'";
+        return false;
+      }
+      for (const TaskGraspTarget& t : GetTaskSpec(task).grasp_targets) {
+        options->grasp_targets.push_back(t);
+      }
+    } else if (arg == "-h" || arg == "--help") {
+      return false;
+    } else if (!arg.empty() && arg[0] == '-') {
+      *error = "unknown option " + arg;
+      return false;
+    } else if (options->input.empty()) {
+      options->input = arg;
+    } else {
+      *error = "one input file only";
+      return false;
+    }
+  }
+  if (options->input.empty()) *error = "no input file";
+  return error->empty();
+}
+
+bool EndsWith(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+// The input as one q per cycle (model order) with its time, plus what was refused on the way.
+struct Input {
+  std::vector<Eigen::VectorXd> q;
+  std::vector<double> time_s;  ///< since the first cycle
+  std::uint64_t messages = 0;
+  std::map<std::string, std::uint64_t> refused;  ///< MergeStatusName -> count
+  std::uint64_t incomplete_cycles = 0;           ///< before every joint was received
+};
+
+Input ReadBag(const std::string& path, const Workcell& workcell) {
+  rosbag::Bag bag(path, rosbag::bagmode::Read);
+  rosbag::View view(bag, rosbag::TypeQuery("sensor_msgs/JointState"));
+  if (view.size() == 0) throw LoadError(path + ": no sensor_msgs/JointState message");
+  // The stamp checks compare each message with its own stamp as "now": offline, time is the
+  // bag's. The timeout only bounds stamps going backwards, which is still refused.
+  JointStateInput input(workcell.joint_names, 1.0);
+  Input result;
+  ros::Time group_stamp, first_stamp;
+  bool has_group = false;
+  auto flush = [&] {
+    if (!has_group) return;
+    if (!input.is_complete()) {
+      ++result.incomplete_cycles;
+      return;
+    }
+    if (result.q.empty()) first_stamp = group_stamp;
+    result.q.push_back(input.q());
+    result.time_s.push_back((group_stamp - first_stamp).toSec());
+  };
+  for (const rosbag::MessageInstance& m : view) {
+    const sensor_msgs::JointState::ConstPtr msg = m.instantiate<sensor_msgs::JointState>();
+    if (!msg) continue;
+    ++result.messages;
+    if (has_group && msg->header.stamp != group_stamp) flush();
+    if (!has_group || msg->header.stamp != group_stamp) {
+      group_stamp = msg->header.stamp;
+      has_group = true;
+    }
+    const MergeStatus status = input.Merge(*msg, msg->header.stamp);
+    if (status != MergeStatus::kAccepted) ++result.refused[MergeStatusName(status)];
+  }
+  flush();
+  return result;
+}
+
+Input ReadCsv(const std::string& path, const Workcell& workcell) {
+  const JointCsv csv = ReadJointCsv(path);
+  Input result;
+  result.q = JointCsvInModelOrder(csv, workcell.joint_names);
+  for (const double t : csv.time_s) result.time_s.push_back(t - csv.time_s.front());
+  result.messages = result.q.size();
+  return result;
+}
+
+// One cycle's outcome: warning pairs with their distances, and the wall time of the check.
+struct CycleResult {
+  std::vector<Warning> warnings;
+  bool refused = false;
+  double time_s = 0.0;
+};
+
+// The checker under test: the Monitor with a broad phase, or (when built with them) a peer.
+class Checker {
+ public:
+  virtual ~Checker() = default;
+  virtual void Run(const Eigen::VectorXd& q, CycleResult* result) = 0;
+  virtual BroadPhaseCounters counters() const { return {}; }
+};
+
+class MonitorChecker : public Checker {
+ public:
+  MonitorChecker(std::shared_ptr<const Workcell> workcell, const MonitorOptions& options,
+                 const std::vector<TaskGraspTarget>& targets)
+      : monitor_(std::move(workcell), options) {
+    for (const TaskGraspTarget& t : targets) {
+      std::string error;
+      if (!monitor_.SetGraspTarget(t.link, t.object, true, &error)) {
+        throw LoadError("--grasp " + t.link + ":" + t.object + ": " + error);
+      }
+    }
+  }
+  void Run(const Eigen::VectorXd& q, CycleResult* result) override {
+    const auto start = std::chrono::steady_clock::now();
+    const CycleReport& report = monitor_.Update(q);
+    result->time_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    result->warnings = report.warnings;
+    result->refused = report.input != InputStatus::kOk;
+  }
+  BroadPhaseCounters counters() const override { return monitor_.total_counters(); }
+
+ private:
+  Monitor monitor_;
+};
+
+#ifdef ACM_HAVE_PEERS
+// A peer (FCL, Bullet) on the workcell's default model: the primitives of every link's default
+// variant move with their link, environment objects stay where the scene puts them (replay has
+// no TF); grasp targets are compatible. The peers return pairs only: the distances printed are
+// computed afterwards with ShapeDistance, outside the timed part.
+class PeerCycleChecker : public Checker {
+ public:
+  PeerCycleChecker(std::shared_ptr<const Workcell> workcell, const std::string& name,
+                   const std::vector<TaskGraspTarget>& targets)
+      : workcell_(std::move(workcell)), X_WL_(workcell_->kinematics.link_count()) {
+    const Workcell& wc = *workcell_;
+    CompatibilityMatrix compatible = wc.compatible;
+    for (const TaskGraspTarget& t : targets) {
+      const int link = wc.kinematics.FindLink(t.link);
+      const int object = wc.FindObject(t.object);
+      if (link < 0 || object < 0) {
+        throw LoadError("--grasp " + t.link + ":" + t.object + ": unknown link or object");
+      }
+      for (std::size_t i = 0; i < wc.primitives.size(); ++i) {
+        if (wc.primitives[i].link_index == link) {
+          compatible.Set(static_cast<PrimitiveId>(i), wc.objects[object].primitive, true);
+        }
+      }
+    }
+    std::vector<Eigen::Isometry3d> X_WL(wc.kinematics.link_count());
+    wc.kinematics.ComputeLinkPoses(Eigen::VectorXd::Zero(wc.kinematics.q_size()), &X_WL);
+    std::vector<PeerPrimitive> primitives(wc.primitives.size());
+    shapes_W_.resize(wc.primitives.size());
+    for (std::size_t i = 0; i < wc.primitives.size(); ++i) {
+      const PrimitiveSpec& p = wc.primitives[i];
+      const bool is_link = p.link_index >= 0;
+      shapes_W_[i] = is_link ? TransformShape(X_WL[p.link_index], p.shape_L) : p.shape_L;
+      primitives[i] = PeerPrimitive{shapes_W_[i], p.tolerance_m, is_link && !p.is_static,
+                                    p.variant.empty()};
+      if (primitives[i].is_moving && primitives[i].is_present) {
+        moving_.push_back(static_cast<PrimitiveId>(i));
+      }
+    }
+    peer_ = name == "fcl" ? MakeFclChecker(primitives, compatible, PeerTolerance::kRounded)
+                          : MakeBulletChecker(primitives, compatible, PeerTolerance::kRounded);
+  }
+  void Run(const Eigen::VectorXd& q, CycleResult* result) override {
+    const Workcell& wc = *workcell_;
+    const auto start = std::chrono::steady_clock::now();
+    wc.kinematics.ComputeLinkPoses(q, &X_WL_);
+    for (const PrimitiveId id : moving_) {
+      const PrimitiveSpec& p = wc.primitives[id];
+      shapes_W_[id] = TransformShape(X_WL_[p.link_index], p.shape_L);
+      peer_->SetShape(id, shapes_W_[id]);
+    }
+    peer_->FindWarnings(&pairs_);
+    result->time_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    result->refused = false;
+    result->warnings.clear();
+    for (const CandidatePair& pair : pairs_) {
+      const DistanceResult d = ShapeDistance(shapes_W_[pair.a], shapes_W_[pair.b]);
+      Warning w;
+      w.a = pair.a;
+      w.b = pair.b;
+      w.distance_m = d.distance_m;
+      w.threshold_m = wc.primitives[pair.a].tolerance_m + wc.primitives[pair.b].tolerance_m;
+      result->warnings.push_back(w);
+    }
+  }
+
+ private:
+  std::shared_ptr<const Workcell> workcell_;
+  std::vector<Eigen::Isometry3d> X_WL_;
+  std::vector<Shape> shapes_W_;
+  std::vector<PrimitiveId> moving_;
+  std::vector<CandidatePair> pairs_;
+  std::unique_ptr<PeerChecker> peer_;
+};
+#endif
+
+// Nearest-rank percentile (p in (0, 100]) of `sorted` (ascending, not empty).
+double Percentile(const std::vector<double>& sorted, double p) {
+  const std::size_t rank = static_cast<std::size_t>(std::ceil(p / 100.0 * sorted.size()));
+  return sorted[std::min(sorted.size(), std::max<std::size_t>(rank, 1)) - 1];
+}
+
+std::string JsonString(const std::string& s) {
+  std::string out = "\"";
+  for (const char c : s) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char buf[8];
+      std::snprintf(buf, sizeof(buf), "\\u%04x", c);
+      out += buf;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
+std::string PairSetKey(const std::vector<Warning>& warnings) {
+  std::string key;
+  for (const Warning& w : warnings) key += std::to_string(w.a) + "-" + std::to_string(w.b) + ";";
+  return key;
+}
+
+int Run(const Options& options) {
+  const auto workcell =
+      std::make_shared<const Workcell>(LoadWorkcell(options.urdf, options.scene));
+  MonitorOptions monitor_options = LoadMonitorOptions(options.config);
+  std::unique_ptr<Checker> checker;
+  BroadPhaseMethod method;
+  if (ParseBroadPhaseMethod(options.method, &method)) {
+    monitor_options.broad_phase.method = method;
+    monitor_options.auto_broad_phase = false;
+    checker = std::make_unique<MonitorChecker>(workcell, monitor_options, options.grasp_targets);
+#ifdef ACM_HAVE_PEERS
+  } else if (options.method == "fcl" || options.method == "bullet") {
+    checker = std::make_unique<PeerCycleChecker>(workcell, options.method, options.grasp_targets);
+#endif
+  } else {
+    throw LoadError("--method: unknown method '" + options.method + "'");
+  }
+  const Input input = EndsWith(options.input, ".csv") ? ReadCsv(options.input, *workcell)
+                                                      : ReadBag(options.input, *workcell);
+  const Workcell& wc = *workcell;
+  std::vector<CycleResult> cycles(input.q.size());
+  for (std::size_t k = 0; k < input.q.size(); ++k) checker->Run(input.q[k], &cycles[k]);
+
+  std::vector<double> times;
+  std::uint64_t warning_cycles = 0, refused_cycles = 0;
+  int first = -1;
+  for (std::size_t k = 0; k < cycles.size(); ++k) {
+    times.push_back(cycles[k].time_s);
+    refused_cycles += cycles[k].refused;
+    if (!cycles[k].warnings.empty()) {
+      ++warning_cycles;
+      if (first < 0) first = static_cast<int>(k);
+    }
+  }
+  std::sort(times.begin(), times.end());
+  double mean_s = 0.0;
+  for (const double t : times) mean_s += t / times.size();
+  const double p50 = times.empty() ? 0.0 : Percentile(times, 50.0);
+  const double p99 = times.empty() ? 0.0 : Percentile(times, 99.0);
+  const double max = times.empty() ? 0.0 : times.back();
+  const BroadPhaseCounters counters = checker->counters();
+  std::uint64_t refused_messages = 0;
+  for (const auto& [status, count] : input.refused) refused_messages += count;
+  auto name = [&](PrimitiveId id) { return wc.primitives[id].name; };
+
+  if (options.json) {
+    std::printf("{\n  \"input\": %s,\n  \"method\": %s,\n", JsonString(options.input).c_str(),
+                JsonString(options.method).c_str());
+    std::printf("  \"grasp_targets\": [");
+    for (std::size_t i = 0; i < options.grasp_targets.size(); ++i) {
+      std::printf("%s[%s, %s]", i ? ", " : "", JsonString(options.grasp_targets[i].link).c_str(),
+                  JsonString(options.grasp_targets[i].object).c_str());
+    }
+    std::printf("],\n  \"messages\": %llu,\n  \"refused_messages\": {",
+                static_cast<unsigned long long>(input.messages));
+    bool comma = false;
+    for (const auto& [status, count] : input.refused) {
+      std::printf("%s%s: %llu", comma ? ", " : "", JsonString(status).c_str(),
+                  static_cast<unsigned long long>(count));
+      comma = true;
+    }
+    std::printf("},\n  \"incomplete_cycles\": %llu,\n  \"cycles\": %zu,\n"
+                "  \"refused_cycles\": %llu,\n  \"warning_cycles\": %llu,\n",
+                static_cast<unsigned long long>(input.incomplete_cycles), cycles.size(),
+                static_cast<unsigned long long>(refused_cycles),
+                static_cast<unsigned long long>(warning_cycles));
+    if (first >= 0) {
+      const Warning& w = cycles[first].warnings.front();
+      std::printf("  \"first_warning\": {\"cycle\": %d, \"time_s\": %.3f, \"a\": %s, \"b\": %s, "
+                  "\"distance_m\": %.9g, \"threshold_m\": %.9g},\n",
+                  first, input.time_s[first], JsonString(name(w.a)).c_str(),
+                  JsonString(name(w.b)).c_str(), w.distance_m, w.threshold_m);
+    } else {
+      std::printf("  \"first_warning\": null,\n");
+    }
+    std::printf("  \"cycle_time_s\": {\"p50\": %.9g, \"p99\": %.9g, \"max\": %.9g, "
+                "\"mean\": %.9g},\n",
+                p50, p99, max, mean_s);
+    std::printf("  \"counters\": {\"object_node_tests\": %llu, \"object_object_tests\": %llu, "
+                "\"neighbours_visited\": %llu, \"splits\": %llu, \"merges\": %llu, "
+                "\"reinsert_fallbacks\": %llu, \"outside_world\": %llu},\n",
+                static_cast<unsigned long long>(counters.object_node_tests),
+                static_cast<unsigned long long>(counters.object_object_tests),
+                static_cast<unsigned long long>(counters.neighbours_visited),
+                static_cast<unsigned long long>(counters.splits),
+                static_cast<unsigned long long>(counters.merges),
+                static_cast<unsigned long long>(counters.reinsert_fallbacks),
+                static_cast<unsigned long long>(counters.outside_world));
+    // One entry per cycle: [[a, b, distance_m], ...] (empty when clear).
+    std::printf("  \"per_cycle\": [");
+    for (std::size_t k = 0; k < cycles.size(); ++k) {
+      std::printf("%s\n    {\"cycle\": %zu, \"time_s\": %.3f, \"refused\": %s, \"warnings\": [",
+                  k ? "," : "", k, input.time_s[k], cycles[k].refused ? "true" : "false");
+      for (std::size_t i = 0; i < cycles[k].warnings.size(); ++i) {
+        const Warning& w = cycles[k].warnings[i];
+        std::printf("%s[%s, %s, %.9g]", i ? ", " : "", JsonString(name(w.a)).c_str(),
+                    JsonString(name(w.b)).c_str(), w.distance_m);
+      }
+      std::printf("]}");
+    }
+    std::printf("\n  ]\n}\n");
+    return 0;
+  }
+
+  std::printf("replay %s: method %s, %zu cycles from %llu messages", options.input.c_str(),
+              options.method.c_str(), cycles.size(),
+              static_cast<unsigned long long>(input.messages));
+  for (const TaskGraspTarget& t : options.grasp_targets) {
+    std::printf(", grasp target %s:%s", t.link.c_str(), t.object.c_str());
+  }
+  std::printf("\n");
+  if (refused_messages > 0 || input.incomplete_cycles > 0 || refused_cycles > 0) {
+    std::printf("input: %llu messages refused", static_cast<unsigned long long>(refused_messages));
+    for (const auto& [status, count] : input.refused) {
+      std::printf(" (%s: %llu)", status.c_str(), static_cast<unsigned long long>(count));
+    }
+    std::printf(", %llu cycles before every joint was received, %llu cycles refused by the "
+                "monitor\n",
+                static_cast<unsigned long long>(input.incomplete_cycles),
+                static_cast<unsigned long long>(refused_cycles));
+  }
+  // Runs of consecutive cycles with the same warning pairs, one line per pair, with the
+  // smallest distance over the run.
+  std::size_t k = 0;
+  while (k < cycles.size()) {
+    if (cycles[k].warnings.empty()) {
+      ++k;
+      continue;
+    }
+    const std::string key = PairSetKey(cycles[k].warnings);
+    std::size_t end = k + 1;
+    while (end < cycles.size() && PairSetKey(cycles[end].warnings) == key) ++end;
+    std::printf("cycles %zu-%zu (%.2f-%.2f s):\n", k, end - 1, input.time_s[k],
+                input.time_s[end - 1]);
+    for (std::size_t i = 0; i < cycles[k].warnings.size(); ++i) {
+      const Warning& w = cycles[k].warnings[i];
+      double closest_m = w.distance_m;
+      for (std::size_t j = k; j < end; ++j) {
+        closest_m = std::min(closest_m, cycles[j].warnings[i].distance_m);
+      }
+      std::printf("  %-22s -- %-22s  %.4f m at first, closest %.4f m (threshold %.4f m)\n",
+                  name(w.a).c_str(), name(w.b).c_str(), w.distance_m, closest_m, w.threshold_m);
+    }
+    k = end;
+  }
+  if (first >= 0) {
+    const Warning& w = cycles[first].warnings.front();
+    std::printf("summary: %llu of %zu cycles warn; first at cycle %d (%.2f s): %s -- %s at "
+                "%.4f m\n",
+                static_cast<unsigned long long>(warning_cycles), cycles.size(), first,
+                input.time_s[first], name(w.a).c_str(), name(w.b).c_str(), w.distance_m);
+  } else {
+    std::printf("summary: no warning in %zu cycles\n", cycles.size());
+  }
+  std::printf("cycle time: p50 %.1f us, p99 %.1f us, max %.1f us, mean %.1f us\n", p50 * 1e6,
+              p99 * 1e6, max * 1e6, mean_s * 1e6);
+  std::printf("broad phase: %llu object-node tests, %llu object-object tests, %llu neighbours "
+              "visited, %llu splits, %llu merges, %llu re-insert fallbacks\n",
+              static_cast<unsigned long long>(counters.object_node_tests),
+              static_cast<unsigned long long>(counters.object_object_tests),
+              static_cast<unsigned long long>(counters.neighbours_visited),
+              static_cast<unsigned long long>(counters.splits),
+              static_cast<unsigned long long>(counters.merges),
+              static_cast<unsigned long long>(counters.reinsert_fallbacks));
+  return 0;
+}
+
+}  // namespace
+}  // namespace arm_collision_monitor
+
+int main(int argc, char** argv) {
+  using namespace arm_collision_monitor;
+  Options options;
+  std::string error;
+  if (!ParseOptions(argc, argv, &options, &error)) {
+    if (!error.empty()) std::fprintf(stderr, "replay: %s\n", error.c_str());
+    std::fprintf(stderr, "%s", kUsage);
+    return 2;
+  }
+  try {
+    if (options.urdf.empty() || options.scene.empty() || options.config.empty()) {
+      const std::string package = ros::package::getPath("arm_collision_monitor");
+      if (package.empty()) {
+        throw LoadError("cannot find the package arm_collision_monitor (source its "
+                        "devel/setup.bash) for the default workcell; pass --urdf, --scene, --config");
+      }
+      if (options.urdf.empty()) options.urdf = package + "/urdf/workcell.urdf";
+      if (options.scene.empty()) options.scene = package + "/config/scene.yaml";
+      if (options.config.empty()) options.config = package + "/config/monitor.yaml";
+    }
+    return Run(options);
+  } catch (const std::exception& e) {
+    // LoadError names the file and element; rosbag errors name the bag.
+    std::fprintf(stderr, "replay: %s\n", e.what());
+    return 1;
+  }
+}

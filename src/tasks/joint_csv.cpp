@@ -1,0 +1,140 @@
+#include "arm_collision_monitor/tasks/joint_csv.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <unordered_map>
+
+#include "arm_collision_monitor/core/constants.h"
+#include "arm_collision_monitor/core/load_error.h"
+
+namespace arm_collision_monitor {
+namespace {
+
+constexpr const char* kTimeColumn = "time_s";
+
+std::string Trim(const std::string& s) {
+  const std::size_t begin = s.find_first_not_of(" \t\r");
+  if (begin == std::string::npos) return "";
+  const std::size_t end = s.find_last_not_of(" \t\r");
+  return s.substr(begin, end - begin + 1);
+}
+
+std::vector<std::string> SplitFields(const std::string& line) {
+  std::vector<std::string> fields;
+  std::stringstream stream(line);
+  std::string field;
+  while (std::getline(stream, field, ',')) fields.push_back(Trim(field));
+  if (!line.empty() && line.back() == ',') fields.emplace_back();
+  return fields;
+}
+
+std::string Where(const std::string& path, int line) {
+  return path + ":" + std::to_string(line) + ": ";
+}
+
+}  // namespace
+
+JointCsv ReadJointCsv(const std::string& path) {
+  std::ifstream file(path);
+  if (!file) throw LoadError(path + ": cannot open the joint CSV file");
+  JointCsv csv;
+  csv.path = path;
+  bool has_time = false;
+  bool has_header = false;
+  std::string line;
+  int line_number = 0;
+  while (std::getline(file, line)) {
+    ++line_number;
+    const std::string trimmed = Trim(line);
+    if (trimmed.empty() || trimmed[0] == '#') continue;
+    std::vector<std::string> fields = SplitFields(trimmed);
+    if (!has_header) {
+      has_header = true;
+      has_time = fields.front() == kTimeColumn;
+      std::unordered_map<std::string, int> seen;
+      for (std::size_t c = has_time ? 1 : 0; c < fields.size(); ++c) {
+        if (fields[c].empty()) {
+          throw LoadError(Where(path, line_number) + "header column " + std::to_string(c + 1) +
+                          " is empty: expected a joint name");
+        }
+        if (!seen.emplace(fields[c], static_cast<int>(c)).second) {
+          throw LoadError(Where(path, line_number) + "joint '" + fields[c] +
+                          "' appears twice in the header");
+        }
+        csv.joint_names.push_back(fields[c]);
+      }
+      if (csv.joint_names.empty()) {
+        throw LoadError(Where(path, line_number) + "the header names no joint");
+      }
+      continue;
+    }
+    const std::size_t expected = csv.joint_names.size() + (has_time ? 1 : 0);
+    if (fields.size() != expected) {
+      throw LoadError(Where(path, line_number) + std::to_string(fields.size()) +
+                      " fields, expected " + std::to_string(expected) + " (one per header column)");
+    }
+    Eigen::VectorXd row(static_cast<Eigen::Index>(csv.joint_names.size()));
+    double time_s = 0.0;
+    for (std::size_t c = 0; c < fields.size(); ++c) {
+      const std::string column = has_time && c == 0 ? kTimeColumn
+                                                    : csv.joint_names[c - (has_time ? 1 : 0)];
+      char* end = nullptr;
+      errno = 0;
+      const double value = std::strtod(fields[c].c_str(), &end);
+      if (fields[c].empty() || *end != '\0' || errno == ERANGE || !std::isfinite(value)) {
+        throw LoadError(Where(path, line_number) + "column '" + column + "': '" + fields[c] +
+                        "' is not a finite number");
+      }
+      if (has_time && c == 0) {
+        time_s = value;
+      } else {
+        row[static_cast<Eigen::Index>(c - (has_time ? 1 : 0))] = value;
+      }
+    }
+    if (!has_time) time_s = static_cast<double>(csv.rows.size()) * kTaskCyclePeriod_s;
+    if (!csv.time_s.empty() && time_s <= csv.time_s.back()) {
+      throw LoadError(Where(path, line_number) + "time_s " + fields[0] +
+                      " does not increase over the previous row");
+    }
+    csv.time_s.push_back(time_s);
+    csv.rows.push_back(row);
+  }
+  if (!has_header) throw LoadError(path + ": empty: expected a header row of joint names");
+  return csv;
+}
+
+std::vector<Eigen::VectorXd> JointCsvInModelOrder(
+    const JointCsv& csv, const std::vector<std::string>& model_joint_names) {
+  std::unordered_map<std::string, int> model_index;
+  for (std::size_t j = 0; j < model_joint_names.size(); ++j) {
+    model_index.emplace(model_joint_names[j], static_cast<int>(j));
+  }
+  std::vector<int> column_of(model_joint_names.size(), -1);
+  for (std::size_t c = 0; c < csv.joint_names.size(); ++c) {
+    const auto it = model_index.find(csv.joint_names[c]);
+    if (it == model_index.end()) {
+      throw LoadError(csv.path + ": header: '" + csv.joint_names[c] +
+                      "' is not a joint of the model");
+    }
+    column_of[it->second] = static_cast<int>(c);
+  }
+  for (std::size_t j = 0; j < model_joint_names.size(); ++j) {
+    if (column_of[j] < 0) {
+      throw LoadError(csv.path + ": header: no column for model joint '" +
+                      model_joint_names[j] + "'");
+    }
+  }
+  std::vector<Eigen::VectorXd> rows;
+  rows.reserve(csv.rows.size());
+  for (const Eigen::VectorXd& row : csv.rows) {
+    Eigen::VectorXd q(static_cast<Eigen::Index>(model_joint_names.size()));
+    for (std::size_t j = 0; j < model_joint_names.size(); ++j) q[j] = row[column_of[j]];
+    rows.push_back(q);
+  }
+  return rows;
+}
+
+}  // namespace arm_collision_monitor

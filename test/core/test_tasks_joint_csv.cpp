@@ -1,0 +1,100 @@
+// Joint CSV files (the replay tool's non-bag input): exact round trip of a task trajectory,
+// re-ordering by name, and a clear start-up error for each malformed file.
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "arm_collision_monitor/core/constants.h"
+#include "arm_collision_monitor/core/load_error.h"
+#include "arm_collision_monitor/tasks/joint_csv.h"
+#include "arm_collision_monitor/tasks/task_trajectories.h"
+#include "test_monitor_util.h"
+
+namespace arm_collision_monitor {
+namespace {
+
+std::string TempPath(const std::string& name) {
+  return ::testing::TempDir() + "/test_tasks_joint_csv_" + name + ".csv";
+}
+
+std::string WriteFile(const std::string& name, const std::string& text) {
+  const std::string path = TempPath(name);
+  std::ofstream(path) << text;
+  return path;
+}
+
+// The LoadError message of reading `text`, "" if it loads.
+std::string ErrorOf(const std::string& name, const std::string& text,
+                    const std::vector<std::string>& model = {"a", "b"}) {
+  try {
+    JointCsvInModelOrder(ReadJointCsv(WriteFile(name, text)), model);
+  } catch (const LoadError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(JointCsv, RoundTripsATaskInReversedColumnOrder) {
+  const auto workcell = test::LoadBundledWorkcell();
+  const std::vector<Eigen::VectorXd> trajectory = MakeTaskTrajectory(2, *workcell);
+  const std::size_t n = workcell->joint_names.size();
+  // Columns in reverse model order, %.17g: every double prints and parses back exactly.
+  std::string text = "# task 2, reversed columns\ntime_s";
+  for (std::size_t j = n; j-- > 0;) text += "," + workcell->joint_names[j];
+  text += "\n";
+  char field[64];
+  for (std::size_t k = 0; k < trajectory.size(); ++k) {
+    std::snprintf(field, sizeof(field), "%.17g", k * kTaskCyclePeriod_s);
+    text += field;
+    for (std::size_t j = n; j-- > 0;) {
+      std::snprintf(field, sizeof(field), ",%.17g", trajectory[k][j]);
+      text += field;
+    }
+    text += "\n";
+  }
+  const JointCsv csv = ReadJointCsv(WriteFile("round_trip", text));
+  ASSERT_EQ(csv.rows.size(), trajectory.size());
+  EXPECT_EQ(csv.joint_names.front(), workcell->joint_names.back());
+  const std::vector<Eigen::VectorXd> rows = JointCsvInModelOrder(csv, workcell->joint_names);
+  for (std::size_t k = 0; k < trajectory.size(); ++k) {
+    EXPECT_TRUE((rows[k].array() == trajectory[k].array()).all()) << "row " << k;
+    EXPECT_EQ(csv.time_s[k], k * kTaskCyclePeriod_s);
+  }
+}
+
+TEST(JointCsv, WithoutTimeColumnRowsAreOneCycleApart) {
+  const JointCsv csv = ReadJointCsv(WriteFile("no_time", "b, a\n1, 2\n\n3,4\n"));
+  ASSERT_EQ(csv.rows.size(), 2u);
+  EXPECT_EQ(csv.time_s[1], kTaskCyclePeriod_s);
+  const std::vector<Eigen::VectorXd> rows = JointCsvInModelOrder(csv, {"a", "b"});
+  EXPECT_EQ(rows[1][0], 4.0);
+  EXPECT_EQ(rows[1][1], 3.0);
+}
+
+TEST(JointCsv, MalformedFilesAreRejectedWithFileLineAndColumn) {
+  EXPECT_NE(ErrorOf("missing", "a\n1\n").find("no column for model joint 'b'"), std::string::npos);
+  EXPECT_NE(ErrorOf("unknown", "a,b,c\n1,2,3\n").find("'c' is not a joint of the model"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf("duplicate", "a,b,a\n").find(":1: joint 'a' appears twice"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf("count", "a,b\n1,2\n1\n").find(":3: 1 fields, expected 2"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf("nan", "a,b\n1,nan\n").find(":2: column 'b': 'nan' is not a finite number"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf("text", "a,b\n1,2x\n").find("column 'b': '2x'"), std::string::npos);
+  EXPECT_NE(ErrorOf("empty_field", "a,b\n1,\n").find("column 'b': ''"), std::string::npos);
+  EXPECT_NE(ErrorOf("time", "time_s,a,b\n0.1,1,2\n0.1,1,2\n").find(":3: time_s 0.1 does not"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf("empty", "# nothing\n").find("empty: expected a header"), std::string::npos);
+  EXPECT_NE(ErrorOf("empty_name", "a,,b\n").find("header column 2 is empty"), std::string::npos);
+  const std::string path = TempPath("count");
+  EXPECT_EQ(ErrorOf("count", "a,b\n1,2\n1\n").rfind(path, 0), 0u) << "names the file first";
+  EXPECT_THROW(ReadJointCsv(TempPath("does_not_exist")), LoadError);
+  EXPECT_EQ(ErrorOf("good", "a,b\n1,2\n"), "");
+}
+
+}  // namespace
+}  // namespace arm_collision_monitor
