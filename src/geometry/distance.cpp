@@ -251,6 +251,14 @@ inline Vector3d ToFrame(const Eigen::Isometry3d& X_WB, const Vector3d& p_W) {
 inline SegmentBoxPair AxisBoxClosest(const Capsule& c, const Box& b) {
   return SegmentBoxClosest(ToFrame(b.X_WB, c.p0_W), ToFrame(b.X_WB, c.p1_W), b.half_extents_m);
 }
+inline bool IsFinite(const Shape& shape) {
+  if (const auto* c = std::get_if<Capsule>(&shape)) {
+    return c->p0_W.allFinite() && c->p1_W.allFinite() && std::isfinite(c->radius_m);
+  }
+  const Box& b = std::get<Box>(shape);
+  return b.X_WB.linear().allFinite() && b.X_WB.translation().allFinite() &&
+         b.half_extents_m.allFinite();
+}
 inline const Capsule& ChooseCapsule(const Capsule& c, const Box&) { return c; }
 inline const Capsule& ChooseCapsule(const Box&, const Capsule& c) { return c; }
 inline const Box& ChooseBox(const Capsule&, const Box& b) { return b; }
@@ -373,14 +381,9 @@ DistanceResult ShapeDistance(const Shape& a, const Shape& b) {
 // first edge closer than the threshold. Agrees with ShapeDistance up to its error bound.
 bool IsCloserThan(const Shape& a, const Shape& b, double threshold_m) {
   if (threshold_m <= 0.0) return false;  // distances are >= 0
-  const Aabb aabb_a = ComputeAabb(a);
-  const Aabb aabb_b = ComputeAabb(b);
-  // A NaN or infinity anywhere (the AABBs inherit them) answers "closer": the caller fails safe.
-  if (!(std::isfinite(threshold_m) && aabb_a.min_W.allFinite() && aabb_a.max_W.allFinite() &&
-        aabb_b.min_W.allFinite() && aabb_b.max_W.allFinite())) {
-    return true;
-  }
-  if (!aabb_a.Inflated(threshold_m).Overlaps(aabb_b)) return false;
+  // A NaN or infinity anywhere answers "closer", so that the caller fails safe.
+  if (!(std::isfinite(threshold_m) && IsFinite(a) && IsFinite(b))) return true;
+  if (!ComputeAabb(a).Inflated(threshold_m).Overlaps(ComputeAabb(b))) return false;
   return std::visit(
       [threshold_m](const auto& sa, const auto& sb) -> bool {
         using A = std::decay_t<decltype(sa)>;

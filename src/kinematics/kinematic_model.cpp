@@ -2,11 +2,11 @@
 // pose is its parent's pose composed with the joint origin and the joint motion).
 #include "arm_collision_monitor/kinematics/kinematic_model.h"
 
+#include <urdf_model/model.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
-
-#include <urdf_model/model.h>
 
 #include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/kinematics/urdf_conversions.h"
@@ -30,8 +30,50 @@ int KinematicModel::FindJointChildLink(const std::string& joint_name) const {
   return -1;
 }
 
-bool KinematicModel::SetPositionLimits(const std::string& joint_name, double lower,
-                                       double upper) {
+bool KinematicModel::Validate(std::string* why) const {
+  auto fail = [&](int link, const std::string& what) {
+    *why = "link " + std::to_string(link) + " '" + link_names_[link] + "': " + what;
+    return false;
+  };
+  const std::size_t n = link_names_.size();
+  if (n == 0 || parent_link_.size() != n || joints_.size() != n || is_moving_.size() != n) {
+    *why = "per-link arrays are empty or of different sizes";
+    return false;
+  }
+  if (parent_link_[0] != -1) return fail(0, "the root must have no parent");
+  std::vector<int> q_owner(q_size_, -1);
+  for (int link = 1; link < link_count(); ++link) {
+    const JointSpec& joint = joints_[link];
+    if (parent_link_[link] < 0 || parent_link_[link] >= link) {
+      return fail(link, "its parent does not precede it");
+    }
+    const bool is_actuated = joint.type != JointType::kFixed;
+    if (joint.q_index >= q_size_ ||
+        (joint.q_index >= 0) != (is_actuated && joint.mimic_q_index < 0)) {
+      return fail(link, "q_index inconsistent with the joint type");
+    }
+    if (joint.q_index >= 0) {
+      if (q_owner[joint.q_index] >= 0) return fail(link, "q_index used twice");
+      q_owner[joint.q_index] = link;
+    }
+    if (is_actuated && std::abs(joint.axis_J.norm() - 1.0) > 1e-12) {
+      return fail(link, "axis is not a unit vector");
+    }
+    if (!(joint.lower <= joint.upper)) return fail(link, "lower limit above upper limit");
+    if (joint.mimic_q_index >= q_size_) return fail(link, "mimic target out of range");
+    const bool moves = is_actuated || is_moving_[parent_link_[link]];
+    if (moves != static_cast<bool>(is_moving_[link])) return fail(link, "is_moving is wrong");
+  }
+  for (int i = 0; i < q_size_; ++i) {
+    if (q_owner[i] < 0) {
+      *why = "q index " + std::to_string(i) + " has no joint";
+      return false;
+    }
+  }
+  return true;
+}
+
+bool KinematicModel::SetPositionLimits(const std::string& joint_name, double lower, double upper) {
   const int link = FindJointChildLink(joint_name);
   if (link < 0 || joints_[link].q_index < 0) return false;
   joints_[link].lower = lower;
@@ -125,8 +167,9 @@ KinematicModel KinematicModel::FromUrdfFile(const std::string& urdf_path) {
                           ": floating and planar joints are not supported (expected revolute, "
                           "continuous, prismatic or fixed)");
         default:
-          throw LoadError(where + ": unknown joint type (expected revolute, continuous, "
-                                  "prismatic or fixed)");
+          throw LoadError(where +
+                          ": unknown joint type (expected revolute, continuous, "
+                          "prismatic or fixed)");
       }
       if (spec.type != JointType::kFixed) {
         if (!axis.allFinite() || axis.norm() < kMinJointAxisNorm) {
@@ -139,8 +182,7 @@ KinematicModel KinematicModel::FromUrdfFile(const std::string& urdf_path) {
         } else if (joint->limits) {
           spec.lower = joint->limits->lower;
           spec.upper = joint->limits->upper;
-          if (!std::isfinite(spec.lower) || !std::isfinite(spec.upper) ||
-              spec.lower > spec.upper) {
+          if (!std::isfinite(spec.lower) || !std::isfinite(spec.upper) || spec.lower > spec.upper) {
             throw LoadError(where + ": <limit> must have finite lower <= upper");
           }
         }

@@ -1,9 +1,9 @@
 #include "arm_collision_monitor/kinematics/urdf_conversions.h"
 
+#include <urdf_parser/urdf_parser.h>
+
 #include <fstream>
 #include <sstream>
-
-#include <urdf_parser/urdf_parser.h>
 
 #include "arm_collision_monitor/core/load_error.h"
 
@@ -25,11 +25,14 @@ urdf::ModelInterfaceSharedPtr ParseUrdfFile(const std::string& urdf_path) {
   }
   std::stringstream buffer;
   buffer << in.rdbuf();
-  const urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(buffer.str());
+  const std::string xml = buffer.str();
+  const urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(xml);
   if (!model) {
+    const bool is_xacro = xml.find("xmlns:xacro") != std::string::npos;
     throw LoadError(urdf_path +
                     ": not a valid URDF (urdfdom rejected it; its console message says where); "
-                    "expected a <robot> whose links and joints form one tree");
+                    "expected a <robot> whose links and joints form one tree" +
+                    (is_xacro ? " (this is a xacro file: expand it with xacro first)" : ""));
   }
   return model;
 }

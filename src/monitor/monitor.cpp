@@ -194,6 +194,7 @@ Monitor::Impl::Impl(std::shared_ptr<const Workcell> wc, const MonitorOptions& op
   n = static_cast<std::uint32_t>(workcell->primitives.size());
   options.broad_phase.world_W = workcell->world_W;
   options.broad_phase.min_cell_size_m = options.max_speed_mps * options.cycle_period_s;
+  options.broad_phase.reserve_primitives = std::max(options.broad_phase.reserve_primitives, n);
   speed_tol_gain_s =
       options.speed_scaled_tolerance ? options.reaction_time_s + options.stopping_time_s : 0.0;
   ValidateOptions();

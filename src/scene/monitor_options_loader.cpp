@@ -18,9 +18,9 @@ MonitorOptions LoadMonitorOptions(const std::string& path) {
   if (root["broad_phase"]) {
     const std::string name = yaml_fields::ReadName(root["broad_phase"], top.Child("broad_phase"));
     if (!ParseBroadPhaseMethod(name, &options.broad_phase.method)) {
-      top.Child("broad_phase").Fail(root["broad_phase"],
-                                    "unknown method '" + name +
-                                        "' (expected octree, naive, grid, rebuild or reinsert)");
+      top.Child("broad_phase")
+          .Fail(root["broad_phase"], "unknown method '" + name +
+                                         "' (expected octree, naive, grid, rebuild or reinsert)");
     }
   }
   if (root["auto_broad_phase"]) {
@@ -28,8 +28,8 @@ MonitorOptions LoadMonitorOptions(const std::string& path) {
         yaml_fields::ReadBool(root["auto_broad_phase"], top.Child("auto_broad_phase"));
   }
   if (root["max_objects_per_leaf"]) {
-    options.broad_phase.max_objects_per_leaf =
-        yaml_fields::ReadPositiveInt(root["max_objects_per_leaf"], top.Child("max_objects_per_leaf"));
+    options.broad_phase.max_objects_per_leaf = yaml_fields::ReadPositiveInt(
+        root["max_objects_per_leaf"], top.Child("max_objects_per_leaf"));
   }
   if (root["grid_cells_per_axis"]) {
     options.broad_phase.grid_cells_per_axis =
@@ -63,8 +63,8 @@ MonitorOptions LoadMonitorOptions(const std::string& path) {
   read_double("reaction_time_s", false, &options.reaction_time_s);
   read_double("stopping_time_s", false, &options.stopping_time_s);
   if (root["speed_scaled_tolerance"]) {
-    options.speed_scaled_tolerance = yaml_fields::ReadBool(root["speed_scaled_tolerance"],
-                                                           top.Child("speed_scaled_tolerance"));
+    options.speed_scaled_tolerance =
+        yaml_fields::ReadBool(root["speed_scaled_tolerance"], top.Child("speed_scaled_tolerance"));
   }
   if (root["fixed_frame"]) {
     options.fixed_frame = yaml_fields::ReadName(root["fixed_frame"], top.Child("fixed_frame"));

@@ -30,8 +30,7 @@ std::pair<Eigen::Vector3d, Eigen::Vector3d> CylinderEnds_L(const CollisionElemen
 // Marks the two spheres (radius r, centred on the cylinder's end faces) of the capsule idiom.
 void AbsorbEndSpheres(const CollisionElement& cylinder, std::vector<CollisionElement>* all) {
   const auto [end0_L, end1_L] = CylinderEnds_L(cylinder);
-  const double tolerance_m =
-      kCapsuleIdiomMatchRel * (cylinder.length_m + cylinder.radius_m);
+  const double tolerance_m = kCapsuleIdiomMatchRel * (cylinder.length_m + cylinder.radius_m);
   auto find_cap = [&](const Eigen::Vector3d& end_L, int skip) {
     for (int i = 0; i < static_cast<int>(all->size()); ++i) {
       const CollisionElement& e = (*all)[i];
@@ -66,8 +65,8 @@ UrdfLinkGeometry ReadUrdfLinkGeometry(const urdf::Link& link, const std::string&
   std::vector<CollisionElement> elements;
   for (std::size_t i = 0; i < collisions.size(); ++i) {
     const urdf::Collision& collision = *collisions[i];
-    const std::string where = urdf_path + ": link '" + link.name + "' <collision> " +
-                              std::to_string(i) + ": ";
+    const std::string where =
+        urdf_path + ": link '" + link.name + "' <collision> " + std::to_string(i) + ": ";
     if (!collision.geometry) throw LoadError(where + "expected a <geometry>");
     CollisionElement e;
     e.name = collision.name.empty() ? std::to_string(i) : collision.name;

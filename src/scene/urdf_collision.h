@@ -1,11 +1,11 @@
 // Collision geometry of URDF links as the monitor's primitives.
 #pragma once
 
+#include <urdf_model/model.h>
+
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <urdf_model/model.h>
 
 #include "arm_collision_monitor/geometry/primitives.h"
 

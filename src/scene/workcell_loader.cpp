@@ -1,13 +1,13 @@
 // LoadWorkcell: the URDF's kinematics and collision geometry plus the scene file, validated
 // once at start-up (the scene format is described at the top of config/scene.yaml).
+#include <urdf_model/model.h>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
 #include <optional>
 #include <random>
 #include <set>
-
-#include <urdf_model/model.h>
 
 #include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/geometry/distance.h"
@@ -37,7 +37,8 @@ Aabb ReadWorld(const YAML::Node& node, const Where& where) {
   if (!node.IsDefined()) where.Fail(node, "missing; expected {center_m: [x, y, z], edge_m: e}");
   yaml_fields::RequireMap(node, where);
   yaml_fields::CheckKeys(node, {"center_m", "edge_m"}, where);
-  const Eigen::Vector3d center_W = yaml_fields::ReadVector3(node["center_m"], where.Child("center_m"));
+  const Eigen::Vector3d center_W =
+      yaml_fields::ReadVector3(node["center_m"], where.Child("center_m"));
   const double edge_m = yaml_fields::ReadPositiveDouble(node["edge_m"], where.Child("edge_m"));
   return Aabb{(center_W.array() - 0.5 * edge_m).matrix(),
               (center_W.array() + 0.5 * edge_m).matrix()};
@@ -60,17 +61,16 @@ std::vector<int> ReadArms(const YAML::Node& node, const Where& where, const Kine
     arm.name = yaml_fields::ReadName(entry["name"], item.Child("name"));
     item.element += Quoted(arm.name);
     arm.root_link = yaml_fields::ReadName(entry["root_link"], item.Child("root_link"));
-    arm.tolerance_m = entry["tolerance_m"]
-                          ? yaml_fields::ReadNonNegativeDouble(entry["tolerance_m"],
-                                                               item.Child("tolerance_m"))
-                          : default_tolerance_m;
+    arm.tolerance_m = entry["tolerance_m"] ? yaml_fields::ReadNonNegativeDouble(
+                                                 entry["tolerance_m"], item.Child("tolerance_m"))
+                                           : default_tolerance_m;
     for (const ArmSpec& other : *arms) {
       if (other.name == arm.name) item.Fail(entry["name"], "duplicate arm name" + Quoted(arm.name));
     }
     const int root = model.FindLink(arm.root_link);
     if (root < 0) {
-      item.Fail(entry["root_link"], "unknown link" + Quoted(arm.root_link) +
-                                        " (expected a link of the URDF)");
+      item.Fail(entry["root_link"],
+                "unknown link" + Quoted(arm.root_link) + " (expected a link of the URDF)");
     }
     root_of_arm.push_back(root);
     arms->push_back(arm);
@@ -136,12 +136,12 @@ void ReadJointLimits(const YAML::Node& node, const Where& where, KinematicModel*
     yaml_fields::RequireMap(entry.second, item);
     yaml_fields::CheckKeys(entry.second, {"lower", "upper"}, item);
     const JointSpec& joint = model->joint(link);
-    const double lower = entry.second["lower"]
-                             ? yaml_fields::ReadFiniteDouble(entry.second["lower"], item.Child("lower"))
-                             : joint.lower;
-    const double upper = entry.second["upper"]
-                             ? yaml_fields::ReadFiniteDouble(entry.second["upper"], item.Child("upper"))
-                             : joint.upper;
+    const double lower = entry.second["lower"] ? yaml_fields::ReadFiniteDouble(
+                                                     entry.second["lower"], item.Child("lower"))
+                                               : joint.lower;
+    const double upper = entry.second["upper"] ? yaml_fields::ReadFiniteDouble(
+                                                     entry.second["upper"], item.Child("upper"))
+                                               : joint.upper;
     if (!(joint.lower <= lower && lower <= upper && upper <= joint.upper)) {
       item.Fail(entry.second, "expected URDF lower (" + std::to_string(joint.lower) +
                                   ") <= lower <= upper <= URDF upper (" +
@@ -152,14 +152,13 @@ void ReadJointLimits(const YAML::Node& node, const Where& where, KinematicModel*
 }
 
 // The link's primitives in L after the scene's override.
-std::vector<std::pair<std::string, Shape>> LinkShapes(const urdf::Link& link,
-                                                      const LinkOverride& o,
+std::vector<std::pair<std::string, Shape>> LinkShapes(const urdf::Link& link, const LinkOverride& o,
                                                       const std::string& urdf_path,
                                                       const std::string& scene_path) {
   if (o.ignore) return {};
   const UrdfLinkGeometry geometry = ReadUrdfLinkGeometry(link, urdf_path);
-  const std::string override_hint = scene_path + " links:" + Quoted(link.name) +
-                                    " {p0_m, p1_m, radius_m} or {ignore: true}";
+  const std::string override_hint =
+      scene_path + " links:" + Quoted(link.name) + " {p0_m, p1_m, radius_m} or {ignore: true}";
   if (o.p0_L) {
     double radius_m = 0.0;
     if (o.radius_m) {
@@ -298,6 +297,67 @@ Shape TransformShape(const Eigen::Isometry3d& X_WL, const Shape& shape_L) {
   return Box{X_WL * box.X_WB, box.half_extents_m};
 }
 
+bool Workcell::Validate(std::string* why) const {
+  if (!kinematics.Validate(why)) return false;
+  auto fail = [&](const std::string& what) {
+    *why = what;
+    return false;
+  };
+  if (joint_names != kinematics.ActuatedJointNames()) return fail("joint_names != kinematics");
+  if (!((world_W.min_W.array() < world_W.max_W.array()).all())) return fail("empty world cube");
+  if (compatible.size() != primitives.size()) return fail("compatibility matrix size");
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < primitives.size(); ++i) {
+    const PrimitiveSpec& p = primitives[i];
+    const std::string where = "primitive " + std::to_string(i) + " '" + p.name + "': ";
+    if (!names.insert(p.name).second) return fail(where + "duplicate name");
+    if (!std::isfinite(p.tolerance_m) || p.tolerance_m < 0.0) return fail(where + "tolerance");
+    if ((p.link_index >= 0) == (p.object_index >= 0)) {
+      return fail(where + "must belong to exactly one link or object");
+    }
+    if (p.link_index >= kinematics.link_count() ||
+        p.object_index >= static_cast<int>(objects.size())) {
+      return fail(where + "owner index out of range");
+    }
+    const std::string& owner_name =
+        p.link_index >= 0 ? kinematics.link_name(p.link_index) : objects[p.object_index].name;
+    if (p.owner != owner_name) return fail(where + "owner name does not match its index");
+    if (p.object_index >= 0 && objects[p.object_index].primitive != i) {
+      return fail(where + "its object does not point back at it");
+    }
+    if (const auto* capsule = std::get_if<Capsule>(&p.shape_L)) {
+      if (!capsule->p0_W.allFinite() || !capsule->p1_W.allFinite() ||
+          !std::isfinite(capsule->radius_m) || capsule->radius_m < 0.0) {
+        return fail(where + "capsule not finite or negative radius");
+      }
+    } else {
+      const Box& box = std::get<Box>(p.shape_L);
+      if (!box.X_WB.matrix().allFinite() || !box.half_extents_m.allFinite() ||
+          (box.half_extents_m.array() <= 0.0).any()) {
+        return fail(where + "box not finite or not positive");
+      }
+    }
+    if (!p.variant.empty() && FindVariant(p.owner, p.variant) < 0) {
+      return fail(where + "unknown variant");
+    }
+  }
+  for (const ModelVariantSpec& v : variants) {
+    for (const PrimitiveId id : v.primitives) {
+      if (id >= primitives.size() || primitives[id].variant != v.name ||
+          primitives[id].link_index != v.link_index) {
+        return fail("variant '" + v.link + "/" + v.name + "': primitive list inconsistent");
+      }
+    }
+  }
+  for (const GraspTargetSpec& g : grasp_targets) {
+    if (g.link_index < 0 || g.link_index >= kinematics.link_count() || g.object_index < 0 ||
+        g.object_index >= static_cast<int>(objects.size())) {
+      return fail("grasp target '" + g.link + "'/'" + g.object + "': index out of range");
+    }
+  }
+  return true;
+}
+
 int Workcell::FindPrimitive(const std::string& name) const {
   for (std::size_t i = 0; i < primitives.size(); ++i) {
     if (primitives[i].name == name) return static_cast<int>(i);
@@ -332,15 +392,14 @@ Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_pat
 
   const YAML::Node scene = yaml_fields::LoadMapFile(scene_path);
   const Where top{scene_path, ""};
-  yaml_fields::CheckKeys(
-      scene,
-      {"world", "arms", "links", "joint_limits", "objects", "compatible", "grasp_targets",
-       "variants"},
-      top);
+  yaml_fields::CheckKeys(scene,
+                         {"world", "arms", "links", "joint_limits", "objects", "compatible",
+                          "grasp_targets", "variants"},
+                         top);
   ReadJointLimits(scene["joint_limits"], Where{scene_path, "joint_limits"}, &w.kinematics);
   w.world_W = ReadWorld(scene["world"], Where{scene_path, "world"});
-  const std::vector<int> arm_of_link = ReadArms(scene["arms"], Where{scene_path, "arms"}, model,
-                                                default_arm_tolerance_m, &w.arms);
+  const std::vector<int> arm_of_link =
+      ReadArms(scene["arms"], Where{scene_path, "arms"}, model, default_arm_tolerance_m, &w.arms);
   const std::vector<LinkOverride> overrides =
       ReadLinkOverrides(scene["links"], Where{scene_path, "links"}, model);
 
@@ -388,13 +447,14 @@ Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_pat
       const YAML::Node& entry = objects[i];
       Where item{scene_path, "objects[" + std::to_string(i) + "]"};
       yaml_fields::RequireMap(entry, item);
-      yaml_fields::CheckKeys(entry, {"name", "size_m", "pose", "tolerance_m", "attachable", "frame"},
-                             item);
+      yaml_fields::CheckKeys(
+          entry, {"name", "size_m", "pose", "tolerance_m", "attachable", "frame"}, item);
       ObjectSpec object;
       object.name = yaml_fields::ReadName(entry["name"], item.Child("name"));
       item.element += Quoted(object.name);
       claim_name(object.name, scene_path + ": " + item.element);
-      const Eigen::Vector3d size_m = yaml_fields::ReadVector3(entry["size_m"], item.Child("size_m"));
+      const Eigen::Vector3d size_m =
+          yaml_fields::ReadVector3(entry["size_m"], item.Child("size_m"));
       if ((size_m.array() <= 0.0).any()) {
         item.Fail(entry["size_m"], "size_m must be 3 numbers > 0 (full edge lengths, metres)");
       }
@@ -403,9 +463,11 @@ Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_pat
       if (!pose.IsDefined()) item.Fail(entry, "missing pose: {xyz_m: [x, y, z], rpy: [r, p, y]}");
       yaml_fields::RequireMap(pose, pose_where);
       yaml_fields::CheckKeys(pose, {"xyz_m", "rpy"}, pose_where);
-      const Eigen::Vector3d xyz_m = yaml_fields::ReadVector3(pose["xyz_m"], pose_where.Child("xyz_m"));
-      const Eigen::Vector3d rpy = pose["rpy"] ? yaml_fields::ReadVector3(pose["rpy"], pose_where.Child("rpy"))
-                                              : Eigen::Vector3d::Zero();
+      const Eigen::Vector3d xyz_m =
+          yaml_fields::ReadVector3(pose["xyz_m"], pose_where.Child("xyz_m"));
+      const Eigen::Vector3d rpy =
+          pose["rpy"] ? yaml_fields::ReadVector3(pose["rpy"], pose_where.Child("rpy"))
+                      : Eigen::Vector3d::Zero();
       // URDF convention: fixed-axis roll about x, then pitch about y, then yaw about z.
       object.X_WO_start.linear() = (Eigen::AngleAxisd(rpy.z(), Eigen::Vector3d::UnitZ()) *
                                     Eigen::AngleAxisd(rpy.y(), Eigen::Vector3d::UnitY()) *
@@ -420,10 +482,9 @@ Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_pat
       p.name = object.name;
       p.owner = object.name;
       p.shape_L = Box{object.X_WO_start, 0.5 * size_m};
-      p.tolerance_m = entry["tolerance_m"]
-                          ? yaml_fields::ReadNonNegativeDouble(entry["tolerance_m"],
-                                                               item.Child("tolerance_m"))
-                          : 0.0;
+      p.tolerance_m = entry["tolerance_m"] ? yaml_fields::ReadNonNegativeDouble(
+                                                 entry["tolerance_m"], item.Child("tolerance_m"))
+                                           : 0.0;
       p.is_static = !object.is_attachable && object.frame.empty();
       p.object_index = static_cast<int>(w.objects.size());
       if (!w.world_W.Contains(ComputeAabb(p.shape_L))) {
@@ -470,12 +531,14 @@ Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_pat
         claim_name(p.name, scene_path + ": " + cap_where.element);
         p.owner = variant.link;
         p.link_index = variant.link_index;
-        p.group = arm_of_link[variant.link_index] >= 0 ? w.arms[arm_of_link[variant.link_index]].name : "";
+        p.group = arm_of_link[variant.link_index] >= 0
+                      ? w.arms[arm_of_link[variant.link_index]].name
+                      : "";
         p.variant = variant.name;
-        p.shape_L = Capsule{yaml_fields::ReadVector3(cap["p0_m"], cap_where.Child("p0_m")),
-                            yaml_fields::ReadVector3(cap["p1_m"], cap_where.Child("p1_m")),
-                            yaml_fields::ReadNonNegativeDouble(cap["radius_m"],
-                                                               cap_where.Child("radius_m"))};
+        p.shape_L = Capsule{
+            yaml_fields::ReadVector3(cap["p0_m"], cap_where.Child("p0_m")),
+            yaml_fields::ReadVector3(cap["p1_m"], cap_where.Child("p1_m")),
+            yaml_fields::ReadNonNegativeDouble(cap["radius_m"], cap_where.Child("radius_m"))};
         p.tolerance_m = link_tolerance_m(variant.link_index);
         p.is_static = !model.is_moving(variant.link_index);
         variant.primitives.push_back(static_cast<PrimitiveId>(w.primitives.size()));
@@ -547,8 +610,8 @@ Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_pat
       target.object = yaml_fields::ReadName(entry["object"], item.Child("object"));
       target.object_index = w.FindObject(target.object);
       if (target.object_index < 0) {
-        item.Fail(entry["object"], "unknown object" + Quoted(target.object) +
-                                       " (expected a name from objects:)");
+        item.Fail(entry["object"],
+                  "unknown object" + Quoted(target.object) + " (expected a name from objects:)");
       }
       for (const GraspTargetSpec& other : w.grasp_targets) {
         if (other.link == target.link && other.object == target.object) {

@@ -2,11 +2,11 @@
 // message names the file (with the line when known), the element and what was expected.
 #pragma once
 
-#include <initializer_list>
-#include <string>
+#include <yaml-cpp/yaml.h>
 
 #include <Eigen/Core>
-#include <yaml-cpp/yaml.h>
+#include <initializer_list>
+#include <string>
 
 namespace arm_collision_monitor {
 namespace yaml_fields {

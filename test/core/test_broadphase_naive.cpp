@@ -31,10 +31,9 @@ TEST(NaiveBroadPhase, ClosedBoxesTouchingAtACornerAndToleranceInflation) {
   NaiveBroadPhase bp;
   bp.Add(0, Cube(0, 0, 0, 1), 0.0, Motion::kStatic);
   bp.Add(1, Cube(2, 2, 2, 1), 0.0, Motion::kMoving);  // shares the corner (1,1,1)
-  bp.Add(2, Cube(0, 0, 2.5, 1), 0.25, Motion::kMoving);  // gap 0.5 to 0, closed by 2*0.25?
+  bp.Add(2, Cube(0, 0, 2.5, 1), 0.25, Motion::kMoving);  // inflated down to z = 1.25: no touch
   std::vector<CandidatePair> pairs;
   bp.FindPairs(CompatibilityMatrix(), &pairs);
-  // 2's inflated box reaches z = 1.25 only: 0 is indexed uninflated (tolerance 0) up to 1.
   EXPECT_EQ(pairs, (std::vector<CandidatePair>{{0, 1}, {1, 2}}));
   bp.Move(2, Cube(0, 0, 2.25, 1));  // now reaches z = 1.0: touches 0
   bp.FindPairs(CompatibilityMatrix(), &pairs);

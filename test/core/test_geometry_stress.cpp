@@ -126,10 +126,15 @@ ld RefSegmentSegment(const V<ld>& p0, const V<ld>& p1, const V<ld>& q0, const V<
   const V<ld> d1 = p1 - p0, d2 = q1 - q0;
   const ld a = Dot(d1, d1), e = Dot(d2, d2);
   if (a > 0 && e > 0) {
+    // Squared sine of the angle, to within ~(5e-20)^2 absolute in long double.
     const V<ld> n = Cross(d1, d2);
+    const ld sin_sq = Dot(n, n) / (a * e);
     ld interior = 0;
-    const bool found = Dot(n, n) > ld(1e-4) * a * e ? InteriorSq<ld>(p0, p1, q0, q1, interior)
-                                                    : InteriorSq<qd>(p0, p1, q0, q1, interior);
+    // Below sin(angle) ~ 1e-18 the endpoint candidates are within ~1e-18 * length of the
+    // minimum, so the (costly) __float128 solve is skipped: parallel box edges are common.
+    const bool found = sin_sq > ld(1e-4)    ? InteriorSq<ld>(p0, p1, q0, q1, interior)
+                       : sin_sq > ld(1e-36) ? InteriorSq<qd>(p0, p1, q0, q1, interior)
+                                            : false;
     if (found) best = std::min(best, interior);
   }
   return std::sqrt(best);
@@ -193,11 +198,15 @@ bool SeparatedAlong(const V<ld>& n, const V<ld>* a, int na, const V<ld>* b, int 
   return SeparatedAlongIn<ld>(n, a, na, b, nb);
 }
 // The same along u x v. A nearly degenerate cross product has a direction error of
-// eps / sin(angle) that could hide a thin separation, so it is formed in __float128 then.
+// eps / sin(angle) that could hide a thin separation, so it is formed in __float128 then; below
+// sin(angle) = 1e-18 the axis is skipped, as for parallel edges (the face normals then show any
+// separation thicker than ~1e-18 * size).
 bool SeparatedAlongCross(const V<ld>& u, const V<ld>& v, const V<ld>* a, int na, const V<ld>* b,
                          int nb) {
   const V<ld> n = Cross(u, v);
-  if (Dot(n, n) > ld(1e-4) * Dot(u, u) * Dot(v, v)) return SeparatedAlongIn<ld>(n, a, na, b, nb);
+  const ld sin_sq = Dot(n, n) / (Dot(u, u) * Dot(v, v));
+  if (sin_sq > ld(1e-4)) return SeparatedAlongIn<ld>(n, a, na, b, nb);
+  if (!(sin_sq > ld(1e-36))) return false;
   return SeparatedAlongIn<qd>(Cross(To<qd>(u), To<qd>(v)), a, na, b, nb);
 }
 constexpr int kEdges[12][2] = {{0, 1}, {2, 3}, {4, 5}, {6, 7}, {0, 2}, {1, 3},

@@ -1,14 +1,14 @@
 // Forward kinematics against an independent composition: urdfdom's own urdf::Pose/Rotation
 // (quaternions) walked from each link up to the root, on seeded random configurations.
+#include <gtest/gtest.h>
+#include <urdf_model/model.h>
+
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
 #include <new>
 #include <random>
 #include <string>
-
-#include <gtest/gtest.h>
-#include <urdf_model/model.h>
 
 #include "arm_collision_monitor/kinematics/kinematic_model.h"
 #include "arm_collision_monitor/kinematics/urdf_conversions.h"
@@ -36,8 +36,8 @@ urdf::Pose Compose(const urdf::Pose& a, const urdf::Pose& b) {
   urdf::Pose c;
   c.rotation = a.rotation * b.rotation;
   const urdf::Vector3 rotated = a.rotation * b.position;
-  c.position = urdf::Vector3(a.position.x + rotated.x, a.position.y + rotated.y,
-                             a.position.z + rotated.z);
+  c.position =
+      urdf::Vector3(a.position.x + rotated.x, a.position.y + rotated.y, a.position.z + rotated.z);
   return c;
 }
 
@@ -51,8 +51,8 @@ urdf::Pose JointMotion(const urdf::Joint& joint, double position) {
     const double s = std::sin(0.5 * position) / norm;
     motion.rotation.setFromQuaternion(a.x * s, a.y * s, a.z * s, std::cos(0.5 * position));
   } else if (joint.type == urdf::Joint::PRISMATIC) {
-    motion.position = urdf::Vector3(a.x * position / norm, a.y * position / norm,
-                                    a.z * position / norm);
+    motion.position =
+        urdf::Vector3(a.x * position / norm, a.y * position / norm, a.z * position / norm);
   }
   return motion;
 }
@@ -81,6 +81,8 @@ urdf::Pose ReferencePose(const urdf::ModelInterface& urdf_model, const std::stri
 void CompareWithUrdfdom(const std::string& urdf_path, int samples, double* max_position_err_m,
                         double* max_rotation_err) {
   const KinematicModel model = KinematicModel::FromUrdfFile(urdf_path);
+  std::string why;
+  EXPECT_TRUE(model.Validate(&why)) << why;
   const urdf::ModelInterfaceSharedPtr urdf_model = ParseUrdfFile(urdf_path);
   std::cout << "seed " << kSeed << " for " << urdf_path << "\n";
   std::mt19937_64 rng(kSeed);

@@ -59,6 +59,43 @@ TEST_P(MonitorAllocation, SteadyStateUpdateDoesNotAllocate) {
   }
 }
 
+// Run-time scene changes (grasp targets, model switching, attach / detach, frame-bound poses)
+// and the cycles after them do not allocate either, once each has happened once.
+TEST_P(MonitorAllocation, SceneChangesDoNotAllocate) {
+  const auto wc = test::LoadBundledWorkcell();
+  Monitor monitor(wc, test::OptionsFor(GetParam()));
+  const Eigen::VectorXd grasp_q = test::ArmReachDown(*wc, "right", 0.1, -1.55, 0.95);
+  Eigen::VectorXd carry_q = grasp_q;
+  carry_q[test::JointIndex(*wc, "right_joint1")] *= 0.5;
+  Eigen::Isometry3d X_WO = Eigen::Isometry3d::Identity();
+  X_WO.translation() << 0.5, 0.0, 1.8;
+  std::string error;
+  error.reserve(512);  // error messages are not expected; keep them off the count if any
+  auto round = [&](bool* ok) {
+    *ok = monitor.SetGraspTarget("right_link7", "right_box", true, &error);
+    monitor.Update(grasp_q);
+    *ok = *ok && monitor.Attach("right_box", "right_link7", &error);
+    *ok = *ok && monitor.SwitchModel("right_link7", "grasp", &error);
+    monitor.Update(carry_q);
+    *ok = *ok && monitor.SetObjectPose("camera", X_WO, &error);
+    monitor.Update(grasp_q);
+    *ok = *ok && monitor.Detach("right_box", &error);
+    *ok = *ok && monitor.SwitchModel("right_link7", "", &error);
+    *ok = *ok && monitor.SetGraspTarget("right_link7", "right_box", false, &error);
+    monitor.Update(carry_q);
+  };
+  bool ok = false;
+  round(&ok);  // warm-up
+  ASSERT_TRUE(ok) << error;
+  const std::uint64_t before = g_allocations.load();
+  for (int k = 0; k < 100; ++k) round(&ok);
+  const std::uint64_t allocations = g_allocations.load() - before;
+  EXPECT_TRUE(ok) << error;
+  EXPECT_EQ(allocations, 0u) << BroadPhaseMethodName(GetParam());
+  std::string validate_error;
+  EXPECT_TRUE(monitor.Validate(&validate_error)) << validate_error;
+}
+
 INSTANTIATE_TEST_SUITE_P(AllBroadPhases, MonitorAllocation,
                          ::testing::ValuesIn(test::AllMethods()),
                          [](const ::testing::TestParamInfo<BroadPhaseMethod>& info) {

@@ -7,6 +7,7 @@
 namespace arm_collision_monitor {
 namespace {
 
+using test::ArmReachDown;
 using test::ExpectSameWarnings;
 using test::HasWarning;
 using test::LoadBundledWorkcell;
@@ -14,32 +15,6 @@ using test::MakeQ;
 using test::Prim;
 using test::ReferenceScene;
 using test::ReferenceWarnings;
-
-/// Planar inverse kinematics of one arm of the bundled workcell (joints alternate roll and pitch;
-/// 0.3 m from flange to shoulder, 0.65 m shoulder to elbow (links 2+3), 0.65 m elbow to wrist
-/// (links 4+5), 0.305 m wrist to tool tip): puts the tool tip, pointing straight down, at
-/// (x, y, tip_z). Returns {q1, q2, q4, q6}.
-std::array<double, 4> ReachDown(const Eigen::Vector3d& p_W_flange, double x, double y,
-                                double tip_z) {
-  const double a = 0.65, b = 0.65, w = 0.305;
-  const double dx = x - p_W_flange.x(), dy = y - p_W_flange.y();
-  const double r = std::hypot(dx, dy);
-  const double dz = tip_z + w - (p_W_flange.z() + 0.3);
-  const double d2 = r * r + dz * dz;
-  const double q4 = std::acos((d2 - a * a - b * b) / (2 * a * b));
-  const double q2 = std::atan2(r, dz) - std::atan2(b * std::sin(q4), a + b * std::cos(q4));
-  return {std::atan2(dy, dx), q2, q4, M_PI - q2 - q4};
-}
-
-Eigen::VectorXd ArmReachDown(const Workcell& wc, const std::string& arm, double x, double y,
-                             double tip_z) {
-  const Eigen::Vector3d flange(0.0, arm == "left" ? 0.55 : -0.55, 0.8);
-  const auto q = ReachDown(flange, x, y, tip_z);
-  return MakeQ(wc, {{arm + "_joint1", q[0]},
-                    {arm + "_joint2", q[1]},
-                    {arm + "_joint4", q[2]},
-                    {arm + "_joint6", q[3]}});
-}
 
 bool IsArmPrimitive(const Workcell& wc, PrimitiveId id, const std::string& arm) {
   return wc.primitives[id].link_index >= 0 && wc.primitives[id].group == arm;

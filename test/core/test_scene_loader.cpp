@@ -1,10 +1,10 @@
 // LoadWorkcell and LoadMonitorOptions: the bundled workcell, a third-party-style URDF, and every
 // kind of bad input, each rejected with a message naming the file and the element.
+#include <gtest/gtest.h>
+
 #include <fstream>
 #include <string>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "arm_collision_monitor/scene/workcell.h"
 
@@ -76,6 +76,8 @@ bool Compatible(const Workcell& w, const std::string& a, const std::string& b) {
 
 TEST(SceneLoader, BundledWorkcellHasTheSeeds35Primitives) {
   const Workcell w = LoadWorkcell(kUrdf, kScene);
+  std::string why;
+  EXPECT_TRUE(w.Validate(&why)) << why;
   EXPECT_EQ(CountIf(w, IsDefaultCapsule), 14);
   EXPECT_EQ(CountIf(w, IsDefaultBox), 21);
   EXPECT_EQ(CountIf(w, IsVariant), 6);  // palm + 2 fingers per gripper, inactive at start
@@ -94,8 +96,8 @@ TEST(SceneLoader, BundledWorkcellHasTheSeeds35Primitives) {
     const bool is_arm = p.group == "left" || p.group == "right";
     EXPECT_EQ(is_arm, std::holds_alternative<Capsule>(p.shape_L)) << p.name;
     EXPECT_EQ(p.tolerance_m, is_arm ? 0.0305 : 0.0) << p.name;
-    EXPECT_EQ(p.is_static, !is_arm && p.name != "front_box" && p.name != "right_box" &&
-                               p.name != "camera")
+    EXPECT_EQ(p.is_static,
+              !is_arm && p.name != "front_box" && p.name != "right_box" && p.name != "camera")
         << p.name;
   }
   ASSERT_EQ(w.arms.size(), 2u);
@@ -169,9 +171,10 @@ TEST(SceneLoader, BundledMonitorOptions) {
 }
 
 TEST(SceneLoader, MonitorOptionsOverridesAndErrors) {
-  const MonitorOptions o = LoadMonitorOptions(WriteFile(
-      "monitor.yaml", "broad_phase: grid\ngrid_cells_per_axis: 8\nmax_speed_mps: 1.0\n"
-                      "cycle_period_s: 0.01\ntechniques: {inside_node_exit: false}\n"));
+  const MonitorOptions o = LoadMonitorOptions(
+      WriteFile("monitor.yaml",
+                "broad_phase: grid\ngrid_cells_per_axis: 8\nmax_speed_mps: 1.0\n"
+                "cycle_period_s: 0.01\ntechniques: {inside_node_exit: false}\n"));
   EXPECT_EQ(o.broad_phase.method, BroadPhaseMethod::kGrid);
   EXPECT_EQ(o.broad_phase.grid_cells_per_axis, 8);
   EXPECT_NEAR(o.broad_phase.min_cell_size_m, 0.01, 1e-15);
@@ -204,6 +207,8 @@ TEST(SceneLoader, MonitorOptionsOverridesAndErrors) {
 
 TEST(SceneLoader, ThirdPartyCylinderArmLoads) {
   const Workcell w = LoadWorkcell(kArmUrdf, kData + "three_link_scene.yaml");
+  std::string why;
+  EXPECT_TRUE(w.Validate(&why)) << why;
   EXPECT_EQ(w.joint_names, (std::vector<std::string>{"shoulder", "elbow", "spin", "slide"}));
   // base box, upper_arm, forearm, wrist sphere, two finger boxes, the table.
   ASSERT_EQ(w.primitives.size(), 7u);
@@ -245,20 +250,21 @@ TEST(SceneLoader, MeshWorksThroughAnOverride) {
   EXPECT_EQ(c.p1_W, Eigen::Vector3d(0.35, 0, 0));
   EXPECT_EQ(c.radius_m, 0.045);
   EXPECT_EQ(forearm.tolerance_m, 0.02);  // the arm's tolerance from the scene
+  std::string why;
+  EXPECT_TRUE(w.Validate(&why)) << why;
   // Ignoring the link works as well.
-  const std::string ignore = WriteFile(
-      "ignore.yaml", kWorldLine + "links:\n  forearm: {ignore: true}\n");
+  const std::string ignore =
+      WriteFile("ignore.yaml", kWorldLine + "links:\n  forearm: {ignore: true}\n");
   EXPECT_LT(LoadWorkcell(kArmMeshUrdf, ignore).FindPrimitive("forearm"), 0);
 }
 
 TEST(SceneLoader, LinkOverridesRadiusEndpointsAndTolerance) {
   const Workcell w = LoadWorkcell(
-      kArmUrdf, WriteFile("overrides.yaml",
-                          kWorldLine +
-                              "arms: [{name: arm, root_link: upper_arm}]\n"
-                              "links:\n"
-                              "  upper_arm: {radius_m: 0.07, tolerance_m: 0.05}\n"
-                              "  wrist: {p0_m: [0, 0, 0], p1_m: [0.1, 0, 0]}\n"));
+      kArmUrdf,
+      WriteFile("overrides.yaml", kWorldLine + "arms: [{name: arm, root_link: upper_arm}]\n"
+                                               "links:\n"
+                                               "  upper_arm: {radius_m: 0.07, tolerance_m: 0.05}\n"
+                                               "  wrist: {p0_m: [0, 0, 0], p1_m: [0.1, 0, 0]}\n"));
   const PrimitiveSpec& upper = w.primitives[w.FindPrimitive("upper_arm")];
   EXPECT_EQ(std::get<Capsule>(upper.shape_L).radius_m, 0.07);
   EXPECT_EQ(upper.tolerance_m, 0.05);
@@ -340,6 +346,25 @@ TEST(SceneLoader, JointLimitOverrides) {
                    {"joint_limits.knee", "unknown joint"});
 }
 
+TEST(SceneLoader, ValidateCatchesBrokenInvariants) {
+  Workcell w = LoadWorkcell(kUrdf, kScene);
+  std::string why;
+  ASSERT_TRUE(w.Validate(&why)) << why;
+  Workcell renamed = w;
+  renamed.primitives[3].name = renamed.primitives[2].name;
+  EXPECT_FALSE(renamed.Validate(&why));
+  EXPECT_NE(why.find("duplicate name"), std::string::npos) << why;
+  Workcell orphan = w;
+  orphan.objects[0].primitive = 0;
+  EXPECT_FALSE(orphan.Validate(&why));
+  Workcell negative = w;
+  std::get<Capsule>(negative.primitives[w.FindPrimitive("left_link2")].shape_L).radius_m = -1.0;
+  EXPECT_FALSE(negative.Validate(&why));
+  Workcell resized = w;
+  resized.compatible = CompatibilityMatrix(3);
+  EXPECT_FALSE(resized.Validate(&why));
+}
+
 // ------------------------------------------------------------------ bad input --------------
 
 TEST(SceneLoader, MissingFilesAreRejected) {
@@ -370,8 +395,9 @@ TEST(SceneLoader, UnknownNamesAreRejected) {
   ExpectSceneError(kUrdf, kWorldLine + "grasp_targets: [{link: left_link7, object: teapot}]\n",
                    {"grasp_targets[0]", "unknown object 'teapot'"});
   ExpectSceneError(kUrdf,
-                   kWorldLine + "variants: [{link: left_hand, name: grasp, capsules: "
-                                "[{name: palm, p0_m: [0,0,0], p1_m: [0,0,1], radius_m: 0.1}]}]\n",
+                   kWorldLine +
+                       "variants: [{link: left_hand, name: grasp, capsules: "
+                       "[{name: palm, p0_m: [0,0,0], p1_m: [0,0,1], radius_m: 0.1}]}]\n",
                    {"variants[0]", "unknown link 'left_hand'"});
   ExpectSceneError(kUrdf, kWorldLine + "objetcs: []\n", {"unknown key 'objetcs'"});
   ExpectSceneError(kUrdf, "arms: []\n", {"world", "missing"});
@@ -383,8 +409,9 @@ TEST(SceneLoader, BadRadiiAreRejected) {
   ExpectSceneError(kUrdf, kWorldLine + "links: {left_link3: {radius_m: .nan}}\n",
                    {"links.left_link3.radius_m", "finite"});
   ExpectSceneError(kUrdf,
-                   kWorldLine + "variants: [{link: left_link7, name: grasp, capsules: "
-                                "[{name: palm, p0_m: [0,0,0], p1_m: [0,0,1], radius_m: -1}]}]\n",
+                   kWorldLine +
+                       "variants: [{link: left_link7, name: grasp, capsules: "
+                       "[{name: palm, p0_m: [0,0,0], p1_m: [0,0,1], radius_m: -1}]}]\n",
                    {"capsules[0].radius_m", ">= 0"});
   ExpectSceneError(kUrdf, kWorldLine + "links: {left_link3: {p0_m: [0, 0, 0]}}\n",
                    {"links.left_link3", "p0_m and p1_m"});
@@ -399,38 +426,44 @@ TEST(SceneLoader, BadRadiiAreRejected) {
 
 TEST(SceneLoader, DuplicateNamesAreRejected) {
   ExpectSceneError(kUrdf,
-                   kWorldLine + "objects:\n"
-                                "  - {name: crate, size_m: [1, 1, 1], pose: {xyz_m: [1, 1, 1]}}\n"
-                                "  - {name: crate, size_m: [1, 1, 1], pose: {xyz_m: [1, 1, 1]}}\n",
+                   kWorldLine +
+                       "objects:\n"
+                       "  - {name: crate, size_m: [1, 1, 1], pose: {xyz_m: [1, 1, 1]}}\n"
+                       "  - {name: crate, size_m: [1, 1, 1], pose: {xyz_m: [1, 1, 1]}}\n",
                    {"objects[1] 'crate'", "duplicate name 'crate'", "objects[0]"});
   ExpectSceneError(kUrdf,
-                   kWorldLine + "objects:\n"
-                                "  - {name: left_link2, size_m: [1, 1, 1], pose: {xyz_m: [1, 1, 1]}}\n",
+                   kWorldLine +
+                       "objects:\n"
+                       "  - {name: left_link2, size_m: [1, 1, 1], pose: {xyz_m: [1, 1, 1]}}\n",
                    {"duplicate name 'left_link2'", "link 'left_link2'"});
   ExpectSceneError(kUrdf,
-                   kWorldLine + "arms: [{name: a, root_link: left_base_link}, "
-                                "{name: a, root_link: right_base_link}]\n",
+                   kWorldLine +
+                       "arms: [{name: a, root_link: left_base_link}, "
+                       "{name: a, root_link: right_base_link}]\n",
                    {"arms[1]", "duplicate arm name 'a'"});
   ExpectSceneError(kUrdf,
-                   kWorldLine + "arms: [{name: a, root_link: left_base_link}, "
-                                "{name: b, root_link: left_link3}]\n",
+                   kWorldLine +
+                       "arms: [{name: a, root_link: left_base_link}, "
+                       "{name: b, root_link: left_link3}]\n",
                    {"both contain link 'left_link3'"});
 }
 
 TEST(SceneLoader, BadBoxesAreRejected) {
-  ExpectSceneError(kUrdf,
-                   kWorldLine + "objects: [{name: crate, size_m: [1, 0, 1], pose: {xyz_m: [1, 1, 1]}}]\n",
-                   {"objects[0] 'crate'", "size_m", "> 0"});
-  ExpectSceneError(kUrdf,
-                   kWorldLine + "objects: [{name: crate, size_m: [1, -1, 1], pose: {xyz_m: [1, 1, 1]}}]\n",
-                   {"objects[0] 'crate'", "size_m"});
-  ExpectSceneError(kUrdf, kWorldLine + "objects: [{name: crate, size_m: [1, 1], pose: {xyz_m: [1, 1, 1]}}]\n",
-                   {"objects[0] 'crate'.size_m", "3 numbers"});
+  ExpectSceneError(
+      kUrdf, kWorldLine + "objects: [{name: crate, size_m: [1, 0, 1], pose: {xyz_m: [1, 1, 1]}}]\n",
+      {"objects[0] 'crate'", "size_m", "> 0"});
+  ExpectSceneError(
+      kUrdf,
+      kWorldLine + "objects: [{name: crate, size_m: [1, -1, 1], pose: {xyz_m: [1, 1, 1]}}]\n",
+      {"objects[0] 'crate'", "size_m"});
+  ExpectSceneError(
+      kUrdf, kWorldLine + "objects: [{name: crate, size_m: [1, 1], pose: {xyz_m: [1, 1, 1]}}]\n",
+      {"objects[0] 'crate'.size_m", "3 numbers"});
   ExpectSceneError(kUrdf, kWorldLine + "objects: [{name: crate, size_m: [1, 1, 1]}]\n",
                    {"objects[0] 'crate'", "missing pose"});
-  ExpectSceneError(kUrdf,
-                   kWorldLine + "objects: [{name: crate, size_m: [1, 1, 1], pose: {xyz_m: [9, 0, 1]}}]\n",
-                   {"objects[0] 'crate'", "world cube"});
+  ExpectSceneError(
+      kUrdf, kWorldLine + "objects: [{name: crate, size_m: [1, 1, 1], pose: {xyz_m: [9, 0, 1]}}]\n",
+      {"objects[0] 'crate'", "world cube"});
   std::ifstream in(kArmUrdf);
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   text.replace(text.find("size=\"0.3 0.3 0.1\""), 18, "size=\"0.3 0 0.1\"");

@@ -1,12 +1,12 @@
 // The task configurations of config/task_poses.yaml do in the bundled workcell what the file
 // says: walked linearly in joint space from home, task 1 never comes within the tolerances,
 // tasks 2 and 3 first warn on the stated pair. Distances from the geometry module's routines.
+#include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
 #include <optional>
 #include <string>
 #include <utility>
-
-#include <gtest/gtest.h>
-#include <yaml-cpp/yaml.h>
 
 #include "arm_collision_monitor/geometry/distance.h"
 #include "arm_collision_monitor/scene/workcell.h"
@@ -52,8 +52,8 @@ PathResult WalkFromHome(const Workcell& w, const Eigen::VectorXd& goal) {
             w.compatible.AreCompatible(a, b)) {
           continue;
         }
-        const double clearance_m = ShapeDistance(shapes_W[a], shapes_W[b]).distance_m -
-                                   pa.tolerance_m - pb.tolerance_m;
+        const double clearance_m =
+            ShapeDistance(shapes_W[a], shapes_W[b]).distance_m - pa.tolerance_m - pb.tolerance_m;
         result.min_clearance_m = std::min(result.min_clearance_m, clearance_m);
         if (clearance_m < 0.0 && !result.first_warning) {
           result.first_warning = std::make_pair(pa.name, pb.name);

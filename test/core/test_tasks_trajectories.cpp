@@ -184,7 +184,9 @@ void ExpectOutcome(const Workcell& wc, const TaskSpec& spec,
     const PrimitiveId object = a_is_arm ? w.b : w.a;
     EXPECT_EQ(ArmOf(wc, arm), spec.first_warning_arm) << test::Describe(wc, w.a, w.b);
     EXPECT_EQ(OwnerOf(wc, object), spec.first_warning_object) << test::Describe(wc, w.a, w.b);
-    if (spec.first_warning_before_contact) EXPECT_GT(w.distance_m, 0.0) << what;
+    if (spec.first_warning_before_contact) {
+      EXPECT_GT(w.distance_m, 0.0) << what;
+    }
     std::printf("%s %s: first warning at state %d: %s at %.4f m (threshold %.4f m)\n",
                 spec.name.c_str(), what.c_str(), outcome.first_warning_state,
                 test::Describe(wc, w.a, w.b).c_str(), w.distance_m, w.threshold_m);

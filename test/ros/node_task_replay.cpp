@@ -184,7 +184,9 @@ TEST(TaskReplay, EveryReportMatchesTheBruteForceAndTheTaskOutcome) {
       EXPECT_EQ(w.primitive_b_name, wc.primitives[w.primitive_b].name) << context;
     }
     test::ExpectSameWarnings(wc, expected, actual, context);
-    if (!actual.empty()) EXPECT_TRUE(report->stop) << context;
+    if (!actual.empty()) {
+      EXPECT_TRUE(report->stop) << context;
+    }
     if (::testing::Test::HasFailure()) return;
     if (expected.empty()) continue;
     ++warning_reports;
@@ -218,7 +220,9 @@ TEST(TaskReplay, EveryReportMatchesTheBruteForceAndTheTaskOutcome) {
                 test::Describe(wc, w.a, w.b).c_str(), w.distance_m, w.threshold_m);
     EXPECT_EQ(arm.group, first_warning_arm) << test::Describe(wc, w.a, w.b);
     EXPECT_EQ(object.owner, first_warning_object) << test::Describe(wc, w.a, w.b);
-    if (first_warning_before_contact) EXPECT_GT(w.distance_m, 0.0);
+    if (first_warning_before_contact) {
+      EXPECT_GT(w.distance_m, 0.0);
+    }
   }
   EXPECT_TRUE(has_contact) << "the arm never reaches " << first_warning_object;
   if (!never_warned_object.empty()) {

@@ -21,7 +21,10 @@ struct BroadPhaseTechniques {
   bool directional_neighbours = true;  ///< only neighbours in the direction of motion
   bool inside_node_exit = true;        ///< skip neighbours when the box stays inside its leaf
   bool pair_deduplication = true;      ///< test each pair once per cycle
-  bool bounding_box_pretests = true;   ///< box tests before object-node / object-object work
+  /// Box tests before object-node / object-object work. In the octree: one test against a
+  /// split neighbour before descending into its children (the grid has none to skip); the
+  /// Monitor's narrow phase may read it for its own box pretests.
+  bool bounding_box_pretests = true;
 };
 
 struct BroadPhaseOptions {

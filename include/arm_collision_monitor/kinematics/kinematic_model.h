@@ -2,11 +2,10 @@
 // from the URDF; link poses are written into caller-owned storage, no allocation per call).
 #pragma once
 
-#include <string>
-#include <vector>
-
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <string>
+#include <vector>
 
 #include "arm_collision_monitor/core/load_error.h"
 
@@ -19,9 +18,9 @@ struct JointSpec {
   std::string name;
   JointType type = JointType::kFixed;
   Eigen::Isometry3d X_PJ = Eigen::Isometry3d::Identity();  ///< joint origin in parent link P
-  Eigen::Vector3d axis_J = Eigen::Vector3d::UnitZ();        ///< unit axis in the joint frame
-  int q_index = -1;           ///< index into q for actuated joints, -1 for fixed
-  double lower = 0.0;         ///< position limits (rad or m); +/-inf for continuous
+  Eigen::Vector3d axis_J = Eigen::Vector3d::UnitZ();       ///< unit axis in the joint frame
+  int q_index = -1;    ///< index into q for actuated joints, -1 for fixed
+  double lower = 0.0;  ///< position limits (rad or m); +/-inf for continuous
   double upper = 0.0;
   double max_velocity = 0.0;  ///< rad/s or m/s
   /// A URDF <mimic> joint is not actuated (q_index = -1): its position is
@@ -58,6 +57,10 @@ class KinematicModel {
   /// link_count() entries.
   void ComputeLinkPoses(const Eigen::Ref<const Eigen::VectorXd>& q,
                         std::vector<Eigen::Isometry3d>* X_WL) const;
+
+  /// Checks the invariants (parents precede children, q indices are 0..q_size()-1 once each,
+  /// unit axes, lower <= upper, mimic targets actuated). False with a reason otherwise.
+  bool Validate(std::string* why) const;
 
   /// Start-up only: replaces the position limits of actuated joint `joint_name` (e.g. soft
   /// limits from the scene file). False if no actuated joint has that name.

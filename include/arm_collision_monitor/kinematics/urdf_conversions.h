@@ -1,11 +1,11 @@
 // Conversions from urdfdom types, shared by the kinematics and the scene loader.
 #pragma once
 
-#include <string>
-
-#include <Eigen/Geometry>
 #include <urdf_model/model.h>
 #include <urdf_world/types.h>
+
+#include <Eigen/Geometry>
+#include <string>
 
 namespace arm_collision_monitor {
 

@@ -18,12 +18,12 @@ namespace arm_collision_monitor {
 
 /// One primitive of the model, in the frame of its owner.
 struct PrimitiveSpec {
-  std::string name;   ///< unique, e.g. "left_link3", "left_gripper/finger1", "front_table"
-  std::string owner;  ///< the link or object it belongs to
-  int link_index = -1;  ///< KinematicModel link carrying it; -1 for an environment object
-  std::string group;    ///< the arm it belongs to ("left", "right"), "" for the environment
-  std::string variant;  ///< model variant of its link ("" = default, active at start)
-  Shape shape_L;        ///< geometry in the owner's frame (link frame, or world for objects)
+  std::string name;          ///< unique, e.g. "left_link3", "left_gripper/finger1", "front_table"
+  std::string owner;         ///< the link or object it belongs to
+  int link_index = -1;       ///< KinematicModel link carrying it; -1 for an environment object
+  std::string group;         ///< the arm it belongs to ("left", "right"), "" for the environment
+  std::string variant;       ///< model variant of its link ("" = default, active at start)
+  Shape shape_L;             ///< geometry in the owner's frame (link frame, or world for objects)
   double tolerance_m = 0.0;  ///< tolerance zone beyond the surface
   /// Never moves: a link primitive with only fixed joints to the root, or an object that is
   /// neither attachable nor frame-bound. Attachable and frame-bound objects are not static.
@@ -72,9 +72,9 @@ struct Workcell {
   std::string fixed_frame = "world";
   Aabb world_W;  ///< the world cube the spatial index covers
   KinematicModel kinematics;
-  std::vector<std::string> joint_names;  ///< actuated joints, in the order of Monitor's q
-  std::vector<PrimitiveSpec> primitives; ///< PrimitiveId = index
-  CompatibilityMatrix compatible;        ///< pairs excused at start-up
+  std::vector<std::string> joint_names;   ///< actuated joints, in the order of Monitor's q
+  std::vector<PrimitiveSpec> primitives;  ///< PrimitiveId = index
+  CompatibilityMatrix compatible;         ///< pairs excused at start-up
   std::vector<ArmSpec> arms;
   std::vector<ObjectSpec> objects;
   std::vector<GraspTargetSpec> grasp_targets;
@@ -82,6 +82,11 @@ struct Workcell {
   /// Start-up findings that do not stop loading but must be shown to the user, e.g. pairs that
   /// are within their tolerances in every sampled configuration (they would warn every cycle).
   std::vector<std::string> warnings;
+
+  /// Checks the invariants: the kinematics' own, one compatibility row per primitive, unique
+  /// primitive names, owners and indices that point at each other, finite non-negative sizes
+  /// and tolerances, joint_names matching the kinematics. False with a reason otherwise.
+  bool Validate(std::string* why) const;
 
   /// Index of the primitive, object or variant with that name; -1 if none.
   int FindPrimitive(const std::string& name) const;
@@ -98,8 +103,8 @@ struct MonitorOptions {
   BroadPhaseOptions broad_phase;
   /// Let the Monitor pick the faster of octree and naive for the scene at start-up.
   bool auto_broad_phase = false;
-  double max_speed_mps = 0.61;     ///< 24 in/s: bounds the per-cycle motion
-  double cycle_period_s = 0.05;    ///< 20 Hz
+  double max_speed_mps = 0.61;   ///< 24 in/s: bounds the per-cycle motion
+  double cycle_period_s = 0.05;  ///< 20 Hz
   /// Optional speed-dependent tolerance (ISO/TS 15066 protective separation distance): each
   /// moving primitive's tolerance grows by its current speed times (reaction + stopping time).
   bool speed_scaled_tolerance = false;
