@@ -400,11 +400,18 @@ def main():
         return 2
     out_dir = args[0]
     meta = {r["key"]: r["value"] for r in read(out_dir, "meta.csv")}
+    env = {}
+    env_path = os.path.join(out_dir, "environment.csv")
+    if os.path.exists(env_path):
+        with open(env_path) as f:
+            env = dict(line.strip().split(",", 1) for line in f if "," in line)
     md = ["# arm_collision_monitor: benchmark report\n\n",
           f"Machine: {machine()}. Seed {meta.get('seed', '?')}, "
           f"{'quick' if meta.get('quick') == '1' else 'full'} run, "
           f"{meta.get('repeats', '?')} timing pass(es); experiments took "
-          f"{fmt(meta.get('experiment_seconds', 'nan'), 0)} s. Missed warnings against brute "
+          f"{fmt(meta.get('experiment_seconds', 'nan'), 0)} s (scripts/bench in all: "
+          f"{env.get('bench_seconds', '?')} s); load average at start "
+          f"{env.get('load_average_at_start', '?')}. Missed warnings against brute "
           f"force over all our runs: **{meta.get('missed_vs_brute_total', '?')}**. "
           f"Times in microseconds. The seed's figures are for a 20 MHz 80386 ({SEED_TR}, "
           "section 5); compare shapes and ratios, not absolute times.\n\n"]

@@ -521,7 +521,8 @@ void Monitor::Impl::RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q) {
       ++moved_count;
     }
   }
-  ComputeTolerances(shape_W, moved, &tol_now);
+  // Fixed tolerances: tol_now already equals tol_base (Attach / Detach keep both).
+  if (speed_tol_gain_s != 0.0) ComputeTolerances(shape_W, moved, &tol_now);
   for (PrimitiveId id = 0; id < n; ++id) {
     if (moved[id]) {
       shape_prev_W[id] = shape_W[id];
@@ -826,6 +827,10 @@ bool Monitor::Validate(std::string* error) const {
         msg << "primitive " << id << " does not follow link " << link;
         break;
       }
+    }
+    if (m.speed_tol_gain_s == 0.0 && m.tol_now[id] != m.tol_base[id]) {
+      msg << "primitive " << id << " tolerance " << m.tol_now[id] << " != " << m.tol_base[id];
+      break;
     }
     const int o = m.object_of[id];
     if (o >= 0 && (m.holder[o] >= 0) != (link >= 0)) {

@@ -7,8 +7,12 @@
 
 int main(int argc, char** argv) {
   ros::init(argc, argv, "arm_collision_monitor");
+  // Held outside the try: the last NodeHandle going out of scope shuts roscpp (and its
+  // logging) down, which would swallow the start-up error message below.
+  ros::NodeHandle nh;
+  ros::NodeHandle private_nh("~");
   try {
-    arm_collision_monitor::MonitorNode node(ros::NodeHandle(), ros::NodeHandle("~"));
+    arm_collision_monitor::MonitorNode node(nh, private_nh);
     ros::spin();
   } catch (const std::exception& e) {
     // Start-up errors (LoadError names the file or parameter); the cycle itself never throws.

@@ -7,6 +7,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <string>
 #include <memory>
 #include <random>
 #include <thread>
@@ -149,6 +151,10 @@ BENCHMARK(BM_MonitorIdleCycle);
 
 int main(int argc, char** argv) {
   using arm_collision_monitor::BroadPhaseMethod;
+  // Wall-clock percentiles mean little on a loaded machine: say how loaded it was.
+  std::string load;
+  std::getline(std::ifstream("/proc/loadavg"), load);
+  std::printf("load average at start: %s\n", load.c_str());
   std::printf("bench_monitor_cycle: seed %llu, %d cycles of 50 ms, joints at up to %.0f%% of "
               "their velocity limits; %u hardware threads\n",
               static_cast<unsigned long long>(arm_collision_monitor::kSeed),

@@ -62,7 +62,8 @@ class BroadPhase {
 
   /// The candidate pairs now: every pair of present primitives whose inflated boxes overlap
   /// (Aabb::Overlaps), each once with a < b, leaving out pairs marked in `compatible` and pairs
-  /// of two static primitives. Replaces the contents of `pairs` (its capacity is reused).
+  /// of two static primitives. Replaces the contents of `pairs` (its capacity is reused); every
+  /// implementation returns them sorted (CandidatePair::operator<), so results compare directly.
   virtual void FindPairs(const CompatibilityMatrix& compatible,
                          std::vector<CandidatePair>* pairs) = 0;
 

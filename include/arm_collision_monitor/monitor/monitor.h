@@ -47,6 +47,21 @@ struct CycleReport {
   BroadPhaseCounters counters;  ///< broad-phase work done during this cycle only
 };
 
+/// Per-cycle collision monitor (the seed's update loop). Rules it follows:
+/// - Only primitives whose carrier link's pose changed (bit for bit) are moved in the broad
+///   phase; a q bit-identical to the last good one with no scene change since is an idle cycle:
+///   the previous report with cycle + 1 (and zero moved / counters), no work.
+/// - Static primitives (links with only fixed joints above them, resting objects) are never
+///   tested against each other. A resting attachable object is static; it moves (and is tested
+///   against statics) while attached. Frame-bound objects always move.
+/// - Statics that no arm can reach -- with anything it may hold -- are left out at start-up
+///   (is_active false): the reach envelope of each link is a sphere about the first actuated
+///   joint above it (see ComputeReachability in monitor.cpp). A frame-bound object brings the
+///   statics near its pose back in (SetObjectPose).
+/// - A held object gets at least its holder's tolerance and is compatible with its holder link.
+/// - auto_broad_phase: the octree when at least kAutoOctreeMinPrimitives primitives are active
+///   at start-up, else the all-pairs (naive) broad phase.
+/// - A refused input keeps the last good model and its warnings, sets input and stop.
 class Monitor {
  public:
   /// Start-up: builds the live model from a loaded workcell (see scene/workcell.h) and the
