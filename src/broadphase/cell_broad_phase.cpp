@@ -142,6 +142,30 @@ unsigned CellBroadPhase::ReachMask(const Aabb& box_W, const Aabb& cell_W) {
   return mask;
 }
 
+// Which sides of an old cell Y need a neighbour search (NeedsDirection). A cell X on side d of
+// Y that the new box B1 overlaps (at a point of the cube) has to be visited only if the old box
+// B0 did not overlap it, since B0's cells are all linked already. Side d can be skipped when
+//  (a) on every axis with d[a] != 0, B0 already reached Y's face on that side: X's extent on
+//      that axis starts at the face, which B0 covers (B0 also overlaps Y); and
+//  (b) on every axis with d[a] == 0, B1 covers no coordinate of Y's extent that B0 did not:
+//      X's extent there contains Y's (then B0, overlapping Y, meets it) or lies inside Y's
+//      (then B1's part of it, non-empty, lies in B0).
+// Then B0 overlaps X on every axis: X is an old cell. Condition (a) fails exactly when the box
+// newly reaches a face, (b) when it grew sideways: the directions of motion.
+CellBroadPhase::CellReach CellBroadPhase::ComputeCellReach(const Aabb& old_box_W,
+                                                           const Aabb& new_box_W,
+                                                           const Aabb& cell_W) {
+  CellReach r;
+  r.reach_new = ReachMask(new_box_W, cell_W);
+  r.reach_old = ReachMask(old_box_W, cell_W);
+  for (int a = 0; a < 3; ++a) {
+    const double lo = std::max(new_box_W.min_W[a], cell_W.min_W[a]);
+    const double hi = std::min(new_box_W.max_W[a], cell_W.max_W[a]);
+    if (lo <= hi && (lo < old_box_W.min_W[a] || hi > old_box_W.max_W[a])) r.grew_axes |= 1u << a;
+  }
+  return r;
+}
+
 const std::array<CellBroadPhase::Direction, 26>& CellBroadPhase::Directions() {
   static const std::array<Direction, 26> kDirections = [] {
     std::array<Direction, 26> out{};
@@ -155,9 +179,11 @@ const std::array<CellBroadPhase::Direction, 26>& CellBroadPhase::Directions() {
           dir.d[1] = dy;
           dir.d[2] = dz;
           dir.needed_mask = 0;
+          dir.zero_axes = 0;
           for (int a = 0; a < 3; ++a) {
             if (dir.d[a] > 0) dir.needed_mask |= 1u << a;
             if (dir.d[a] < 0) dir.needed_mask |= 1u << (3 + a);
+            if (dir.d[a] == 0) dir.zero_axes |= 1u << a;
           }
         }
       }

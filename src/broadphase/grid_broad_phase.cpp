@@ -84,7 +84,7 @@ void GridBroadPhase::InsertIntoCells(PrimitiveId id) {
 
 // The octree's update with the neighbours simplified to the 26 surrounding cells (the seed,
 // section 5). Exactness: the argument at the top of cell_broad_phase.cpp, with s = cell edge.
-void GridBroadPhase::UpdateCells(PrimitiveId id, const Aabb& /*old_box_W*/) {
+void GridBroadPhase::UpdateCells(PrimitiveId id, const Aabb& old_box_W) {
   const std::uint32_t stamp = NextVisitStamp();
   const std::uint32_t old_head = records_[id].first_link;
   for (std::uint32_t l = old_head; l != kNone; l = links_[l].next_of_prim) {
@@ -94,10 +94,11 @@ void GridBroadPhase::UpdateCells(PrimitiveId id, const Aabb& /*old_box_W*/) {
     const std::uint32_t cell = links_[l].cell;
     const int u[3] = {static_cast<int>(cell / (g_ * g_)), static_cast<int>((cell / g_) % g_),
                       static_cast<int>(cell % g_)};
-    const unsigned reach = ReachMask(records_[id].box_W, CellBox(u[0], u[1], u[2]));
-    if (techniques_.inside_node_exit && reach == 0) continue;
+    const CellReach reach =
+        ComputeCellReach(old_box_W, records_[id].box_W, CellBox(u[0], u[1], u[2]));
+    if (techniques_.inside_node_exit && reach.reach_new == 0) continue;
     for (const Direction& dir : Directions()) {
-      if (techniques_.directional_neighbours && (dir.needed_mask & ~reach) != 0) continue;
+      if (!NeedsDirection(reach, dir)) continue;
       const int i = u[0] + dir.d[0], j = u[1] + dir.d[1], k = u[2] + dir.d[2];
       if (i < 0 || j < 0 || k < 0 || i >= g_ || j >= g_ || k >= g_) continue;
       const std::uint32_t neighbour = Index(i, j, k);

@@ -236,7 +236,7 @@ void OctreeBroadPhase::UpdateNeighbour(PrimitiveId id, std::uint32_t node,
 
 // The seed's UpdateObject, collision checks left to FindPairs. Exactness: see the argument at
 // the top of cell_broad_phase.cpp (every new leaf touches an old one).
-void OctreeBroadPhase::UpdateCells(PrimitiveId id, const Aabb& /*old_box_W*/) {
+void OctreeBroadPhase::UpdateCells(PrimitiveId id, const Aabb& old_box_W) {
   const std::uint32_t stamp = NextVisitStamp();
   const std::uint32_t old_head = records_[id].first_link;
   for (std::uint32_t l = old_head; l != kNone; l = links_[l].next_of_prim) {
@@ -245,13 +245,11 @@ void OctreeBroadPhase::UpdateCells(PrimitiveId id, const Aabb& /*old_box_W*/) {
   // New links go to the front of the primitive's list, so the old ones stay from old_head on.
   for (std::uint32_t l = old_head; l != kNone; l = links_[l].next_of_prim) {
     const std::uint32_t leaf = links_[l].cell;
-    const unsigned reach = ReachMask(records_[id].box_W, CellBox(leaf));
+    const CellReach reach = ComputeCellReach(old_box_W, records_[id].box_W, CellBox(leaf));
     // BoundingBoxInsideNode: strictly inside its leaf, the box touches no neighbour.
-    if (techniques_.inside_node_exit && reach == 0) continue;
+    if (techniques_.inside_node_exit && reach.reach_new == 0) continue;
     for (const Direction& dir : Directions()) {
-      // NeighborInDirection, made exact: a neighbour on side d can only be entered if the box
-      // now reaches the leaf's faces on that side.
-      if (techniques_.directional_neighbours && (dir.needed_mask & ~reach) != 0) continue;
+      if (!NeedsDirection(reach, dir)) continue;  // NeighborInDirection
       const std::uint32_t neighbour = FindNeighbour(leaf, dir.d);
       if (neighbour != kNone) UpdateNeighbour(id, neighbour, leaf, stamp);
     }

@@ -57,6 +57,25 @@ inline LocalSegmentPair ClosestLocal(const Vector3d& d1, const Vector3d& d2, con
     t = Clamp01(d2.dot(r) / e);
   } else if (is_point2) {
     s = Clamp01(-d1.dot(r) / a);
+  } else if (!(a * e >= kSegmentRescaleBelow_m4)) {
+    // Tiny segments: |d1 x d2|^2 (four lengths) would underflow. The problem is homogeneous, so
+    // solve it scaled by the power of two that brings the longer direction to ~1 m (exact). The
+    // scaled product a e is then >= ~1e-31 (neither is a point), so this recurses only once.
+    // Segments shorter than 1e-150 |r| act as their start points (error <= their lengths).
+    int exponent = 0;
+    std::frexp(std::max(d1.cwiseAbs().maxCoeff(), d2.cwiseAbs().maxCoeff()), &exponent);
+    if (std::max(r.cwiseAbs().maxCoeff(), r1.cwiseAbs().maxCoeff()) >
+        std::ldexp(kSegmentRescaleMaxRatio, exponent)) {
+      out.p_rel = r;
+      out.q_rel = Vector3d::Zero();
+      return out;
+    }
+    const double down = std::ldexp(1.0, -exponent);
+    out = ClosestLocal(down * d1, down * d2, down * r, down * r1);
+    const double up = std::ldexp(1.0, exponent);
+    out.p_rel *= up;
+    out.q_rel *= up;
+    return out;
   } else {
     const Vector3d n = d1.cross(d2);
     const double denom = n.squaredNorm();

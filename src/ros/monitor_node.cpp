@@ -99,7 +99,7 @@ MonitorNode::MonitorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   markers_ = std::make_unique<MarkerBuilder>(*monitor_, fixed_frame_);
   for (const ObjectSpec& object : workcell_->objects) {
     if (!object.frame.empty()) {
-      bound_objects_.emplace_back(object.name, object.frame);
+      bound_objects_.push_back(BoundObject{object.name, object.frame});
     }
   }
   if (!bound_objects_.empty()) {
@@ -201,20 +201,24 @@ void MonitorNode::OnCycleTimer(const ros::TimerEvent&) {
 }
 
 bool MonitorNode::UpdateBoundObjects() {
-  for (const auto& [object, frame] : bound_objects_) {
+  for (BoundObject& bound : bound_objects_) {
     std::string error;
     try {
-      const Eigen::Isometry3d X_WO =
-          tf2::transformToEigen(tf_buffer_.lookupTransform(fixed_frame_, frame, ros::Time(0)));
-      if (monitor_->SetObjectPose(object, X_WO, &error)) {
+      const Eigen::Isometry3d X_WO = tf2::transformToEigen(
+          tf_buffer_.lookupTransform(fixed_frame_, bound.frame, ros::Time(0)));
+      // Most frames (a calibrated camera) do not move: skip the index update then.
+      if ((bound.has_pose && X_WO.matrix() == bound.X_WO.matrix()) ||
+          monitor_->SetObjectPose(bound.object, X_WO, &error)) {
+        bound.X_WO = X_WO;
+        bound.has_pose = true;
         continue;
       }
     } catch (const tf2::TransformException& e) {
       error = e.what();
     }
     ++tf_failures_;
-    SetCondition("object '%s': pose from frame '%s' unavailable: %s", object.c_str(),
-                 frame.c_str(), error.c_str());
+    SetCondition("object '%s': pose from frame '%s' unavailable: %s", bound.object.c_str(),
+                 bound.frame.c_str(), error.c_str());
     return false;
   }
   return true;

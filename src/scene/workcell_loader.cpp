@@ -416,9 +416,12 @@ Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_pat
   }
 
   // Link primitives, in link order.
+  // A moving link outside every arm still gets the default tolerance: a moving primitive
+  // without a tolerance zone could pass a static one between two cycles unseen.
   auto link_tolerance_m = [&](int link) {
     if (overrides[link].tolerance_m) return *overrides[link].tolerance_m;
-    return arm_of_link[link] >= 0 ? w.arms[arm_of_link[link]].tolerance_m : 0.0;
+    if (arm_of_link[link] >= 0) return w.arms[arm_of_link[link]].tolerance_m;
+    return model.is_moving(link) ? default_arm_tolerance_m : 0.0;
   };
   for (int link = 0; link < model.link_count(); ++link) {
     const std::string& link_name = model.link_name(link);

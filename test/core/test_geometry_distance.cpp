@@ -179,6 +179,19 @@ TEST(SegmentSegment, FarFromOriginAt1e4) {
   EXPECT_NEAR((c.p_W - o).norm(), 0.0, 1e-11);
 }
 
+TEST(SegmentSegment, TinySegmentsKeepRelativeAccuracy) {
+  // The right-angle crossing scaled down until products of four lengths underflow (1e-140 m:
+  // |d1 x d2|^2 ~ 1e-560): the routine rescales, so the distance stays 0.5 * scale.
+  for (const double scale : {1e-100, 1e-140}) {
+    const SegmentClosestPoints c = SegmentSegmentClosestPoints(
+        scale * Vector3d(-1, 0, 0), scale * Vector3d(1, 0, 0), scale * Vector3d(0, -1, 0.5),
+        scale * Vector3d(0, 1, 0.5));
+    EXPECT_NEAR(c.distance_m / scale, 0.5, kTol_m) << "scale " << scale;
+    EXPECT_NEAR(c.s, 0.5, kTol_m);
+    EXPECT_NEAR(c.t, 0.5, kTol_m);
+  }
+}
+
 // ------------------------------------------------------------------------------------------
 // Capsule-capsule
 

@@ -191,7 +191,7 @@ inline std::vector<ReferenceWarning> ReferenceWarnings(const Workcell& wc,
   }
   auto excused = [&](std::size_t a, std::size_t b) {
     if (wc.compatible.AreCompatible(a, b)) return true;
-    for (const auto [x, y] : {std::pair{a, b}, std::pair{b, a}}) {
+    for (const auto& [x, y] : {std::pair{a, b}, std::pair{b, a}}) {
       const PrimitiveSpec& px = wc.primitives[x];
       const PrimitiveSpec& py = wc.primitives[y];
       if (px.link_index < 0 || py.object_index < 0) continue;

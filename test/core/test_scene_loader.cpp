@@ -237,6 +237,14 @@ TEST(SceneLoader, ThirdPartyCylinderArmLoads) {
   EXPECT_FALSE(Compatible(w, "base_link", "forearm"));
 }
 
+TEST(SceneLoader, MovingLinksOutsideEveryArmKeepTheDefaultTolerance) {
+  const Workcell w = LoadWorkcell(kArmUrdf, WriteFile("no_arms.yaml", kWorldLine),
+                                  /*default_arm_tolerance_m=*/0.04);
+  EXPECT_EQ(w.primitives[w.FindPrimitive("base_link")].tolerance_m, 0.0);  // fixed to the root
+  EXPECT_EQ(w.primitives[w.FindPrimitive("upper_arm")].tolerance_m, 0.04);
+  EXPECT_EQ(w.primitives[w.FindPrimitive("upper_arm")].group, "");
+}
+
 TEST(SceneLoader, MeshWithoutOverrideFailsNamingLinkAndFile) {
   ExpectLoadError([&] { LoadWorkcell(kArmMeshUrdf, kData + "three_link_scene.yaml"); },
                   {kArmMeshUrdf, "link 'forearm'", "package://third_party_arm/meshes/forearm.stl",

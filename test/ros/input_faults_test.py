@@ -21,6 +21,11 @@ from acm_test_util import (HOME, LEFT_JOINTS, LEFT_TOWARDS_RIGHT, RIGHT_JOINTS,
 NODE = '/arm_collision_monitor'
 
 
+# Left arm yawed towards the front box (-0.525 rad), shoulder, elbow and wrist pitches putting
+# the gripper about 5 cm above the box top, pointing down.
+LEFT_AT_FRONT_BOX = [-0.525, 0.849, 0.0, 1.074, 0.0, 1.219, 0.0]
+
+
 def left_only(positions, stamp=None, names=None):
     return joint_state(LEFT_JOINTS if names is None else names, positions, stamp)
 
@@ -198,21 +203,32 @@ class InputFaultsTest(unittest.TestCase):
         self.assertEqual(report.warnings, [])
 
     def test_14_attach_detach_grasp_services(self):
+        c = self.client
         attach = rospy.ServiceProxy(NODE + '/attach', AttachObject)
         detach = rospy.ServiceProxy(NODE + '/detach', DetachObject)
         grasp = rospy.ServiceProxy(NODE + '/set_grasp_target', SetGraspTarget)
+        self.assertIsNotNone(c.go_clear())
         self.assertFalse(attach('no_such_object', 'left_link7').success)
         self.assertFalse(attach('front_box', 'no_such_link').success)
+        # At home the gripper is far from the box: the Monitor refuses to attach it.
+        self.assertFalse(attach('front_box', 'left_link7').success)
+        # The left gripper just above the front box (planar two-link solution, gripper down).
+        report = c.publish_until(lambda: c.publish_pose(LEFT_AT_FRONT_BOX, HOME),
+                                 lambda r: r.input_status == MonitorReport.INPUT_OK and
+                                 r.header.stamp.to_sec() > 0 and
+                                 r.cycle > 0, timeout_s=10.0)
+        self.assertIsNotNone(report)
+        res = grasp('left_link7', 'front_box', True)
+        self.assertTrue(res.success, res.message)
         res = attach('front_box', 'left_link7')
         self.assertTrue(res.success, res.message)
         res = detach('front_box')
         self.assertTrue(res.success, res.message)
-        self.assertFalse(detach('no_such_object').success)
-        res = grasp('right_link7', 'right_box', True)
-        self.assertTrue(res.success, res.message)
-        res = grasp('right_link7', 'right_box', False)
+        self.assertFalse(detach('front_box').success, 'detached twice')
+        res = grasp('left_link7', 'front_box', False)
         self.assertTrue(res.success, res.message)
         self.assertFalse(grasp('right_link7', 'no_such_object', True).success)
+        self.assertIsNotNone(c.go_clear())
 
     def test_15_random_garbage_never_crashes(self):
         c = self.client

@@ -27,8 +27,8 @@ NODE = '/arm_collision_monitor'
 WIDTH, HEIGHT = 1280, 800
 # MarkerPalette::kWarningRgb is pure red; lit and blended with the background it stays red-
 # dominant. Clear primitives are green-dominant (kClearRgb).
-MIN_WARNING_PIXELS = 400     # the tilted arms' warned links cover tens of thousands
-MAX_WARNING_PIXELS_CLEAR = 50
+MIN_WARNING_PIXELS = 1000    # the tilted arms' warned links: ~2800 at 1280x800
+MAX_WARNING_PIXELS_CLEAR = 150  # anti-aliased edges: ~30 seen
 MIN_CLEAR_PIXELS = 2000
 START_TIMEOUT_S = 90.0
 SHOT_TIMEOUT_S = 60.0
@@ -100,7 +100,7 @@ class RvizScreenshotTest(unittest.TestCase):
     def start_rviz(cls):
         env = dict(os.environ, DISPLAY=cls.display, LIBGL_ALWAYS_SOFTWARE='1')
         config = os.path.join(rospkg.RosPack().get_path(PACKAGE), 'rviz', 'monitor.rviz')
-        cls.rviz = subprocess.Popen(['rviz', '-d', config, '__name:=rviz_screenshot'], env=env,
+        cls.rviz = subprocess.Popen(['rviz', '-d', config, '__name:=acm_test_rviz'], env=env,
                                     stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
 
     def wait_rviz_subscribed(self):
@@ -110,7 +110,7 @@ class RvizScreenshotTest(unittest.TestCase):
             self.assertIsNone(self.rviz.poll(), 'rviz exited early')
             _, subscribers, _ = master.getSystemState()
             for topic, nodes in subscribers:
-                if topic == NODE + '/markers' and '/rviz_screenshot' in nodes:
+                if topic == NODE + '/markers' and '/acm_test_rviz' in nodes:
                     return
             time.sleep(POLL_PERIOD_S)
         self.fail('rviz never subscribed to the markers')

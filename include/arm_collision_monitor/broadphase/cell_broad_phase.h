@@ -111,12 +111,31 @@ class CellBroadPhase : public BroadPhase {
   /// bit 3 + a: it reaches the lower face. A neighbour on side d can hold the box only if every
   /// non-zero component of d has its bit set.
   static unsigned ReachMask(const Aabb& box_W, const Aabb& cell_W);
-  /// The 26 directions to face, edge and corner neighbours, and the ReachMask bits each needs.
+  /// The 26 directions to face, edge and corner neighbours, the ReachMask bits each needs, and
+  /// its zero axes (bit a set when d[a] == 0).
   struct Direction {
     int d[3];
     unsigned needed_mask;
+    unsigned zero_axes;
   };
   static const std::array<Direction, 26>& Directions();
+  /// How a moved box relates to one of its old cells, for choosing the neighbours to visit.
+  struct CellReach {
+    unsigned reach_new = 0;  // ReachMask of the new box
+    unsigned reach_old = 0;  // ReachMask of the old box
+    unsigned grew_axes = 0;  // bit a: within the cell's extent on axis a the new box covers
+                             // coordinates the old one did not
+  };
+  static CellReach ComputeCellReach(const Aabb& old_box_W, const Aabb& new_box_W,
+                                    const Aabb& cell_W);
+  /// Whether the neighbours of a cell on side `dir` may hold cells the moved box newly
+  /// overlaps (the seed's NeighborInDirection, made exact; argument in the .cpp). Always true
+  /// with the directional technique off.
+  bool NeedsDirection(const CellReach& reach, const Direction& dir) const {
+    if (!techniques_.directional_neighbours) return true;
+    if ((dir.needed_mask & ~reach.reach_new) != 0) return false;
+    return (dir.needed_mask & ~reach.reach_old) != 0;
+  }
 
   std::vector<Record> records_;  // by id
   std::vector<Link> links_;

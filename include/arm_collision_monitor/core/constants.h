@@ -23,6 +23,14 @@ constexpr double kSegmentMinSquaredLength_m2 = 2.2250738585072014e-308;
 // which costs at most length * sin(angle) <= 1e-18 * length. It keeps s = num/denom finite
 // (|s| <= 1e18 |r| / |d1|); above ~1e-32 the computed sine is rounding noise anyway, harmlessly.
 constexpr double kSegmentParallelSinSquared = 1e-36;
+// Below this product of squared segment lengths (m^4; typical 1e-200, i.e. lengths ~1e-50 m)
+// the segment routine rescales its input by a power of two first: |d1 x d2|^2 (a product of four
+// lengths) underflows near 1e-308 and would silently lose the interior closest point.
+constexpr double kSegmentRescaleBelow_m4 = 1e-200;
+// When rescaling, segments shorter than 1 / this times their separation (dimensionless; typical
+// 1e150) are collapsed to their start points instead: the scaled separation could overflow, and
+// the error, at most the segments' lengths, is far below the bound.
+constexpr double kSegmentRescaleMaxRatio = 1e150;
 // Error bounds stated by the distance routines, as a multiple of the unit roundoff times the
 // local length scale S of a query (dimensionless). S = the largest of: the distance between the
 // shapes' reference points (segment start, box centre), the segment lengths, the box diagonals

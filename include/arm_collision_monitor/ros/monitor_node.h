@@ -104,8 +104,14 @@ class MonitorNode {
 
   tf2_ros::Buffer tf_buffer_;
   std::unique_ptr<tf2_ros::TransformListener> tf_listener_;
-  /// Scene objects bound to a TF frame: (object name, frame).
-  std::vector<std::pair<std::string, std::string>> bound_objects_;
+  /// A scene object whose pose follows a TF frame, and its last pose given to the Monitor.
+  struct BoundObject {
+    std::string object;
+    std::string frame;
+    Eigen::Isometry3d X_WO = Eigen::Isometry3d::Identity();
+    bool has_pose = false;
+  };
+  std::vector<BoundObject> bound_objects_;
 
   std::vector<ros::Subscriber> subscribers_;
   ros::Publisher report_pub_, stop_pub_, markers_pub_, joint_states_pub_;

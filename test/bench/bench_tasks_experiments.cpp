@@ -1,0 +1,1078 @@
+// The seed's experiments (Shaffer & Herb, TR 90-28, section 5) on its three tasks, the peers
+// (FCL, Bullet) on the same scene, trajectories and tolerances, the run-time-against-error
+// studies and the scaling runs. Every figure is measured in this run; randomness is seeded and
+// the seed printed. Writes CSV files into --out (scripts/bench_report.py turns them into
+// build/bench/report.md and charts); nothing is asserted on time.
+//
+//   bench_tasks_experiments --out build/bench [--quick] [--seed S]
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <memory>
+#include <random>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "arm_collision_monitor/broadphase/broad_phase_factory.h"
+#include "arm_collision_monitor/broadphase/octree_broad_phase.h"
+#include "arm_collision_monitor/geometry/distance.h"
+#include "arm_collision_monitor/monitor/monitor.h"
+#include "arm_collision_monitor/scene/workcell.h"
+#include "arm_collision_monitor/tasks/task_trajectories.h"
+#ifdef ACM_HAVE_PEERS
+#include "arm_collision_monitor/peers/peer_checker.h"
+#endif
+
+namespace arm_collision_monitor {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using PairSet = std::vector<CandidatePair>;
+
+struct Args {
+  std::string out_dir = "build/bench";
+  bool quick = false;
+  std::uint64_t seed = 20261121;
+  int repeats = 3;  // passes over each task for timing
+};
+
+// ------------------------------------------------------------------------------------------
+// Output: one CSV per experiment, header first.
+class Csv {
+ public:
+  Csv(const std::string& path, const std::string& header) : out_(path) {
+    if (!out_) {
+      std::fprintf(stderr, "cannot write %s\n", path.c_str());
+      std::exit(1);
+    }
+    out_ << header << "\n";
+  }
+  template <typename... T>
+  void Row(const T&... v) {
+    std::ostringstream line;
+    line.precision(9);
+    int i = 0;
+    ((line << (i++ ? "," : "") << v), ...);
+    out_ << line.str() << "\n";
+    out_.flush();
+  }
+
+ private:
+  std::ofstream out_;
+};
+
+struct Summary {
+  double mean_us = 0, median_us = 0, p99_us = 0, max_us = 0;
+  std::size_t samples = 0;
+};
+
+Summary Summarize(std::vector<double> t_us) {
+  Summary s;
+  if (t_us.empty()) return s;
+  std::sort(t_us.begin(), t_us.end());
+  double sum = 0;
+  for (double t : t_us) sum += t;
+  s.samples = t_us.size();
+  s.mean_us = sum / t_us.size();
+  s.median_us = t_us[t_us.size() / 2];
+  s.p99_us = t_us[std::min(t_us.size() - 1, static_cast<std::size_t>(0.99 * t_us.size()))];
+  s.max_us = t_us.back();
+  return s;
+}
+
+double MicrosSince(Clock::time_point t0) {
+  return std::chrono::duration<double, std::micro>(Clock::now() - t0).count();
+}
+
+// ------------------------------------------------------------------------------------------
+// Scenarios: a workcell and the three tasks' joint trajectories (Monitor q order).
+struct TaskRun {
+  int number = 0;                  // the seed's task 1..3
+  std::string name;
+  std::vector<Eigen::VectorXd> q;  // one per 50 ms cycle
+  std::vector<TaskGraspTarget> grasp_targets;  // declared before the first cycle
+};
+
+struct Scenario {
+  std::string label;
+  std::shared_ptr<const Workcell> workcell;
+  std::vector<TaskRun> tasks;
+  std::size_t cycles() const {
+    std::size_t n = 0;
+    for (const auto& t : tasks) n += t.q.size();
+    return n;
+  }
+};
+
+std::string SourcePath(const std::string& rel) { return std::string(ACM_SOURCE_DIR) + "/" + rel; }
+
+std::string ReadFile(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+void WriteFile(const std::string& path, const std::string& text) {
+  std::ofstream out(path);
+  out << text;
+}
+
+// The seed's three tasks on the default workcell, from the tasks module.
+std::vector<TaskRun> MakeTasks(const Workcell& workcell) {
+  std::vector<TaskRun> tasks;
+  for (int task = 1; task <= kTaskCount; ++task) {
+    const TaskSpec& spec = GetTaskSpec(task);
+    tasks.push_back(TaskRun{task, spec.name, MakeTaskTrajectory(task, workcell),
+                            spec.grasp_targets});
+  }
+  return tasks;
+}
+
+// The start-up compatibility matrix plus the task's grasp targets (what Monitor::SetGraspTarget
+// excuses), for brute force and the peers.
+CompatibilityMatrix TaskCompatibility(const Workcell& wc, const TaskRun& task) {
+  CompatibilityMatrix m = wc.compatible;
+  for (const TaskGraspTarget& g : task.grasp_targets) {
+    const int object = wc.FindObject(g.object);
+    if (object < 0) continue;
+    const PrimitiveId object_primitive = wc.objects[object].primitive;
+    for (std::size_t id = 0; id < wc.primitives.size(); ++id) {
+      if (wc.primitives[id].owner == g.link) m.Set(static_cast<PrimitiveId>(id), object_primitive, true);
+    }
+  }
+  return m;
+}
+
+// Inserts `extra_yaml` lines right after the line `key:` of a scene file.
+std::string InsertAfterKey(const std::string& yaml, const std::string& key,
+                           const std::string& extra_yaml) {
+  const std::string needle = "\n" + key + ":\n";
+  const std::size_t at = yaml.find(needle);
+  if (at == std::string::npos) {
+    std::fprintf(stderr, "scene file has no top-level '%s:' list\n", key.c_str());
+    std::exit(1);
+  }
+  std::string out = yaml;
+  out.insert(at + needle.size(), extra_yaml);
+  return out;
+}
+
+// Static boxes (2 .. 8 cm edges) added to the default scene: "near" the arms (where they work)
+// or "far" (out of every arm's reach, e.g. overhead).
+std::string ExtraBoxesYaml(std::mt19937_64* rng, int count, bool near) {
+  std::uniform_real_distribution<double> edge(0.02, 0.08);
+  std::uniform_real_distribution<double> nx(-0.6, 1.6), ny(-2.0, 2.0), nz(0.05, 2.6);
+  std::uniform_real_distribution<double> fxy(-3.0, 3.0), fz(3.2, 6.0);
+  std::ostringstream out;
+  out.precision(6);
+  for (int i = 0; i < count; ++i) {
+    const double x = near ? nx(*rng) : fxy(*rng);
+    const double y = near ? ny(*rng) : fxy(*rng);
+    const double z = near ? nz(*rng) : fz(*rng);
+    out << "  - {name: extra" << i << ", size_m: [" << edge(*rng) << ", " << edge(*rng) << ", "
+        << edge(*rng) << "], pose: {xyz_m: [" << x << ", " << y << ", " << z << "]}}\n";
+  }
+  return out.str();
+}
+
+// A workcell with `pairs` copies of the two-arm set (2 * pairs arms), copy k's pedestals
+// shifted; each copy follows the tasks' trajectory shifted in time.
+struct ArmCopies {
+  std::string urdf, scene;
+};
+ArmCopies MakeArmCopies(int pairs) {
+  static const double kShift_m[4][2] = {{0.0, 0.0}, {-1.3, 0.0}, {-1.3, 1.6}, {-1.3, -1.6}};
+  const std::string urdf = ReadFile(SourcePath("urdf/workcell.urdf"));
+  const std::string scene = ReadFile(SourcePath("config/scene.yaml"));
+  const std::size_t body_start = urdf.find("<link name=\"world\"/>") + 20;
+  const std::size_t body_end = urdf.rfind("</robot>");
+  const std::string body = urdf.substr(body_start, body_end - body_start);
+  std::string copies, arms, links;
+  for (int k = 1; k < pairs; ++k) {
+    const std::string p = "c" + std::to_string(k);
+    std::string b = std::regex_replace(body, std::regex("(name|link)=\"(left|right)_"),
+                                       "$1=\"" + p + "$2_");
+    for (const char* side : {"left", "right"}) {
+      const double y0 = std::string(side) == "left" ? 0.55 : -0.55;
+      std::ostringstream from, to;
+      from << "<origin xyz=\"0 " << (y0 > 0 ? "0.55" : "-0.55") << " 0\"";
+      to << "<origin xyz=\"" << kShift_m[k][0] << " " << y0 + kShift_m[k][1] << " 0\"";
+      const std::size_t at = b.find(from.str());
+      b.replace(at, from.str().size(), to.str());
+      arms += "  - {name: " + p + side + ", root_link: " + p + side +
+              "_base_link, tolerance_m: 0.0305}\n";
+      links += "  " + p + side + "_base_link: {ignore: true}\n";
+    }
+    copies += b;
+  }
+  ArmCopies out;
+  out.urdf = urdf.substr(0, body_end) + copies + "</robot>\n";
+  out.scene = InsertAfterKey(InsertAfterKey(scene, "arms", arms), "links", links);
+  return out;
+}
+
+// Trajectories for a workcell whose joints are the default ones, possibly with copies
+// ("c<k>" + name): copy k runs the same task 37 k cycles later (wrapping around).
+std::vector<TaskRun> MapTasks(const std::vector<TaskRun>& base, const Workcell& base_wc,
+                              const Workcell& wc) {
+  std::vector<int> source(wc.joint_names.size()), shift(wc.joint_names.size(), 0);
+  for (std::size_t i = 0; i < wc.joint_names.size(); ++i) {
+    std::string name = wc.joint_names[i];
+    std::smatch m;
+    if (std::regex_match(name, m, std::regex("c([0-9]+)(.*)"))) {
+      shift[i] = 37 * std::stoi(m[1]);
+      name = m[2];
+    }
+    const auto it = std::find(base_wc.joint_names.begin(), base_wc.joint_names.end(), name);
+    source[i] = static_cast<int>(it - base_wc.joint_names.begin());
+  }
+  std::vector<TaskRun> out;
+  for (const TaskRun& t : base) {
+    TaskRun r{t.number, t.name, {}, t.grasp_targets};
+    const std::size_t n = t.q.size();
+    for (std::size_t c = 0; c < n; ++c) {
+      Eigen::VectorXd q(wc.joint_names.size());
+      for (std::size_t i = 0; i < source.size(); ++i) q[i] = t.q[(c + shift[i]) % n][source[i]];
+      r.q.push_back(q);
+    }
+    out.push_back(std::move(r));
+  }
+  return out;
+}
+
+MonitorOptions DefaultOptions() { return LoadMonitorOptions(SourcePath("config/monitor.yaml")); }
+
+// ------------------------------------------------------------------------------------------
+// World-frame shapes of every default-model primitive at q (what the peers and brute force see).
+class ShapeEvaluator {
+ public:
+  explicit ShapeEvaluator(const Workcell& wc) : wc_(wc), X_WL_(wc.kinematics.link_count()) {
+    const std::vector<std::string> fk_names = wc.kinematics.ActuatedJointNames();
+    for (const std::string& name : fk_names) {
+      const auto it = std::find(wc.joint_names.begin(), wc.joint_names.end(), name);
+      fk_from_monitor_.push_back(static_cast<int>(it - wc.joint_names.begin()));
+    }
+    q_fk_.resize(fk_names.size());
+    shapes_W_.resize(wc.primitives.size());
+    for (std::size_t id = 0; id < wc.primitives.size(); ++id) {
+      const PrimitiveSpec& p = wc.primitives[id];
+      present_.push_back(p.variant.empty());
+      if (p.variant.empty() && p.link_index >= 0 && !p.is_static) moving_.push_back(id);
+    }
+    Evaluate(Eigen::VectorXd::Zero(wc.joint_names.size()), /*all=*/true);
+  }
+  // Recomputes the moving primitives' shapes (all of them when `all`).
+  void Evaluate(const Eigen::VectorXd& q, bool all = false) {
+    for (std::size_t i = 0; i < fk_from_monitor_.size(); ++i) q_fk_[i] = q[fk_from_monitor_[i]];
+    wc_.kinematics.ComputeLinkPoses(q_fk_, &X_WL_);
+    if (all) {
+      for (std::size_t id = 0; id < wc_.primitives.size(); ++id) Update(id);
+    } else {
+      for (std::size_t id : moving_) Update(id);
+    }
+  }
+  const Shape& shape_W(std::size_t id) const { return shapes_W_[id]; }
+  const std::vector<std::size_t>& moving() const { return moving_; }
+  bool is_present(std::size_t id) const { return present_[id]; }
+
+ private:
+  void Update(std::size_t id) {
+    const PrimitiveSpec& p = wc_.primitives[id];
+    shapes_W_[id] = p.link_index >= 0 ? TransformShape(X_WL_[p.link_index], p.shape_L)
+                                      : p.shape_L;
+  }
+  const Workcell& wc_;
+  std::vector<int> fk_from_monitor_;
+  Eigen::VectorXd q_fk_;
+  std::vector<Eigen::Isometry3d> X_WL_;
+  std::vector<Shape> shapes_W_;
+  std::vector<std::size_t> moving_;
+  std::vector<char> present_;
+};
+
+// Brute force: every present, non-compatible pair, not both static, tested with the exact
+// distance. `borderline`: pairs within 1e-9 m of their threshold (either answer is right).
+struct Reference {
+  std::vector<PairSet> warnings;    // per cycle, all tasks in order
+  std::vector<PairSet> borderline;  // per cycle
+  std::vector<char> checked;        // per cycle: brute force ran (see `stride`)
+};
+
+// `stride` > 1: only every stride-th cycle is checked (large scenes).
+Reference BruteForce(const Scenario& s, int stride = 1) {
+  const Workcell& wc = *s.workcell;
+  ShapeEvaluator eval(wc);
+  Reference ref;
+  const auto n = static_cast<PrimitiveId>(wc.primitives.size());
+  for (const TaskRun& task : s.tasks) {
+    const CompatibilityMatrix compatible = TaskCompatibility(wc, task);
+    for (std::size_t c = 0; c < task.q.size(); ++c) {
+      const bool check = c % stride == 0;
+      ref.checked.push_back(check);
+      if (!check) {
+        ref.warnings.emplace_back();
+        ref.borderline.emplace_back();
+        continue;
+      }
+      eval.Evaluate(task.q[c]);
+      PairSet w, border;
+      for (PrimitiveId a = 0; a < n; ++a) {
+        if (!eval.is_present(a)) continue;
+        for (PrimitiveId b = a + 1; b < n; ++b) {
+          if (!eval.is_present(b)) continue;
+          if (wc.primitives[a].is_static && wc.primitives[b].is_static) continue;
+          if (compatible.AreCompatible(a, b)) continue;
+          const double t = wc.primitives[a].tolerance_m + wc.primitives[b].tolerance_m;
+          if (!IsCloserThan(eval.shape_W(a), eval.shape_W(b), t + 1e-9)) continue;
+          const double d = ShapeDistance(eval.shape_W(a), eval.shape_W(b)).distance_m;
+          if (std::abs(d - t) <= 1e-9) {
+            border.push_back({a, b});
+          } else if (d < t) {
+            w.push_back({a, b});
+          }
+        }
+      }
+      ref.warnings.push_back(std::move(w));
+      ref.borderline.push_back(std::move(border));
+    }
+  }
+  return ref;
+}
+
+// Differences of `got` against `want` (both sorted) outside `border`.
+void Diff(const PairSet& got, const PairSet& want, const PairSet& border, PairSet* extra,
+          PairSet* missing) {
+  extra->clear();
+  missing->clear();
+  auto in = [](const PairSet& v, const CandidatePair& p) {
+    return std::binary_search(v.begin(), v.end(), p);
+  };
+  for (const auto& p : got) {
+    if (!in(want, p) && !in(border, p)) extra->push_back(p);
+  }
+  for (const auto& p : want) {
+    if (!in(got, p) && !in(border, p)) missing->push_back(p);
+  }
+}
+
+// ------------------------------------------------------------------------------------------
+// A timed run of one implementation over every task of a scenario.
+struct RunResult {
+  std::string impl;
+  std::vector<double> t_us;            // per timed cycle (cycle 0 of each task excluded)
+  std::vector<std::uint8_t> t_task;    // the task of each sample
+  std::vector<double> task_mean_us;    // per task
+  std::vector<PairSet> warnings;       // per cycle, last pass
+  BroadPhaseCounters counters;         // summed over one pass
+  std::uint64_t missed = 0, false_warnings = 0;  // against brute force, all passes' last
+  std::size_t active_primitives = 0;
+  std::string chosen;  // the Monitor's broad phase name
+};
+
+void AddCounters(BroadPhaseCounters* sum, const BroadPhaseCounters& c) {
+  sum->object_node_tests += c.object_node_tests;
+  sum->object_object_tests += c.object_object_tests;
+  sum->neighbours_visited += c.neighbours_visited;
+  sum->splits += c.splits;
+  sum->merges += c.merges;
+  sum->reinsert_fallbacks += c.reinsert_fallbacks;
+  sum->outside_world += c.outside_world;
+}
+
+void CheckAgainst(const Reference* ref, RunResult* r) {
+  if (ref == nullptr) return;
+  PairSet extra, missing;
+  for (std::size_t c = 0; c < r->warnings.size(); ++c) {
+    if (!ref->checked[c]) continue;
+    Diff(r->warnings[c], ref->warnings[c], ref->borderline[c], &extra, &missing);
+    r->missed += missing.size();
+    r->false_warnings += extra.size();
+  }
+}
+
+RunResult RunMonitor(const Scenario& s, const MonitorOptions& options, int repeats,
+                     const Reference* ref, const std::string& impl) {
+  RunResult r;
+  r.impl = impl;
+  for (int pass = 0; pass < repeats; ++pass) {
+    const bool last = pass + 1 == repeats;
+    if (last) {
+      r.warnings.clear();
+      r.counters = BroadPhaseCounters{};
+      r.task_mean_us.assign(s.tasks.size(), 0.0);
+    }
+    for (std::size_t ti = 0; ti < s.tasks.size(); ++ti) {
+      const TaskRun& task = s.tasks[ti];
+      Monitor monitor(s.workcell, options);
+      for (const TaskGraspTarget& g : task.grasp_targets) {
+        std::string error;
+        if (!monitor.SetGraspTarget(g.link, g.object, true, &error)) {
+          std::fprintf(stderr, "SetGraspTarget: %s\n", error.c_str());
+        }
+      }
+      r.chosen = monitor.broad_phase_name();
+      r.active_primitives = 0;
+      for (PrimitiveId id = 0; id < monitor.primitive_count(); ++id) {
+        r.active_primitives += monitor.is_active(id);
+      }
+      double task_sum = 0;
+      for (std::size_t c = 0; c < task.q.size(); ++c) {
+        const auto t0 = Clock::now();
+        const CycleReport& report = monitor.Update(task.q[c]);
+        const double dt = MicrosSince(t0);
+        benchmark::DoNotOptimize(report.stop);
+        if (c > 0) {
+          r.t_us.push_back(dt);
+          r.t_task.push_back(static_cast<std::uint8_t>(ti));
+          task_sum += dt;
+        }
+        if (last) {
+          PairSet w;
+          for (const Warning& warning : report.warnings) w.push_back({warning.a, warning.b});
+          r.warnings.push_back(std::move(w));
+          AddCounters(&r.counters, report.counters);
+        }
+      }
+      if (last) r.task_mean_us[ti] = task_sum / std::max<std::size_t>(1, task.q.size() - 1);
+    }
+  }
+  CheckAgainst(ref, &r);
+  return r;
+}
+
+#ifdef ACM_HAVE_PEERS
+std::vector<PeerPrimitive> PeerPrimitives(const Workcell& wc, const ShapeEvaluator& eval) {
+  std::vector<PeerPrimitive> out;
+  for (std::size_t id = 0; id < wc.primitives.size(); ++id) {
+    const PrimitiveSpec& p = wc.primitives[id];
+    out.push_back(PeerPrimitive{eval.shape_W(id), p.tolerance_m, !p.is_static,
+                                eval.is_present(id)});
+  }
+  return out;
+}
+
+using PeerFactory = std::function<std::unique_ptr<PeerChecker>(
+    const std::vector<PeerPrimitive>&, const CompatibilityMatrix&)>;
+
+// A peer's cycle: the same forward kinematics as the Monitor, the moving shapes handed over,
+// then its query.
+RunResult RunPeer(const Scenario& s, const PeerFactory& factory, int repeats,
+                  const Reference* ref) {
+  RunResult r;
+  const Workcell& wc = *s.workcell;
+  for (int pass = 0; pass < repeats; ++pass) {
+    const bool last = pass + 1 == repeats;
+    if (last) {
+      r.warnings.clear();
+      r.task_mean_us.assign(s.tasks.size(), 0.0);
+    }
+    for (std::size_t ti = 0; ti < s.tasks.size(); ++ti) {
+      const TaskRun& task = s.tasks[ti];
+      ShapeEvaluator eval(wc);
+      auto peer = factory(PeerPrimitives(wc, eval), TaskCompatibility(wc, task));
+      r.impl = peer->name();
+      PairSet w;
+      double task_sum = 0;
+      for (std::size_t c = 0; c < task.q.size(); ++c) {
+        const auto t0 = Clock::now();
+        eval.Evaluate(task.q[c]);
+        for (std::size_t id : eval.moving()) {
+          peer->SetShape(static_cast<PrimitiveId>(id), eval.shape_W(id));
+        }
+        peer->FindWarnings(&w);
+        const double dt = MicrosSince(t0);
+        if (c > 0) {
+          r.t_us.push_back(dt);
+          r.t_task.push_back(static_cast<std::uint8_t>(ti));
+          task_sum += dt;
+        }
+        if (last) r.warnings.push_back(w);
+      }
+      if (last) r.task_mean_us[ti] = task_sum / std::max<std::size_t>(1, task.q.size() - 1);
+    }
+  }
+  CheckAgainst(ref, &r);
+  return r;
+}
+
+std::vector<std::pair<std::string, PeerFactory>> Peers() {
+  return {
+      {"fcl_sharp",
+       [](const auto& p, const auto& c) { return MakeFclChecker(p, c, PeerTolerance::kSharp); }},
+      {"fcl_rounded",
+       [](const auto& p, const auto& c) { return MakeFclChecker(p, c, PeerTolerance::kRounded); }},
+      {"bullet_rounded",
+       [](const auto& p, const auto& c) {
+         return MakeBulletChecker(p, c, PeerTolerance::kRounded);
+       }},
+      {"bullet_sharp",
+       [](const auto& p, const auto& c) {
+         return MakeBulletChecker(p, c, PeerTolerance::kSharp);
+       }},
+  };
+}
+#endif
+
+void PrintRow(const RunResult& r) {
+  const Summary s = Summarize(r.t_us);
+  std::printf("  %-16s mean %8.2f us  median %8.2f  p99 %8.2f  max %9.2f  missed %llu  false %llu\n",
+              r.impl.c_str(), s.mean_us, s.median_us, s.p99_us, s.max_us,
+              static_cast<unsigned long long>(r.missed),
+              static_cast<unsigned long long>(r.false_warnings));
+  std::fflush(stdout);
+}
+
+// ------------------------------------------------------------------------------------------
+// Experiments.
+
+// Per-cycle times for every broad phase and peer on the three tasks; warnings cycle by cycle
+// against the default Monitor and brute force; every peer difference listed with its distance.
+// Returns the default Monitor's median cycle time (us).
+double ExperimentTasks(const Args& args, const Scenario& s, const Reference& ref,
+                       std::uint64_t* missed_total) {
+  std::printf("== per-cycle times on the three tasks (%zu cycles)\n", s.cycles());
+  Csv summary(args.out_dir + "/tasks_summary.csv",
+              "impl,task,mean_us,median_us,p99_us,max_us,warning_cycles,cycles_equal_default,"
+              "missed_vs_brute,false_vs_brute,object_node_tests,object_object_tests,splits,merges");
+  Csv diffs(args.out_dir + "/peer_differences.csv",
+            "impl,task,cycle,a,b,name_a,name_b,kind,distance_m,threshold_m");
+  const Workcell& wc = *s.workcell;
+  std::vector<RunResult> results;
+  for (const char* method : {"octree", "naive", "grid", "rebuild", "reinsert"}) {
+    MonitorOptions o = DefaultOptions();
+    ParseBroadPhaseMethod(method, &o.broad_phase.method);
+    results.push_back(RunMonitor(s, o, args.repeats, &ref, method));
+  }
+  {
+    MonitorOptions o = DefaultOptions();
+    o.auto_broad_phase = true;
+    results.push_back(RunMonitor(s, o, args.repeats, &ref, "auto"));
+    results.back().impl = "auto(" + results.back().chosen + ")";
+  }
+#ifdef ACM_HAVE_PEERS
+  for (const auto& [name, factory] : Peers()) results.push_back(RunPeer(s, factory, args.repeats, &ref));
+#endif
+  const RunResult& dflt = results.front();
+  // Task boundaries in the per-cycle warning arrays.
+  std::vector<std::size_t> task_of_cycle;
+  for (std::size_t ti = 0; ti < s.tasks.size(); ++ti) {
+    task_of_cycle.insert(task_of_cycle.end(), s.tasks[ti].q.size(), ti);
+  }
+  ShapeEvaluator eval(wc);
+  std::vector<std::size_t> cycle_in_task(task_of_cycle.size());
+  for (std::size_t c = 0, k = 0; c < task_of_cycle.size(); ++c) {
+    k = (c == 0 || task_of_cycle[c] != task_of_cycle[c - 1]) ? 0 : k + 1;
+    cycle_in_task[c] = k;
+  }
+  for (const RunResult& r : results) {
+    PrintRow(r);
+    *missed_total += r.missed;
+    std::size_t warning_cycles = 0, equal = 0;
+    for (std::size_t c = 0; c < r.warnings.size(); ++c) {
+      warning_cycles += !r.warnings[c].empty();
+      equal += r.warnings[c] == dflt.warnings[c];
+    }
+    const Summary all = Summarize(r.t_us);
+    summary.Row(r.impl, "all", all.mean_us, all.median_us, all.p99_us, all.max_us,
+                warning_cycles, equal, r.missed, r.false_warnings, r.counters.object_node_tests,
+                r.counters.object_object_tests, r.counters.splits, r.counters.merges);
+    for (std::size_t ti = 0; ti < s.tasks.size(); ++ti) {
+      std::vector<double> slice;
+      for (std::size_t i = 0; i < r.t_us.size(); ++i) {
+        if (r.t_task[i] == ti) slice.push_back(r.t_us[i]);
+      }
+      const Summary st = Summarize(slice);
+      summary.Row(r.impl, s.tasks[ti].name, st.mean_us, st.median_us, st.p99_us, st.max_us, "",
+                  "", "", "", "", "", "", "");
+    }
+    if (r.impl.rfind("fcl", 0) != 0 && r.impl.rfind("bullet", 0) != 0) continue;
+    PairSet extra, missing;
+    for (std::size_t c = 0; c < r.warnings.size(); ++c) {
+      if (r.warnings[c] == dflt.warnings[c]) continue;
+      Diff(r.warnings[c], dflt.warnings[c], {}, &extra, &missing);
+      const std::size_t ti = task_of_cycle[c];
+      eval.Evaluate(s.tasks[ti].q[cycle_in_task[c]]);
+      for (int kind = 0; kind < 2; ++kind) {
+        for (const CandidatePair& p : kind == 0 ? extra : missing) {
+          const double d = ShapeDistance(eval.shape_W(p.a), eval.shape_W(p.b)).distance_m;
+          diffs.Row(r.impl, s.tasks[ti].name, cycle_in_task[c], p.a, p.b, wc.primitives[p.a].name,
+                    wc.primitives[p.b].name, kind == 0 ? "peer_only" : "ours_only", d,
+                    wc.primitives[p.a].tolerance_m + wc.primitives[p.b].tolerance_m);
+        }
+      }
+    }
+  }
+  return Summarize(dflt.t_us).median_us;
+}
+
+// The seed's octree statistics on the default scene at the home pose, and the cycles between a
+// split or merge over the three tasks.
+void ExperimentOctreeStatistics(const Args& args, const Scenario& s) {
+  const Workcell& wc = *s.workcell;
+  const MonitorOptions mo = DefaultOptions();
+  BroadPhaseOptions o = mo.broad_phase;
+  o.method = BroadPhaseMethod::kOctree;
+  o.world_W = wc.world_W;
+  o.min_cell_size_m = mo.max_speed_mps * mo.cycle_period_s;
+  auto bp = MakeBroadPhase(o);
+  auto* octree = dynamic_cast<OctreeBroadPhase*>(bp.get());
+  ShapeEvaluator eval(wc);
+  int count = 0;
+  for (std::size_t id = 0; id < wc.primitives.size(); ++id) {
+    if (!eval.is_present(id)) continue;
+    const PrimitiveSpec& p = wc.primitives[id];
+    bp->Add(static_cast<PrimitiveId>(id), ComputeAabb(eval.shape_W(id)), p.tolerance_m,
+            p.is_static ? Motion::kStatic : Motion::kMoving);
+    ++count;
+  }
+  const OctreeStatistics st = octree->ComputeStatistics();
+  MonitorOptions dflt = DefaultOptions();
+  const RunResult run = RunMonitor(s, dflt, 1, nullptr, "octree");
+  const double events = static_cast<double>(run.counters.splits + run.counters.merges);
+  Csv csv(args.out_dir + "/octree_statistics.csv", "statistic,ours,seed");
+  csv.Row("primitives", count, 35);
+  csv.Row("nodes", st.nodes, 33);
+  csv.Row("leaves", st.leaves, 29);
+  csv.Row("empty_leaves", st.empty_leaves, 15);
+  csv.Row("primitives_per_nonempty_leaf", st.mean_primitives_per_nonempty_leaf, 5);
+  csv.Row("leaves_per_primitive", st.mean_leaves_per_primitive, 2);
+  csv.Row("depth", st.depth, 2);
+  csv.Row("splits_plus_merges_over_tasks", events, "");
+  csv.Row("cycles_between_split_or_merge", events > 0 ? s.cycles() / events : -1.0, 600);
+  std::printf("== octree: %d primitives, %u nodes, %u leaves (%u empty), %.2f per leaf, %.2f "
+              "leaves per primitive, depth %d; %.0f split/merge events in %zu cycles\n",
+              count, st.nodes, st.leaves, st.empty_leaves, st.mean_primitives_per_nonempty_leaf,
+              st.mean_leaves_per_primitive, st.depth, events, s.cycles());
+}
+
+// Figure 5 (N swept), Figure 7 (G swept) and the technique ablation.
+void ExperimentSweeps(const Args& args, const Scenario& s, const Reference& ref,
+                      std::uint64_t* missed_total) {
+  Csv n_csv(args.out_dir + "/sweep_n.csv",
+            "n,mean_us,median_us,p99_us,task1_us,task2_us,task3_us,object_node_tests_per_cycle,"
+            "object_object_tests_per_cycle,missed");
+  std::printf("== Figure 5: N swept\n");
+  const std::vector<int> ns = args.quick ? std::vector<int>{1, 2, 5, 10, 20, 40}
+                                         : std::vector<int>{1, 2, 3, 4, 5, 6, 8, 10, 12, 15,
+                                                            20, 25, 30, 35, 40};
+  for (int n : ns) {
+    MonitorOptions o = DefaultOptions();
+    o.broad_phase.max_objects_per_leaf = n;
+    RunResult r = RunMonitor(s, o, args.repeats, &ref, "octree N=" + std::to_string(n));
+    PrintRow(r);
+    *missed_total += r.missed;
+    const Summary sm = Summarize(r.t_us);
+    n_csv.Row(n, sm.mean_us, sm.median_us, sm.p99_us, r.task_mean_us[0], r.task_mean_us[1],
+              r.task_mean_us[2], double(r.counters.object_node_tests) / s.cycles(),
+              double(r.counters.object_object_tests) / s.cycles(), r.missed);
+  }
+  Csv g_csv(args.out_dir + "/sweep_g.csv",
+            "g,mean_us,median_us,p99_us,task1_us,task2_us,task3_us,missed");
+  std::printf("== Figure 7: G swept\n");
+  const std::vector<int> gs = args.quick ? std::vector<int>{2, 8, 16, 32, 64}
+                                         : std::vector<int>{2, 4, 6, 8, 12, 16, 24, 32, 48, 64};
+  for (int g : gs) {
+    MonitorOptions o = DefaultOptions();
+    o.broad_phase.method = BroadPhaseMethod::kGrid;
+    o.broad_phase.grid_cells_per_axis = g;
+    RunResult r = RunMonitor(s, o, args.repeats, &ref, "grid G=" + std::to_string(g));
+    PrintRow(r);
+    *missed_total += r.missed;
+    const Summary sm = Summarize(r.t_us);
+    g_csv.Row(g, sm.mean_us, sm.median_us, sm.p99_us, r.task_mean_us[0], r.task_mean_us[1],
+              r.task_mean_us[2], r.missed);
+  }
+  std::printf("== ablation: each technique switched off\n");
+  Csv a_csv(args.out_dir + "/ablation.csv",
+            "technique,mean_us,median_us,change_percent,seed_change_percent,object_node_tests,"
+            "object_object_tests,neighbours_visited,missed");
+  struct Off {
+    const char* name;
+    bool BroadPhaseTechniques::*flag;
+    double seed_percent;  // the seed's reduction from using the technique
+  };
+  const Off offs[] = {{"none", nullptr, 0.0},
+                      {"directional_neighbours", &BroadPhaseTechniques::directional_neighbours, 8},
+                      {"inside_node_exit", &BroadPhaseTechniques::inside_node_exit, 13},
+                      {"pair_deduplication", &BroadPhaseTechniques::pair_deduplication, 4},
+                      {"bounding_box_pretests", &BroadPhaseTechniques::bounding_box_pretests, 80}};
+  double base_us = 0;
+  for (const Off& off : offs) {
+    MonitorOptions o = DefaultOptions();
+    if (off.flag != nullptr) o.broad_phase.techniques.*(off.flag) = false;
+    RunResult r = RunMonitor(s, o, args.repeats, &ref, std::string("without ") + off.name);
+    PrintRow(r);
+    *missed_total += r.missed;
+    const Summary sm = Summarize(r.t_us);
+    if (off.flag == nullptr) base_us = sm.mean_us;
+    // Reduction the technique brings: (time without - time with) / time without.
+    const double change = off.flag == nullptr ? 0.0 : 100.0 * (sm.mean_us - base_us) / sm.mean_us;
+    a_csv.Row(off.name, sm.mean_us, sm.median_us, change, off.seed_percent,
+              r.counters.object_node_tests, r.counters.object_object_tests,
+              r.counters.neighbours_visited, r.missed);
+  }
+}
+
+// Figure 6 and static scaling: boxes added near the arms and far from them.
+void ExperimentStaticScaling(const Args& args, const Scenario& base, std::uint64_t* missed_total) {
+  Csv csv(args.out_dir + "/static_scaling.csv",
+          "placement,added,primitives,active,impl,mean_us,median_us,p99_us,missed,false");
+  std::printf("== Figure 6 / static scaling (seed %llu)\n",
+              static_cast<unsigned long long>(args.seed));
+  std::vector<int> sizes = args.quick ? std::vector<int>{0, 100, 500, 2000, 9965}
+                                      : std::vector<int>{0, 25, 50, 100, 200, 500, 1000, 2000,
+                                                         5000, 9965};
+  const std::string scene = ReadFile(SourcePath("config/scene.yaml"));
+  for (const bool near : {true, false}) {
+    for (int added : sizes) {
+      if (!near && added > 2000) continue;
+      std::mt19937_64 rng(args.seed + added);
+      const std::string path = args.out_dir + "/scene_extra.yaml";
+      WriteFile(path, InsertAfterKey(scene, "objects", ExtraBoxesYaml(&rng, added, near)));
+      Scenario s;
+      s.label = near ? "near" : "far";
+      s.workcell = std::make_shared<const Workcell>(
+          LoadWorkcell(SourcePath("urdf/workcell.urdf"), path));
+      s.tasks = MapTasks(base.tasks, *base.workcell, *s.workcell);
+      // Brute force on every cycle up to ~2,000 primitives, on every 10th beyond.
+      const Reference ref = BruteForce(s, added > 2000 ? 10 : 1);
+      const int total = static_cast<int>(s.workcell->primitives.size());
+      std::vector<RunResult> results;
+      for (const char* method : {"octree", "naive", "grid"}) {
+        MonitorOptions o = DefaultOptions();
+        ParseBroadPhaseMethod(method, &o.broad_phase.method);
+        results.push_back(RunMonitor(s, o, 1, &ref, method));
+      }
+#ifdef ACM_HAVE_PEERS
+      for (const auto& [name, factory] : Peers()) {
+        if (name == "fcl_sharp" || name == "bullet_rounded") {
+          results.push_back(RunPeer(s, factory, 1, &ref));
+        }
+      }
+#endif
+      std::printf(" %s +%d boxes (%d primitives, %zu active)\n", s.label.c_str(), added, total,
+                  results.front().active_primitives);
+      for (const RunResult& r : results) {
+        PrintRow(r);
+        if (r.impl.find('_') == std::string::npos) *missed_total += r.missed;
+        const Summary sm = Summarize(r.t_us);
+        csv.Row(s.label, added, total, r.active_primitives, r.impl, sm.mean_us, sm.median_us,
+                sm.p99_us, r.missed, r.false_warnings);
+      }
+    }
+  }
+}
+
+// Moving primitives: 2, 4, 6, 8 arms (copies of the arm pair on shifted pedestals, each copy
+// on the tasks shifted in time).
+void ExperimentMovingScaling(const Args& args, const Scenario& base, std::uint64_t* missed_total) {
+  Csv csv(args.out_dir + "/moving_scaling.csv",
+          "arms,moving_primitives,impl,mean_us,median_us,p99_us,missed,false");
+  std::printf("== moving scaling\n");
+  for (int pairs = 1; pairs <= 4; ++pairs) {
+    const ArmCopies copies = MakeArmCopies(pairs);
+    const std::string urdf = args.out_dir + "/arms.urdf", scene = args.out_dir + "/arms.yaml";
+    WriteFile(urdf, copies.urdf);
+    WriteFile(scene, copies.scene);
+    Scenario s;
+    s.workcell = std::make_shared<const Workcell>(LoadWorkcell(urdf, scene));
+    s.tasks = MapTasks(base.tasks, *base.workcell, *s.workcell);
+    const Reference ref = BruteForce(s);
+    int moving = 0;
+    for (const auto& p : s.workcell->primitives) moving += !p.is_static && p.link_index >= 0 && p.variant.empty();
+    std::vector<RunResult> results;
+    for (const char* method : {"octree", "naive", "grid"}) {
+      MonitorOptions o = DefaultOptions();
+      ParseBroadPhaseMethod(method, &o.broad_phase.method);
+      results.push_back(RunMonitor(s, o, 1, &ref, method));
+    }
+#ifdef ACM_HAVE_PEERS
+    for (const auto& [name, factory] : Peers()) {
+      if (name == "fcl_sharp" || name == "bullet_rounded") results.push_back(RunPeer(s, factory, 1, &ref));
+    }
+#endif
+    std::printf(" %d arms, %d moving primitives\n", 2 * pairs, moving);
+    for (const RunResult& r : results) {
+      PrintRow(r);
+      if (r.impl.find('_') == std::string::npos) *missed_total += r.missed;
+      const Summary sm = Summarize(r.t_us);
+      csv.Row(2 * pairs, moving, r.impl, sm.mean_us, sm.median_us, sm.p99_us, r.missed,
+              r.false_warnings);
+    }
+  }
+}
+
+
+// Check rate and sub-stepping against missed warnings (3b). The tasks' smooth motion
+// (TaskStateAt) is time-scaled so that the fastest primitive end point moves at
+// `speed`; the truth is every pair's state at kTruthStep_s; a schedule checking every m-th
+// truth sample misses a warning interval when no check falls inside it.
+void ExperimentTemporal(const Args& args, const Scenario& s, double check_us) {
+  const double kTruthStep_s = args.quick ? 0.0025 : 0.00125;
+  const Workcell& wc = *s.workcell;
+  ShapeEvaluator eval(wc);
+  // Fastest end-point speed of the recorded tasks (m per 50 ms cycle).
+  double max_step_m = 0.0;
+  std::vector<Eigen::Vector3d> previous;
+  for (const TaskRun& task : s.tasks) {
+    previous.clear();
+    for (const Eigen::VectorXd& q : task.q) {
+      eval.Evaluate(q);
+      std::vector<Eigen::Vector3d> points;
+      for (std::size_t id : eval.moving()) {
+        if (const auto* c = std::get_if<Capsule>(&eval.shape_W(id))) {
+          points.push_back(c->p0_W);
+          points.push_back(c->p1_W);
+        }
+      }
+      if (!previous.empty()) {
+        for (std::size_t i = 0; i < points.size(); ++i) {
+          max_step_m = std::max(max_step_m, (points[i] - previous[i]).norm());
+        }
+      }
+      previous = points;
+    }
+  }
+  const double recorded_speed_mps = max_step_m / 0.05;
+  Csv csv(args.out_dir + "/temporal.csv",
+          "speed_mps,checks_per_s,schedule,cpu_us_per_s,events,missed_events,contacts,"
+          "missed_contacts,recorded_speed_mps");
+  struct Schedule {
+    int checks_per_s;
+    const char* label;
+  };
+  const Schedule schedules[] = {{5, "5 Hz"},       {10, "10 Hz"},      {20, "20 Hz"},
+                                {40, "20 Hz x 2"}, {80, "20 Hz x 4"},  {160, "20 Hz x 8"}};
+  const auto n = static_cast<PrimitiveId>(wc.primitives.size());
+  Eigen::VectorXd q, qdot;
+  std::printf("== check rate: recorded tasks peak at %.3f m/s\n", recorded_speed_mps);
+  for (const double speed_mps : {0.61, 1.22}) {
+    // Seconds of scaled time per recorded 50 ms cycle.
+    const double cycle_s = 0.05 * recorded_speed_mps / speed_mps;
+    std::vector<std::uint64_t> events(std::size(schedules), 0), missed(std::size(schedules), 0),
+        contacts(std::size(schedules), 0), missed_contacts(std::size(schedules), 0);
+    for (const TaskRun& task : s.tasks) {
+      const CompatibilityMatrix compatible = TaskCompatibility(wc, task);
+      const double duration_s = cycle_s * (task.q.size() - 1);
+      const auto samples = static_cast<std::int64_t>(duration_s / kTruthStep_s) + 1;
+      // Per pair: start of the current warning run (-1: none) and whether a contact began in it.
+      std::map<std::pair<PrimitiveId, PrimitiveId>, std::pair<std::int64_t, std::int64_t>> open;
+      auto close = [&](std::int64_t start, std::int64_t end, std::int64_t contact) {
+        for (std::size_t k = 0; k < std::size(schedules); ++k) {
+          const std::int64_t m = std::llround(1.0 / (schedules[k].checks_per_s * kTruthStep_s));
+          ++events[k];
+          if ((end / m) * m < start) ++missed[k];
+          if (contact >= 0) {
+            ++contacts[k];
+            if ((contact / m) * m < start) ++missed_contacts[k];
+          }
+        }
+      };
+      for (std::int64_t i = 0; i < samples; ++i) {
+        // The task's own smooth motion, time-scaled: recorded time = scaled time * 0.05 / cycle_s.
+        TaskStateAt(task.number, wc, i * kTruthStep_s * 0.05 / cycle_s, &q, &qdot);
+        eval.Evaluate(q);
+        std::map<std::pair<PrimitiveId, PrimitiveId>, bool> now;  // warning pairs -> touching
+        for (std::size_t ia = 0; ia < eval.moving().size(); ++ia) {
+          const auto a = static_cast<PrimitiveId>(eval.moving()[ia]);
+          for (PrimitiveId b = 0; b < n; ++b) {
+            if (b == a || !eval.is_present(b) || compatible.AreCompatible(a, b)) continue;
+            const bool b_moving = !wc.primitives[b].is_static;
+            if (b_moving && b < a) continue;  // each moving pair once
+            const double t = wc.primitives[a].tolerance_m + wc.primitives[b].tolerance_m;
+            if (!IsCloserThan(eval.shape_W(a), eval.shape_W(b), t)) continue;
+            const bool touching = !IsCloserThan(eval.shape_W(a), eval.shape_W(b), 0.0)
+                                      ? ShapeDistance(eval.shape_W(a), eval.shape_W(b)).distance_m <= 0.0
+                                      : true;
+            now[{std::min(a, b), std::max(a, b)}] = touching;
+          }
+        }
+        for (auto it = open.begin(); it != open.end();) {
+          if (now.count(it->first) == 0) {
+            close(it->second.first, i - 1, it->second.second);
+            it = open.erase(it);
+          } else {
+            ++it;
+          }
+        }
+        for (const auto& [pair, touching] : now) {
+          auto it = open.find(pair);
+          if (it == open.end()) it = open.emplace(pair, std::make_pair(i, std::int64_t{-1})).first;
+          if (touching && it->second.second < 0) it->second.second = i;
+        }
+      }
+      for (const auto& [pair, run] : open) close(run.first, samples - 1, run.second);
+    }
+    for (std::size_t k = 0; k < std::size(schedules); ++k) {
+      csv.Row(speed_mps, schedules[k].checks_per_s, schedules[k].label,
+              schedules[k].checks_per_s * check_us, events[k], missed[k], contacts[k],
+              missed_contacts[k], recorded_speed_mps);
+      std::printf("  %.2f m/s %-10s %6.0f us/s: %llu of %llu warning events missed, %llu of "
+                  "%llu contacts unwarned\n",
+                  speed_mps, schedules[k].label, schedules[k].checks_per_s * check_us,
+                  static_cast<unsigned long long>(missed[k]),
+                  static_cast<unsigned long long>(events[k]),
+                  static_cast<unsigned long long>(missed_contacts[k]),
+                  static_cast<unsigned long long>(contacts[k]));
+    }
+  }
+}
+
+// Closest distance between segments p0-p1 and q0-q1 in scalar type T, for the float/double
+// study only (Ericson, Real-Time Collision Detection, 5.1.9: clamp s, solve t, re-clamp s).
+template <typename T>
+T SegmentDistance(const Eigen::Matrix<T, 3, 1>& p0, const Eigen::Matrix<T, 3, 1>& p1,
+                  const Eigen::Matrix<T, 3, 1>& q0, const Eigen::Matrix<T, 3, 1>& q1) {
+  const Eigen::Matrix<T, 3, 1> d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
+  const T a = d1.dot(d1), e = d2.dot(d2), f = d2.dot(r);
+  T s = 0, t = 0;
+  if (a <= T(0) && e <= T(0)) return r.norm();
+  if (a <= T(0)) {
+    t = std::clamp(f / e, T(0), T(1));
+  } else {
+    const T c = d1.dot(r);
+    if (e <= T(0)) {
+      s = std::clamp(-c / a, T(0), T(1));
+    } else {
+      const T b = d1.dot(d2), denom = a * e - b * b;
+      s = denom != T(0) ? std::clamp((b * f - c * e) / denom, T(0), T(1)) : T(0);
+      t = (b * s + f) / e;
+      if (t < T(0)) {
+        t = 0;
+        s = std::clamp(-c / a, T(0), T(1));
+      } else if (t > T(1)) {
+        t = 1;
+        s = std::clamp((b - c) / a, T(0), T(1));
+      }
+    }
+  }
+  return (p0 + s * d1 - (q0 + t * d2)).norm();
+}
+
+void ExperimentFloatDouble(const Args& args) {
+  const int pairs = args.quick ? 50000 : 200000;
+  std::mt19937_64 rng(args.seed);
+  std::uniform_real_distribution<double> pos(-1.0, 1.0), len(0.0, 0.4), tilt_exp(-8.0, -2.0);
+  constexpr double kRadius_m = 0.05, kThreshold_m = 2 * kDefaultArmTolerance_m;
+  struct Case {
+    Eigen::Vector3d p0, p1, q0, q1;
+  };
+  std::vector<Case> cases(pairs);
+  for (int i = 0; i < pairs; ++i) {
+    Case& c = cases[i];
+    c.p0 = Eigen::Vector3d(pos(rng), pos(rng), pos(rng)) + Eigen::Vector3d(0.5, 0.0, 1.2);
+    const Eigen::Vector3d dir = Eigen::Vector3d(pos(rng), pos(rng), pos(rng)).normalized();
+    c.p1 = c.p0 + len(rng) * dir;
+    // A fifth of the pairs nearly parallel (angle 1e-8 .. 1e-2 rad) and close: the hard case.
+    if (i % 5 == 0) {
+      const Eigen::Vector3d off = 0.12 * Eigen::Vector3d(pos(rng), pos(rng), pos(rng));
+      const Eigen::Vector3d tilt =
+          std::pow(10.0, tilt_exp(rng)) * Eigen::Vector3d(pos(rng), pos(rng), pos(rng));
+      c.q0 = c.p0 + off;
+      c.q1 = c.q0 + len(rng) * (dir + tilt).normalized();
+    } else {
+      c.q0 = c.p0 + 0.3 * Eigen::Vector3d(pos(rng), pos(rng), pos(rng));
+      c.q1 = c.q0 + len(rng) * Eigen::Vector3d(pos(rng), pos(rng), pos(rng)).normalized();
+    }
+  }
+  std::vector<long double> truth(pairs);
+  for (int i = 0; i < pairs; ++i) {
+    const Case& c = cases[i];
+    truth[i] = std::max<long double>(
+        0, SegmentDistance<long double>(c.p0.cast<long double>(), c.p1.cast<long double>(),
+                                        c.q0.cast<long double>(), c.q1.cast<long double>()) -
+               2 * static_cast<long double>(kRadius_m));
+  }
+  Csv csv(args.out_dir + "/float_double.csv",
+          "routine,ns_per_call,max_error_m,p99_error_m,wrong_decisions,pairs,seed");
+  auto study = [&](const char* name, const std::function<double(const Case&)>& f) {
+    std::vector<double> out(pairs);
+    const auto t0 = Clock::now();
+    for (int i = 0; i < pairs; ++i) out[i] = f(cases[i]);
+    benchmark::DoNotOptimize(out.data());
+    const double ns = MicrosSince(t0) * 1e3 / pairs;
+    std::vector<double> err(pairs);
+    int wrong = 0;
+    for (int i = 0; i < pairs; ++i) {
+      err[i] = static_cast<double>(std::abs(static_cast<long double>(out[i]) - truth[i]));
+      wrong += (out[i] < kThreshold_m) != (truth[i] < kThreshold_m);
+    }
+    std::sort(err.begin(), err.end());
+    csv.Row(name, ns, err.back(), err[static_cast<std::size_t>(0.99 * (pairs - 1))], wrong, pairs,
+            args.seed);
+    std::printf("  %-16s %7.1f ns/call  max error %.3g m  wrong decisions %d\n", name, ns,
+                err.back(), wrong);
+  };
+  std::printf("== float against double (%d capsule pairs, seed %llu)\n", pairs,
+              static_cast<unsigned long long>(args.seed));
+  study("float", [&](const Case& c) {
+    return static_cast<double>(std::max(
+        0.0f, SegmentDistance<float>(c.p0.cast<float>(), c.p1.cast<float>(), c.q0.cast<float>(),
+                                     c.q1.cast<float>()) - 2.0f * static_cast<float>(kRadius_m)));
+  });
+  study("double", [&](const Case& c) {
+    return std::max(0.0, SegmentDistance<double>(c.p0, c.p1, c.q0, c.q1) - 2 * kRadius_m);
+  });
+  study("library double", [&](const Case& c) {
+    return CapsuleCapsuleDistance(Capsule{c.p0, c.p1, kRadius_m}, Capsule{c.q0, c.q1, kRadius_m})
+        .distance_m;
+  });
+}
+
+}  // namespace
+}  // namespace arm_collision_monitor
+
+int main(int argc, char** argv) {
+  using namespace arm_collision_monitor;
+  Args args;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--quick") {
+      args.quick = true;
+      args.repeats = 1;
+    } else if (a == "--out" && i + 1 < argc) {
+      args.out_dir = argv[++i];
+    } else if (a == "--seed" && i + 1 < argc) {
+      args.seed = std::stoull(argv[++i]);
+    } else {
+      std::fprintf(stderr, "usage: %s [--out DIR] [--quick] [--seed S]\n", argv[0]);
+      return 2;
+    }
+  }
+  std::printf("bench_tasks_experiments: seed %llu, %s, %d timing passes\n",
+              static_cast<unsigned long long>(args.seed), args.quick ? "quick" : "full",
+              args.repeats);
+  const auto t_start = Clock::now();
+  Scenario s;
+  s.label = "default";
+  s.workcell = std::make_shared<const Workcell>(
+      LoadWorkcell(SourcePath("urdf/workcell.urdf"), SourcePath("config/scene.yaml")));
+  s.tasks = MakeTasks(*s.workcell);
+  const Reference ref = BruteForce(s);
+  std::uint64_t missed_total = 0;
+  const double check_us = ExperimentTasks(args, s, ref, &missed_total);
+  ExperimentOctreeStatistics(args, s);
+  ExperimentSweeps(args, s, ref, &missed_total);
+  ExperimentStaticScaling(args, s, &missed_total);
+  ExperimentMovingScaling(args, s, &missed_total);
+  ExperimentTemporal(args, s, check_us);
+  ExperimentFloatDouble(args);
+  Csv meta(args.out_dir + "/meta.csv", "key,value");
+  meta.Row("seed", args.seed);
+  meta.Row("quick", args.quick ? 1 : 0);
+  meta.Row("repeats", args.repeats);
+  meta.Row("missed_vs_brute_total", missed_total);
+  meta.Row("experiment_seconds", MicrosSince(t_start) * 1e-6);
+  std::printf("missed warnings against brute force, all our runs: %llu\n",
+              static_cast<unsigned long long>(missed_total));
+  return 0;
+}
