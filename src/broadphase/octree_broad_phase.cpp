@@ -19,7 +19,8 @@ double CubeEdge(const Aabb& world_W) {
 // (250 in / 2^7 = 1.95 in for 1.2 in of motion per cycle).
 int DepthFor(double edge_m, double min_cell_size_m) {
   int depth = 0;
-  while (depth < kOctreeMaxDepth && edge_m / static_cast<double>(1u << (depth + 1)) >= min_cell_size_m) {
+  while (depth < kOctreeMaxDepth &&
+         edge_m / static_cast<double>(1u << (depth + 1)) >= min_cell_size_m) {
     ++depth;
   }
   return depth;
@@ -57,17 +58,19 @@ OctreeBroadPhase::OctreeBroadPhase(const BroadPhaseOptions& options, CellUpdateS
 
 std::string OctreeBroadPhase::name() const {
   switch (strategy_) {
-    case CellUpdateStrategy::kIncremental: return "octree";
-    case CellUpdateStrategy::kReinsert: return "reinsert";
-    case CellUpdateStrategy::kRebuild: return "rebuild";
+    case CellUpdateStrategy::kIncremental:
+      return "octree";
+    case CellUpdateStrategy::kReinsert:
+      return "reinsert";
+    case CellUpdateStrategy::kRebuild:
+      return "rebuild";
   }
   return "octree";
 }
 
 void OctreeBroadPhase::Reserve(std::uint32_t max_primitives, std::uint32_t max_nodes) {
   ReserveShared(max_primitives,
-                max_primitives * static_cast<std::uint32_t>(kReservedLinksPerPrimitive) +
-                    max_nodes,
+                max_primitives * static_cast<std::uint32_t>(kReservedLinksPerPrimitive) + max_nodes,
                 max_nodes);
   nodes_.reserve(max_nodes);
 }
@@ -212,8 +215,8 @@ bool OctreeBroadPhase::Touches(std::uint32_t a, std::uint32_t b) const {
 
 // The seed's UpdateNeighbor: a split neighbour is entered only through its children on the
 // face, edge or corner shared with the leaf the primitive came from.
-void OctreeBroadPhase::UpdateNeighbour(PrimitiveId id, std::uint32_t node,
-                                       std::uint32_t from_leaf, std::uint32_t stamp) {
+void OctreeBroadPhase::UpdateNeighbour(PrimitiveId id, std::uint32_t node, std::uint32_t from_leaf,
+                                       std::uint32_t stamp) {
   ++counters_.neighbours_visited;
   if (nodes_[node].is_split) {
     if (techniques_.bounding_box_pretests) {

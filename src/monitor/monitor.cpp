@@ -172,8 +172,8 @@ struct Monitor::Impl {
            q.size() == q_good.size() &&
            std::memcmp(q.data(), q_good.data(), sizeof(double) * q.size()) == 0;
   }
-  // Shapes of the primitives carried by links that moved between poses `X_WL_old` and `X_WL_new`
-  // into `shapes`, flagging them in `moved`. Returns nothing: `changed` is per-link scratch.
+  // Writes into `shapes` the primitives carried by links whose pose differs between the live X_WL
+  // and `X_WL_new`, and flags them in `moved_flags`; `changed` is per-link scratch.
   void MoveCarried(const std::vector<Eigen::Isometry3d>& X_WL_new,
                    std::vector<std::uint8_t>* changed, std::vector<Shape>* shapes,
                    std::vector<std::uint8_t>* moved_flags) const;
@@ -319,7 +319,7 @@ void Monitor::Impl::BuildModel() {
 
 // Reach envelope (the seed's observation that stationary objects only cost time when they share
 // cells with moving ones, taken to the limit): a link L's points stay within a sphere centred on
-// the origin of the first actuated joint above it, of radius (sum of the joint offsets between
+// the origin of the first moving joint above it, of radius (sum of the joint offsets between
 // that joint and L, plus prismatic travel) + (farthest point of L's geometry, or of an object it
 // may hold, from L's origin) -- the triangle inequality over the chain, valid for every q.
 // Frame-bound objects reach what is near their current pose (SetObjectPose re-checks).
@@ -350,7 +350,7 @@ void Monitor::Impl::ComputeReachability() {
   // Per link: world centre of its reach sphere and the chain length from that centre.
   std::vector<Eigen::Vector3d> centre_W(link_count, Eigen::Vector3d::Zero());
   std::vector<double> chain_m(link_count, 0.0);
-  std::vector<std::uint8_t> is_actuated_below(link_count, 0);  // some actuated joint above it
+  std::vector<std::uint8_t> is_below_joint(link_count, 0);  // a non-fixed joint above it
   for (int link = 1; link < link_count; ++link) {
     const int parent = model->parent_link(link);
     const JointSpec& joint = model->joint(link);
@@ -358,23 +358,24 @@ void Monitor::Impl::ComputeReachability() {
     if (joint.type == JointType::kPrismatic) {
       travel_m = std::max(std::abs(joint.lower), std::abs(joint.upper));  // inf if unlimited
     }
-    if (is_actuated_below[parent]) {
-      is_actuated_below[link] = 1;
+    if (is_below_joint[parent]) {
+      is_below_joint[link] = 1;
       centre_W[link] = centre_W[parent];
       chain_m[link] = chain_m[parent] + joint.X_PJ.translation().norm() + travel_m;
-    } else if (joint.q_index >= 0) {
-      // The first actuated joint: its origin is fixed (revolute) or slides by `travel_m`.
-      is_actuated_below[link] = 1;
+    } else if (joint.type != JointType::kFixed) {
+      // The first moving joint (actuated or mimic): its origin is fixed (revolute) or slides by
+      // `travel_m`.
+      is_below_joint[link] = 1;
       centre_W[link] = X_WL[parent] * joint.X_PJ.translation();
       chain_m[link] = travel_m;
     }
   }
-  // Only links below an actuated joint may hold objects (holding with a fixed link would make a
+  // Only links below a moving joint may hold objects (holding with a fixed link would make a
   // static object "moving" for nothing); hold_radius_m < 0 marks the others.
   hold_radius_m.assign(link_count, -1.0);
   std::vector<double> reach_m(link_count, -1.0);  // < 0: reaches nothing
   for (int link = 0; link < link_count; ++link) {
-    if (!is_actuated_below[link]) continue;
+    if (!is_below_joint[link]) continue;
     double extent_m = 0.0;
     for (const PrimitiveId id : link_prims[link]) {
       extent_m = std::max(extent_m, MaxDistanceFromPoint(shape_C[id], Eigen::Vector3d::Zero()));
@@ -644,7 +645,7 @@ bool Monitor::Attach(const std::string& object, const std::string& link, std::st
     return false;
   }
   if (m.hold_radius_m[l] < 0.0) {
-    SetError(error, "Attach: link '" + link + "' has no actuated joint above it");
+    SetError(error, "Attach: link '" + link + "' has no moving joint above it");
     return false;
   }
   const Eigen::Isometry3d X_LW = m.X_WL[l].inverse(Eigen::Isometry);

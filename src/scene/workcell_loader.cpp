@@ -96,6 +96,7 @@ std::vector<LinkOverride> ReadLinkOverrides(const YAML::Node& node, const Where&
   std::vector<LinkOverride> overrides(model.link_count());
   if (!node.IsDefined()) return overrides;
   yaml_fields::RequireMap(node, where);
+  yaml_fields::RequireUniqueKeys(node, where);
   for (const auto& entry : node) {
     const std::string link_name = entry.first.as<std::string>("");
     const Where item = where.Child(link_name);
@@ -126,6 +127,7 @@ std::vector<LinkOverride> ReadLinkOverrides(const YAML::Node& node, const Where&
 void ReadJointLimits(const YAML::Node& node, const Where& where, KinematicModel* model) {
   if (!node.IsDefined()) return;
   yaml_fields::RequireMap(node, where);
+  yaml_fields::RequireUniqueKeys(node, where);
   for (const auto& entry : node) {
     const std::string joint_name = entry.first.as<std::string>("");
     const Where item = where.Child(joint_name);

@@ -49,8 +49,17 @@ void RequireSequence(const YAML::Node& node, const Where& where) {
   if (!node.IsSequence()) where.Fail(node, "expected a list ([...] or '- ' items)");
 }
 
+void RequireUniqueKeys(const YAML::Node& map, const Where& where) {
+  std::set<std::string> seen;
+  for (const auto& entry : map) {
+    const std::string key = entry.first.as<std::string>("");
+    if (!seen.insert(key).second) where.Fail(entry.first, "duplicate key '" + key + "'");
+  }
+}
+
 void CheckKeys(const YAML::Node& map, std::initializer_list<const char*> allowed,
                const Where& where) {
+  RequireUniqueKeys(map, where);
   const std::set<std::string> names(allowed.begin(), allowed.end());
   for (const auto& entry : map) {
     const std::string key = entry.first.as<std::string>("");

@@ -26,7 +26,10 @@ YAML::Node LoadMapFile(const std::string& path);
 
 void RequireMap(const YAML::Node& node, const Where& where);
 void RequireSequence(const YAML::Node& node, const Where& where);
-/// Fails on any key of `map` not in `allowed` (a misspelt key must not be silently ignored).
+/// Fails on a key that appears twice in `map` (yaml-cpp would silently keep both).
+void RequireUniqueKeys(const YAML::Node& map, const Where& where);
+/// Fails on a repeated key and on any key of `map` not in `allowed` (a misspelt key must not be
+/// silently ignored).
 void CheckKeys(const YAML::Node& map, std::initializer_list<const char*> allowed,
                const Where& where);
 

@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
+#include "../core/test_broadphase_scene.h"
 #include "arm_collision_monitor/broadphase/broad_phase_factory.h"
 #include "arm_collision_monitor/broadphase/octree_broad_phase.h"
-#include "../core/test_broadphase_scene.h"
 
 namespace arm_collision_monitor {
 namespace {
@@ -44,7 +44,8 @@ const Recording& RecordingFor(int primitives) {
   for (const auto& r : cache) {
     if (r->scene.Count() == primitives) return *r;
   }
-  auto r = std::unique_ptr<Recording>(new Recording{test::RandomScene(ConfigFor(primitives)), {}, {}});
+  auto r =
+      std::unique_ptr<Recording>(new Recording{test::RandomScene(ConfigFor(primitives)), {}, {}});
   r->scene.Initial(&r->initial);
   r->cycles.resize(kRecordedCycles);
   for (auto& ops : r->cycles) r->scene.Step(&ops);
@@ -134,8 +135,9 @@ BENCHMARK_CAPTURE(BM_OctreeAblation, no_box_pretest, 3)->Arg(35)->Arg(2000);
 
 int main(int argc, char** argv) {
   benchmark::AddCustomContext("scene_seed", std::to_string(arm_collision_monitor::kSeed));
-  benchmark::AddCustomContext("scene", "14 moving capsule boxes <= 0.61 m/s, 50 ms cycles, statics "
-                                       "0.04-0.3 m boxes in a 6.35 m cube; time = Move x14 + FindPairs");
+  benchmark::AddCustomContext("scene",
+                              "14 moving capsule boxes <= 0.61 m/s, 50 ms cycles, statics "
+                              "0.04-0.3 m boxes in a 6.35 m cube; time = Move x14 + FindPairs");
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();

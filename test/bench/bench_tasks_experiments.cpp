@@ -19,6 +19,7 @@
 #include <regex>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "arm_collision_monitor/broadphase/broad_phase_factory.h"
@@ -28,6 +29,7 @@
 #include "arm_collision_monitor/scene/workcell.h"
 #include "arm_collision_monitor/tasks/task_trajectories.h"
 #ifdef ACM_HAVE_PEERS
+#include "arm_collision_monitor/peers/exact_oracle.h"
 #include "arm_collision_monitor/peers/peer_checker.h"
 #endif
 
@@ -42,6 +44,10 @@ struct Args {
   bool quick = false;
   std::uint64_t seed = 20261121;
   int repeats = 3;  // passes over each task for timing
+  std::string only;  // comma-separated experiment names; empty: all
+  bool Runs(const std::string& name) const {
+    return only.empty() || ("," + only + ",").find("," + name + ",") != std::string::npos;
+  }
 };
 
 // ------------------------------------------------------------------------------------------
@@ -103,6 +109,7 @@ struct TaskRun {
 
 struct Scenario {
   std::string label;
+  std::string scene_yaml;  // the scene file's text
   std::shared_ptr<const Workcell> workcell;
   std::vector<TaskRun> tasks;
   std::size_t cycles() const {
@@ -249,6 +256,20 @@ std::vector<TaskRun> MapTasks(const std::vector<TaskRun>& base, const Workcell& 
   return out;
 }
 
+// A scenario on the default URDF with scene text `yaml` (the tasks mapped onto it).
+Scenario MakeSceneScenario(const Args& args, const Scenario& base, const std::string& label,
+                           const std::string& yaml) {
+  Scenario s;
+  s.label = label;
+  s.scene_yaml = yaml;
+  const std::string path = args.out_dir + "/scene_" + label + ".yaml";
+  WriteFile(path, yaml);
+  s.workcell = std::make_shared<const Workcell>(LoadWorkcell(SourcePath("urdf/workcell.urdf"), path));
+  std::remove(path.c_str());
+  s.tasks = MapTasks(base.tasks, *base.workcell, *s.workcell);
+  return s;
+}
+
 MonitorOptions DefaultOptions() { return LoadMonitorOptions(SourcePath("config/monitor.yaml")); }
 
 // ------------------------------------------------------------------------------------------
@@ -282,6 +303,7 @@ class ShapeEvaluator {
   }
   const Shape& shape_W(std::size_t id) const { return shapes_W_[id]; }
   const std::vector<std::size_t>& moving() const { return moving_; }
+  const std::vector<Eigen::Isometry3d>& X_WL() const { return X_WL_; }
   bool is_present(std::size_t id) const { return present_[id]; }
 
  private:
@@ -743,8 +765,9 @@ void ExperimentStaticScaling(const Args& args, const Scenario& base, std::uint64
       s.workcell = std::make_shared<const Workcell>(
           LoadWorkcell(SourcePath("urdf/workcell.urdf"), path));
       s.tasks = MapTasks(base.tasks, *base.workcell, *s.workcell);
-      // Brute force on every cycle up to ~2,000 primitives, on every 10th beyond.
-      const Reference ref = BruteForce(s, added > 2000 ? 10 : 1);
+      // Brute force on every cycle up to 200 added boxes, every 10th up to 2,000, every 50th
+      // beyond (its cost grows with the scene; the check is the same).
+      const Reference ref = BruteForce(s, added > 2000 ? 50 : added > 200 ? 10 : 1);
       const int total = static_cast<int>(s.workcell->primitives.size());
       std::vector<RunResult> results;
       for (const char* method : {"octree", "naive", "grid"}) {
@@ -812,11 +835,101 @@ void ExperimentMovingScaling(const Args& args, const Scenario& base, std::uint64
 }
 
 
+#ifdef ACM_HAVE_PEERS
+// Model fidelity (3a): our capsules (each URDF cylinder enclosed in a capsule of its radius),
+// "tight" capsules (shortened so that their caps end on the cylinder's end faces: smaller, not
+// conservative) against the exact URDF geometry, per owner pair (link or object) and cycle.
+void ExperimentFidelity(const Args& args, const Scenario& s, Csv* csv) {
+  const Workcell& wc = *s.workcell;
+  ExactOracle oracle(wc);
+  // The tight model as a scene file: per cylinder link, one capsule override.
+  std::ostringstream links;
+  links.precision(9);
+  double v_exact = 0, v_capsule = 0, v_tight = 0;
+  for (const LinkCylinder& c : oracle.cylinders()) {
+    const double r = c.radius_m, half = std::max(0.0, 0.5 * c.length_m - r);
+    const Eigen::Vector3d p0 = c.X_LC * Eigen::Vector3d(0, 0, -half);
+    const Eigen::Vector3d p1 = c.X_LC * Eigen::Vector3d(0, 0, half);
+    links << "  " << wc.kinematics.link_name(c.link_index) << ": {p0_m: [" << p0.x() << ", "
+          << p0.y() << ", " << p0.z() << "], p1_m: [" << p1.x() << ", " << p1.y() << ", "
+          << p1.z() << "], radius_m: " << r << "}\n";
+    v_exact += M_PI * r * r * c.length_m;
+    v_capsule += M_PI * r * r * c.length_m + 4.0 / 3.0 * M_PI * r * r * r;
+    v_tight += M_PI * r * r * 2.0 * half + 4.0 / 3.0 * M_PI * r * r * r;
+  }
+  const std::string scene_path = args.out_dir + "/scene_tight.yaml";
+  WriteFile(scene_path,
+            InsertAfterKey(s.scene_yaml, "links", links.str()));
+  Scenario tight;
+  tight.workcell = std::make_shared<const Workcell>(
+      LoadWorkcell(SourcePath("urdf/workcell.urdf"), scene_path));
+  tight.tasks = s.tasks;
+  std::remove(scene_path.c_str());
+  // Exact warnings and the oracle's time per cycle (forward kinematics + all owner pairs).
+  using OwnerPairs = std::vector<std::pair<int, int>>;
+  std::vector<OwnerPairs> exact;
+  std::vector<double> exact_us;
+  ShapeEvaluator eval(wc);
+  for (const TaskRun& task : s.tasks) {
+    const CompatibilityMatrix compatible = TaskCompatibility(wc, task);
+    for (const Eigen::VectorXd& q : task.q) {
+      OwnerPairs pairs;
+      const auto t0 = Clock::now();
+      eval.Evaluate(q);
+      oracle.FindWarnings(eval.X_WL(), compatible, &pairs);
+      exact_us.push_back(MicrosSince(t0));
+      exact.push_back(std::move(pairs));
+    }
+  }
+  std::printf("== model fidelity against the URDF geometry (FCL), scene %s\n", s.label.c_str());
+  auto owner_index = [&](const Workcell& model, PrimitiveId id) {
+    const PrimitiveSpec& p = model.primitives[id];
+    const std::string name = p.link_index >= 0 ? model.kinematics.link_name(p.link_index) : p.owner;
+    const auto& names = oracle.owner_names();
+    return static_cast<int>(std::find(names.begin(), names.end(), name) - names.begin());
+  };
+  for (const auto& [label, scenario, volume] :
+       {std::make_tuple(std::string("capsule"), static_cast<const Scenario*>(&s), v_capsule),
+        std::make_tuple(std::string("tight capsule"), static_cast<const Scenario*>(&tight),
+                        v_tight)}) {
+    const RunResult r = RunMonitor(*scenario, DefaultOptions(), args.repeats, nullptr, label);
+    std::uint64_t false_pairs = 0, missed_pairs = 0, total = 0;
+    for (std::size_t c = 0; c < r.warnings.size(); ++c) {
+      OwnerPairs model;
+      for (const CandidatePair& p : r.warnings[c]) {
+        int a = owner_index(*scenario->workcell, p.a);
+        int b = owner_index(*scenario->workcell, p.b);
+        if (a > b) std::swap(a, b);
+        model.emplace_back(a, b);
+      }
+      std::sort(model.begin(), model.end());
+      model.erase(std::unique(model.begin(), model.end()), model.end());
+      for (const auto& p : model) false_pairs += !std::binary_search(exact[c].begin(), exact[c].end(), p);
+      for (const auto& p : exact[c]) missed_pairs += !std::binary_search(model.begin(), model.end(), p);
+      total += model.size();
+    }
+    const Summary sm = Summarize(r.t_us);
+    csv->Row(s.label, label, sm.median_us, sm.mean_us, false_pairs, missed_pairs, total,
+            100.0 * (volume - v_exact) / v_exact);
+    std::printf("  %-14s median %7.2f us  false %llu  missed %llu (of %llu pair-cycles)\n",
+                label.c_str(), sm.median_us, static_cast<unsigned long long>(false_pairs),
+                static_cast<unsigned long long>(missed_pairs),
+                static_cast<unsigned long long>(total));
+  }
+  std::uint64_t total_exact = 0;
+  for (const auto& e : exact) total_exact += e.size();
+  const Summary se = Summarize(exact_us);
+  csv->Row(s.label, "exact (FCL, URDF geometry)", se.median_us, se.mean_us, 0, 0, total_exact, 0.0);
+  std::printf("  exact          median %7.2f us  (%llu pair-cycles)\n", se.median_us,
+              static_cast<unsigned long long>(total_exact));
+}
+#endif
+
 // Check rate and sub-stepping against missed warnings (3b). The tasks' smooth motion
 // (TaskStateAt) is time-scaled so that the fastest primitive end point moves at
 // `speed`; the truth is every pair's state at kTruthStep_s; a schedule checking every m-th
 // truth sample misses a warning interval when no check falls inside it.
-void ExperimentTemporal(const Args& args, const Scenario& s, double check_us) {
+void ExperimentTemporal(const Args& args, const Scenario& s, double check_us, Csv* csv) {
   const double kTruthStep_s = args.quick ? 0.0025 : 0.00125;
   const Workcell& wc = *s.workcell;
   ShapeEvaluator eval(wc);
@@ -843,9 +956,6 @@ void ExperimentTemporal(const Args& args, const Scenario& s, double check_us) {
     }
   }
   const double recorded_speed_mps = max_step_m / 0.05;
-  Csv csv(args.out_dir + "/temporal.csv",
-          "speed_mps,checks_per_s,schedule,cpu_us_per_s,events,missed_events,contacts,"
-          "missed_contacts,recorded_speed_mps");
   struct Schedule {
     int checks_per_s;
     const char* label;
@@ -854,7 +964,8 @@ void ExperimentTemporal(const Args& args, const Scenario& s, double check_us) {
                                 {40, "20 Hz x 2"}, {80, "20 Hz x 4"},  {160, "20 Hz x 8"}};
   const auto n = static_cast<PrimitiveId>(wc.primitives.size());
   Eigen::VectorXd q, qdot;
-  std::printf("== check rate: recorded tasks peak at %.3f m/s\n", recorded_speed_mps);
+  std::printf("== check rate, scene %s: recorded tasks peak at %.3f m/s\n", s.label.c_str(),
+              recorded_speed_mps);
   for (const double speed_mps : {0.61, 1.22}) {
     // Seconds of scaled time per recorded 50 ms cycle.
     const double cycle_s = 0.05 * recorded_speed_mps / speed_mps;
@@ -913,7 +1024,7 @@ void ExperimentTemporal(const Args& args, const Scenario& s, double check_us) {
       for (const auto& [pair, run] : open) close(run.first, samples - 1, run.second);
     }
     for (std::size_t k = 0; k < std::size(schedules); ++k) {
-      csv.Row(speed_mps, schedules[k].checks_per_s, schedules[k].label,
+      csv->Row(s.label, speed_mps, schedules[k].checks_per_s, schedules[k].label,
               schedules[k].checks_per_s * check_us, events[k], missed[k], contacts[k],
               missed_contacts[k], recorded_speed_mps);
       std::printf("  %.2f m/s %-10s %6.0f us/s: %llu of %llu warning events missed, %llu of "
@@ -1041,10 +1152,13 @@ int main(int argc, char** argv) {
       args.repeats = 1;
     } else if (a == "--out" && i + 1 < argc) {
       args.out_dir = argv[++i];
+    } else if (a == "--only" && i + 1 < argc) {
+      args.only = argv[++i];
     } else if (a == "--seed" && i + 1 < argc) {
       args.seed = std::stoull(argv[++i]);
     } else {
-      std::fprintf(stderr, "usage: %s [--out DIR] [--quick] [--seed S]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [--out DIR] [--quick] [--seed S] [--only tasks,octree,sweeps,static,moving,"
+                   "temporal,float,fidelity]\n", argv[0]);
       return 2;
     }
   }
@@ -1054,18 +1168,44 @@ int main(int argc, char** argv) {
   const auto t_start = Clock::now();
   Scenario s;
   s.label = "default";
+  s.scene_yaml = ReadFile(SourcePath("config/scene.yaml"));
   s.workcell = std::make_shared<const Workcell>(
       LoadWorkcell(SourcePath("urdf/workcell.urdf"), SourcePath("config/scene.yaml")));
   s.tasks = MakeTasks(*s.workcell);
   const Reference ref = BruteForce(s);
   std::uint64_t missed_total = 0;
-  const double check_us = ExperimentTasks(args, s, ref, &missed_total);
-  ExperimentOctreeStatistics(args, s);
-  ExperimentSweeps(args, s, ref, &missed_total);
-  ExperimentStaticScaling(args, s, &missed_total);
-  ExperimentMovingScaling(args, s, &missed_total);
-  ExperimentTemporal(args, s, check_us);
-  ExperimentFloatDouble(args);
+  double check_us = 0.0;
+  if (args.Runs("tasks")) check_us = ExperimentTasks(args, s, ref, &missed_total);
+  if (args.Runs("octree")) ExperimentOctreeStatistics(args, s);
+  if (args.Runs("sweeps")) ExperimentSweeps(args, s, ref, &missed_total);
+  if (args.Runs("static")) ExperimentStaticScaling(args, s, &missed_total);
+  if (args.Runs("moving")) ExperimentMovingScaling(args, s, &missed_total);
+  // The tasks have few close approaches; the error studies also run among 200 boxes added
+  // near the arms (seeded), where grazing contacts are frequent.
+  std::mt19937_64 clutter_rng(args.seed);
+  const Scenario clutter = MakeSceneScenario(
+      args, s, "clutter200",
+      InsertAfterKey(s.scene_yaml, "objects", ExtraBoxesYaml(&clutter_rng, 200, true)));
+  if (args.Runs("temporal")) {
+    if (check_us == 0.0) {
+      check_us = Summarize(RunMonitor(s, DefaultOptions(), 1, nullptr, "octree").t_us).median_us;
+    }
+    Csv csv(args.out_dir + "/temporal.csv",
+            "scene,speed_mps,checks_per_s,schedule,cpu_us_per_s,events,missed_events,contacts,"
+            "missed_contacts,recorded_speed_mps");
+    ExperimentTemporal(args, s, check_us, &csv);
+    ExperimentTemporal(args, clutter, check_us, &csv);
+  }
+  if (args.Runs("float")) ExperimentFloatDouble(args);
+#ifdef ACM_HAVE_PEERS
+  if (args.Runs("fidelity")) {
+    Csv csv(args.out_dir + "/fidelity.csv",
+            "scene,model,median_us,mean_us,false,missed,warning_pair_cycles,"
+            "excess_volume_percent");
+    ExperimentFidelity(args, s, &csv);
+    ExperimentFidelity(args, clutter, &csv);
+  }
+#endif
   Csv meta(args.out_dir + "/meta.csv", "key,value");
   meta.Row("seed", args.seed);
   meta.Row("quick", args.quick ? 1 : 0);

@@ -61,7 +61,8 @@ std::vector<Candidate> MakeCandidates(const RandomScene& scene, int leaf_capacit
 
 std::string PairsToString(const std::vector<CandidatePair>& pairs) {
   std::string s;
-  for (const CandidatePair& p : pairs) s += "(" + std::to_string(p.a) + "," + std::to_string(p.b) + ")";
+  for (const CandidatePair& p : pairs)
+    s += "(" + std::to_string(p.a) + "," + std::to_string(p.b) + ")";
   return s;
 }
 
@@ -96,14 +97,15 @@ BroadPhaseCounters RunDifferential(const SceneConfig& config, int cycles, int le
     }
   }
   const BroadPhaseCounters& c = candidates[0].bp->counters();
-  std::printf("[ octree ] node tests %llu, object tests %llu, neighbours %llu, splits %llu, "
-              "merges %llu, fallbacks %llu, outside %llu\n",
-              static_cast<unsigned long long>(c.object_node_tests),
-              static_cast<unsigned long long>(c.object_object_tests),
-              static_cast<unsigned long long>(c.neighbours_visited),
-              static_cast<unsigned long long>(c.splits), static_cast<unsigned long long>(c.merges),
-              static_cast<unsigned long long>(c.reinsert_fallbacks),
-              static_cast<unsigned long long>(c.outside_world));
+  std::printf(
+      "[ octree ] node tests %llu, object tests %llu, neighbours %llu, splits %llu, "
+      "merges %llu, fallbacks %llu, outside %llu\n",
+      static_cast<unsigned long long>(c.object_node_tests),
+      static_cast<unsigned long long>(c.object_object_tests),
+      static_cast<unsigned long long>(c.neighbours_visited),
+      static_cast<unsigned long long>(c.splits), static_cast<unsigned long long>(c.merges),
+      static_cast<unsigned long long>(c.reinsert_fallbacks),
+      static_cast<unsigned long long>(c.outside_world));
   return c;
 }
 
@@ -167,7 +169,8 @@ TEST(BroadPhaseDifferential, BoxesExactlyOnCellFacesEdgesAndCorners) {
     config.world_min_W = Eigen::Vector3d(-3.2, -1.6, 0.0);
     // A quarter of the minimum leaf: coordinates land on leaf faces, edges and corners often.
     BroadPhaseOptions options = RandomScene(config).Options(BroadPhaseMethod::kOctree);
-    config.snap_m = OctreeBroadPhase(options, CellUpdateStrategy::kIncremental).min_leaf_size_m() / 4;
+    config.snap_m =
+        OctreeBroadPhase(options, CellUpdateStrategy::kIncremental).min_leaf_size_m() / 4;
     config.leave_probability = 0.005;
     RunDifferential(config, 800, 3);
     if (HasFailure()) return;

@@ -114,16 +114,17 @@ TEST(Octree, CornerStraddlerIsLinkedToEightLeavesAndFollowsItsMotion) {
   ExpectValid(octree);
   std::vector<IndexCell> cells;
   octree.CollectCells(&cells);
-  EXPECT_EQ(std::count_if(cells.begin(), cells.end(), [](const IndexCell& c) { return c.holds_moving; }),
-            8);
+  EXPECT_EQ(
+      std::count_if(cells.begin(), cells.end(), [](const IndexCell& c) { return c.holds_moving; }),
+      8);
   std::vector<CandidatePair> pairs;
   octree.FindPairs(CompatibilityMatrix(3), &pairs);
   EXPECT_TRUE(pairs.empty());
   // Walk it toward static 1 in steps shorter than the minimum leaf: links follow exactly.
   for (int step = 1; step <= 6; ++step) {
     const double shift = -0.15 * step;
-    octree.Move(2, Box(3.75 + shift, 3.75 + shift, 3.75 + shift, 4.25 + shift, 4.25 + shift,
-                       4.25 + shift));
+    octree.Move(
+        2, Box(3.75 + shift, 3.75 + shift, 3.75 + shift, 4.25 + shift, 4.25 + shift, 4.25 + shift));
     ExpectValid(octree);
   }
   EXPECT_EQ(octree.counters().reinsert_fallbacks, 0u);
@@ -157,9 +158,9 @@ TEST(Octree, InsideExitAndDirectionCutTheWorkButNotTheAnswer) {
   off.directional_neighbours = false;
   const auto [inside_on, total_on] = run(on);
   const auto [inside_off, total_off] = run(off);
-  EXPECT_EQ(inside_on, 0u);    // BoundingBoxInsideNode: no neighbour looked at
+  EXPECT_EQ(inside_on, 0u);  // BoundingBoxInsideNode: no neighbour looked at
   EXPECT_GT(inside_off, 0u);
-  EXPECT_EQ(total_on, 1u);     // only the +x face neighbour
+  EXPECT_EQ(total_on, 1u);  // only the +x face neighbour
   EXPECT_GT(total_off, total_on);
 }
 
@@ -177,7 +178,7 @@ TEST(Octree, JumpsTakeTheFallbackAndOutsidePrimitivesAreNeverLost) {
   EXPECT_EQ(octree.counters().reinsert_fallbacks, 1u);
   ExpectValid(octree);
   octree.FindPairs(none, &pairs);
-  EXPECT_EQ(pairs, both);  // the straddler's part inside the cube is indexed
+  EXPECT_EQ(pairs, both);                     // the straddler's part inside the cube is indexed
   octree.Move(1, Box(7.3, 1, 1, 8.3, 2, 2));  // straddles too: still the incremental update
   EXPECT_EQ(octree.outside_count(), 2u);
   EXPECT_EQ(octree.counters().reinsert_fallbacks, 1u);
@@ -276,8 +277,9 @@ TEST(Grid, CellsFollowTheBoxAndOnlyNonEmptyCellsAreCollected) {
   std::vector<IndexCell> cells;
   grid.CollectCells(&cells);
   EXPECT_EQ(cells.size(), 9u);
-  EXPECT_EQ(std::count_if(cells.begin(), cells.end(), [](const IndexCell& c) { return c.holds_moving; }),
-            1);
+  EXPECT_EQ(
+      std::count_if(cells.begin(), cells.end(), [](const IndexCell& c) { return c.holds_moving; }),
+      1);
   for (int step = 1; step <= 20; ++step) {  // toward static 0 in 0.12 m steps
     const double x = 3.2 - 0.12 * step;
     grid.Move(1, Box(x, x, x, x + 0.2, x + 0.2, x + 0.2));

@@ -29,9 +29,9 @@ struct SceneConfig {
   double mover_radius_m = 0.06;
   double static_half_min_m = 0.01, static_half_max_m = 0.3;
   double tolerance_max_m = 0.03;
-  double jump_probability = 0.0;   // per mover per cycle: teleport anywhere in the world
-  double leave_probability = 0.0;  // per mover per cycle: teleport partly or fully outside
-  double remove_probability = 0.0;  // per cycle: remove one present primitive (re-added later)
+  double jump_probability = 0.0;      // per mover per cycle: teleport anywhere in the world
+  double leave_probability = 0.0;     // per mover per cycle: teleport partly or fully outside
+  double remove_probability = 0.0;    // per cycle: remove one present primitive (re-added later)
   double compatible_fraction = 0.05;  // share of pairs marked compatible at start
   double flip_probability = 0.0;      // per cycle: flip one random compatibility mark
   /// Snap every coordinate to the lattice origin + i * snap_m (0: off). With snap_m a cell edge
@@ -114,8 +114,9 @@ class RandomScene {
         p.centre_W = RandomPointInWorld(0.0);
         const int a = static_cast<int>(Uniform(0.0, 3.0)) % 3;
         const double beyond_m = Uniform(-0.1, 0.5);
-        p.centre_W[a] = Uniform(0.0, 1.0) < 0.5 ? config_.world_min_W[a] - beyond_m
-                                                  : config_.world_min_W[a] + config_.world_edge_m + beyond_m;
+        p.centre_W[a] = Uniform(0.0, 1.0) < 0.5
+                            ? config_.world_min_W[a] - beyond_m
+                            : config_.world_min_W[a] + config_.world_edge_m + beyond_m;
       } else {
         // Drift: centre speed <= half the bound, endpoint speed from turning <= the other half.
         if (Uniform(0.0, 1.0) < 0.05) {
@@ -129,7 +130,8 @@ class RandomScene {
         // "leave" also comes back this way, re-entering the cube).
         for (int a = 0; a < 3; ++a) {
           const double lo = config_.world_min_W[a] + 0.3, hi = lo + config_.world_edge_m - 0.6;
-          if ((p.centre_W[a] < lo && p.velocity_W[a] < 0) || (p.centre_W[a] > hi && p.velocity_W[a] > 0)) {
+          if ((p.centre_W[a] < lo && p.velocity_W[a] < 0) ||
+              (p.centre_W[a] > hi && p.velocity_W[a] > 0)) {
             p.velocity_W[a] = -p.velocity_W[a];
           }
         }
@@ -164,9 +166,15 @@ class RandomScene {
   static void Apply(const std::vector<SceneOp>& ops, BroadPhase* bp) {
     for (const SceneOp& op : ops) {
       switch (op.kind) {
-        case SceneOp::Kind::kAdd: bp->Add(op.id, op.box_W, op.tolerance_m, op.motion); break;
-        case SceneOp::Kind::kRemove: bp->Remove(op.id); break;
-        case SceneOp::Kind::kMove: bp->Move(op.id, op.box_W); break;
+        case SceneOp::Kind::kAdd:
+          bp->Add(op.id, op.box_W, op.tolerance_m, op.motion);
+          break;
+        case SceneOp::Kind::kRemove:
+          bp->Remove(op.id);
+          break;
+        case SceneOp::Kind::kMove:
+          bp->Move(op.id, op.box_W);
+          break;
       }
     }
   }
@@ -177,7 +185,7 @@ class RandomScene {
     bool removed = false;
     double tolerance_m = 0.0;
     Eigen::Vector3d centre_W = Eigen::Vector3d::Zero();
-    Eigen::Vector3d half_W = Eigen::Vector3d::Zero();  // statics
+    Eigen::Vector3d half_W = Eigen::Vector3d::Zero();   // statics
     Eigen::Vector3d axis_W = Eigen::Vector3d::UnitX();  // movers
     Eigen::Vector3d velocity_W = Eigen::Vector3d::Zero();
     Eigen::Vector3d spin_W = Eigen::Vector3d::UnitZ();
@@ -193,8 +201,10 @@ class RandomScene {
     Aabb box_W;
     if (p.moving) {
       const Eigen::Vector3d half_W = 0.5 * config_.mover_length_m * p.axis_W;
-      box_W.min_W = (p.centre_W - half_W).cwiseMin(p.centre_W + half_W).array() - config_.mover_radius_m;
-      box_W.max_W = (p.centre_W - half_W).cwiseMax(p.centre_W + half_W).array() + config_.mover_radius_m;
+      box_W.min_W =
+          (p.centre_W - half_W).cwiseMin(p.centre_W + half_W).array() - config_.mover_radius_m;
+      box_W.max_W =
+          (p.centre_W - half_W).cwiseMax(p.centre_W + half_W).array() + config_.mover_radius_m;
     } else {
       box_W.min_W = p.centre_W - p.half_W;
       box_W.max_W = p.centre_W + p.half_W;
@@ -213,10 +223,13 @@ class RandomScene {
     const double q = (x - config_.world_min_W[axis]) / config_.snap_m;
     const double i = up ? std::ceil(q) : std::floor(q);
     if (i < 0) return config_.world_min_W[axis] + i * config_.snap_m;  // outside: any value
-    return config_.world_min_W[axis] + static_cast<double>(static_cast<std::uint32_t>(i)) * config_.snap_m;
+    return config_.world_min_W[axis] +
+           static_cast<double>(static_cast<std::uint32_t>(i)) * config_.snap_m;
   }
 
-  double Uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng_); }
+  double Uniform(double lo, double hi) {
+    return std::uniform_real_distribution<double>(lo, hi)(rng_);
+  }
   Eigen::Vector3d RandomUnit() {
     std::normal_distribution<double> normal;
     Eigen::Vector3d v(normal(rng_), normal(rng_), normal(rng_));

@@ -408,6 +408,9 @@ TEST(SceneLoader, UnknownNamesAreRejected) {
                        "[{name: palm, p0_m: [0,0,0], p1_m: [0,0,1], radius_m: 0.1}]}]\n",
                    {"variants[0]", "unknown link 'left_hand'"});
   ExpectSceneError(kUrdf, kWorldLine + "objetcs: []\n", {"unknown key 'objetcs'"});
+  ExpectSceneError(
+      kUrdf, kWorldLine + "links:\n  left_link3: {radius_m: 0.1}\n  left_link3: {ignore: true}\n",
+      {"links", "duplicate key 'left_link3'"});
   ExpectSceneError(kUrdf, "arms: []\n", {"world", "missing"});
 }
 

@@ -13,6 +13,7 @@ import unittest
 
 import rospkg
 import rostest
+from catkin.find_in_workspaces import find_in_workspaces
 
 PKG = 'arm_collision_monitor'
 # Cycles per task (the seed's counts) and the grasp targets replay must declare.
@@ -22,8 +23,13 @@ OPTIONAL_METHODS = ['fcl', 'bullet']
 TIMEOUT_S = 600
 
 
-def rosrun(*args):
-    return subprocess.run(['rosrun', PKG] + list(args), stdout=subprocess.PIPE,
+def rosrun(executable, *args):
+    """Runs one of the package's executables, found the way rosrun finds it (the workspace's
+    libexec directory) without rosrun's search of the whole package tree."""
+    path = find_in_workspaces(search_dirs=['libexec'], project=PKG, path=executable,
+                              first_match_only=True)
+    assert path, 'no executable %s in the workspace' % executable
+    return subprocess.run([path[0]] + list(args), stdout=subprocess.PIPE,
                           stderr=subprocess.PIPE, universal_newlines=True, timeout=TIMEOUT_S)
 
 

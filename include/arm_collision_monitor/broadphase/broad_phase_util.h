@@ -1,6 +1,7 @@
 // Small helpers shared by the broad-phase implementations (internal to the module).
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "arm_collision_monitor/broadphase/broad_phase.h"
@@ -27,10 +28,6 @@ inline void SwapRemove(std::vector<PrimitiveId>* list, std::vector<std::uint32_t
   (*slot)[last] = index;
   list->pop_back();
 }
-
-}  // namespace arm_collision_monitor
-
-namespace arm_collision_monitor {
 
 /// Coordinate of lattice point `units` on one axis: origin + units * spacing. Every cell
 /// boundary is computed by this one expression, so two cells that share a boundary compute

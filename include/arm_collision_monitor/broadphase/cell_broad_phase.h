@@ -134,7 +134,7 @@ class CellBroadPhase : public BroadPhase {
   bool NeedsDirection(const CellReach& reach, const Direction& dir) const {
     if (!techniques_.directional_neighbours) return true;
     if ((dir.needed_mask & ~reach.reach_new) != 0) return false;
-    return (dir.needed_mask & ~reach.reach_old) != 0;
+    return (dir.needed_mask & ~reach.reach_old) != 0 || (dir.zero_axes & reach.grew_axes) != 0;
   }
 
   std::vector<Record> records_;  // by id

@@ -62,7 +62,9 @@ class OctreeBroadPhase final : public CellBroadPhase {
   bool ValidateCells(std::string* why) const override;
 
   Aabb CellBox(std::uint32_t node) const;
-  std::uint32_t SizeUnits(std::uint32_t node) const { return 1u << (max_depth_ - nodes_[node].level); }
+  std::uint32_t SizeUnits(std::uint32_t node) const {
+    return 1u << (max_depth_ - nodes_[node].level);
+  }
   void InsertFrom(PrimitiveId id, std::uint32_t node);
   void InsertIntoLeaf(PrimitiveId id, std::uint32_t leaf);
   void SplitLeaf(std::uint32_t leaf);
