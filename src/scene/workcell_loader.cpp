@@ -52,8 +52,7 @@ std::vector<int> ReadArms(const YAML::Node& node, const Where& where, const Kine
   yaml_fields::RequireSequence(node, where);
   std::vector<int> root_of_arm;
   for (std::size_t i = 0; i < node.size(); ++i) {
-    Where item = where.Child(std::to_string(i));
-    item.element = where.element + "[" + std::to_string(i) + "]";
+    Where item{where.file, where.element + "[" + std::to_string(i) + "]"};
     const YAML::Node& entry = node[i];
     yaml_fields::RequireMap(entry, item);
     yaml_fields::CheckKeys(entry, {"name", "root_link", "tolerance_m"}, item);

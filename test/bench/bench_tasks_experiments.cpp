@@ -1107,10 +1107,14 @@ void ExperimentFloatDouble(const Args& args) {
           "routine,ns_per_call,max_error_m,p99_error_m,wrong_decisions,pairs,seed");
   auto study = [&](const char* name, const std::function<double(const Case&)>& f) {
     std::vector<double> out(pairs);
-    const auto t0 = Clock::now();
-    for (int i = 0; i < pairs; ++i) out[i] = f(cases[i]);
-    benchmark::DoNotOptimize(out.data());
-    const double ns = MicrosSince(t0) * 1e3 / pairs;
+    // Fastest of five passes: the least disturbed by other processes.
+    double ns = 1e300;
+    for (int pass = 0; pass < 5; ++pass) {
+      const auto t0 = Clock::now();
+      for (int i = 0; i < pairs; ++i) out[i] = f(cases[i]);
+      benchmark::DoNotOptimize(out.data());
+      ns = std::min(ns, MicrosSince(t0) * 1e3 / pairs);
+    }
     std::vector<double> err(pairs);
     int wrong = 0;
     for (int i = 0; i < pairs; ++i) {

@@ -216,7 +216,7 @@ TEST(MonitorScene, ModelSwitchingReplacesTheLinksPrimitives) {
     const CycleReport& report = monitor.Update(q);
     ExpectSameWarnings(*wc, ReferenceWarnings(*wc, q, scene), report.warnings,
                        "grasp model " + std::to_string(k));
-    EXPECT_FALSE(HasWarning(report.warnings, coarse, coarse + 1));
+    for (const Warning& w : report.warnings) EXPECT_TRUE(w.a != coarse && w.b != coarse);
   }
   // The detailed gripper over the box: fingers warn, the coarse capsule does not exist.
   const Eigen::VectorXd q = ArmReachDown(*wc, "left", 0.95, 0.0, 0.96);
@@ -347,8 +347,8 @@ TEST(MonitorScene, SpeedScaledToleranceWarnsLaterWhenSlow) {
     for (int k = 0; k < 100000; ++k) {
       q[j4] = k * joint4_speed_radps * options.cycle_period_s;
       const CycleReport& report = monitor.Update(q);
-      const CycleReport reference_check = monitor.Check(q);  // idle: the same report
-      EXPECT_EQ(reference_check.warnings.size(), report.warnings.size());
+      const CycleReport idle_check = monitor.Check(q);  // same q: the same report
+      EXPECT_EQ(idle_check.warnings.size(), report.warnings.size());
       for (const Warning& w : report.warnings) {
         if (w.b == table || w.a == table) return std::make_pair(q[j4], w.threshold_m);
       }
