@@ -124,7 +124,8 @@ Eigen::Vector3d ReadVector3(const YAML::Node& node, const Where& where) {
   }
   Eigen::Vector3d v;
   for (int i = 0; i < 3; ++i) {
-    v[i] = ReadFiniteDouble(node[i], Where{where.file, where.element + "[" + std::to_string(i) + "]"});
+    v[i] =
+        ReadFiniteDouble(node[i], Where{where.file, where.element + "[" + std::to_string(i) + "]"});
   }
   return v;
 }

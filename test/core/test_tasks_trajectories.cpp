@@ -121,15 +121,17 @@ TEST(TaskTrajectories, SpeedsLimitsAndSmoothness) {
 }
 
 // The states the node sees when the two arms arrive on separate topics, one message per
-// cycle each: after the left message of cycle k the right arm is still at cycle k - 1.
+// cycle each: after the leading arm's message of cycle k the other arm is still at cycle
+// k - 1. Which arm leads depends on the player (a bag orders equal stamps as it likes).
 std::vector<Eigen::VectorXd> NodeStates(const Workcell& wc,
-                                        const std::vector<Eigen::VectorXd>& trajectory) {
+                                        const std::vector<Eigen::VectorXd>& trajectory,
+                                        const std::string& leading_prefix) {
   std::vector<Eigen::VectorXd> states;
   for (std::size_t k = 0; k < trajectory.size(); ++k) {
     if (k > 0) {
       Eigen::VectorXd mixed = trajectory[k - 1];
       for (std::size_t j = 0; j < wc.joint_names.size(); ++j) {
-        if (wc.joint_names[j].rfind("left_", 0) == 0) mixed[j] = trajectory[k][j];
+        if (wc.joint_names[j].rfind(leading_prefix, 0) == 0) mixed[j] = trajectory[k][j];
       }
       states.push_back(mixed);
     }
@@ -209,8 +211,11 @@ TEST(TaskTrajectories, OutcomesPerArmMessage) {
   const auto workcell = LoadBundledWorkcell();
   for (int task = 1; task <= kTaskCount; ++task) {
     const TaskSpec& spec = GetTaskSpec(task);
-    ExpectOutcome(*workcell, spec, NodeStates(*workcell, MakeTaskTrajectory(task, *workcell)),
-                  "per arm message");
+    for (const std::string leading : {"left_", "right_"}) {
+      ExpectOutcome(*workcell, spec,
+                    NodeStates(*workcell, MakeTaskTrajectory(task, *workcell), leading),
+                    "per arm message, " + leading + "arm first");
+    }
   }
 }
 
