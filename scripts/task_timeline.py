@@ -11,6 +11,7 @@ rviz); --rate 0 plays as fast as the node answers.
   task_timeline.py --bag task3.bag --title "task 3" [--grasp right_link7:front_box] [--rate 0]
 """
 import argparse
+import re
 import sys
 import threading
 import time
@@ -116,6 +117,7 @@ def main():
     first_warning = None
     warning_reports = 0
     stop_reports = 0
+    stop_reasons = {}  # reason with its numbers removed -> reports
     cycle_times = []
     missing = 0
     for topic, msg, _ in bag.read_messages(topics=topics):
@@ -137,6 +139,9 @@ def main():
             break
         cycle_times.append(report.cycle_time_s)
         stop_reports += report.stop
+        if report.stop:
+            reason = re.sub(r'\b[0-9]+(\.[0-9]+)?\b', 'N', report.stop_reason)
+            stop_reasons[reason] = stop_reasons.get(reason, 0) + 1
         pairs = {}
         for w in report.warnings:
             pairs['%s -- %s' % (w.primitive_a_name, w.primitive_b_name)] = w.distance_m
@@ -166,8 +171,9 @@ def main():
         print('    first warning: message %d at %.2f s: %s at %.4f m' % first_warning)
     else:
         print('    first warning: none')
-    print('    stop requested in %d reports (start-up until both arms are known, warnings, '
-          'and the hold after them)' % stop_reports)
+    print('    stop requested in %d of %d reports' % (stop_reports, published - missing))
+    for reason, count in sorted(stop_reasons.items(), key=lambda item: -item[1]):
+        print('      %5d  %s' % (count, reason))
     print('    node cycle time: p50 %.1f us, p99 %.1f us, max %.1f us' % (
         percentile(cycle_times, 50) * 1e6, percentile(cycle_times, 99) * 1e6,
         (cycle_times[-1] if cycle_times else float('nan')) * 1e6))

@@ -133,6 +133,40 @@ bool CellBroadPhase::ShortMove(const Aabb& old_box_W, const Aabb& new_box_W) con
          ((new_box_W.max_W - old_box_W.max_W).array().abs() < jump_limit_m_).all();
 }
 
+void CellBroadPhase::StampLinkedCells(PrimitiveId id, std::uint32_t stamp) {
+  for (std::uint32_t l = records_[id].first_link; l != kNone; l = links_[l].next_of_prim) {
+    cell_visit_[links_[l].cell] = stamp;
+  }
+}
+
+IndexCell CellBroadPhase::MakeIndexCell(std::uint32_t cell, const Aabb& cell_W) const {
+  IndexCell out;
+  out.box_W = cell_W;
+  out.primitive_count = cell_count_[cell];
+  for (std::uint32_t l = cell_head_[cell]; l != kNone; l = links_[l].next_in_cell) {
+    if (records_[links_[l].prim].motion == Motion::kMoving) out.holds_moving = true;
+  }
+  return out;
+}
+
+bool CellBroadPhase::LinkedCellsEqual(PrimitiveId id, const std::vector<std::uint32_t>& expected,
+                                      std::vector<std::uint32_t>* actual,
+                                      std::string* why) const {
+  actual->clear();
+  for (std::uint32_t l = records_[id].first_link; l != kNone; l = links_[l].next_of_prim) {
+    actual->push_back(links_[l].cell);
+  }
+  std::sort(actual->begin(), actual->end());
+  if (*actual == expected) return true;
+  if (why != nullptr) {
+    std::ostringstream msg;
+    msg << "primitive " << id << " is linked to " << actual->size() << " cells but overlaps "
+        << expected.size();
+    *why = msg.str();
+  }
+  return false;
+}
+
 unsigned CellBroadPhase::ReachMask(const Aabb& box_W, const Aabb& cell_W) {
   unsigned mask = 0;
   for (int a = 0; a < 3; ++a) {

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
 #include "arm_collision_monitor/broadphase/broad_phase_util.h"
 #include "arm_collision_monitor/core/constants.h"
@@ -15,8 +14,7 @@ int CellsPerAxis(const BroadPhaseOptions& options) {
 }
 
 double CellSize(const BroadPhaseOptions& options) {
-  const double edge_m = (options.world_W.max_W - options.world_W.min_W).maxCoeff();
-  return std::isfinite(edge_m) && edge_m > 0.0 ? edge_m / CellsPerAxis(options) : 0.0;
+  return WorldCubeEdge(options.world_W) / CellsPerAxis(options);
 }
 
 Aabb GridCube(const BroadPhaseOptions& options) {
@@ -36,8 +34,7 @@ GridBroadPhase::GridBroadPhase(const BroadPhaseOptions& options)
     : CellBroadPhase(GridCube(options), options.techniques, CellUpdateStrategy::kIncremental,
                      CellSize(options)),
       g_(CellsPerAxis(options)),
-      cell_m_(CellSize(options)),
-      origin_W_(options.world_W.min_W) {
+      cell_m_(CellSize(options)) {
   ResizeCells(static_cast<std::size_t>(g_) * g_ * g_);
 }
 
@@ -51,11 +48,23 @@ Aabb GridBroadPhase::CellBox(int i, int j, int k) const {
   const int u[3] = {i, j, k};
   Aabb box_W;
   for (int a = 0; a < 3; ++a) {
-    box_W.min_W[a] = LatticeCoordinate(origin_W_[a], static_cast<std::uint32_t>(u[a]), cell_m_);
+    box_W.min_W[a] = LatticeCoordinate(world_W_.min_W[a], static_cast<std::uint32_t>(u[a]), cell_m_);
     box_W.max_W[a] =
-        LatticeCoordinate(origin_W_[a], static_cast<std::uint32_t>(u[a] + 1), cell_m_);
+        LatticeCoordinate(world_W_.min_W[a], static_cast<std::uint32_t>(u[a] + 1), cell_m_);
   }
   return box_W;
+}
+
+void GridBroadPhase::CellCoordinates(std::uint32_t cell, int u[3]) const {
+  u[0] = static_cast<int>(cell / (g_ * g_));
+  u[1] = static_cast<int>((cell / g_) % g_);
+  u[2] = static_cast<int>(cell % g_);
+}
+
+Aabb GridBroadPhase::CellBox(std::uint32_t cell) const {
+  int u[3];
+  CellCoordinates(cell, u);
+  return CellBox(u[0], u[1], u[2]);
 }
 
 void GridBroadPhase::CandidateRange(const Aabb& box_W, int lo[3], int hi[3]) const {
@@ -63,9 +72,9 @@ void GridBroadPhase::CandidateRange(const Aabb& box_W, int lo[3], int hi[3]) con
   const double last = g_ - 1;
   for (int a = 0; a < 3; ++a) {
     lo[a] = static_cast<int>(
-        std::clamp(std::floor((box_W.min_W[a] - origin_W_[a]) / cell_m_) - 1, 0.0, last));
+        std::clamp(std::floor((box_W.min_W[a] - world_W_.min_W[a]) / cell_m_) - 1, 0.0, last));
     hi[a] = static_cast<int>(
-        std::clamp(std::floor((box_W.max_W[a] - origin_W_[a]) / cell_m_) + 1, 0.0, last));
+        std::clamp(std::floor((box_W.max_W[a] - world_W_.min_W[a]) / cell_m_) + 1, 0.0, last));
   }
 }
 
@@ -87,13 +96,10 @@ void GridBroadPhase::InsertIntoCells(PrimitiveId id) {
 void GridBroadPhase::UpdateCells(PrimitiveId id, const Aabb& old_box_W) {
   const std::uint32_t stamp = NextVisitStamp();
   const std::uint32_t old_head = records_[id].first_link;
+  StampLinkedCells(id, stamp);
   for (std::uint32_t l = old_head; l != kNone; l = links_[l].next_of_prim) {
-    cell_visit_[links_[l].cell] = stamp;
-  }
-  for (std::uint32_t l = old_head; l != kNone; l = links_[l].next_of_prim) {
-    const std::uint32_t cell = links_[l].cell;
-    const int u[3] = {static_cast<int>(cell / (g_ * g_)), static_cast<int>((cell / g_) % g_),
-                      static_cast<int>(cell % g_)};
+    int u[3];
+    CellCoordinates(links_[l].cell, u);
     const CellReach reach =
         ComputeCellReach(old_box_W, records_[id].box_W, CellBox(u[0], u[1], u[2]));
     if (techniques_.inside_node_exit && reach.reach_new == 0) continue;
@@ -109,17 +115,9 @@ void GridBroadPhase::UpdateCells(PrimitiveId id, const Aabb& old_box_W) {
       if (records_[id].box_W.Overlaps(CellBox(i, j, k))) AddLink(id, neighbour);
     }
   }
-  for (std::uint32_t l = old_head; l != kNone;) {
-    const std::uint32_t next = links_[l].next_of_prim;
-    const std::uint32_t cell = links_[l].cell;
-    ++counters_.object_node_tests;
-    if (!records_[id].box_W.Overlaps(CellBox(static_cast<int>(cell / (g_ * g_)),
-                                             static_cast<int>((cell / g_) % g_),
-                                             static_cast<int>(cell % g_)))) {
-      RemoveLink(l);
-    }
-    l = next;
-  }
+  RemoveExitedLinks(
+      id, old_head, [this](std::uint32_t cell) { return CellBox(cell); },
+      [](std::uint32_t) {});
 }
 
 void GridBroadPhase::RemoveFromCells(PrimitiveId id) {
@@ -138,7 +136,6 @@ bool GridBroadPhase::ValidateCells(std::string* why) const {
     const Record& r = records_[id];
     if (!r.present) continue;
     expected.clear();
-    actual.clear();
     // Cells two or more away from the box's cell quotient cannot touch it (a wider window
     // than CandidateRange's, computed independently of it).
     if (!r.box_W.Overlaps(world_W_)) {
@@ -152,9 +149,9 @@ bool GridBroadPhase::ValidateCells(std::string* why) const {
     const double last = g_ - 1;
     for (int a = 0; a < 3; ++a) {
       lo[a] = static_cast<int>(
-          std::clamp((r.box_W.min_W[a] - origin_W_[a]) / cell_m_ - 2, 0.0, last));
+          std::clamp((r.box_W.min_W[a] - world_W_.min_W[a]) / cell_m_ - 2, 0.0, last));
       hi[a] = static_cast<int>(
-          std::clamp((r.box_W.max_W[a] - origin_W_[a]) / cell_m_ + 2, 0.0, last));
+          std::clamp((r.box_W.max_W[a] - world_W_.min_W[a]) / cell_m_ + 2, 0.0, last));
     }
     for (int i = lo[0]; i <= hi[0]; ++i) {
       for (int j = lo[1]; j <= hi[1]; ++j) {
@@ -163,17 +160,7 @@ bool GridBroadPhase::ValidateCells(std::string* why) const {
         }
       }
     }
-    for (std::uint32_t l = r.first_link; l != kNone; l = links_[l].next_of_prim) {
-      actual.push_back(links_[l].cell);
-    }
-    std::sort(actual.begin(), actual.end());
-    if (expected != actual) {
-      std::ostringstream msg;
-      msg << "primitive " << id << " is linked to " << actual.size() << " cells but overlaps "
-          << expected.size();
-      if (why != nullptr) *why = msg.str();
-      return false;
-    }
+    if (!LinkedCellsEqual(id, expected, &actual, why)) return false;
   }
   return true;
 }
@@ -184,14 +171,7 @@ void GridBroadPhase::CollectCells(std::vector<IndexCell>* cells) const {
     for (int j = 0; j < g_; ++j) {
       for (int k = 0; k < g_; ++k) {
         const std::uint32_t c = Index(i, j, k);
-        if (cell_count_[c] == 0) continue;
-        IndexCell cell;
-        cell.box_W = CellBox(i, j, k);
-        cell.primitive_count = cell_count_[c];
-        for (std::uint32_t l = cell_head_[c]; l != kNone; l = links_[l].next_in_cell) {
-          if (records_[links_[l].prim].motion == Motion::kMoving) cell.holds_moving = true;
-        }
-        cells->push_back(cell);
+        if (cell_count_[c] != 0) cells->push_back(MakeIndexCell(c, CellBox(i, j, k)));
       }
     }
   }

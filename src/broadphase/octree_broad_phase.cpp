@@ -10,11 +10,6 @@
 namespace arm_collision_monitor {
 namespace {
 
-double CubeEdge(const Aabb& world_W) {
-  const double edge_m = (world_W.max_W - world_W.min_W).maxCoeff();
-  return std::isfinite(edge_m) && edge_m > 0.0 ? edge_m : 0.0;
-}
-
 // The seed's minimum cell: the deepest level whose cells are still at least min_cell_size_m
 // (250 in / 2^7 = 1.95 in for 1.2 in of motion per cycle).
 int DepthFor(double edge_m, double min_cell_size_m) {
@@ -27,13 +22,13 @@ int DepthFor(double edge_m, double min_cell_size_m) {
 }
 
 double LeafSize(const BroadPhaseOptions& options) {
-  const double edge_m = CubeEdge(options.world_W);
+  const double edge_m = WorldCubeEdge(options.world_W);
   return edge_m / static_cast<double>(1u << DepthFor(edge_m, options.min_cell_size_m));
 }
 
 // The root cube, with its upper corner computed exactly as every other lattice point.
 Aabb RootCube(const BroadPhaseOptions& options) {
-  const double edge_m = CubeEdge(options.world_W);
+  const double edge_m = WorldCubeEdge(options.world_W);
   const int depth = DepthFor(edge_m, options.min_cell_size_m);
   const double leaf_m = edge_m / static_cast<double>(1u << depth);
   Aabb root_W;
@@ -48,9 +43,8 @@ Aabb RootCube(const BroadPhaseOptions& options) {
 
 OctreeBroadPhase::OctreeBroadPhase(const BroadPhaseOptions& options, CellUpdateStrategy strategy)
     : CellBroadPhase(RootCube(options), options.techniques, strategy, LeafSize(options)),
-      root_W_(RootCube(options)),
       min_leaf_m_(LeafSize(options)),
-      max_depth_(DepthFor(CubeEdge(options.world_W), options.min_cell_size_m)),
+      max_depth_(DepthFor(WorldCubeEdge(options.world_W), options.min_cell_size_m)),
       max_objects_per_leaf_(static_cast<std::uint32_t>(std::max(1, options.max_objects_per_leaf))) {
   nodes_.resize(1);  // the root, an empty leaf
   ResizeCells(1);
@@ -81,8 +75,8 @@ Aabb OctreeBroadPhase::CellBox(std::uint32_t node) const {
   const std::uint32_t u[3] = {n.x, n.y, n.z};
   Aabb box_W;
   for (int a = 0; a < 3; ++a) {
-    box_W.min_W[a] = LatticeCoordinate(root_W_.min_W[a], u[a], min_leaf_m_);
-    box_W.max_W[a] = LatticeCoordinate(root_W_.min_W[a], u[a] + size, min_leaf_m_);
+    box_W.min_W[a] = LatticeCoordinate(world_W_.min_W[a], u[a], min_leaf_m_);
+    box_W.max_W[a] = LatticeCoordinate(world_W_.min_W[a], u[a] + size, min_leaf_m_);
   }
   return box_W;
 }
@@ -242,9 +236,7 @@ void OctreeBroadPhase::UpdateNeighbour(PrimitiveId id, std::uint32_t node, std::
 void OctreeBroadPhase::UpdateCells(PrimitiveId id, const Aabb& old_box_W) {
   const std::uint32_t stamp = NextVisitStamp();
   const std::uint32_t old_head = records_[id].first_link;
-  for (std::uint32_t l = old_head; l != kNone; l = links_[l].next_of_prim) {
-    cell_visit_[links_[l].cell] = stamp;
-  }
+  StampLinkedCells(id, stamp);
   // New links go to the front of the primitive's list, so the old ones stay from old_head on.
   for (std::uint32_t l = old_head; l != kNone; l = links_[l].next_of_prim) {
     const std::uint32_t leaf = links_[l].cell;
@@ -259,16 +251,11 @@ void OctreeBroadPhase::UpdateCells(PrimitiveId id, const Aabb& old_box_W) {
   }
   // Exits: old leaves the box no longer overlaps; then merge where the rule allows.
   scratch_cells_.clear();
-  for (std::uint32_t l = old_head; l != kNone;) {
-    const std::uint32_t next = links_[l].next_of_prim;
-    const std::uint32_t leaf = links_[l].cell;
-    ++counters_.object_node_tests;
-    if (!records_[id].box_W.Overlaps(CellBox(leaf))) {
-      RemoveLink(l);
-      if (leaf != 0) scratch_cells_.push_back(nodes_[leaf].parent);
-    }
-    l = next;
-  }
+  RemoveExitedLinks(
+      id, old_head, [this](std::uint32_t leaf) { return CellBox(leaf); },
+      [this](std::uint32_t leaf) {
+        if (leaf != 0) scratch_cells_.push_back(nodes_[leaf].parent);
+      });
   MergeQueuedParents();
 }
 
@@ -403,21 +390,15 @@ bool OctreeBroadPhase::ValidateCells(std::string* why) const {
     // its children should have merged (and it should never have split).
     ++region;
     std::uint32_t distinct = 0;
-    std::vector<std::uint32_t> sub = {n};
-    while (!sub.empty()) {
-      const std::uint32_t s = sub.back();
-      sub.pop_back();
-      if (nodes_[s].is_split) {
-        for (std::uint32_t c = 0; c < 8; ++c) sub.push_back(nodes_[s].first_child + c);
-        continue;
-      }
+    ForEachNodeBelow(n, [&](std::uint32_t s) {
+      if (nodes_[s].is_split) return;
       for (std::uint32_t l = cell_head_[s]; l != kNone; l = links_[l].next_in_cell) {
         if (region_stamp[links_[l].prim] != region) {
           region_stamp[links_[l].prim] = region;
           ++distinct;
         }
       }
-    }
+    });
     if (distinct <= max_objects_per_leaf_) {
       msg << "split node " << n << " holds only " << distinct << " <= N distinct primitives";
       return fail();
@@ -449,18 +430,9 @@ bool OctreeBroadPhase::ValidateCells(std::string* why) const {
     const Record& r = records_[id];
     if (!r.present) continue;
     expected.clear();
-    actual.clear();
     CollectOverlappedLeaves(r.box_W, 0, &expected);
-    for (std::uint32_t l = r.first_link; l != kNone; l = links_[l].next_of_prim) {
-      actual.push_back(links_[l].cell);
-    }
     std::sort(expected.begin(), expected.end());
-    std::sort(actual.begin(), actual.end());
-    if (expected != actual) {
-      msg << "primitive " << id << " is linked to " << actual.size() << " leaves but overlaps "
-          << expected.size();
-      return fail();
-    }
+    if (!LinkedCellsEqual(id, expected, &actual, why)) return false;
   }
   return true;
 }
@@ -469,15 +441,9 @@ OctreeStatistics OctreeBroadPhase::ComputeStatistics() const {
   OctreeStatistics stats;
   std::uint64_t nonempty_links = 0;
   std::uint32_t nonempty = 0;
-  std::vector<std::uint32_t> stack = {0};
-  while (!stack.empty()) {
-    const std::uint32_t n = stack.back();
-    stack.pop_back();
+  ForEachNodeBelow(0, [&](std::uint32_t n) {
     ++stats.nodes;
-    if (nodes_[n].is_split) {
-      for (std::uint32_t c = 0; c < 8; ++c) stack.push_back(nodes_[n].first_child + c);
-      continue;
-    }
+    if (nodes_[n].is_split) return;
     ++stats.leaves;
     stats.depth = std::max(stats.depth, static_cast<int>(nodes_[n].level));
     if (cell_count_[n] == 0) {
@@ -486,7 +452,7 @@ OctreeStatistics OctreeBroadPhase::ComputeStatistics() const {
       ++nonempty;
       nonempty_links += cell_count_[n];
     }
-  }
+  });
   std::size_t indexed = 0;
   for (const PrimitiveId id : present_ids_) indexed += records_[id].link_count > 0 ? 1 : 0;
   stats.mean_primitives_per_nonempty_leaf =
@@ -498,22 +464,9 @@ OctreeStatistics OctreeBroadPhase::ComputeStatistics() const {
 
 void OctreeBroadPhase::CollectCells(std::vector<IndexCell>* cells) const {
   cells->clear();
-  std::vector<std::uint32_t> stack = {0};
-  while (!stack.empty()) {
-    const std::uint32_t n = stack.back();
-    stack.pop_back();
-    if (nodes_[n].is_split) {
-      for (std::uint32_t c = 0; c < 8; ++c) stack.push_back(nodes_[n].first_child + c);
-      continue;
-    }
-    IndexCell cell;
-    cell.box_W = CellBox(n);
-    cell.primitive_count = cell_count_[n];
-    for (std::uint32_t l = cell_head_[n]; l != kNone; l = links_[l].next_in_cell) {
-      if (records_[links_[l].prim].motion == Motion::kMoving) cell.holds_moving = true;
-    }
-    cells->push_back(cell);
-  }
+  ForEachNodeBelow(0, [&](std::uint32_t n) {
+    if (!nodes_[n].is_split) cells->push_back(MakeIndexCell(n, CellBox(n)));
+  });
 }
 
 }  // namespace arm_collision_monitor

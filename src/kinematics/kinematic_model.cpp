@@ -56,7 +56,7 @@ bool KinematicModel::Validate(std::string* why) const {
       if (q_owner[joint.q_index] >= 0) return fail(link, "q_index used twice");
       q_owner[joint.q_index] = link;
     }
-    if (is_actuated && std::abs(joint.axis_J.norm() - 1.0) > 1e-12) {
+    if (is_actuated && std::abs(joint.axis_J.norm() - 1.0) > kUnitAxisNormTolerance) {
       return fail(link, "axis is not a unit vector");
     }
     if (!(joint.lower <= joint.upper)) return fail(link, "lower limit above upper limit");

@@ -52,7 +52,7 @@ std::vector<int> ReadArms(const YAML::Node& node, const Where& where, const Kine
   yaml_fields::RequireSequence(node, where);
   std::vector<int> root_of_arm;
   for (std::size_t i = 0; i < node.size(); ++i) {
-    Where item{where.file, where.element + "[" + std::to_string(i) + "]"};
+    Where item = where.Entry(i);
     const YAML::Node& entry = node[i];
     yaml_fields::RequireMap(entry, item);
     yaml_fields::CheckKeys(entry, {"name", "root_link", "tolerance_m"}, item);
@@ -449,7 +449,7 @@ Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_pat
     yaml_fields::RequireSequence(objects, where);
     for (std::size_t i = 0; i < objects.size(); ++i) {
       const YAML::Node& entry = objects[i];
-      Where item{scene_path, "objects[" + std::to_string(i) + "]"};
+      Where item = where.Entry(i);
       yaml_fields::RequireMap(entry, item);
       yaml_fields::CheckKeys(
           entry, {"name", "size_m", "pose", "tolerance_m", "attachable", "frame"}, item);
@@ -507,7 +507,7 @@ Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_pat
     yaml_fields::RequireSequence(variants, where);
     for (std::size_t i = 0; i < variants.size(); ++i) {
       const YAML::Node& entry = variants[i];
-      Where item{scene_path, "variants[" + std::to_string(i) + "]"};
+      Where item = where.Entry(i);
       yaml_fields::RequireMap(entry, item);
       yaml_fields::CheckKeys(entry, {"link", "name", "capsules"}, item);
       ModelVariantSpec variant;
@@ -527,7 +527,7 @@ Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_pat
       if (capsules.size() == 0) capsules_where.Fail(capsules, "expected at least one capsule");
       for (std::size_t c = 0; c < capsules.size(); ++c) {
         const YAML::Node& cap = capsules[c];
-        const Where cap_where{scene_path, item.element + ".capsules[" + std::to_string(c) + "]"};
+        const Where cap_where = capsules_where.Entry(c);
         yaml_fields::RequireMap(cap, cap_where);
         yaml_fields::CheckKeys(cap, {"name", "p0_m", "p1_m", "radius_m"}, cap_where);
         PrimitiveSpec p;
@@ -573,7 +573,7 @@ Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_pat
     const Where where{scene_path, "compatible"};
     yaml_fields::RequireSequence(compatible, where);
     for (std::size_t i = 0; i < compatible.size(); ++i) {
-      const Where item{scene_path, "compatible[" + std::to_string(i) + "]"};
+      const Where item = where.Entry(i);
       const YAML::Node& pair = compatible[i];
       if (!pair.IsSequence() || pair.size() != 2) {
         item.Fail(pair, "expected a pair [a, b] of link, object or primitive names");
@@ -602,7 +602,7 @@ Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_pat
     yaml_fields::RequireSequence(grasp_targets, where);
     for (std::size_t i = 0; i < grasp_targets.size(); ++i) {
       const YAML::Node& entry = grasp_targets[i];
-      const Where item{scene_path, "grasp_targets[" + std::to_string(i) + "]"};
+      const Where item = where.Entry(i);
       yaml_fields::RequireMap(entry, item);
       yaml_fields::CheckKeys(entry, {"link", "object"}, item);
       GraspTargetSpec target;

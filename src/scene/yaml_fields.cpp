@@ -13,6 +13,10 @@ Where Where::Child(const std::string& name) const {
   return Where{file, element.empty() ? name : element + "." + name};
 }
 
+Where Where::Entry(std::size_t index) const {
+  return Where{file, element + "[" + std::to_string(index) + "]"};
+}
+
 void Where::Fail(const YAML::Node& node, const std::string& what) const {
   std::string location = file;
   if (node.IsDefined() && !node.Mark().is_null()) {
@@ -124,8 +128,7 @@ Eigen::Vector3d ReadVector3(const YAML::Node& node, const Where& where) {
   }
   Eigen::Vector3d v;
   for (int i = 0; i < 3; ++i) {
-    v[i] =
-        ReadFiniteDouble(node[i], Where{where.file, where.element + "[" + std::to_string(i) + "]"});
+    v[i] = ReadFiniteDouble(node[i], where.Entry(i));
   }
   return v;
 }

@@ -5,6 +5,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <Eigen/Core>
+#include <cstddef>
 #include <initializer_list>
 #include <string>
 
@@ -17,6 +18,8 @@ struct Where {
   std::string element;
 
   Where Child(const std::string& name) const;
+  /// Entry `index` of the sequence at this element, e.g. "objects[3]".
+  Where Entry(std::size_t index) const;
   /// "file:line: element: what" (line omitted when yaml-cpp has no mark for `node`).
   [[noreturn]] void Fail(const YAML::Node& node, const std::string& what) const;
 };

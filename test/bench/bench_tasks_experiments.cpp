@@ -919,7 +919,7 @@ void ExperimentFidelity(const Args& args, const Scenario& s, Csv* csv) {
   std::uint64_t total_exact = 0;
   for (const auto& e : exact) total_exact += e.size();
   const Summary se = Summarize(exact_us);
-  csv->Row(s.label, "exact (FCL, URDF geometry)", se.median_us, se.mean_us, 0, 0, total_exact, 0.0);
+  csv->Row(s.label, "exact (FCL on URDF geometry)", se.median_us, se.mean_us, 0, 0, total_exact, 0.0);
   std::printf("  exact          median %7.2f us  (%llu pair-cycles)\n", se.median_us,
               static_cast<unsigned long long>(total_exact));
 }

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "arm_collision_monitor/geometry/distance.h"
+#include "test_geometry_shapes.h"
 
 namespace arm_collision_monitor {
 namespace {
@@ -15,14 +16,6 @@ using Eigen::Vector3d;
 
 // Hand-derived values here are exact or within a few ulps of 1 m.
 constexpr double kTol_m = 1e-14;
-
-Capsule MakeCapsule(const Vector3d& p0, const Vector3d& p1, double radius_m) {
-  Capsule c;
-  c.p0_W = p0;
-  c.p1_W = p1;
-  c.radius_m = radius_m;
-  return c;
-}
 
 Box MakeBox(const Vector3d& centre_W, const Vector3d& half_extents_m,
             const Eigen::Quaterniond& q_WB = Eigen::Quaterniond::Identity()) {

@@ -25,6 +25,7 @@
 
 #include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/geometry/distance.h"
+#include "test_geometry_shapes.h"
 
 namespace arm_collision_monitor {
 namespace {
@@ -348,13 +349,6 @@ struct Rng {
   double LogUniform(double lo, double hi) { return std::pow(10.0, Uniform(lo, hi)); }
 };
 
-Capsule MakeCapsule(const Vector3d& p0, const Vector3d& p1, double r) {
-  Capsule c;
-  c.p0_W = p0;
-  c.p1_W = p1;
-  c.radius_m = r;
-  return c;
-}
 Box MakeBox(const Eigen::Quaterniond& q, const Vector3d& centre, const Vector3d& h) {
   Box b;
   b.X_WB.linear() = q.toRotationMatrix();

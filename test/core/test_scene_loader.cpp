@@ -42,6 +42,18 @@ void ExpectLoadError(Load load, const std::vector<std::string>& parts) {
   }
 }
 
+// Writes a copy of the three-link arm's URDF with the first `from` replaced by `to`; returns
+// its path.
+std::string WriteEditedArmUrdf(const std::string& name, const std::string& from,
+                               const std::string& to) {
+  std::ifstream in(kArmUrdf);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << "'" << from << "' not in " << kArmUrdf;
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return WriteFile(name, text);
+}
+
 void ExpectSceneError(const std::string& urdf, const std::string& scene_text,
                       const std::vector<std::string>& parts) {
   const std::string path = WriteFile("scene.yaml", scene_text);
@@ -427,10 +439,8 @@ TEST(SceneLoader, BadRadiiAreRejected) {
   ExpectSceneError(kUrdf, kWorldLine + "links: {left_link3: {p0_m: [0, 0, 0]}}\n",
                    {"links.left_link3", "p0_m and p1_m"});
   // A negative radius in the URDF itself.
-  std::ifstream in(kArmUrdf);
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  text.replace(text.find("radius=\"0.05\""), 13, "radius=\"-0.05\"");
-  const std::string bad_urdf = WriteFile("negative_radius.urdf", text);
+  const std::string bad_urdf =
+      WriteEditedArmUrdf("negative_radius.urdf", "radius=\"0.05\"", "radius=\"-0.05\"");
   ExpectLoadError([&] { LoadWorkcell(bad_urdf, kData + "three_link_scene.yaml"); },
                   {bad_urdf, "link 'upper_arm'", "cylinder"});
 }
@@ -475,10 +485,8 @@ TEST(SceneLoader, BadBoxesAreRejected) {
   ExpectSceneError(
       kUrdf, kWorldLine + "objects: [{name: crate, size_m: [1, 1, 1], pose: {xyz_m: [9, 0, 1]}}]\n",
       {"objects[0] 'crate'", "world cube"});
-  std::ifstream in(kArmUrdf);
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  text.replace(text.find("size=\"0.3 0.3 0.1\""), 18, "size=\"0.3 0 0.1\"");
-  const std::string bad_urdf = WriteFile("zero_box.urdf", text);
+  const std::string bad_urdf =
+      WriteEditedArmUrdf("zero_box.urdf", "size=\"0.3 0.3 0.1\"", "size=\"0.3 0 0.1\"");
   ExpectLoadError([&] { LoadWorkcell(bad_urdf, kData + "three_link_scene.yaml"); },
                   {bad_urdf, "link 'base_link'", "box size"});
 }

@@ -36,6 +36,7 @@ struct BroadPhaseCounters {
   std::uint64_t outside_world = 0;        ///< moves that left (part of) the box outside the world
 };
 
+/// Whether a primitive may move after Add(). Pairs of two static primitives are never reported.
 enum class Motion : std::uint8_t { kStatic, kMoving };
 
 /// A leaf cell of a spatial index, for visualisation and statistics.
@@ -45,6 +46,8 @@ struct IndexCell {
   bool holds_moving = false;
 };
 
+/// The broad-phase interface: keeps the inflated boxes of the primitives and returns the pairs
+/// whose boxes overlap. Boxes in W, metres.
 class BroadPhase {
  public:
   virtual ~BroadPhase() = default;

@@ -9,10 +9,12 @@
 
 namespace arm_collision_monitor {
 
+/// Which broad phase MakeBroadPhase builds (names as in ParseBroadPhaseMethod).
 enum class BroadPhaseMethod { kOctree, kNaive, kGrid, kRebuild, kReinsert };
 
 /// Parses "octree", "naive", "grid", "rebuild", "reinsert". False if unknown.
 bool ParseBroadPhaseMethod(const std::string& name, BroadPhaseMethod* method);
+/// The name ParseBroadPhaseMethod accepts for `method`.
 std::string BroadPhaseMethodName(BroadPhaseMethod method);
 
 /// The seed's performance techniques; each can be switched off for the ablation benchmark.
@@ -33,7 +35,7 @@ struct BroadPhaseOptions {
   int max_objects_per_leaf = 10;  ///< the seed's decomposition rule N
   /// No cell is split below this edge length: the maximum speed times the cycle period (the
   /// farthest any primitive moves in one cycle). The octree rounds it up to root / 2^k.
-  double min_cell_size_m = 0.61 * 0.05;
+  double min_cell_size_m = 0.61 * 0.05;  // the seed's 0.61 m/s (24 in/s) times 0.05 s (20 Hz)
   int grid_cells_per_axis = 16;   ///< G for the uniform grid
   /// Pools (node, location link, per-primitive arrays) are reserved at construction for this
   /// many primitive ids, so the cycle does not allocate; more still work (the pools grow once).
@@ -41,6 +43,8 @@ struct BroadPhaseOptions {
   BroadPhaseTechniques techniques;
 };
 
+/// The broad phase `options.method` names, configured by `options`, its pools reserved for
+/// options.reserve_primitives ids.
 std::unique_ptr<BroadPhase> MakeBroadPhase(const BroadPhaseOptions& options);
 
 }  // namespace arm_collision_monitor

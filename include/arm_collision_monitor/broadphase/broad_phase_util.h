@@ -1,6 +1,7 @@
 // Small helpers shared by the broad-phase implementations (internal to the module).
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -27,6 +28,13 @@ inline void SwapRemove(std::vector<PrimitiveId>* list, std::vector<std::uint32_t
   (*list)[index] = last;
   (*slot)[last] = index;
   list->pop_back();
+}
+
+/// Edge (m) of the cube a broad phase spans: the largest edge of `world_W`, or 0 when that is
+/// not a positive finite length.
+inline double WorldCubeEdge(const Aabb& world_W) {
+  const double edge_m = (world_W.max_W - world_W.min_W).maxCoeff();
+  return std::isfinite(edge_m) && edge_m > 0.0 ? edge_m : 0.0;
 }
 
 /// Coordinate of lattice point `units` on one axis: origin + units * spacing. Every cell

@@ -45,7 +45,6 @@ class CellBroadPhase : public BroadPhase {
     union_stamp_ = value;
   }
 
-  CellUpdateStrategy strategy() const { return strategy_; }
   /// Number of present primitives whose inflated box is not inside the world cube.
   std::size_t outside_count() const { return outside_ids_.size(); }
 
@@ -106,6 +105,30 @@ class CellBroadPhase : public BroadPhase {
   /// True when no face of the box moved by the cell spacing (with margin) or more: then the
   /// neighbour search from the old cells is exact (argument in cell_broad_phase.cpp).
   bool ShortMove(const Aabb& old_box_W, const Aabb& new_box_W) const;
+  /// Stamps every cell `id` is linked to as visited by `stamp`: its old cells need no test.
+  void StampLinkedCells(PrimitiveId id, std::uint32_t stamp);
+  /// Unlinks `id`, following its links from `first_link` on, from each cell its box no longer
+  /// overlaps; `cell_box_W(cell)` gives a cell's box, `on_exit(cell)` hears of each removal.
+  template <typename CellBoxFn, typename OnExitFn>
+  void RemoveExitedLinks(PrimitiveId id, std::uint32_t first_link, CellBoxFn cell_box_W,
+                         OnExitFn on_exit) {
+    for (std::uint32_t l = first_link; l != kNone;) {
+      const std::uint32_t next = links_[l].next_of_prim;
+      const std::uint32_t cell = links_[l].cell;
+      ++counters_.object_node_tests;
+      if (!records_[id].box_W.Overlaps(cell_box_W(cell))) {
+        RemoveLink(l);
+        on_exit(cell);
+      }
+      l = next;
+    }
+  }
+  /// The cell `cell` with box `cell_W`, as reported by CollectCells.
+  IndexCell MakeIndexCell(std::uint32_t cell, const Aabb& cell_W) const;
+  /// True when the cells `id` is linked to are exactly `expected` (sorted ascending);
+  /// otherwise false with the two counts in `why`. `actual` is scratch space.
+  bool LinkedCellsEqual(PrimitiveId id, const std::vector<std::uint32_t>& expected,
+                        std::vector<std::uint32_t>* actual, std::string* why) const;
 
   /// Bit a (0..2) set: the box reaches the upper face of `cell_W` on axis a (box max >= face);
   /// bit 3 + a: it reaches the lower face. A neighbour on side d can hold the box only if every
@@ -151,7 +174,7 @@ class CellBroadPhase : public BroadPhase {
   std::vector<PrimitiveId> outside_ids_;
   std::vector<std::uint32_t> scratch_cells_;  // merge candidates, reserved at start-up
 
-  Aabb world_W_;
+  Aabb world_W_;  // the cube the cells span: octree root, whole grid; lattice origin at min_W
   BroadPhaseTechniques techniques_;
   CellUpdateStrategy strategy_;
   double jump_limit_m_;  // cell spacing * (1 - margin)

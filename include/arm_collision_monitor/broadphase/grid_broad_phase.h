@@ -24,7 +24,6 @@ class GridBroadPhase final : public CellBroadPhase {
   /// Preallocates for up to `max_primitives` ids so that the steady state allocates nothing.
   void Reserve(std::uint32_t max_primitives);
 
-  int cells_per_axis() const { return g_; }
   double cell_size_m() const { return cell_m_; }
 
  private:
@@ -38,13 +37,15 @@ class GridBroadPhase final : public CellBroadPhase {
     return (static_cast<std::uint32_t>(i) * g_ + j) * g_ + k;
   }
   Aabb CellBox(int i, int j, int k) const;
+  Aabb CellBox(std::uint32_t cell) const;
+  /// Inverse of Index().
+  void CellCoordinates(std::uint32_t cell, int u[3]) const;
   /// Cell index range on each axis that can overlap the box (one cell of slack each side
   /// against rounding; the exact test decides).
   void CandidateRange(const Aabb& box_W, int lo[3], int hi[3]) const;
 
   int g_;
   double cell_m_;
-  Eigen::Vector3d origin_W_;
 };
 
 }  // namespace arm_collision_monitor

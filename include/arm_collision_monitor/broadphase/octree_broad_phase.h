@@ -42,7 +42,7 @@ class OctreeBroadPhase final : public CellBroadPhase {
   /// at least options.min_cell_size_m.
   double min_leaf_size_m() const { return min_leaf_m_; }
   int max_depth() const { return max_depth_; }
-  const Aabb& root_W() const { return root_W_; }
+  const Aabb& root_W() const { return world_W_; }
 
  private:
   struct Node {
@@ -78,12 +78,24 @@ class OctreeBroadPhase final : public CellBroadPhase {
   void TryMergeUpward(std::uint32_t node);
   void MergeQueuedParents();
 
+  /// Calls visit(n) on `top` and every node below it, parents before their children.
+  template <typename Fn>
+  void ForEachNodeBelow(std::uint32_t top, Fn visit) const {
+    std::vector<std::uint32_t> stack = {top};
+    while (!stack.empty()) {
+      const std::uint32_t n = stack.back();
+      stack.pop_back();
+      visit(n);
+      if (nodes_[n].is_split) {
+        for (std::uint32_t c = 0; c < 8; ++c) stack.push_back(nodes_[n].first_child + c);
+      }
+    }
+  }
   void CollectOverlappedLeaves(const Aabb& box_W, std::uint32_t node,
                                std::vector<std::uint32_t>* leaves) const;
 
   std::vector<Node> nodes_;  // node 0 is the root; blocks of 8 from index 1
   std::uint32_t free_block_ = kNone;
-  Aabb root_W_;
   double min_leaf_m_ = 0.0;
   int max_depth_ = 0;
   std::uint32_t max_objects_per_leaf_ = 10;

@@ -72,6 +72,10 @@ constexpr int kReservedLinksPerPrimitive = 8;
 /// A URDF joint axis shorter than this (dimensionless, the axis is a direction) cannot be
 /// normalised reliably: rejected at load. Typical axes have norm 1.
 constexpr double kMinJointAxisNorm = 1e-9;
+/// KinematicModel::Validate: a stored joint axis counts as a unit vector when its norm is within
+/// this of 1 (dimensionless; typical 1e-12). The loader normalises every axis, which leaves the
+/// norm within a few ulps (~1e-16) of 1; a larger error means the model was corrupted.
+constexpr double kUnitAxisNormTolerance = 1e-12;
 
 /// The "cylinder plus two end spheres" capsule idiom is recognised when the spheres' radii
 /// and centres match the cylinder's radius and end centres within this fraction of the

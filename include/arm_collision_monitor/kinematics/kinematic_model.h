@@ -11,6 +11,7 @@
 
 namespace arm_collision_monitor {
 
+/// The URDF joint types the model supports (floating and planar are rejected at load).
 enum class JointType { kFixed, kRevolute, kContinuous, kPrismatic };
 
 /// The joint that connects a link to its parent link.
@@ -30,6 +31,7 @@ struct JointSpec {
   double mimic_offset = 0.0;
 };
 
+/// A URDF joint tree, immutable after FromUrdfFile (apart from start-up soft limits).
 class KinematicModel {
  public:
   /// Links in topological order: a link's parent always has a smaller index; link 0 is the
@@ -69,6 +71,7 @@ class KinematicModel {
   /// Builds the model from a URDF file. Throws LoadError naming the file and element.
   static KinematicModel FromUrdfFile(const std::string& urdf_path);
 
+  /// Pose of the root link in W (identity unless the caller places the robot).
   Eigen::Isometry3d X_WRoot = Eigen::Isometry3d::Identity();
 
  private:

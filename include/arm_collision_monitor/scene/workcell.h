@@ -66,6 +66,7 @@ struct ModelVariantSpec {
   std::vector<PrimitiveId> primitives;
 };
 
+/// Everything loaded at start-up (LoadWorkcell); the Monitor only reads it.
 struct Workcell {
   std::string urdf_path;
   std::string scene_path;
@@ -97,6 +98,7 @@ struct Workcell {
 /// The shape `shape_L`, given in frame L, expressed in W (rigid transform X_WL).
 Shape TransformShape(const Eigen::Isometry3d& X_WL, const Shape& shape_L);
 
+/// The Monitor's options (LoadMonitorOptions; format: config/monitor.yaml).
 struct MonitorOptions {
   /// The broad phase; world_W and min_cell_size_m are filled in from the workcell and from
   /// max_speed_mps * cycle_period_s.
