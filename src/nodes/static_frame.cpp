@@ -24,7 +24,7 @@ int main(int argc, char** argv) {
   X_PC.transform.translation.y = std::atof(argv[2]);
   X_PC.transform.translation.z = std::atof(argv[3]);
   tf2::Quaternion R_PC;
-  R_PC.setEulerZYX(std::atof(argv[4]), std::atof(argv[5]), std::atof(argv[6]));
+  R_PC.setRPY(std::atof(argv[6]), std::atof(argv[5]), std::atof(argv[4]));  // roll, pitch, yaw
   X_PC.transform.rotation.x = R_PC.x();
   X_PC.transform.rotation.y = R_PC.y();
   X_PC.transform.rotation.z = R_PC.z();
