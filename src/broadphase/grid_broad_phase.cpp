@@ -48,7 +48,8 @@ Aabb GridBroadPhase::CellBox(int i, int j, int k) const {
   const int u[3] = {i, j, k};
   Aabb box_W;
   for (int a = 0; a < 3; ++a) {
-    box_W.min_W[a] = LatticeCoordinate(world_W_.min_W[a], static_cast<std::uint32_t>(u[a]), cell_m_);
+    box_W.min_W[a] =
+        LatticeCoordinate(world_W_.min_W[a], static_cast<std::uint32_t>(u[a]), cell_m_);
     box_W.max_W[a] =
         LatticeCoordinate(world_W_.min_W[a], static_cast<std::uint32_t>(u[a] + 1), cell_m_);
   }

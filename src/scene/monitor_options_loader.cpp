@@ -23,18 +23,12 @@ MonitorOptions LoadMonitorOptions(const std::string& path) {
                                          "' (expected octree, naive, grid, rebuild or reinsert)");
     }
   }
-  if (root["auto_broad_phase"]) {
-    options.auto_broad_phase =
-        yaml_fields::ReadBool(root["auto_broad_phase"], top.Child("auto_broad_phase"));
-  }
-  if (root["max_objects_per_leaf"]) {
-    options.broad_phase.max_objects_per_leaf = yaml_fields::ReadPositiveInt(
-        root["max_objects_per_leaf"], top.Child("max_objects_per_leaf"));
-  }
-  if (root["grid_cells_per_axis"]) {
-    options.broad_phase.grid_cells_per_axis =
-        yaml_fields::ReadPositiveInt(root["grid_cells_per_axis"], top.Child("grid_cells_per_axis"));
-  }
+  using yaml_fields::ReadIfPresent;
+  ReadIfPresent(root, "auto_broad_phase", top, yaml_fields::ReadBool, &options.auto_broad_phase);
+  ReadIfPresent(root, "max_objects_per_leaf", top, yaml_fields::ReadPositiveInt,
+                &options.broad_phase.max_objects_per_leaf);
+  ReadIfPresent(root, "grid_cells_per_axis", top, yaml_fields::ReadPositiveInt,
+                &options.broad_phase.grid_cells_per_axis);
   if (root["techniques"]) {
     const YAML::Node t = root["techniques"];
     const Where where = top.Child("techniques");
@@ -44,31 +38,28 @@ MonitorOptions LoadMonitorOptions(const std::string& path) {
                             "bounding_box_pretests"},
                            where);
     BroadPhaseTechniques& techniques = options.broad_phase.techniques;
-    auto read = [&](const char* key, bool* value) {
-      if (t[key]) *value = yaml_fields::ReadBool(t[key], where.Child(key));
-    };
-    read("directional_neighbours", &techniques.directional_neighbours);
-    read("inside_node_exit", &techniques.inside_node_exit);
-    read("pair_deduplication", &techniques.pair_deduplication);
-    read("bounding_box_pretests", &techniques.bounding_box_pretests);
+    ReadIfPresent(t, "directional_neighbours", where, yaml_fields::ReadBool,
+                  &techniques.directional_neighbours);
+    ReadIfPresent(t, "inside_node_exit", where, yaml_fields::ReadBool,
+                  &techniques.inside_node_exit);
+    ReadIfPresent(t, "pair_deduplication", where, yaml_fields::ReadBool,
+                  &techniques.pair_deduplication);
+    ReadIfPresent(t, "bounding_box_pretests", where, yaml_fields::ReadBool,
+                  &techniques.bounding_box_pretests);
   }
-  auto read_double = [&](const char* key, bool positive, double* value) {
-    if (!root[key]) return;
-    *value = positive ? yaml_fields::ReadPositiveDouble(root[key], top.Child(key))
-                      : yaml_fields::ReadNonNegativeDouble(root[key], top.Child(key));
-  };
-  read_double("tolerance_m", false, &options.tolerance_m);
-  read_double("max_speed_mps", true, &options.max_speed_mps);
-  read_double("cycle_period_s", true, &options.cycle_period_s);
-  read_double("reaction_time_s", false, &options.reaction_time_s);
-  read_double("stopping_time_s", false, &options.stopping_time_s);
-  if (root["speed_scaled_tolerance"]) {
-    options.speed_scaled_tolerance =
-        yaml_fields::ReadBool(root["speed_scaled_tolerance"], top.Child("speed_scaled_tolerance"));
-  }
-  if (root["fixed_frame"]) {
-    options.fixed_frame = yaml_fields::ReadName(root["fixed_frame"], top.Child("fixed_frame"));
-  }
+  ReadIfPresent(root, "tolerance_m", top, yaml_fields::ReadNonNegativeDouble,
+                &options.tolerance_m);
+  ReadIfPresent(root, "max_speed_mps", top, yaml_fields::ReadPositiveDouble,
+                &options.max_speed_mps);
+  ReadIfPresent(root, "cycle_period_s", top, yaml_fields::ReadPositiveDouble,
+                &options.cycle_period_s);
+  ReadIfPresent(root, "reaction_time_s", top, yaml_fields::ReadNonNegativeDouble,
+                &options.reaction_time_s);
+  ReadIfPresent(root, "stopping_time_s", top, yaml_fields::ReadNonNegativeDouble,
+                &options.stopping_time_s);
+  ReadIfPresent(root, "speed_scaled_tolerance", top, yaml_fields::ReadBool,
+                &options.speed_scaled_tolerance);
+  ReadIfPresent(root, "fixed_frame", top, yaml_fields::ReadName, &options.fixed_frame);
   // The farthest a primitive moves in one cycle: the octree's smallest cell (seed, section 3).
   options.broad_phase.min_cell_size_m = options.max_speed_mps * options.cycle_period_s;
   return options;

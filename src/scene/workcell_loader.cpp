@@ -60,9 +60,9 @@ std::vector<int> ReadArms(const YAML::Node& node, const Where& where, const Kine
     arm.name = yaml_fields::ReadName(entry["name"], item.Child("name"));
     item.element += Quoted(arm.name);
     arm.root_link = yaml_fields::ReadName(entry["root_link"], item.Child("root_link"));
-    arm.tolerance_m = entry["tolerance_m"] ? yaml_fields::ReadNonNegativeDouble(
-                                                 entry["tolerance_m"], item.Child("tolerance_m"))
-                                           : default_tolerance_m;
+    arm.tolerance_m = default_tolerance_m;
+    yaml_fields::ReadIfPresent(entry, "tolerance_m", item, yaml_fields::ReadNonNegativeDouble,
+                               &arm.tolerance_m);
     for (const ArmSpec& other : *arms) {
       if (other.name == arm.name) item.Fail(entry["name"], "duplicate arm name" + Quoted(arm.name));
     }
@@ -105,19 +105,16 @@ std::vector<LinkOverride> ReadLinkOverrides(const YAML::Node& node, const Where&
     yaml_fields::RequireMap(value, item);
     yaml_fields::CheckKeys(value, {"ignore", "radius_m", "p0_m", "p1_m", "tolerance_m"}, item);
     LinkOverride& o = overrides[link];
-    if (value["ignore"]) o.ignore = yaml_fields::ReadBool(value["ignore"], item.Child("ignore"));
-    if (value["radius_m"]) {
-      o.radius_m = yaml_fields::ReadNonNegativeDouble(value["radius_m"], item.Child("radius_m"));
-    }
-    if (value["p0_m"]) o.p0_L = yaml_fields::ReadVector3(value["p0_m"], item.Child("p0_m"));
-    if (value["p1_m"]) o.p1_L = yaml_fields::ReadVector3(value["p1_m"], item.Child("p1_m"));
+    yaml_fields::ReadIfPresent(value, "ignore", item, yaml_fields::ReadBool, &o.ignore);
+    yaml_fields::ReadIfPresent(value, "radius_m", item, yaml_fields::ReadNonNegativeDouble,
+                               &o.radius_m);
+    yaml_fields::ReadIfPresent(value, "p0_m", item, yaml_fields::ReadVector3, &o.p0_L);
+    yaml_fields::ReadIfPresent(value, "p1_m", item, yaml_fields::ReadVector3, &o.p1_L);
     if (o.p0_L.has_value() != o.p1_L.has_value()) {
       item.Fail(value, "p0_m and p1_m must be given together (the capsule's endpoints)");
     }
-    if (value["tolerance_m"]) {
-      o.tolerance_m =
-          yaml_fields::ReadNonNegativeDouble(value["tolerance_m"], item.Child("tolerance_m"));
-    }
+    yaml_fields::ReadIfPresent(value, "tolerance_m", item, yaml_fields::ReadNonNegativeDouble,
+                               &o.tolerance_m);
   }
   return overrides;
 }
@@ -137,12 +134,10 @@ void ReadJointLimits(const YAML::Node& node, const Where& where, KinematicModel*
     yaml_fields::RequireMap(entry.second, item);
     yaml_fields::CheckKeys(entry.second, {"lower", "upper"}, item);
     const JointSpec& joint = model->joint(link);
-    const double lower = entry.second["lower"] ? yaml_fields::ReadFiniteDouble(
-                                                     entry.second["lower"], item.Child("lower"))
-                                               : joint.lower;
-    const double upper = entry.second["upper"] ? yaml_fields::ReadFiniteDouble(
-                                                     entry.second["upper"], item.Child("upper"))
-                                               : joint.upper;
+    double lower = joint.lower;
+    double upper = joint.upper;
+    yaml_fields::ReadIfPresent(entry.second, "lower", item, yaml_fields::ReadFiniteDouble, &lower);
+    yaml_fields::ReadIfPresent(entry.second, "upper", item, yaml_fields::ReadFiniteDouble, &upper);
     if (!(joint.lower <= lower && lower <= upper && upper <= joint.upper)) {
       item.Fail(entry.second, "expected URDF lower (" + std::to_string(joint.lower) +
                                   ") <= lower <= upper <= URDF upper (" +
@@ -469,26 +464,23 @@ Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_pat
       yaml_fields::CheckKeys(pose, {"xyz_m", "rpy"}, pose_where);
       const Eigen::Vector3d xyz_m =
           yaml_fields::ReadVector3(pose["xyz_m"], pose_where.Child("xyz_m"));
-      const Eigen::Vector3d rpy =
-          pose["rpy"] ? yaml_fields::ReadVector3(pose["rpy"], pose_where.Child("rpy"))
-                      : Eigen::Vector3d::Zero();
+      Eigen::Vector3d rpy = Eigen::Vector3d::Zero();
+      yaml_fields::ReadIfPresent(pose, "rpy", pose_where, yaml_fields::ReadVector3, &rpy);
       // URDF convention: fixed-axis roll about x, then pitch about y, then yaw about z.
       object.X_WO_start.linear() = (Eigen::AngleAxisd(rpy.z(), Eigen::Vector3d::UnitZ()) *
                                     Eigen::AngleAxisd(rpy.y(), Eigen::Vector3d::UnitY()) *
                                     Eigen::AngleAxisd(rpy.x(), Eigen::Vector3d::UnitX()))
                                        .toRotationMatrix();
       object.X_WO_start.translation() = xyz_m;
-      if (entry["attachable"]) {
-        object.is_attachable = yaml_fields::ReadBool(entry["attachable"], item.Child("attachable"));
-      }
-      if (entry["frame"]) object.frame = yaml_fields::ReadName(entry["frame"], item.Child("frame"));
+      yaml_fields::ReadIfPresent(entry, "attachable", item, yaml_fields::ReadBool,
+                                 &object.is_attachable);
+      yaml_fields::ReadIfPresent(entry, "frame", item, yaml_fields::ReadName, &object.frame);
       PrimitiveSpec p;
       p.name = object.name;
       p.owner = object.name;
       p.shape_L = Box{object.X_WO_start, 0.5 * size_m};
-      p.tolerance_m = entry["tolerance_m"] ? yaml_fields::ReadNonNegativeDouble(
-                                                 entry["tolerance_m"], item.Child("tolerance_m"))
-                                           : 0.0;
+      yaml_fields::ReadIfPresent(entry, "tolerance_m", item, yaml_fields::ReadNonNegativeDouble,
+                                 &p.tolerance_m);
       p.is_static = !object.is_attachable && object.frame.empty();
       p.object_index = static_cast<int>(w.objects.size());
       if (!w.world_W.Contains(ComputeAabb(p.shape_L))) {

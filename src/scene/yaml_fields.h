@@ -45,5 +45,13 @@ bool ReadBool(const YAML::Node& node, const Where& where);
 std::string ReadName(const YAML::Node& node, const Where& where);
 Eigen::Vector3d ReadVector3(const YAML::Node& node, const Where& where);
 
+/// For an optional key: when `map` has `key`, *value = read(map[key], where.Child(key)), with
+/// `read` one of the readers above; otherwise *value keeps its default.
+template <typename T, typename Reader>
+void ReadIfPresent(const YAML::Node& map, const char* key, const Where& where, Reader read,
+                   T* value) {
+  if (map[key]) *value = read(map[key], where.Child(key));
+}
+
 }  // namespace yaml_fields
 }  // namespace arm_collision_monitor

@@ -206,8 +206,10 @@ ArmCopies MakeArmCopies(int pairs) {
   std::string copies, arms, links;
   for (int k = 1; k < pairs; ++k) {
     const std::string p = "c" + std::to_string(k);
-    std::string b = std::regex_replace(body, std::regex("(name|link)=\"(left|right)_"),
-                                       "$1=\"" + p + "$2_");
+    // Links and joints renamed (materials keep their names: they are defined once).
+    std::string b = std::regex_replace(
+        body, std::regex("(<link name|<joint name|parent link|child link)=\"(left|right)_"),
+        "$1=\"" + p + "$2_");
     for (const char* side : {"left", "right"}) {
       const double y0 = std::string(side) == "left" ? 0.55 : -0.55;
       std::ostringstream from, to;
