@@ -493,8 +493,11 @@ void Monitor::Impl::ComputeTolerances(const std::vector<Shape>& shapes,
 void Monitor::Impl::TestPair(PrimitiveId a, PrimitiveId b, const std::vector<Shape>& shapes,
                              const std::vector<double>& tol, std::vector<Warning>* warnings) {
   const double threshold_m = tol[a] + tol[b];
-  if (!IsCloserThan(shapes[a], shapes[b], threshold_m)) return;
+  // Overlap is a negative signed distance, closer than any threshold: two parts without a
+  // tolerance zone (threshold 0) still warn when they touch or overlap.
+  if (threshold_m > 0.0 && !IsCloserThan(shapes[a], shapes[b], threshold_m)) return;
   const DistanceResult d = ShapeDistance(shapes[a], shapes[b]);
+  if (threshold_m <= 0.0 && d.distance_m > 0.0) return;
   Warning w;
   w.a = a;
   w.b = b;

@@ -40,7 +40,8 @@ JointStateInput::JointStateInput(const std::vector<std::string>& joint_names,
       stamp_(joint_names.size()),
       received_(joint_names.size()),
       is_received_(joint_names.size(), false),
-      missing_count_(static_cast<int>(joint_names.size())) {
+      missing_count_(static_cast<int>(joint_names.size())),
+      is_awaiting_(joint_names.size(), false) {
   for (std::size_t i = 0; i < joint_names_.size(); ++i) {
     index_of_name_.emplace(joint_names_[i], static_cast<int>(i));
   }
@@ -137,6 +138,10 @@ MergeStatus JointStateInput::Merge(const sensor_msgs::JointState& msg, const ros
       is_received_[i] = true;
       --missing_count_;
     }
+    if (is_awaiting_[i]) {
+      is_awaiting_[i] = false;
+      --awaiting_count_;
+    }
     q_[i] = msg.position[k];
     stamp_[i] = stamp;
     received_[i] = now;
@@ -160,9 +165,13 @@ MergeStatus JointStateInput::MergeIntoCopy(const sensor_msgs::JointState& msg,
   return MergeStatus::kAccepted;
 }
 
-void JointStateInput::ResetStamps() {
-  for (ros::Time& stamp : stamp_) {
-    stamp = ros::Time();
+void JointStateInput::OnTimeWentBackwards(const ros::Time& now) {
+  awaiting_count_ = 0;
+  for (std::size_t i = 0; i < stamp_.size(); ++i) {
+    stamp_[i] = ros::Time();
+    received_[i] = now;
+    is_awaiting_[i] = is_received_[i];
+    awaiting_count_ += is_received_[i] ? 1 : 0;
   }
 }
 
@@ -178,6 +187,9 @@ int JointStateInput::FirstMissingJoint() const {
 int JointStateInput::OldestJoint() const {
   int oldest = -1;
   for (std::size_t i = 0; i < received_.size(); ++i) {
+    if (awaiting_count_ > 0 && !is_awaiting_[i]) {
+      continue;  // a joint silent since the clock went back is the one to name
+    }
     if (is_received_[i] && (oldest < 0 || received_[i] < received_[oldest])) {
       oldest = static_cast<int>(i);
     }
@@ -193,6 +205,9 @@ double JointStateInput::JointAge(int index, const ros::Time& now) const {
 }
 
 bool JointStateInput::IsStale(const ros::Time& now) const {
+  if (awaiting_count_ > 0) {
+    return true;
+  }
   const int oldest = OldestJoint();
   return oldest >= 0 && JointAge(oldest, now) > input_timeout_s_;
 }

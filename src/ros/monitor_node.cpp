@@ -167,12 +167,7 @@ void MonitorNode::SetCondition(const char* format, ...) {
 
 void MonitorNode::OnJointState(const sensor_msgs::JointState::ConstPtr& msg) {
   const auto start = std::chrono::steady_clock::now();
-  const ros::Time now = ros::Time::now();
-  if (now < last_now_) {
-    // The ROS clock went back (a looping bag with --clock): stamps start over.
-    input_->ResetStamps();
-  }
-  last_now_ = now;
+  const ros::Time now = ClockNow();
   ++messages_;
   const MergeStatus status = input_->Merge(*msg, now);
   if (status == MergeStatus::kAccepted) {
@@ -192,6 +187,25 @@ void MonitorNode::OnJointState(const sensor_msgs::JointState::ConstPtr& msg) {
   if (options_.cycle_rate_hz <= 0.0) {
     RunCycle(start);
   }
+}
+
+ros::Time MonitorNode::ClockNow() {
+  const ros::Time now = ros::Time::now();
+  if (now < last_now_) {
+    OnTimeWentBackwards(now);
+  }
+  last_now_ = now;
+  return now;
+}
+
+void MonitorNode::OnTimeWentBackwards(const ros::Time& now) {
+  ROS_WARN("arm_collision_monitor: ROS time went back by %.3f s: stop until every joint is "
+           "received again", last_now_.toSec() - now.toSec());
+  input_->OnTimeWentBackwards(now);
+  // A deadline or stamp from the old timeline would lie in the future: hold from the jump, and
+  // report no input stamp until input of the new timeline is accepted.
+  stop_hold_until_ = now;
+  newest_input_stamp_ = ros::Time();
 }
 
 void MonitorNode::OnCycleTimer(const ros::TimerEvent&) {
@@ -225,7 +239,7 @@ bool MonitorNode::UpdateBoundObjects() {
 }
 
 void MonitorNode::RunCycle(std::chrono::steady_clock::time_point start) {
-  const ros::Time now = ros::Time::now();
+  const ros::Time now = ClockNow();
   ++cycles_;
   std::uint8_t status = pending_status_;
   pending_status_ = MonitorReport::INPUT_OK;
@@ -254,10 +268,8 @@ void MonitorNode::RunCycle(std::chrono::steady_clock::time_point start) {
       reinsert_fallbacks_ += cycle.counters.reinsert_fallbacks;
       outside_world_ += cycle.counters.outside_world;
       if (input_->IsStale(now)) {
-        const int oldest = input_->OldestJoint();
         status = MonitorReport::INPUT_STALE;
-        SetCondition("joint '%s' not received for %.3f s", input_->joint_name(oldest).c_str(),
-                     input_->JointAge(oldest, now));
+        SetStaleCondition(now);
       } else if (is_tf_ok && !report_.warnings.empty()) {
         const CollisionWarning& w = report_.warnings.front();
         SetCondition("%zu warning(s), e.g. %s - %s at %.3f m", report_.warnings.size(),
@@ -305,15 +317,21 @@ void MonitorNode::ApplyStopPolicy(const ros::Time& now) {
   }
 }
 
+void MonitorNode::SetStaleCondition(const ros::Time& now) {
+  const int oldest = input_->OldestJoint();
+  SetCondition(input_->IsAwaitingInput(oldest)
+                   ? "joint '%s' not received since the ROS clock went back %.3f s ago"
+                   : "joint '%s' not received for %.3f s",
+               input_->joint_name(oldest).c_str(), input_->JointAge(oldest, now));
+}
+
 void MonitorNode::OnStalenessTimer(const ros::TimerEvent&) {
-  const ros::Time now = ros::Time::now();
+  const ros::Time now = ClockNow();
   if (!input_->is_complete() || !input_->IsStale(now)) {
     is_stale_reported_ = false;
     return;
   }
-  const int oldest = input_->OldestJoint();
-  SetCondition("joint '%s' not received for %.3f s", input_->joint_name(oldest).c_str(),
-               input_->JointAge(oldest, now));
+  SetStaleCondition(now);
   ApplyStopPolicy(now);
   PublishStop(/*only_on_change=*/true);
   if (!is_stale_reported_) {
@@ -383,7 +401,7 @@ bool MonitorNode::OnCheck(CheckJointState::Request& req, CheckJointState::Respon
   }
   const std::unordered_set<std::string> requested(req.joint_state.name.begin(),
                                                   req.joint_state.name.end());
-  const ros::Time now = ros::Time::now();
+  const ros::Time now = ClockNow();
   for (int i = 0; i < input_->joint_count(); ++i) {
     if (std::isinf(input_->JointAge(i, now)) && requested.count(input_->joint_name(i)) == 0) {
       res.success = false;
@@ -443,7 +461,7 @@ void MonitorNode::DiagnoseInput(diagnostic_updater::DiagnosticStatusWrapper& sta
   diag_time_ = wall_now;
   diag_messages_ = messages_;
   diag_refused_ = refused_;
-  const ros::Time now = ros::Time::now();
+  const ros::Time now = ClockNow();
   const int oldest = input_->OldestJoint();
   const double oldest_age_s = oldest >= 0 ? input_->JointAge(oldest, now) : 0.0;
   if (!input_->is_complete()) {

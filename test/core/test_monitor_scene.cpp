@@ -162,7 +162,8 @@ TEST(MonitorScene, AttachedBoxMovesWithTheGripperAndWarnsAgainstAnotherTable) {
     EXPECT_FALSE(HasWarning(report.warnings, gripper, box));
     warned_front_table = warned_front_table || HasWarning(report.warnings, box, front_table);
     wc->kinematics.ComputeLinkPoses(q, &X_WL);
-    const Box& expected = std::get<Box>(TransformShape(X_WL[gripper_link], scene.held[box].shape_L));
+    const Shape expected_shape = TransformShape(X_WL[gripper_link], scene.held[box].shape_L);
+    const Box& expected = std::get<Box>(expected_shape);
     const Box& actual = std::get<Box>(monitor.shape_W(box));
     EXPECT_TRUE(actual.X_WB.isApprox(expected.X_WB, 1e-12));
     ExpectValid(monitor);
@@ -253,6 +254,19 @@ TEST(MonitorScene, FrameBoundObjectFollowsItsPose) {
   ExpectSameWarnings(*wc, ReferenceWarnings(*wc, home, scene), report.warnings, "camera moved");
   EXPECT_TRUE(std::any_of(report.warnings.begin(), report.warnings.end(), [&](const Warning& w) {
     return w.b == camera || w.a == camera;
+  }));
+  // Driven into the front table top: both tolerances are 0, and the overlap still warns.
+  X_WO.translation() << 0.95, 0.5, 0.74;
+  ASSERT_TRUE(monitor.SetObjectPose("camera", X_WO, &error)) << error;
+  scene.moved_objects_W[camera] =
+      TransformShape(X_WO * spec.X_WO_start.inverse(), wc->primitives[camera].shape_L);
+  const CycleReport& in_table = monitor.Update(home);
+  ExpectSameWarnings(*wc, ReferenceWarnings(*wc, home, scene), in_table.warnings,
+                     "camera in the table");
+  const PrimitiveId table = Prim(*wc, "front_table_top");
+  EXPECT_TRUE(std::any_of(in_table.warnings.begin(), in_table.warnings.end(), [&](const Warning& w) {
+    return w.a == std::min(camera, table) && w.b == std::max(camera, table) &&
+           w.threshold_m == 0.0 && w.distance_m == 0.0;
   }));
   // Next to the back wall (left out as unreachable): the wall joins the checked scene.
   const PrimitiveId wall = Prim(*wc, "back_wall");

@@ -206,7 +206,7 @@ inline std::vector<ReferenceWarning> ReferenceWarnings(const Workcell& wc,
     for (std::size_t b = a + 1; b < n; ++b) {
       if (!present[a] || !present[b] || (is_static[a] && is_static[b]) || excused(a, b)) continue;
       const double d = ShapeDistance(shape[a], shape[b]).distance_m;
-      if (d < tol[a] + tol[b]) {
+      if (d < tol[a] + tol[b] || d == 0.0) {  // touching or overlapping always warns
         warnings.push_back({static_cast<PrimitiveId>(a), static_cast<PrimitiveId>(b), d,
                             tol[a] + tol[b]});
       }

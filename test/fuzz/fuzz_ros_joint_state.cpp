@@ -81,7 +81,8 @@ void CheckReport(const CycleReport& report, std::uint64_t expected_cycle) {
   for (std::size_t k = 0; k < report.warnings.size(); ++k) {
     const Warning& w = report.warnings[k];
     Require(w.a < w.b);
-    Require(std::isfinite(w.distance_m) && w.distance_m >= 0.0 && w.distance_m < w.threshold_m);
+    Require(std::isfinite(w.distance_m) && w.distance_m >= 0.0 &&
+            (w.distance_m < w.threshold_m || w.distance_m == 0.0));
     Require(w.p_WA.allFinite() && w.p_WB.allFinite());
     if (k > 0) {
       const Warning& v = report.warnings[k - 1];

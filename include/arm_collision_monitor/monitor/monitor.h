@@ -26,7 +26,8 @@ enum class InputStatus : std::uint8_t {
   kOutOfLimits  ///< a position outside its joint's limits by more than the configured margin
 };
 
-/// One non-compatible pair closer than the sum of its tolerances.
+/// One non-compatible pair closer than the sum of its tolerances, or touching / overlapping
+/// (overlap is a negative signed distance: it warns even when both tolerances are 0).
 struct Warning {
   PrimitiveId a = 0;  ///< a < b
   PrimitiveId b = 0;

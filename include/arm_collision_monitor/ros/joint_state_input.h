@@ -45,20 +45,27 @@ class JointStateInput {
   /// is not touched. Same validation as Merge() except the stamp checks.
   MergeStatus MergeIntoCopy(const sensor_msgs::JointState& msg, Eigen::VectorXd* q) const;
 
-  /// Forgets the per-joint stamps, e.g. after the ROS clock jumped back (a looping bag).
-  void ResetStamps();
+  /// Re-bases every time-derived state on `now` after the ROS clock jumped back (simulated
+  /// time: a looping bag, a simulator reset): the per-joint stamps are forgotten, each joint's
+  /// receipt time becomes `now` (so its age counts from the jump, never from a time now in the
+  /// future), and every received joint awaits a message accepted after the jump. A joint
+  /// awaiting input counts as stale (IsStale()) until then. Allocation-free.
+  void OnTimeWentBackwards(const ros::Time& now);
 
   const Eigen::VectorXd& q() const { return q_; }
   /// Every model joint has been received at least once.
   bool is_complete() const { return missing_count_ == 0; }
   /// Index of the first model joint never received, -1 when complete.
   int FirstMissingJoint() const;
-  /// Index of the joint received longest ago (largest age), -1 before any input.
+  /// Index of a joint awaiting input since the clock went back if any, else of the joint
+  /// received longest ago (largest age); -1 before any input.
   int OldestJoint() const;
+  /// True when joint `index` has received nothing since the ROS clock last went back.
+  bool IsAwaitingInput(int index) const { return is_awaiting_[index]; }
   /// Seconds since joint `index` was last received at time `now` (inf if never).
   double JointAge(int index, const ros::Time& now) const;
-  /// True when some joint is stale at time `now` (never received does not count: see
-  /// is_complete()).
+  /// True when some joint is stale at time `now`, or awaits input since the clock went back
+  /// (never received does not count: see is_complete()).
   bool IsStale(const ros::Time& now) const;
   const std::string& joint_name(int index) const { return joint_names_[index]; }
   int joint_count() const { return static_cast<int>(joint_names_.size()); }
@@ -88,6 +95,8 @@ class JointStateInput {
   std::vector<ros::Time> received_;  ///< receipt time of that message per joint
   std::vector<bool> is_received_;
   int missing_count_;
+  std::vector<bool> is_awaiting_;    ///< received before the clock went back, not since
+  int awaiting_count_ = 0;
   std::vector<Layout> layouts_;      ///< small: one per distinct publisher layout
   std::size_t last_layout_ = 0;
   std::uint32_t last_unknown_joints_ = 0;

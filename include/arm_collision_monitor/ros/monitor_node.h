@@ -8,6 +8,8 @@
 //   - the last input message was refused (wrong size, non-finite, out of limits, stamp going
 //     backwards, stamped further than the input timeout from now, no model joint);
 //   - some joint's newest input was received longer ago than ~input_timeout_s;
+//   - the ROS clock went back (simulated time: a looping bag, a simulator reset) and some
+//     joint has not been received since (every time-derived state is re-based on the jump);
 //   - a frame-bound scene object's TF frame could not be looked up;
 //   - the last cycle reported a warning.
 // It is cleared by the first cycle on accepted, complete, fresh input with no warning that
@@ -71,12 +73,21 @@ class MonitorNode {
   void OnStopTimer(const ros::TimerEvent& event);
   void OnDiagnosticsTimer(const ros::WallTimerEvent& event);
 
+  /// ros::Time::now(), after calling OnTimeWentBackwards() if it is earlier than the last
+  /// time read. Every time-derived state is compared with this, never with a raw now().
+  ros::Time ClockNow();
+  /// Re-bases all time-derived state on `now` at once after the ROS clock went back (only with
+  /// simulated time: it is monotonic under wall time): the hold deadline, the input stamps and
+  /// receipt times; a stop is requested until every joint is received again.
+  void OnTimeWentBackwards(const ros::Time& now);
   /// One monitor cycle on the merged input; `start` is when the triggering message was taken.
   void RunCycle(std::chrono::steady_clock::time_point start);
   /// Moves frame-bound objects to their TF pose; false (and sets the stop reason) on failure.
   bool UpdateBoundObjects();
   /// Sets this cycle's stop condition (printf-style; no allocation once condition_ has grown).
   void SetCondition(const char* format, ...) __attribute__((format(printf, 2, 3)));
+  /// Sets the stale-input condition, naming the joint silent longest (or since the jump back).
+  void SetStaleCondition(const ros::Time& now);
   /// Applies the stop policy to this cycle's condition_ (empty: none) and fills the report's
   /// stop fields.
   void ApplyStopPolicy(const ros::Time& now);
@@ -125,7 +136,7 @@ class MonitorNode {
   sensor_msgs::JointState joint_state_out_;
   std::uint8_t pending_status_ = MonitorReport::INPUT_OK;  ///< first refusal since last cycle
   ros::Time newest_input_stamp_;
-  ros::Time last_now_;
+  ros::Time last_now_;                 ///< the latest ClockNow()
   bool has_pending_input_ = false;
   std::string condition_;              ///< this cycle's stop condition ("" none)
   bool stop_ = true;                   ///< requested; true until the model is complete
