@@ -55,16 +55,6 @@ bool IsSamePose(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
   return std::memcmp(a.matrix().data(), b.matrix().data(), sizeof(double) * 16) == 0;
 }
 
-void AddCounters(const BroadPhaseCounters& add, BroadPhaseCounters* total) {
-  total->object_node_tests += add.object_node_tests;
-  total->object_object_tests += add.object_object_tests;
-  total->neighbours_visited += add.neighbours_visited;
-  total->splits += add.splits;
-  total->merges += add.merges;
-  total->reinsert_fallbacks += add.reinsert_fallbacks;
-  total->outside_world += add.outside_world;
-}
-
 void SetError(std::string* error, const std::string& message) {
   if (error != nullptr) *error = message;
 }
@@ -510,7 +500,7 @@ void Monitor::Impl::TestPair(PrimitiveId a, PrimitiveId b, const std::vector<Sha
 
 void Monitor::Impl::RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q) {
   // Work done by scene changes since the last cycle belongs to the run, not to this cycle.
-  AddCounters(broad_phase->counters(), &total);
+  total += broad_phase->counters();
   broad_phase->ResetCounters();
 
   model->ComputeLinkPoses(q, &X_WL_next);
@@ -543,7 +533,7 @@ void Monitor::Impl::RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q) {
   report.stop = !report.warnings.empty();
   report.moved_primitives = moved_count;
   report.counters = broad_phase->counters();
-  AddCounters(report.counters, &total);
+  total += report.counters;
   broad_phase->ResetCounters();
   has_good = true;
   scene_changed = false;

@@ -402,16 +402,6 @@ struct RunResult {
   std::string chosen;  // the Monitor's broad phase name
 };
 
-void AddCounters(BroadPhaseCounters* sum, const BroadPhaseCounters& c) {
-  sum->object_node_tests += c.object_node_tests;
-  sum->object_object_tests += c.object_object_tests;
-  sum->neighbours_visited += c.neighbours_visited;
-  sum->splits += c.splits;
-  sum->merges += c.merges;
-  sum->reinsert_fallbacks += c.reinsert_fallbacks;
-  sum->outside_world += c.outside_world;
-}
-
 void CheckAgainst(const Reference* ref, RunResult* r) {
   if (ref == nullptr) return;
   PairSet extra, missing;
@@ -463,7 +453,7 @@ RunResult RunMonitor(const Scenario& s, const MonitorOptions& options, int repea
           PairSet w;
           for (const Warning& warning : report.warnings) w.push_back({warning.a, warning.b});
           r.warnings.push_back(std::move(w));
-          AddCounters(&r.counters, report.counters);
+          r.counters += report.counters;
         }
       }
       if (last) r.task_mean_us[ti] = task_sum / std::max<std::size_t>(1, task.q.size() - 1);

@@ -11,23 +11,9 @@
 #include <vector>
 
 #include "arm_collision_monitor/broadphase/broad_phase_factory.h"
+#include "allocation_counter.h"
 #include "test_broadphase_scene.h"
 
-namespace {
-std::atomic<bool> g_counting{false};
-std::atomic<long> g_allocations{0};
-}  // namespace
-
-void* operator new(std::size_t size) {
-  if (g_counting.load(std::memory_order_relaxed)) g_allocations.fetch_add(1);
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t size) { return operator new(size); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
 
 namespace arm_collision_monitor {
 namespace {
@@ -37,12 +23,11 @@ using test::SceneConfig;
 using test::SceneOp;
 
 TEST(BroadPhaseAllocation, CounterSeesAllocations) {
-  g_allocations = 0;
-  g_counting = true;
+  const std::uint64_t before = test::AllocationCount();
   auto* v = new std::vector<int>(100);
-  g_counting = false;
+  const std::uint64_t allocations = test::AllocationCount() - before;
   delete v;
-  EXPECT_GE(g_allocations.load(), 2);  // the vector object and its buffer
+  EXPECT_GE(allocations, 2u);  // the vector object and its buffer
 }
 
 TEST(BroadPhaseAllocation, SteadyStateCyclesAllocateNothing) {
@@ -75,13 +60,13 @@ TEST(BroadPhaseAllocation, SteadyStateCyclesAllocateNothing) {
       bp->FindPairs(scene.compatible(), &pairs);
     }
     bp->ResetCounters();
-    g_allocations = 0;
+    std::uint64_t allocations = 0;
     for (int cycle = 0; cycle < 10000; ++cycle) {
       scene.Step(&ops);
-      g_counting = true;
+      const std::uint64_t before = test::AllocationCount();
       RandomScene::Apply(ops, bp.get());
       bp->FindPairs(scene.compatible(), &pairs);
-      g_counting = false;
+      allocations += test::AllocationCount() - before;
     }
     const BroadPhaseCounters& c = bp->counters();
     std::printf("  splits %llu merges %llu fallbacks %llu outside %llu\n",
@@ -89,7 +74,7 @@ TEST(BroadPhaseAllocation, SteadyStateCyclesAllocateNothing) {
                 static_cast<unsigned long long>(c.merges),
                 static_cast<unsigned long long>(c.reinsert_fallbacks),
                 static_cast<unsigned long long>(c.outside_world));
-    EXPECT_EQ(g_allocations.load(), 0) << BroadPhaseMethodName(method);
+    EXPECT_EQ(allocations, 0u) << BroadPhaseMethodName(method);
     if (method == BroadPhaseMethod::kOctree) {
       EXPECT_GT(c.splits, 0u);  // the measured cycles did exercise the structural paths
       EXPECT_GT(c.merges, 0u);

@@ -12,16 +12,8 @@
 
 #include "arm_collision_monitor/kinematics/kinematic_model.h"
 #include "arm_collision_monitor/kinematics/urdf_conversions.h"
+#include "allocation_counter.h"
 
-// Counts heap allocations in this test binary, to check that the FK cycle allocates nothing.
-static long g_allocation_count = 0;
-void* operator new(std::size_t size) {
-  ++g_allocation_count;
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 
 namespace arm_collision_monitor {
 namespace {
@@ -155,12 +147,12 @@ TEST(KinematicsFk, ComputeLinkPosesDoesNotAllocate) {
   const KinematicModel model = KinematicModel::FromUrdfFile(kDataDir + "three_link_arm.urdf");
   std::vector<Eigen::Isometry3d> X_WL(model.link_count());
   const Eigen::VectorXd q = Eigen::VectorXd::Constant(model.q_size(), 0.3);
-  const long before = g_allocation_count;
+  const std::uint64_t before = test::AllocationCount();
   for (int i = 0; i < 100; ++i) model.ComputeLinkPoses(q, &X_WL);
-  EXPECT_EQ(g_allocation_count, before);
+  EXPECT_EQ(test::AllocationCount(), before);
   // The counter works: a vector of link poses does allocate.
   std::vector<Eigen::Isometry3d> copy = X_WL;
-  EXPECT_GT(g_allocation_count, before);
+  EXPECT_GT(test::AllocationCount(), before);
 }
 
 TEST(KinematicsFk, JointTypesLimitsAndMimicAreRead) {

@@ -4,26 +4,9 @@
 #include <cstdlib>
 #include <new>
 
+#include "allocation_counter.h"
 #include "test_monitor_util.h"
 
-namespace {
-std::atomic<std::uint64_t> g_allocations{0};
-}  // namespace
-
-// GCC cannot see that the replaced operator new below allocates with malloc, and flags the
-// matching free() in the replaced operator delete as a mismatch.
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-
-void* operator new(std::size_t size) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t size) { return operator new(size); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
 
 namespace arm_collision_monitor {
 namespace {
@@ -45,13 +28,13 @@ TEST_P(MonitorAllocation, SteadyStateUpdateDoesNotAllocate) {
     // Warm-up: the first pass may grow pools (octree nodes, location links) once.
     for (int k = 0; k < cycles; ++k) monitor.Update(qs[k]);
     std::uint64_t moved = 0, warned = 0;
-    const std::uint64_t before = g_allocations.load();
+    const std::uint64_t before = test::AllocationCount();
     for (int k = cycles; k < 2 * cycles; ++k) {
       const CycleReport& report = monitor.Update(qs[k]);
       moved += report.moved_primitives;
       warned += report.warnings.size();
     }
-    const std::uint64_t allocations = g_allocations.load() - before;
+    const std::uint64_t allocations = test::AllocationCount() - before;
     EXPECT_EQ(allocations, 0u) << BroadPhaseMethodName(GetParam())
                                << (speed_scaled ? " speed-scaled" : "");
     // The cycles really moved things (every arm primitive, nearly every cycle).
@@ -91,9 +74,9 @@ TEST_P(MonitorAllocation, SceneChangesDoNotAllocate) {
   bool ok = false;
   round(&ok);  // warm-up
   ASSERT_TRUE(ok) << error;
-  const std::uint64_t before = g_allocations.load();
+  const std::uint64_t before = test::AllocationCount();
   for (int k = 0; k < 100; ++k) round(&ok);
-  const std::uint64_t allocations = g_allocations.load() - before;
+  const std::uint64_t allocations = test::AllocationCount() - before;
   EXPECT_TRUE(ok) << error;
   EXPECT_EQ(allocations, 0u) << BroadPhaseMethodName(GetParam());
   std::string validate_error;

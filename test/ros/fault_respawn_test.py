@@ -12,6 +12,7 @@ import time
 import unittest
 import xmlrpc.client
 
+import rosgraph
 import rosnode
 import rospy
 import rostest
@@ -39,7 +40,7 @@ class RespawnTest(unittest.TestCase):
     def node_pid(self):
         """The monitor's process id (from its XML-RPC API), or None while it is down."""
         try:
-            uri = rosnode.get_api_uri(rospy.get_master(), NODE, skip_cache=True)
+            uri = rosnode.get_api_uri(rosgraph.Master('/fault_respawn_test'), NODE, skip_cache=True)
             if not uri:
                 return None
             code, _, pid = xmlrpc.client.ServerProxy(uri).getPid('/fault_respawn_test')

@@ -34,6 +34,16 @@ struct BroadPhaseCounters {
   std::uint64_t merges = 0;
   std::uint64_t reinsert_fallbacks = 0;   ///< moves too large for the incremental update
   std::uint64_t outside_world = 0;        ///< moves that left (part of) the box outside the world
+  BroadPhaseCounters& operator+=(const BroadPhaseCounters& o) {
+    object_node_tests += o.object_node_tests;
+    object_object_tests += o.object_object_tests;
+    neighbours_visited += o.neighbours_visited;
+    splits += o.splits;
+    merges += o.merges;
+    reinsert_fallbacks += o.reinsert_fallbacks;
+    outside_world += o.outside_world;
+    return *this;
+  }
 };
 
 /// Whether a primitive may move after Add(). Pairs of two static primitives are never reported.
