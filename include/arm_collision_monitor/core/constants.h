@@ -105,9 +105,10 @@ inline constexpr double kJointLimitMargin = 0.01;
 
 /// auto_broad_phase rule: with at least this many primitives in the broad phase at start-up
 /// the octree is chosen, below it the all-pairs (naive) broad phase, whose per-cycle cost is
-/// moving x present box tests and wins on small scenes. Typical 64 (dimensionless count);
-/// provisional until the benchmark calibrates it (bench_broadphase_*).
-inline constexpr std::uint32_t kAutoOctreeMinPrimitives = 64;
+/// moving x present box tests and wins on small scenes. 96 (dimensionless count): scripts/bench
+/// measured the naive/octree median cycle-time ratio crossing 1 at 85 to 97 active primitives
+/// on the three tasks with boxes added near the arms (build/bench/report.md recomputes it).
+inline constexpr std::uint32_t kAutoOctreeMinPrimitives = 96;
 
 /// Largest gap (m) between a held object and its holding link's geometry that Attach accepts.
 /// Bounds how far an attached object can reach beyond its arm, which the start-up reach
