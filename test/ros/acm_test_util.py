@@ -62,6 +62,16 @@ class MonitorClient(object):
         with self._lock:
             return list(self._reports[index:])
 
+    def wait_report(self, start, predicate, timeout_s=10.0):
+        """The first report from index `start` on that satisfies `predicate`; None on timeout."""
+        deadline = time.time() + timeout_s
+        while time.time() < deadline and not rospy.is_shutdown():
+            for report in self.reports_since(start):
+                if predicate(report):
+                    return report
+            time.sleep(POLL_PERIOD_S)
+        return None
+
     def last_stop(self):
         with self._lock:
             return self._stops[-1] if self._stops else None

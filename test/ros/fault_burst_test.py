@@ -55,13 +55,7 @@ class BurstTest(unittest.TestCase):
             time.sleep(POLL_PERIOD_S)
 
     def wait_report(self, start, predicate, timeout_s=WAIT_S):
-        deadline = time.time() + timeout_s
-        while time.time() < deadline and not rospy.is_shutdown():
-            for report in self.client.reports_since(start):
-                if predicate(report):
-                    return report
-            time.sleep(POLL_PERIOD_S)
-        return None
+        return self.client.wait_report(start, predicate, timeout_s)
 
     def publish_burst(self, stamp_of, pose_of):
         """BURST_MESSAGES messages, alternating left and right; returns the last stamps."""

@@ -6,7 +6,6 @@ longer than ~input_timeout_s the monitor requests a stop (~stop true, a report w
 INPUT_STALE and a stop_reason naming the joint); the first cycle on accepted, complete, fresh
 input without warnings after ~stop_hold_s clears it."""
 import sys
-import time
 import unittest
 
 import rospy
@@ -14,7 +13,7 @@ import rostest
 
 from arm_collision_monitor.msg import MonitorReport
 
-from acm_test_util import POLL_PERIOD_S, MonitorClient
+from acm_test_util import MonitorClient
 
 NODE = '/arm_collision_monitor'
 # Restarts to observe: each is one outage (stop) and one recovery (clear).
@@ -32,13 +31,7 @@ class PublisherRestartTest(unittest.TestCase):
         cls.client = MonitorClient(NODE, topics=())
 
     def wait_report(self, start, predicate, timeout_s=TRANSITION_TIMEOUT_S):
-        deadline = time.time() + timeout_s
-        while time.time() < deadline and not rospy.is_shutdown():
-            for report in self.client.reports_since(start):
-                if predicate(report):
-                    return report
-            time.sleep(POLL_PERIOD_S)
-        return None
+        return self.client.wait_report(start, predicate, timeout_s)
 
     def test_stop_while_publisher_down_and_clear_after_restart(self):
         c = self.client

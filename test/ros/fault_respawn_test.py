@@ -20,7 +20,7 @@ from std_msgs.msg import Bool
 
 from arm_collision_monitor.msg import MonitorReport
 
-from acm_test_util import POLL_PERIOD_S, MonitorClient
+from acm_test_util import MonitorClient
 
 NODE = '/arm_collision_monitor'
 KILLS = 2
@@ -49,13 +49,7 @@ class RespawnTest(unittest.TestCase):
             return None
 
     def wait_report(self, start, predicate, timeout_s=WAIT_S):
-        deadline = time.time() + timeout_s
-        while time.time() < deadline and not rospy.is_shutdown():
-            for report in self.client.reports_since(start):
-                if predicate(report):
-                    return report
-            time.sleep(POLL_PERIOD_S)
-        return None
+        return self.client.wait_report(start, predicate, timeout_s)
 
     def test_killed_monitor_respawns_in_stop_and_clears(self):
         c = self.client

@@ -18,7 +18,7 @@ from rosgraph_msgs.msg import Clock
 
 from arm_collision_monitor.msg import MonitorReport
 
-from acm_test_util import (HOME, LEFT_JOINTS, LEFT_TOWARDS_RIGHT, POLL_PERIOD_S, RIGHT_JOINTS,
+from acm_test_util import (HOME, LEFT_JOINTS, LEFT_TOWARDS_RIGHT, RIGHT_JOINTS,
                            RIGHT_TOWARDS_LEFT, MonitorClient, joint_state)
 
 NODE = '/arm_collision_monitor'

@@ -6,7 +6,6 @@ Xvfb with software GL, shows the monitor's markers; with both arms home the warn
 Screenshots: xwd -root | convert. They are kept in ~screenshot_dir (default: a new temporary
 directory, printed) as clear.png and warning.png."""
 import os
-import shutil
 import subprocess
 import sys
 import tempfile
