@@ -279,12 +279,6 @@ MonitorOptions DefaultOptions() { return LoadMonitorOptions(SourcePath("config/m
 class ShapeEvaluator {
  public:
   explicit ShapeEvaluator(const Workcell& wc) : wc_(wc), X_WL_(wc.kinematics.link_count()) {
-    const std::vector<std::string> fk_names = wc.kinematics.ActuatedJointNames();
-    for (const std::string& name : fk_names) {
-      const auto it = std::find(wc.joint_names.begin(), wc.joint_names.end(), name);
-      fk_from_monitor_.push_back(static_cast<int>(it - wc.joint_names.begin()));
-    }
-    q_fk_.resize(fk_names.size());
     shapes_W_.resize(wc.primitives.size());
     for (std::size_t id = 0; id < wc.primitives.size(); ++id) {
       const PrimitiveSpec& p = wc.primitives[id];
@@ -295,8 +289,7 @@ class ShapeEvaluator {
   }
   // Recomputes the moving primitives' shapes (all of them when `all`).
   void Evaluate(const Eigen::VectorXd& q, bool all = false) {
-    for (std::size_t i = 0; i < fk_from_monitor_.size(); ++i) q_fk_[i] = q[fk_from_monitor_[i]];
-    wc_.kinematics.ComputeLinkPoses(q_fk_, &X_WL_);
+    wc_.kinematics.ComputeLinkPoses(q, &X_WL_);  // Workcell::joint_names is the FK's q order
     if (all) {
       for (std::size_t id = 0; id < wc_.primitives.size(); ++id) Update(id);
     } else {
@@ -315,8 +308,6 @@ class ShapeEvaluator {
                                       : p.shape_L;
   }
   const Workcell& wc_;
-  std::vector<int> fk_from_monitor_;
-  Eigen::VectorXd q_fk_;
   std::vector<Eigen::Isometry3d> X_WL_;
   std::vector<Shape> shapes_W_;
   std::vector<std::size_t> moving_;
