@@ -84,8 +84,11 @@ def section_tasks(out_dir, md):
         "tolerances and compatibility matrix. Times in microseconds over every cycle of the "
         "three tasks except each task's first (start-up placement). *equal* = cycles whose "
         "warning set equals the default Monitor's; *missed/false* = against brute force "
-        "(exact distance on every pair). Seed: about 30 ms mean, under 60 ms max, on a 20 MHz "
-        "80386 (its clock resolution was 10 ms).\n")
+        "(exact distance on every pair). *octree* is the default Monitor (index slack "
+        f"{default_slack(out_dir)}); *octree (slack 0)* is the same Monitor on the seed's loop, "
+        "index slack 0 (every moved primitive re-indexed, every candidate pair tested each "
+        "cycle). Seed: about 30 ms mean, under 60 ms max, on a 20 MHz 80386 (its clock "
+        "resolution was 10 ms).\n")
     hdr = ["implementation", "mean", "median", "p99", "max", "median / default",
            "equal cycles", "missed", "false"]
     out = []
@@ -165,11 +168,20 @@ def section_tasks(out_dir, md):
         "there; test_peers_agreement shows the difference on random boxes with tolerances.\n")
 
 
+def default_slack(out_dir):
+    """The default index slack as measured by the slack sweep, else the config's, as text."""
+    for r in read(out_dir, "slack.csv"):
+        if r["is_default"] == "1":
+            return f"{num(r['slack_m']):g} m"
+    return "as in config/monitor.yaml"
+
+
 def section_octree(out_dir, md):
     rows = read(out_dir, "octree_statistics.csv")
     if not rows:
         return
     md.append("\n## 2. Octree statistics (default scene, home pose, N = 10)\n\n")
+    md.append("The split/merge count is over the three tasks on the seed's loop, index slack 0.\n")
     md.append(table(["statistic", "ours", "seed"],
                     [[r["statistic"], fmt(r["ours"], 0 if num(r["ours"]).is_integer() else 2),
                       r["seed"]] for r in rows]))
@@ -197,7 +209,8 @@ def section_sweeps(out_dir, md):
     rows = read(out_dir, "sweep_n.csv")
     if rows:
         md.append("\n## 3. Figure 5: decomposition rule N swept\n\n")
-        md.append("Seed: N = 10 gave the lowest mean cycle time, within a wide flat range "
+        md.append("The seed's loop, index slack 0, as in sections 4-6. "
+                  "Seed: N = 10 gave the lowest mean cycle time, within a wide flat range "
                   "(its figure's values are not in the text).\n\n")
         md.append(table(["N", "mean", "median", "p99", "object-node tests / cycle",
                          "object-object tests / cycle", "missed"],
@@ -214,9 +227,11 @@ def section_sweeps(out_dir, md):
     rows = read(out_dir, "sweep_g.csv")
     if rows:
         tasks = read(out_dir, "tasks_summary.csv")
-        octree = [num(r["median_us"]) for r in tasks if r["impl"] == "octree" and r["task"] == "all"]
+        octree = [num(r["median_us"]) for r in tasks
+                  if r["impl"] == "octree (slack 0)" and r["task"] == "all"]
         md.append("\n## 4. Figure 7: uniform grid G swept\n\n")
-        md.append("Seed: the best grid was slightly worse than the octree.\n\n")
+        md.append("The seed's loop, index slack 0; the octree line is the octree on the same "
+                  "loop. Seed: the best grid was slightly worse than the octree.\n\n")
         md.append(table(["G", "mean", "median", "p99", "missed"],
                         [[r["g"], fmt(r["mean_us"]), fmt(r["median_us"]), fmt(r["p99_us"]),
                           r["missed"]] for r in rows]))
@@ -224,14 +239,15 @@ def section_sweeps(out_dir, md):
         series = [("grid median", xs, [num(r["median_us"]) for r in rows], "o-"),
                   ("grid mean", xs, [num(r["mean_us"]) for r in rows], "s--")]
         if octree:
-            series.append(("octree median (N = 10)", xs, [octree[0]] * len(xs), "k:"))
+            series.append(("octree median (N = 10, slack 0)", xs, [octree[0]] * len(xs), "k:"))
         name = line_chart(out_dir, "fig7_g.png", "Figure 7: grid per-cycle time against G",
                           "G (cells per axis)", series)
         md.append(f"\n![Figure 7]({name})\n")
     rows = read(out_dir, "ablation.csv")
     if rows:
         md.append("\n## 5. Ablation: each technique switched off\n\n")
-        md.append("*saving* = (time without - time with) / time without, the seed's measure; "
+        md.append("The seed's loop, index slack 0. "
+                  "*saving* = (time without - time with) / time without, the seed's measure; "
                   "negative: the technique costs more than it saves here.\n\n")
         base = rows[0]
         out = []
@@ -248,6 +264,59 @@ def section_sweeps(out_dir, md):
                          "object-object tests", "neighbours visited", "missed"], out))
 
 
+def section_slack(out_dir, md):
+    rows = read(out_dir, "slack.csv")
+    if not rows:
+        return
+    md.append("\n## 5b. Index slack swept\n\n")
+    md.append("The default Monitor (octree) on the three tasks with MonitorOptions::index_slack_m "
+              "swept. A moving primitive is indexed by its box grown by the slack and re-indexed "
+              "only after moving farther than that; candidate pairs are kept between cycles with "
+              "a lower bound on their distance and skip the exact test while the bound clears "
+              "their threshold. 0 = the seed's loop. Work columns are means per cycle; "
+              "*missed/false* = warnings against brute force.\n\n")
+    out = []
+    for r in rows:
+        label = fmt(r["slack_m"], 2) + (" (default)" if r["is_default"] == "1" else "")
+        out.append([label, fmt(r["mean_us"]), fmt(r["median_us"]), fmt(r["p99_us"]),
+                    fmt(r["max_us"]), fmt(r["reindexed_per_cycle"]), fmt(r["candidate_pairs_per_cycle"]),
+                    fmt(r["narrow_phase_tests_per_cycle"]), r["splits_plus_merges"], r["missed"],
+                    r["false"]])
+    md.append(table(["slack m", "mean", "median", "p99", "max", "re-indexed / cycle",
+                     "candidate pairs / cycle", "exact tests / cycle", "splits + merges (all cycles)",
+                     "missed", "false"], out))
+    fastest_med = min(rows, key=lambda r: num(r["median_us"]))
+    fastest_mean = min(rows, key=lambda r: num(r["mean_us"]))
+    dflt = next((r for r in rows if r["is_default"] == "1"), None)
+    zero = next((r for r in rows if num(r["slack_m"]) == 0.0), None)
+    # Medians within 5 % of the fastest are ties on a shared machine: name them all.
+    near = [f"{num(r['slack_m']):g}" for r in rows
+            if num(r["median_us"]) <= 1.05 * num(fastest_med["median_us"])]
+    text = (f"\nFastest slack measured: {num(fastest_med['slack_m']):g} m by median "
+            f"({fmt(fastest_med['median_us'])} us; within 5 % of it: {', '.join(near)} m), "
+            f"{num(fastest_mean['slack_m']):g} m by mean ({fmt(fastest_mean['mean_us'])} us)")
+    if dflt is not None:
+        text += (f"; the default {num(dflt['slack_m']):g} m: median {fmt(dflt['median_us'])} us, "
+                 f"mean {fmt(dflt['mean_us'])} us")
+        if zero is not None and zero is not dflt:
+            text += (f" ({num(dflt['median_us']) / num(zero['median_us']):.2f} x the seed's "
+                     "loop's median)")
+    md.append(text + ".\n")
+    xs = [num(r["slack_m"]) for r in rows]
+    # Slack 0 cannot sit on a log axis: plot it at a quarter of the smallest positive slack.
+    positive = [x for x in xs if x > 0]
+    x0 = min(positive) / 4 if positive else 1e-3
+    xs_plot = [x if x > 0 else x0 for x in xs]
+    mark = (num(dflt["slack_m"]), "default") if dflt is not None else None
+    name = line_chart(out_dir, "slack.png",
+                      f"Per-cycle time against index slack (0 drawn at {x0:g} m)",
+                      "index slack (m)",
+                      [("median", xs_plot, [num(r["median_us"]) for r in rows], "o-"),
+                       ("mean", xs_plot, [num(r["mean_us"]) for r in rows], "s--")],
+                      logy=True, logx=True, mark=mark)
+    md.append(f"\n![index slack]({name})\n")
+
+
 def section_scaling(out_dir, md):
     rows = read(out_dir, "static_scaling.csv")
     if rows:
@@ -255,7 +324,8 @@ def section_scaling(out_dir, md):
         md.append("Boxes of 2-8 cm edge, seeded; *near* = in the arms' working volume, *far* = "
                   "overhead, out of every arm's reach. *active* = primitives the Monitor keeps "
                   "after its start-up reach analysis (unreachable statics are left out, which "
-                  "is why far boxes cost our Monitor nothing; the peers get every box). Seed: "
+                  "is why far boxes cost our Monitor nothing; the peers get every box). Our "
+                  "broad phases run the seed's loop, index slack 0. Seed: "
                   "the octree's advantage over naive grew as boxes were added near the arms.\n\n")
         md.append(table(["placement", "added", "primitives", "active", "impl", "median",
                          "mean", "p99", "missed", "false"],
@@ -295,8 +365,10 @@ def section_scaling(out_dir, md):
                 md.append(f"\n**Where the octree overtakes naive** (near placement, medians): "
                           f"naive / octree = {r0:.2f} at {n0} active primitives and {r1:.2f} "
                           f"at {n1}; interpolated crossing at about **{n:.0f} active "
-                          f"primitives** - the figure suggested for the Monitor's "
-                          f"auto_broad_phase threshold (kAutoOctreeMinPrimitives).\n")
+                          f"primitives** on the seed's loop (index slack 0) - the figure "
+                          f"suggested for the Monitor's auto_broad_phase threshold "
+                          f"(kAutoOctreeMinPrimitives); with the default slack the crossing "
+                          f"may lie elsewhere (not measured here).\n")
                 break
         else:
             md.append("\nNo crossing of naive and octree in the sizes measured.\n")
@@ -305,7 +377,8 @@ def section_scaling(out_dir, md):
         md.append("\n## 7. Moving scaling: 2 to 8 arms\n\n")
         md.append("Copies of the arm pair on shifted pedestals, each copy running the tasks "
                   "shifted in time (seed, section 6: cycle time proportional to the number of "
-                  "moving primitives).\n\n")
+                  "moving primitives). Our broad phases run the default options (default index "
+                  f"slack, {default_slack(out_dir)}).\n\n")
         md.append(table(["arms", "moving primitives", "impl", "median", "mean", "p99",
                          "missed", "false"],
                         [[r["arms"], r["moving_primitives"], r["impl"], fmt(r["median_us"]),
@@ -322,40 +395,123 @@ def section_scaling(out_dir, md):
         md.append(f"\n![moving scaling]({name})\n")
 
 
+def section_fidelity(rows, out_dir, md):
+    md.append("\n## 8a. Run time against error: model fidelity\n\n")
+    md.append("Exact oracle: the URDF's link geometry (cylinders, the gripper's capsule, "
+              "boxes) with FCL's distance query. *false* / *missed* = pair-cycles where the "
+              "model warns and the exact geometry does not / the other way round.\n\n")
+    md.append("Models of each link whose URDF geometry is one bare cylinder (radius r, length "
+              "L); the grippers (a cylinder with a sphere of its radius on each end face, i.e. "
+              "exactly a capsule) keep their exact capsule in every model. *capsule* (the "
+              "default): the capsule of the cylinder's axis and radius. *tight capsule*: "
+              "shortened so that its caps end on the end faces (inside the cylinder, not "
+              "conservative). *min-volume capsule*: one capsule whose segment stops h short of "
+              "each end face, radius sqrt(r^2 + h^2) (it passes through the end faces' rims), h "
+              "minimising its volume. *3 / 7 parallel capsules*: the classic minimal coverings "
+              "of a disc by 3 discs (radius sqrt(3)/2 r, centres r/2 off the axis) and 7 discs "
+              "(radius r/2, one on the axis, six at sqrt(3)/2 r), as parallel capsules ending on "
+              "the end faces. *capsule + end spheres*: the capsule of radius r stopping 2h short "
+              "of each end face plus, per end, a sphere of radius sqrt(r^2 + h^2) on the axis at "
+              "depth h (it passes through the rim and contains the capsule's cap), h minimising "
+              "the volume outside the cylinder. Models of several capsules are scene-file "
+              "variants switched in with Monitor::SwitchModel. *arm capsules*: both arms. "
+              "*excess volume*: model volume outside the exact geometry of the arm links, in % "
+              "of that geometry's volume, by seeded Monte Carlo (*+/-* one standard error; "
+              "closed form where one exists); *uncovered*: exact geometry outside the model. "
+              "The exact row's time is the oracle's (FCL distance on every owner pair with an "
+              "AABB pre-test), not a tuned monitor. *clutter200*: 200 seeded boxes added near "
+              "the arms.\n\n")
+    models = [r for r in rows if not r["model"].startswith("exact")]
+    if models:
+        md.append(f'Monte Carlo: seed {models[0]["mc_seed"]}, '
+                  f'{int(num(models[0]["mc_samples_per_link"])):,} samples per link and '
+                  "model.\n")
+    md.append(table(["scene", "model", "conservative", "arm capsules", "median us", "mean us",
+                     "false", "missed", "warning pair-cycles", "excess volume %",
+                     "closed form %", "uncovered %"],
+                    [[r["scene"], r["model"], "yes" if r["conservative"] == "1" else "no",
+                      r["arm_capsules"], fmt(r["median_us"]), fmt(r["mean_us"]), r["false"],
+                      r["missed"], r["warning_pair_cycles"],
+                      f'{num(r["excess_volume_percent"]):.2f} +/- '
+                      f'{num(r["excess_volume_se_percent"]):.2f}',
+                      fmt(r["excess_volume_closed_form_percent"]) if
+                      r["excess_volume_closed_form_percent"] else "",
+                      fmt(r["uncovered_volume_percent"])]
+                     for r in rows]))
+    # What the run shows, from its own numbers.
+    md.append("\n")
+    for scene in sorted({r["scene"] for r in models}, key=lambda x: x != "default"):
+        sel = [r for r in models if r["scene"] == scene]
+        dflt = next((r for r in sel if r["model"] == "capsule"), None)
+        cons = [r for r in sel if r["conservative"] == "1" and r["model"] != "capsule"]
+        if dflt is None or not cons:
+            continue
+        t0, f0, v0 = num(dflt["median_us"]), num(dflt["false"]), num(dflt["excess_volume_percent"])
+        best_v = min(cons, key=lambda r: num(r["excess_volume_percent"]))
+        volume = (f"the least excess volume is *{best_v['model']}*'s "
+                  f"({num(best_v['excess_volume_percent']):.1f} % against {v0:.1f} %, "
+                  f"{best_v['false']} false, {num(best_v['median_us']) / t0:.2f} x the default's "
+                  "median time)")
+        if all(num(r["false"]) == 0 for r in cons + [dflt]):
+            fastest = min(sel, key=lambda r: num(r["median_us"]))
+            slowest = max(sel, key=lambda r: num(r["median_us"]))
+            md.append(f"- *{scene}*: no conservative model warns falsely "
+                      f"({dflt['warning_pair_cycles']} warning pair-cycles, all exact); medians "
+                      f"from {num(fastest['median_us']):.2f} us ({fastest['model']}) to "
+                      f"{num(slowest['median_us']):.2f} us ({slowest['model']}); "
+                      f"{volume}.\n")
+            continue
+        best_f = min(cons, key=lambda r: (num(r["false"]), num(r["median_us"])))
+        change = 100.0 * (num(best_f["false"]) - f0) / f0 if f0 > 0 else float("nan")
+        md.append(f"- *{scene}*: one capsule per link gives {int(f0)} false warning pair-cycles "
+                  f"at a median {t0:.2f} us. Among the other conservative models the fewest "
+                  f"false warnings are *{best_f['model']}*'s ({best_f['false']}"
+                  + (f", {change:+.0f} %" if change == change else "")
+                  + f", at {num(best_f['median_us']) / t0:.2f} x the default's median time); "
+                  f"{volume}.\n")
+    cons_missed = sum(int(num(r["missed"])) for r in models if r["conservative"] == "1")
+    loose = [r for r in models if r["conservative"] != "1"]
+    md.append(f"- Missed warnings against the exact geometry: {cons_missed} for the conservative "
+              "models in all"
+              + ("" if cons_missed else " (their union contains the link geometry)")
+              + "; " + ", ".join(f"{r['model']} ({r['scene']}): {r['missed']}" for r in loose)
+              + ".\n")
+    # One colour per model (legend), one marker per scene; the default model starred, models
+    # that are not conservative drawn as crosses.
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.5))
+    names = []
+    for r in rows:
+        if r["model"] not in names:
+            names.append(r["model"])
+    colour = {m: f"C{i}" for i, m in enumerate(names)}
+    scene_marker = {"default": "o", "clutter200": "s"}
+    for ax, ylabel, value, sel_rows in (
+            (axes[0], "false + missed pair-cycles vs exact",
+             lambda r: num(r["false"]) + num(r["missed"]), rows),
+            (axes[1], "excess volume (% of the exact geometry)",
+             lambda r: num(r["excess_volume_percent"]), models)):
+        for r in sel_rows:
+            x, y = num(r["median_us"]), value(r)
+            marker = scene_marker.get(r["scene"], "^") if r["conservative"] == "1" else "x"
+            ax.plot([x], [y], marker, color=colour[r["model"]], ms=8,
+                    label=r["model"] if r["scene"] == "clutter200" else None)
+            if r["model"] == "capsule":
+                ax.plot([x], [y], "*", color="red", ms=16, zorder=0)
+        ax.set_xscale("log")
+        ax.set_xlabel("median cycle time (us)")
+        ax.set_ylabel(ylabel)
+        ax.grid(True, which="both", alpha=0.3)
+    axes[0].legend(fontsize=7)
+    axes[0].set_title("Wrong warnings (o default scene, s clutter200, x not conservative, "
+                      "red star: default model)", fontsize=8)
+    axes[1].set_title("Excess volume of the arm links (same markers)", fontsize=8)
+    md.append(f"\n![fidelity]({save(fig, out_dir, 'fidelity.png')})\n")
+
+
 def section_tradeoffs(out_dir, md):
     rows = read(out_dir, "fidelity.csv")
     if rows:
-        md.append("\n## 8a. Run time against error: model fidelity\n\n")
-        md.append("Exact oracle: the URDF's link geometry (cylinders, the gripper's capsule, "
-                  "boxes) with FCL's distance query. *false* / *missed* = pair-cycles where the "
-                  "model warns and the exact geometry does not / the other way round.\n\n")
-        md.append("*tight capsule*: each cylinder link's capsule shortened so that its caps end "
-                  "on the cylinder's end faces (smaller, not conservative). *excess volume* = "
-                  "model volume of the cylinder links against the cylinders' (signed). The "
-                  "exact row's time is the oracle's (FCL distance on every owner pair with an "
-                  "AABB pre-test), not a tuned monitor. *clutter200*: 200 seeded boxes added "
-                  "near the arms.\n\n")
-        md.append(table(["scene", "model", "median us", "false", "missed",
-                         "warning pair-cycles", "excess volume %"],
-                        [[r["scene"], r["model"], fmt(r["median_us"]), r["false"], r["missed"],
-                          r["warning_pair_cycles"], fmt(r["excess_volume_percent"], 1)]
-                         for r in rows]))
-        fig, ax = plt.subplots(figsize=(7, 4))
-        for scene, marker in (("default", "o"), ("clutter200", "s")):
-            for r in rows:
-                if r["scene"] != scene:
-                    continue
-                x, y = num(r["median_us"]), num(r["false"]) + num(r["missed"])
-                is_default = r["model"] == "capsule"
-                ax.plot([x], [y], "r*" if is_default else marker, ms=13 if is_default else 7)
-                ax.annotate(f'{r["model"]} ({scene})', (x, y), fontsize=7,
-                            textcoords="offset points", xytext=(4, 4))
-        ax.set_xscale("log")
-        ax.set_xlabel("median cycle time (us)")
-        ax.set_ylabel("false + missed pair-cycles vs exact")
-        ax.set_title("Model fidelity: time against wrong warnings (star: default)")
-        ax.grid(True, which="both", alpha=0.3)
-        md.append(f"\n![fidelity]({save(fig, out_dir, 'fidelity.png')})\n")
+        section_fidelity(rows, out_dir, md)
     rows = read(out_dir, "temporal.csv")
     if rows:
         md.append("\n## 8b. Run time against error: check rate and sub-stepping\n\n")
@@ -440,6 +596,7 @@ def main():
     section_tasks(out_dir, md)
     section_octree(out_dir, md)
     section_sweeps(out_dir, md)
+    section_slack(out_dir, md)
     section_scaling(out_dir, md)
     section_tradeoffs(out_dir, md)
     with open(os.path.join(out_dir, "report.md"), "w") as f:

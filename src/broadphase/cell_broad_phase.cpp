@@ -111,20 +111,39 @@ void CellBroadPhase::ClearLinks() {
   std::fill(cell_count_.begin(), cell_count_.end(), 0u);
 }
 
+void CellBroadPhase::ResetVisitStamps() {
+  // The seed: "the tree should be traversed and every node's lastCheckNo reset".
+  std::fill(cell_visit_.begin(), cell_visit_.end(), 0u);
+  visit_stamp_ = 0;
+}
+
+void CellBroadPhase::ResetScanStamps() {
+  for (Record& r : records_) r.pair_stamp = 0;
+  scan_stamp_ = 0;
+}
+
+void CellBroadPhase::ResetUnionStamps() {
+  for (Record& r : records_) r.union_stamp = 0;
+  union_stamp_ = 0;
+}
+
+void CellBroadPhase::ForceStampsNearWrap(std::uint32_t steps_before_wrap) {
+  ResetVisitStamps();
+  ResetScanStamps();
+  ResetUnionStamps();
+  const std::uint32_t near_wrap = std::numeric_limits<std::uint32_t>::max() - steps_before_wrap;
+  visit_stamp_ = near_wrap;
+  scan_stamp_ = near_wrap;
+  union_stamp_ = near_wrap;
+}
+
 std::uint32_t CellBroadPhase::NextVisitStamp() {
-  if (visit_stamp_ == std::numeric_limits<std::uint32_t>::max()) {
-    // The seed: "the tree should be traversed and every node's lastCheckNo reset".
-    std::fill(cell_visit_.begin(), cell_visit_.end(), 0u);
-    visit_stamp_ = 0;
-  }
+  if (visit_stamp_ == std::numeric_limits<std::uint32_t>::max()) ResetVisitStamps();
   return ++visit_stamp_;
 }
 
 std::uint32_t CellBroadPhase::NextUnionStamp() {
-  if (union_stamp_ == std::numeric_limits<std::uint32_t>::max()) {
-    for (Record& r : records_) r.union_stamp = 0;
-    union_stamp_ = 0;
-  }
+  if (union_stamp_ == std::numeric_limits<std::uint32_t>::max()) ResetUnionStamps();
   return ++union_stamp_;
 }
 
@@ -324,24 +343,16 @@ void CellBroadPhase::Rebuild() {
   }
 }
 
-void CellBroadPhase::FindPairs(const CompatibilityMatrix& compatible,
-                               std::vector<CandidatePair>* pairs) {
-  if (needs_rebuild_) {
-    Rebuild();
-    needs_rebuild_ = false;
-  }
-  pairs->clear();
+void CellBroadPhase::ScanPartners(PrimitiveId m, bool from_smaller_only,
+                                  const CompatibilityMatrix& compatible,
+                                  std::vector<CandidatePair>* pairs) {
+  const Record& rm = records_[m];
   const bool dedup = techniques_.pair_deduplication;
-  // Moving primitives: every partner with an overlap inside the world cube shares a cell with
-  // them (the two closed boxes share a point of the cube, and it lies in some closed cell). An
-  // overlap can lie wholly outside the cube only if both boxes are outside it: brute force below.
-  for (const PrimitiveId m : moving_ids_) {
-    const Record& rm = records_[m];
-    if (rm.first_link == kNone) continue;
-    if (scan_stamp_ == std::numeric_limits<std::uint32_t>::max()) {
-      for (Record& r : records_) r.pair_stamp = 0;
-      scan_stamp_ = 0;
-    }
+  // Every partner with an overlap inside the world cube shares a cell with m (the two closed
+  // boxes share a point of the cube, and it lies in some closed cell). An overlap can lie wholly
+  // outside the cube only if both boxes are outside it: brute force over the outside list.
+  if (rm.first_link != kNone) {
+    if (scan_stamp_ == std::numeric_limits<std::uint32_t>::max()) ResetScanStamps();
     const std::uint32_t stamp = ++scan_stamp_;
     for (std::uint32_t l = rm.first_link; l != kNone; l = links_[l].next_of_prim) {
       for (std::uint32_t k = cell_head_[links_[l].cell]; k != kNone;
@@ -349,11 +360,13 @@ void CellBroadPhase::FindPairs(const CompatibilityMatrix& compatible,
         const PrimitiveId q = links_[k].prim;
         if (q == m) continue;
         Record& rq = records_[q];
-        // A pair of two moving primitives is met from both; take it from the smaller id.
-        if (rq.motion == Motion::kMoving && q < m) continue;
+        if (rq.motion == Motion::kMoving ? from_smaller_only && q < m
+                                         : rm.motion == Motion::kStatic) {
+          continue;
+        }
         if (rm.outside && rq.outside) continue;  // the brute force below takes this pair
         if (dedup) {
-          // One test per pair per cycle even when the two share several cells.
+          // One test per pair per scan even when the two share several cells.
           if (rq.pair_stamp == stamp) continue;
           rq.pair_stamp = stamp;
         }
@@ -364,23 +377,50 @@ void CellBroadPhase::FindPairs(const CompatibilityMatrix& compatible,
       }
     }
   }
-  // Pairs of two primitives (partly) outside the world cube: brute force over the outside list,
-  // from its moving members, each moving-moving pair from the smaller id.
-  for (const PrimitiveId o : outside_ids_) {
-    const Record& ro = records_[o];
-    if (ro.motion != Motion::kMoving) continue;
-    for (const PrimitiveId x : outside_ids_) {
-      if (x == o) continue;
-      const Record& rx = records_[x];
-      if (rx.motion == Motion::kMoving && x < o) continue;
-      ++counters_.object_object_tests;
-      if (!ro.box_W.Overlaps(rx.box_W)) continue;
-      if (IsCompatiblePair(compatible, o, x)) continue;
-      pairs->push_back(MakeOrderedPair(o, x));
+  if (!rm.outside) return;
+  for (const PrimitiveId x : outside_ids_) {
+    if (x == m) continue;
+    const Record& rx = records_[x];
+    if (rx.motion == Motion::kMoving ? from_smaller_only && x < m
+                                     : rm.motion == Motion::kStatic) {
+      continue;
     }
+    ++counters_.object_object_tests;
+    if (!rm.box_W.Overlaps(rx.box_W)) continue;
+    if (IsCompatiblePair(compatible, m, x)) continue;
+    pairs->push_back(MakeOrderedPair(m, x));
   }
+}
+
+void CellBroadPhase::FindPairs(const CompatibilityMatrix& compatible,
+                               std::vector<CandidatePair>* pairs) {
+  if (needs_rebuild_) {
+    Rebuild();
+    needs_rebuild_ = false;
+  }
+  pairs->clear();
+  // From every moving primitive; a pair of two moving ones is met from both, taken from the
+  // smaller id.
+  for (const PrimitiveId m : moving_ids_) ScanPartners(m, true, compatible, pairs);
   std::sort(pairs->begin(), pairs->end());
-  if (!dedup) pairs->erase(std::unique(pairs->begin(), pairs->end()), pairs->end());
+  if (!techniques_.pair_deduplication) {
+    pairs->erase(std::unique(pairs->begin(), pairs->end()), pairs->end());
+  }
+}
+
+void CellBroadPhase::FindPairsOf(PrimitiveId id, const CompatibilityMatrix& compatible,
+                                 std::vector<CandidatePair>* pairs) {
+  if (needs_rebuild_) {
+    Rebuild();
+    needs_rebuild_ = false;
+  }
+  pairs->clear();
+  if (id >= records_.size() || !records_[id].present) return;
+  ScanPartners(id, false, compatible, pairs);
+  std::sort(pairs->begin(), pairs->end());
+  if (!techniques_.pair_deduplication) {
+    pairs->erase(std::unique(pairs->begin(), pairs->end()), pairs->end());
+  }
 }
 
 namespace {

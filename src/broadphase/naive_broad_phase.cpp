@@ -65,4 +65,20 @@ void NaiveBroadPhase::FindPairs(const CompatibilityMatrix& compatible,
   std::sort(pairs->begin(), pairs->end());
 }
 
+void NaiveBroadPhase::FindPairsOf(PrimitiveId id, const CompatibilityMatrix& compatible,
+                                  std::vector<CandidatePair>* pairs) {
+  pairs->clear();
+  if (id >= entries_.size() || !entries_[id].present) return;
+  const Entry& e = entries_[id];
+  for (const PrimitiveId b : present_ids_) {
+    if (b == id) continue;
+    if (e.motion == Motion::kStatic && entries_[b].motion == Motion::kStatic) continue;
+    ++counters_.object_object_tests;
+    if (!e.inflated_W.Overlaps(entries_[b].inflated_W)) continue;
+    if (IsCompatiblePair(compatible, id, b)) continue;
+    pairs->push_back(MakeOrderedPair(id, b));
+  }
+  std::sort(pairs->begin(), pairs->end());
+}
+
 }  // namespace arm_collision_monitor

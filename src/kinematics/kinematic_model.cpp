@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "arm_collision_monitor/core/constants.h"
+#include "arm_collision_monitor/kinematics/sin_cos.h"
 #include "arm_collision_monitor/kinematics/urdf_conversions.h"
 
 namespace arm_collision_monitor {
@@ -36,7 +37,8 @@ bool KinematicModel::Validate(std::string* why) const {
     return false;
   };
   const std::size_t n = link_names_.size();
-  if (n == 0 || parent_link_.size() != n || joints_.size() != n || is_moving_.size() != n) {
+  if (n == 0 || parent_link_.size() != n || joints_.size() != n || is_moving_.size() != n ||
+      fk_steps_.size() != n) {
     *why = "per-link arrays are empty or of different sizes";
     return false;
   }
@@ -63,6 +65,11 @@ bool KinematicModel::Validate(std::string* why) const {
     if (joint.mimic_q_index >= q_size_) return fail(link, "mimic target out of range");
     const bool moves = is_actuated || is_moving_[parent_link_[link]];
     if (moves != static_cast<bool>(is_moving_[link])) return fail(link, "is_moving is wrong");
+    // The precomputed FK data must be exactly what the joint spec gives (MakeFkStep is
+    // deterministic, so equality is bitwise).
+    if (!FkStepsEqual(fk_steps_[link], MakeFkStep(joint, parent_link_[link]))) {
+      return fail(link, "precomputed forward-kinematics data disagrees with the joint");
+    }
   }
   for (int i = 0; i < q_size_; ++i) {
     if (q_owner[i] < 0) {
@@ -89,30 +96,158 @@ std::vector<std::string> KinematicModel::ActuatedJointNames() const {
   return names;
 }
 
+KinematicModel::FkStep KinematicModel::MakeFkStep(const JointSpec& joint, int parent) {
+  FkStep step;
+  step.parent = parent;
+  if (joint.q_index >= 0) {
+    step.position_q_index = joint.q_index;
+  } else if (joint.mimic_q_index >= 0) {
+    step.position_q_index = joint.mimic_q_index;
+    step.multiplier = joint.mimic_multiplier;
+    step.offset = joint.mimic_offset;
+  }
+  step.R_PJ = joint.X_PJ.linear();
+  step.p_PJ = joint.X_PJ.translation();
+  step.is_R_PJ_identity = step.R_PJ == Eigen::Matrix3d::Identity();
+  step.axis_J = joint.axis_J;
+  switch (joint.type) {
+    case JointType::kFixed:
+      step.motion = FkMotion::kNone;
+      break;
+    case JointType::kPrismatic:
+      step.motion = FkMotion::kTranslate;
+      break;
+    case JointType::kRevolute:
+    case JointType::kContinuous: {
+      int axis = 0;
+      const double largest = joint.axis_J.cwiseAbs().maxCoeff(&axis);
+      if (largest == 1.0 && (joint.axis_J.array() == 0.0).count() == 2) {  // exactly +-e_axis
+        step.motion = FkMotion::kRotateAboutCoordinateAxis;
+        step.coordinate_axis = axis;
+        if (joint.axis_J[axis] < 0.0) {  // about -e by theta is about +e by -theta (exact)
+          step.multiplier = -step.multiplier;
+          step.offset = -step.offset;
+        }
+      } else {
+        step.motion = FkMotion::kRotateAboutAxis;
+        const Eigen::Vector3d& k = joint.axis_J;
+        step.K << 0.0, -k.z(), k.y(),  //
+            k.z(), 0.0, -k.x(),        //
+            -k.y(), k.x(), 0.0;
+        step.K2 = step.K * step.K;
+      }
+      break;
+    }
+  }
+  return step;
+}
+
+bool KinematicModel::FkStepsEqual(const FkStep& a, const FkStep& b) {
+  return a.motion == b.motion && a.parent == b.parent &&
+         a.position_q_index == b.position_q_index && a.multiplier == b.multiplier &&
+         a.offset == b.offset && a.is_R_PJ_identity == b.is_R_PJ_identity && a.R_PJ == b.R_PJ &&
+         a.p_PJ == b.p_PJ && a.coordinate_axis == b.coordinate_axis && a.axis_J == b.axis_J &&
+         a.K == b.K && a.K2 == b.K2;
+}
+
 void KinematicModel::ComputeLinkPoses(const Eigen::Ref<const Eigen::VectorXd>& q,
                                       std::vector<Eigen::Isometry3d>* X_WL) const {
+  ComputePoses(q, /*moving_links_only=*/false, X_WL);
+}
+
+void KinematicModel::ComputeMovingLinkPoses(const Eigen::Ref<const Eigen::VectorXd>& q,
+                                            std::vector<Eigen::Isometry3d>* X_WL) const {
+  ComputePoses(q, /*moving_links_only=*/true, X_WL);
+}
+
+void KinematicModel::ComputePoses(const Eigen::Ref<const Eigen::VectorXd>& q,
+                                  bool moving_links_only,
+                                  std::vector<Eigen::Isometry3d>* X_WL) const {
   auto& poses = *X_WL;
-  poses[0] = X_WRoot;
-  for (int link = 1; link < link_count(); ++link) {
-    const JointSpec& joint = joints_[link];
-    const Eigen::Isometry3d X_WJ = poses[parent_link_[link]] * joint.X_PJ;
-    double position = 0.0;
-    if (joint.q_index >= 0) {
-      position = q[joint.q_index];
-    } else if (joint.mimic_q_index >= 0) {
-      position = joint.mimic_multiplier * q[joint.mimic_q_index] + joint.mimic_offset;
+  if (!moving_links_only) {
+    poses[0] = X_WRoot;
+    poses[0].makeAffine();  // the 4-row column arithmetic below relies on the bottom row 0 0 0 1
+  }
+  auto position_of = [&q](const FkStep& step) {
+    return step.multiplier * q[step.position_q_index] + step.offset;
+  };
+  const int n = link_count();
+  for (int first = 1; first < n; first += kFkBlockLinks) {
+    const int end = std::min(n, first + kFkBlockLinks);
+    // Pass 1: sine and cosine of every rotating joint of the block. They do not depend on each
+    // other, so they overlap in the pipeline instead of stalling the chain of pose products.
+    double theta[kFkBlockLinks], sin_theta[kFkBlockLinks], cos_theta[kFkBlockLinks];
+    int rotation_count = 0;
+    for (int link = first; link < end; ++link) {
+      const FkStep& step = fk_steps_[link];
+      if (step.motion == FkMotion::kRotateAboutCoordinateAxis ||
+          step.motion == FkMotion::kRotateAboutAxis) {
+        theta[rotation_count++] = position_of(step);
+      }
     }
-    switch (joint.type) {
-      case JointType::kFixed:
-        poses[link] = X_WJ;
-        break;
-      case JointType::kRevolute:
-      case JointType::kContinuous:
-        poses[link] = X_WJ * Eigen::AngleAxisd(position, joint.axis_J);
-        break;
-      case JointType::kPrismatic:
-        poses[link] = X_WJ * Eigen::Translation3d(position * joint.axis_J);
-        break;
+    SinCos(theta, rotation_count, sin_theta, cos_theta);
+    int rotation = 0;  // the next rotating joint's index into sin_theta and cos_theta
+    // Pass 2: X_WL = X_WP * X_PJ * (joint motion), on whole 4-row columns of the 4x4 matrices
+    // (aligned vector lanes; the bottom rows 0 0 0 1 come out right by themselves).
+    for (int link = first; link < end; ++link) {
+      if (moving_links_only && !is_moving_[link]) continue;  // fixed to the root: unchanged
+      const FkStep& step = fk_steps_[link];
+      const Eigen::Matrix4d& T_WP = poses[step.parent].matrix();
+      const Eigen::Vector4d P0 = T_WP.col(0), P1 = T_WP.col(1), P2 = T_WP.col(2);
+      // Columns of X_WJ.
+      Eigen::Vector4d c0 = P0, c1 = P1, c2 = P2;
+      if (!step.is_R_PJ_identity) {
+        const Eigen::Matrix3d& R = step.R_PJ;
+        c0 = P0 * R(0, 0) + P1 * R(1, 0) + P2 * R(2, 0);
+        c1 = P0 * R(0, 1) + P1 * R(1, 1) + P2 * R(2, 1);
+        c2 = P0 * R(0, 2) + P1 * R(1, 2) + P2 * R(2, 2);
+      }
+      const Eigen::Vector3d& p = step.p_PJ;
+      Eigen::Vector4d c3 = P0 * p.x() + P1 * p.y() + P2 * p.z() + T_WP.col(3);
+      // Rotation by theta about a coordinate axis mixes the other two columns:
+      // (ca, cb) <- (c ca + s cb, c cb - s ca), for (a, b) the cyclic successors of the axis.
+      auto rotate = [&](Eigen::Vector4d* ca, Eigen::Vector4d* cb) {
+        const double s = sin_theta[rotation], c = cos_theta[rotation];
+        const Eigen::Vector4d a = *ca;
+        *ca = a * c + *cb * s;
+        *cb = *cb * c - a * s;
+      };
+      switch (step.motion) {
+        case FkMotion::kNone:
+          break;
+        case FkMotion::kTranslate: {
+          const Eigen::Vector3d& k = step.axis_J;
+          c3 += position_of(step) * (c0 * k.x() + c1 * k.y() + c2 * k.z());
+          break;
+        }
+        case FkMotion::kRotateAboutCoordinateAxis:
+          if (step.coordinate_axis == 0) {
+            rotate(&c1, &c2);
+          } else if (step.coordinate_axis == 1) {
+            rotate(&c2, &c0);
+          } else {
+            rotate(&c0, &c1);
+          }
+          ++rotation;
+          break;
+        case FkMotion::kRotateAboutAxis: {
+          // Rodrigues' formula: R_JL = I + sin(theta) K + (1 - cos(theta)) K^2, K = [k]x.
+          const Eigen::Matrix3d R = Eigen::Matrix3d::Identity() +
+                                    sin_theta[rotation] * step.K +
+                                    (1.0 - cos_theta[rotation]) * step.K2;
+          ++rotation;
+          const Eigen::Vector4d J0 = c0, J1 = c1, J2 = c2;
+          c0 = J0 * R(0, 0) + J1 * R(1, 0) + J2 * R(2, 0);
+          c1 = J0 * R(0, 1) + J1 * R(1, 1) + J2 * R(2, 1);
+          c2 = J0 * R(0, 2) + J1 * R(1, 2) + J2 * R(2, 2);
+          break;
+        }
+      }
+      Eigen::Matrix4d& T_WL = poses[link].matrix();
+      T_WL.col(0) = c0;
+      T_WL.col(1) = c1;
+      T_WL.col(2) = c2;
+      T_WL.col(3) = c3;
     }
   }
 }
@@ -229,6 +364,10 @@ KinematicModel KinematicModel::FromUrdfFile(const std::string& urdf_path) {
       throw LoadError(urdf_path + ": joint '" + spec.name +
                       "': <mimic> multiplier and offset must be finite");
     }
+  }
+  model.fk_steps_.resize(model.link_count());
+  for (int link = 1; link < model.link_count(); ++link) {
+    model.fk_steps_[link] = MakeFkStep(model.joints_[link], model.parent_link_[link]);
   }
   return model;
 }

@@ -55,6 +55,16 @@ bool IsSamePose(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
   return std::memcmp(a.matrix().data(), b.matrix().data(), sizeof(double) * 16) == 0;
 }
 
+// An idle or refused cycle does no work.
+void ClearCycleWork(CycleReport* report) {
+  report->moved_primitives = 0;
+  report->reindexed_primitives = 0;
+  report->candidate_pairs = 0;
+  report->narrow_phase_tests = 0;
+  report->bounded = false;
+  report->counters = BroadPhaseCounters{};
+}
+
 void SetError(std::string* error, const std::string& message) {
   if (error != nullptr) *error = message;
 }
@@ -92,7 +102,7 @@ struct Monitor::Impl {
   std::vector<Shape> shape_C;           // per primitive: in its carrier link's frame (attached or link)
   std::vector<int> carrier;             // per primitive: link it moves with, -1 for none
   std::vector<Shape> shape_W;
-  std::vector<Shape> shape_prev_W;      // at the last good cycle, for speed estimates
+  std::vector<Shape> shape_prev_W;      // at the last good cycle (speed-scaled tolerance only)
   std::vector<std::uint8_t> is_moving;  // Motion it is indexed with
   std::vector<std::uint8_t> is_reachable;  // false: static no moving primitive can reach
   std::vector<std::uint8_t> in_broad_phase;
@@ -103,7 +113,42 @@ struct Monitor::Impl {
   Eigen::VectorXd q_good;
   bool has_good = false;
   bool scene_changed = true;
-  std::vector<CandidatePair> pairs;
+  // Index slack (MonitorOptions::index_slack_m): each moving primitive is indexed by its shape
+  // as of its last re-index, grown by the slack; the candidate pairs are kept between cycles,
+  // each with a lower bound on the distance between the two indexed shapes.
+  struct PairState {
+    CandidatePair pair;
+    double lower_bound_m = 0.0;  // <= distance of the indexed shapes; NaN: not yet computed
+    double kinematics_bound_m = 0.0;  // <= distance at q_kinematics; NaN: unknown
+  };
+  std::vector<Shape> shape_ref_W;       // per primitive: as last indexed
+  std::vector<double> disp_m;           // per primitive: farthest point motion since then
+  std::vector<PairState> pair_states;   // the broad phase's candidate pairs, sorted
+  std::vector<PairState> pair_scratch;
+  std::vector<CandidatePair> pairs, new_pairs;  // scratch for FindPairs / FindPairsOf
+  std::vector<PrimitiveId> reindexed;   // this cycle
+  std::vector<std::uint8_t> is_reindexed;
+  bool pairs_stale = true;              // an index or compatibility change: rebuild the set
+  // Bounded cycles (see TryBoundedCycle): a link-carried primitive's points move by at most
+  // sum_j |delta q_j| * lever_j, the lever being how far the primitive can reach from joint j's
+  // axis (1 for a prismatic joint), times |multiplier| for a mimic joint.
+  struct Lever {
+    int q_index = 0;
+    double m_per_unit = 0.0;  // m per rad (revolute) or per m (prismatic)
+  };
+  int max_levers = 0;                   // moving joints above the deepest link
+  std::vector<Lever> levers;            // per primitive, max_levers slots
+  std::vector<int> lever_count;         // per primitive; 0: not carried by a moving link
+  std::vector<double> link_lever_m;     // scratch for ComputeLevers: per link
+  Eigen::VectorXd q_kinematics;         // q of the last forward kinematics
+  Eigen::VectorXd dq_abs;               // scratch: |q - q_kinematics|
+  std::vector<int> link_depth;          // per link: levers from it up to the root
+  std::vector<std::uint8_t> shared_levers;  // link x link: link_depth of their lowest common
+                                            // ancestor (joints that move both alike)
+  std::vector<double> lever_sums_m;     // per primitive, max_levers + 1 slots: partial sums of
+                                        // |delta q| * lever from its link upward
+  bool kinematics_behind = false;       // bounded cycles since: shape_W is at q_kinematics
+  double world_edge_m = 0.0;
   CycleReport report;
   BroadPhaseCounters total;
   std::uint64_t refused = 0;
@@ -127,14 +172,23 @@ struct Monitor::Impl {
   double BroadTolerance(PrimitiveId id, bool moving) const {
     return tol_base[id] + (moving ? options.max_speed_mps * speed_tol_gain_s : 0.0);
   }
+  // What the index grows a primitive's box by: its largest tolerance, plus the slack when it
+  // moves.
+  double IndexTolerance(PrimitiveId id) const {
+    return BroadTolerance(id, is_moving[id]) + (is_moving[id] ? options.index_slack_m : 0.0);
+  }
   void AddToBroadPhase(PrimitiveId id) {
-    broad_phase->Add(id, ComputeAabb(shape_W[id]), BroadTolerance(id, is_moving[id]),
+    broad_phase->Add(id, ComputeAabb(shape_W[id]), IndexTolerance(id),
                      is_moving[id] ? Motion::kMoving : Motion::kStatic);
     in_broad_phase[id] = 1;
+    shape_ref_W[id] = shape_W[id];
+    disp_m[id] = 0.0;
+    pairs_stale = true;
   }
   void RemoveFromBroadPhase(PrimitiveId id) {
     broad_phase->Remove(id);
     in_broad_phase[id] = 0;
+    pairs_stale = true;
   }
   // Re-indexes `id` with its current motion and tolerance (Add fixes both).
   void Reindex(PrimitiveId id, bool moving) {
@@ -149,6 +203,7 @@ struct Monitor::Impl {
            holder[object] == link;
   }
   void RefreshCompatibility(int link, int object) {
+    pairs_stale = true;
     for (const PrimitiveId l : link_prims[link]) {
       for (const PrimitiveId o : objects[object].prims) {
         compatible.Set(l, o, CompatibleNow(l, o, link, object));
@@ -171,10 +226,35 @@ struct Monitor::Impl {
   void ComputeTolerances(const std::vector<Shape>& shapes,
                          const std::vector<std::uint8_t>& moved_flags,
                          std::vector<double>* tol) const;
-  // Narrow phase of one candidate pair; appends a warning when closer than the threshold.
-  static void TestPair(PrimitiveId a, PrimitiveId b, const std::vector<Shape>& shapes,
-                       const std::vector<double>& tol, std::vector<Warning>* warnings);
+  // Narrow phase of one pair: appends a warning when closer than the sum of the tolerances (or
+  // touching); returns the distance.
+  static double TestPair(PrimitiveId a, PrimitiveId b, const std::vector<Shape>& shapes,
+                         const std::vector<double>& tol, std::vector<Warning>* warnings);
+  // Moves in the index the moved primitives that left their slack; counts the moved ones.
+  std::uint32_t ReindexMoved();
+  // Brings pair_states up to date with the index: rebuilt when stale, else the pairs of this
+  // cycle's re-indexed primitives replaced.
+  void UpdatePairStates();
+  // The narrow phase over pair_states, skipping the pairs whose lower bound clears them.
+  void TestCandidatePairs();
+  // The levers of primitive `id` for its current carrier (none when it has none).
+  void ComputeLevers(PrimitiveId id);
+  // Forward kinematics at q, the moved primitives re-indexed, the kept pairs brought up to
+  // date: the model then follows q. Returns the number of primitives that moved.
+  std::uint32_t FollowKinematics(const Eigen::Ref<const Eigen::VectorXd>& q);
+  // A cycle without kinematics: true (and the report written) when every moving primitive's
+  // joint-space motion bound keeps it within its slack and every kept pair's lower bound, less
+  // those bounds, still clears its threshold -- then no pair can warn. False: nothing changed.
+  bool TryBoundedCycle(const Eigen::Ref<const Eigen::VectorXd>& q);
+  // After bounded cycles: the kinematics (shapes, index, kept pairs) brought to q_good, for
+  // readers of the shapes and for scene changes.
+  void SyncKinematics() {
+    if (kinematics_behind) FollowKinematics(q_good);
+  }
   void RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q);
+  // Monitor::Validate's part for the index slack: displacements, the kept pair set against the
+  // indexed boxes by brute force, and the pairs' lower bounds.
+  void ValidateSlack(std::ostringstream* msg) const;
 };
 
 Monitor::Impl::Impl(std::shared_ptr<const Workcell> wc, const MonitorOptions& opts)
@@ -183,8 +263,13 @@ Monitor::Impl::Impl(std::shared_ptr<const Workcell> wc, const MonitorOptions& op
   model = &workcell->kinematics;
   n = static_cast<std::uint32_t>(workcell->primitives.size());
   options.broad_phase.world_W = workcell->world_W;
-  options.broad_phase.min_cell_size_m = options.max_speed_mps * options.cycle_period_s;
+  // The farthest an indexed box moves in one index update: the slack it may already have used
+  // plus one cycle at the speed bound. Cells no smaller keep the seed's incremental update (a
+  // move within one cell of the old cells) the common case.
+  options.broad_phase.min_cell_size_m =
+      options.max_speed_mps * options.cycle_period_s + options.index_slack_m;
   options.broad_phase.reserve_primitives = std::max(options.broad_phase.reserve_primitives, n);
+  world_edge_m = (workcell->world_W.max_W - workcell->world_W.min_W).maxCoeff();
   speed_tol_gain_s =
       options.speed_scaled_tolerance ? options.reaction_time_s + options.stopping_time_s : 0.0;
   ValidateOptions();
@@ -204,6 +289,9 @@ void Monitor::Impl::ValidateOptions() const {
   }
   if (!non_negative(options.reaction_time_s) || !non_negative(options.stopping_time_s)) {
     throw LoadError("monitor options: reaction_time_s and stopping_time_s must be >= 0");
+  }
+  if (!non_negative(options.index_slack_m)) {
+    throw LoadError("monitor options: index_slack_m must be >= 0");
   }
   if (options.broad_phase.max_objects_per_leaf < 1) {
     throw LoadError("monitor options: broad_phase max_objects_per_leaf must be >= 1");
@@ -303,6 +391,39 @@ void Monitor::Impl::BuildModel() {
     shape_W[id] = carrier[id] >= 0 ? TransformShape(X_WL[carrier[id]], shape_C[id]) : shape_C[id];
   }
   shape_prev_W = shape_W;
+  shape_ref_W = shape_W;
+  disp_m.assign(n, 0.0);
+  q_kinematics = q0;
+  dq_abs = Eigen::VectorXd::Zero(q0.size());
+  link_depth.assign(link_count, 0);
+  for (int link = 1; link < link_count; ++link) {
+    const JointSpec& joint = model->joint(link);
+    const bool moves = joint.type != JointType::kFixed &&
+                       (joint.q_index >= 0 || joint.mimic_q_index >= 0);
+    link_depth[link] = link_depth[model->parent_link(link)] + (moves ? 1 : 0);
+    max_levers = std::max(max_levers, link_depth[link]);
+  }
+  shared_levers.assign(static_cast<std::size_t>(link_count) * link_count, 0);
+  for (int a = 0; a < link_count; ++a) {
+    for (int b = 0; b < link_count; ++b) {
+      int x = a, y = b;  // parents precede children: climb from the larger index
+      while (x != y) {
+        if (x > y) {
+          x = model->parent_link(x);
+        } else {
+          y = model->parent_link(y);
+        }
+      }
+      shared_levers[static_cast<std::size_t>(a) * link_count + b] =
+          static_cast<std::uint8_t>(link_depth[x]);
+    }
+  }
+  lever_sums_m.assign(static_cast<std::size_t>(n) * (max_levers + 1), 0.0);
+  levers.assign(static_cast<std::size_t>(n) * max_levers, Lever{});
+  lever_count.assign(n, 0);
+  link_lever_m.assign(link_count, 0.0);
+  for (PrimitiveId id = 0; id < n; ++id) ComputeLevers(id);
+  is_reindexed.assign(n, 0);
   moved.assign(n, 0);
   tol_now = tol_base;
 }
@@ -426,6 +547,10 @@ void Monitor::Impl::BuildBroadPhase() {
   }
   const std::size_t max_pairs = static_cast<std::size_t>(n) * (n > 0 ? n - 1 : 0) / 2;
   pairs.reserve(max_pairs);
+  new_pairs.reserve(max_pairs);
+  pair_states.reserve(max_pairs);
+  pair_scratch.reserve(max_pairs);
+  reindexed.reserve(n);
   report.warnings.reserve(max_pairs);
   report.stop = true;  // nothing is known before the first good input
   total = BroadPhaseCounters{};
@@ -480,63 +605,286 @@ void Monitor::Impl::ComputeTolerances(const std::vector<Shape>& shapes,
   }
 }
 
-void Monitor::Impl::TestPair(PrimitiveId a, PrimitiveId b, const std::vector<Shape>& shapes,
-                             const std::vector<double>& tol, std::vector<Warning>* warnings) {
+double Monitor::Impl::TestPair(PrimitiveId a, PrimitiveId b, const std::vector<Shape>& shapes,
+                               const std::vector<double>& tol, std::vector<Warning>* warnings) {
   const double threshold_m = tol[a] + tol[b];
+  const DistanceResult d = ShapeDistance(shapes[a], shapes[b]);
   // Overlap is a negative signed distance, closer than any threshold: two parts without a
   // tolerance zone (threshold 0) still warn when they touch or overlap.
-  if (threshold_m > 0.0 && !IsCloserThan(shapes[a], shapes[b], threshold_m)) return;
-  const DistanceResult d = ShapeDistance(shapes[a], shapes[b]);
-  if (threshold_m <= 0.0 && d.distance_m > 0.0) return;
-  Warning w;
-  w.a = a;
-  w.b = b;
-  w.distance_m = d.distance_m;
-  w.threshold_m = threshold_m;
-  w.p_WA = d.p_WA;
-  w.p_WB = d.p_WB;
-  warnings->push_back(w);
+  if (d.distance_m < threshold_m || d.distance_m <= 0.0) {
+    Warning w;
+    w.a = a;
+    w.b = b;
+    w.distance_m = d.distance_m;
+    w.threshold_m = threshold_m;
+    w.p_WA = d.p_WA;
+    w.p_WB = d.p_WB;
+    warnings->push_back(w);
+  }
+  return d.distance_m;
+}
+
+void Monitor::Impl::ComputeLevers(PrimitiveId id) {
+  lever_count[id] = 0;
+  const int link = carrier[id];
+  if (link < 0 || !is_moving[id]) return;
+  // The primitive reaches at most `extent` from its link's origin, and a joint's origin at
+  // most the chain of joint offsets (plus prismatic travel) below it from there; a point's
+  // distance from a joint's axis is at most its distance from the joint's origin.
+  const double extent_m = MaxDistanceFromPoint(shape_C[id], Eigen::Vector3d::Zero());
+  double chain_m = 0.0;
+  Lever* out = &levers[static_cast<std::size_t>(id) * max_levers];
+  for (int l = link; l > 0; l = model->parent_link(l)) {
+    const JointSpec& joint = model->joint(l);
+    const int q_index = joint.q_index >= 0 ? joint.q_index : joint.mimic_q_index;
+    if (joint.type != JointType::kFixed && q_index >= 0) {  // as link_depth counts
+      const double scale = joint.q_index >= 0 ? 1.0 : std::abs(joint.mimic_multiplier);
+      const double lever_m = joint.type == JointType::kPrismatic ? 1.0 : chain_m + extent_m;
+      out[lever_count[id]++] = Lever{q_index, scale * lever_m};
+    }
+    double travel_m = 0.0;
+    if (joint.type == JointType::kPrismatic) {
+      travel_m = std::max(std::abs(joint.lower), std::abs(joint.upper));
+    }
+    chain_m += joint.X_PJ.translation().norm() + travel_m;
+  }
+}
+
+std::uint32_t Monitor::Impl::FollowKinematics(const Eigen::Ref<const Eigen::VectorXd>& q) {
+  model->ComputeLinkPoses(q, &X_WL_next);
+  MoveCarried(X_WL_next, &link_changed, &shape_W, &moved);
+  X_WL.swap(X_WL_next);
+  q_kinematics = q;
+  kinematics_behind = false;
+  const std::uint32_t moved_count = ReindexMoved();
+  // Fixed tolerances: tol_now already equals tol_base (Attach / Detach keep both).
+  if (speed_tol_gain_s != 0.0) ComputeTolerances(shape_W, moved, &tol_now);
+  const bool keeps_previous = speed_tol_gain_s != 0.0;  // only speed estimates read it
+  for (PrimitiveId id = 0; id < n; ++id) {
+    if (moved[id]) {
+      if (keeps_previous) shape_prev_W[id] = shape_W[id];
+      moved[id] = 0;
+    }
+  }
+  UpdatePairStates();
+  // Each kept pair's distance now is at least its indexed distance less both motions since.
+  for (PairState& state : pair_states) {
+    state.kinematics_bound_m =
+        state.lower_bound_m - disp_m[state.pair.a] - disp_m[state.pair.b];
+  }
+  return moved_count;
+}
+
+bool Monitor::Impl::TryBoundedCycle(const Eigen::Ref<const Eigen::VectorXd>& q) {
+  // Speed-scaled tolerances need the motion itself; a scene change re-plans the pairs.
+  if (!has_good || scene_changed || pairs_stale || speed_tol_gain_s != 0.0 ||
+      report.input != InputStatus::kOk) {
+    return false;
+  }
+  dq_abs = (q - q_kinematics).cwiseAbs();
+  const double slack_m = options.index_slack_m;
+  const std::size_t stride = static_cast<std::size_t>(max_levers) + 1;
+  for (PrimitiveId id = 0; id < n; ++id) {
+    const int count = lever_count[id];
+    if (count == 0) continue;
+    const Lever* l = &levers[static_cast<std::size_t>(id) * max_levers];
+    double* sums = &lever_sums_m[id * stride];
+    for (int k = 0; k < count; ++k) sums[k + 1] = sums[k] + dq_abs[l[k].q_index] * l[k].m_per_unit;
+    // Motion since indexed <= motion until the kinematics + motion since.
+    if (disp_m[id] + sums[count] > slack_m && in_broad_phase[id]) return false;
+  }
+  const int link_count = model->link_count();
+  for (const PairState& state : pair_states) {
+    const PrimitiveId a = state.pair.a;
+    const PrimitiveId b = state.pair.b;
+    // Motion relative to each other: joints above both links' common ancestor move both alike.
+    const int la = carrier[a], lb = carrier[b];
+    const int shared = la >= 0 && lb >= 0
+                           ? shared_levers[static_cast<std::size_t>(la) * link_count + lb]
+                           : 0;
+    const double motion_m =
+        (lever_count[a] > 0 ? lever_sums_m[a * stride + lever_count[a] - shared] : 0.0) +
+        (lever_count[b] > 0 ? lever_sums_m[b * stride + lever_count[b] - shared] : 0.0);
+    const double margin_m =
+        kLowerBoundMarginPerMetre * (world_edge_m + std::abs(state.kinematics_bound_m));
+    // NaN (no bound) fails the comparison.
+    if (!(state.kinematics_bound_m - motion_m - margin_m > tol_now[a] + tol_now[b])) return false;
+  }
+  // Every kept pair is clear, and every other pair's indexed boxes are apart while both
+  // primitives stay within their slack: no warning.
+  q_good = q;
+  report.input = InputStatus::kOk;
+  report.warnings.clear();
+  report.stop = false;
+  ClearCycleWork(&report);
+  report.candidate_pairs = static_cast<std::uint32_t>(pair_states.size());
+  report.bounded = true;
+  kinematics_behind = true;
+  return true;
+}
+
+std::uint32_t Monitor::Impl::ReindexMoved() {
+  std::uint32_t moved_count = 0;
+  reindexed.clear();
+  for (PrimitiveId id = 0; id < n; ++id) {
+    if (!moved[id] || !in_broad_phase[id]) continue;
+    ++moved_count;
+    // Every point of the shape lies within this of its indexed copy (the displacement of a
+    // point of a capsule or box is a convex combination of its defining points').
+    const double d_m = MaxPointDisplacement(shape_ref_W[id], shape_W[id]);
+    if (d_m <= options.index_slack_m) {
+      disp_m[id] = d_m;
+      continue;
+    }
+    shape_ref_W[id] = shape_W[id];
+    disp_m[id] = 0.0;
+    broad_phase->Move(id, ComputeAabb(shape_W[id]));
+    reindexed.push_back(id);
+  }
+  return moved_count;
+}
+
+void Monitor::Impl::UpdatePairStates() {
+  constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
+  if (pairs_stale) {
+    broad_phase->FindPairs(compatible, &pairs);
+    pair_states.clear();
+    for (const CandidatePair& p : pairs) pair_states.push_back({p, kUnknown});
+    pairs_stale = false;
+    return;
+  }
+  if (reindexed.empty()) return;
+  for (const PrimitiveId id : reindexed) is_reindexed[id] = 1;
+  // The pairs of primitives that stayed within their slack keep their bounds ...
+  pair_states.erase(std::remove_if(pair_states.begin(), pair_states.end(),
+                                   [&](const PairState& s) {
+                                     return is_reindexed[s.pair.a] || is_reindexed[s.pair.b];
+                                   }),
+                    pair_states.end());
+  // ... and the re-indexed ones get theirs anew; a pair of two re-indexed primitives is taken
+  // from the smaller id's query.
+  new_pairs.clear();
+  for (const PrimitiveId id : reindexed) {
+    broad_phase->FindPairsOf(id, compatible, &pairs);
+    for (const CandidatePair& p : pairs) {
+      const PrimitiveId other = p.a == id ? p.b : p.a;
+      if (is_reindexed[other] && other < id) continue;
+      new_pairs.push_back(p);
+    }
+  }
+  for (const PrimitiveId id : reindexed) is_reindexed[id] = 0;
+  std::sort(new_pairs.begin(), new_pairs.end());
+  pair_scratch.clear();
+  auto old_it = pair_states.begin();
+  for (const CandidatePair& p : new_pairs) {
+    while (old_it != pair_states.end() && old_it->pair < p) pair_scratch.push_back(*old_it++);
+    pair_scratch.push_back({p, kUnknown});
+  }
+  pair_scratch.insert(pair_scratch.end(), old_it, pair_states.end());
+  pair_states.swap(pair_scratch);
+}
+
+void Monitor::Impl::TestCandidatePairs() {
+  report.warnings.clear();
+  report.narrow_phase_tests = 0;
+  for (PairState& state : pair_states) {
+    const PrimitiveId a = state.pair.a;
+    const PrimitiveId b = state.pair.b;
+    // A new pair: the distance of the indexed shapes, exact until either is re-indexed.
+    if (std::isnan(state.lower_bound_m)) {
+      ++report.narrow_phase_tests;
+      state.lower_bound_m = ShapeDistance(shape_ref_W[a], shape_ref_W[b]).distance_m;
+      state.kinematics_bound_m = state.lower_bound_m - disp_m[a] - disp_m[b];
+    }
+    // Triangle inequality: dist(now) >= dist(indexed) - motion of a - motion of b.
+    const double motion_m = disp_m[a] + disp_m[b];
+    const double margin_m =
+        kLowerBoundMarginPerMetre * (world_edge_m + std::abs(state.lower_bound_m));
+    if (state.lower_bound_m - motion_m - margin_m > tol_now[a] + tol_now[b]) continue;
+    ++report.narrow_phase_tests;
+    const double distance_m = TestPair(a, b, shape_W, tol_now, &report.warnings);
+    state.lower_bound_m = std::max(state.lower_bound_m, distance_m - motion_m);
+    state.kinematics_bound_m = distance_m;
+  }
 }
 
 void Monitor::Impl::RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q) {
   // Work done by scene changes since the last cycle belongs to the run, not to this cycle.
   total += broad_phase->counters();
   broad_phase->ResetCounters();
+  if (TryBoundedCycle(q)) return;
 
-  model->ComputeLinkPoses(q, &X_WL_next);
-  MoveCarried(X_WL_next, &link_changed, &shape_W, &moved);
-  X_WL.swap(X_WL_next);
+  const std::uint32_t moved_count = FollowKinematics(q);
   q_good = q;
-
-  std::uint32_t moved_count = 0;
-  for (PrimitiveId id = 0; id < n; ++id) {
-    if (moved[id] && in_broad_phase[id]) {
-      broad_phase->Move(id, ComputeAabb(shape_W[id]));
-      ++moved_count;
-    }
-  }
-  // Fixed tolerances: tol_now already equals tol_base (Attach / Detach keep both).
-  if (speed_tol_gain_s != 0.0) ComputeTolerances(shape_W, moved, &tol_now);
-  for (PrimitiveId id = 0; id < n; ++id) {
-    if (moved[id]) {
-      shape_prev_W[id] = shape_W[id];
-      moved[id] = 0;
-    }
-  }
-
-  broad_phase->FindPairs(compatible, &pairs);
-  std::sort(pairs.begin(), pairs.end());
-  report.warnings.clear();
-  for (const CandidatePair& pair : pairs) TestPair(pair.a, pair.b, shape_W, tol_now, &report.warnings);
+  TestCandidatePairs();
 
   report.input = InputStatus::kOk;
   report.stop = !report.warnings.empty();
   report.moved_primitives = moved_count;
+  report.reindexed_primitives = static_cast<std::uint32_t>(reindexed.size());
+  report.candidate_pairs = static_cast<std::uint32_t>(pair_states.size());
+  report.bounded = false;
   report.counters = broad_phase->counters();
   total += report.counters;
   broad_phase->ResetCounters();
   has_good = true;
   scene_changed = false;
+}
+
+void Monitor::Impl::ValidateSlack(std::ostringstream* msg) const {
+  for (PrimitiveId id = 0; id < n; ++id) {
+    if (!in_broad_phase[id] || moved[id]) continue;
+    const double d_m = MaxPointDisplacement(shape_ref_W[id], shape_W[id]);
+    if (d_m != disp_m[id] || d_m > options.index_slack_m) {
+      *msg << "primitive " << id << " moved " << d_m << " m from its indexed copy, recorded "
+           << disp_m[id] << " m, slack " << options.index_slack_m << " m";
+      return;
+    }
+  }
+  if (pairs_stale) return;  // a scene change since the last cycle: rebuilt in the next one
+  std::vector<CandidatePair> expected;
+  for (PrimitiveId a = 0; a < n; ++a) {
+    if (!in_broad_phase[a]) continue;
+    const Aabb box_a = ComputeAabb(shape_ref_W[a]).Inflated(IndexTolerance(a));
+    for (PrimitiveId b = a + 1; b < n; ++b) {
+      if (!in_broad_phase[b] || (!is_moving[a] && !is_moving[b]) ||
+          compatible.AreCompatible(a, b)) {
+        continue;
+      }
+      if (box_a.Overlaps(ComputeAabb(shape_ref_W[b]).Inflated(IndexTolerance(b)))) {
+        expected.push_back({a, b});
+      }
+    }
+  }
+  if (expected.size() != pair_states.size()) {
+    *msg << pair_states.size() << " kept candidate pairs, " << expected.size()
+         << " indexed boxes overlapping";
+    return;
+  }
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    const PairState& state = pair_states[i];
+    if (!(state.pair == expected[i])) {
+      *msg << "kept candidate pair " << i << " is (" << state.pair.a << "," << state.pair.b
+           << "), expected (" << expected[i].a << "," << expected[i].b << ")";
+      return;
+    }
+    const double d_m = ShapeDistance(shape_ref_W[state.pair.a], shape_ref_W[state.pair.b]).distance_m;
+    if (state.lower_bound_m >
+        d_m + kLowerBoundMarginPerMetre * (world_edge_m + std::abs(d_m))) {
+      *msg << "pair (" << state.pair.a << "," << state.pair.b << ") lower bound "
+           << state.lower_bound_m << " m exceeds the indexed shapes' distance " << d_m << " m";
+      return;
+    }
+    // shape_W is at q_kinematics (also after bounded cycles).
+    const double now_m = ShapeDistance(shape_W[state.pair.a], shape_W[state.pair.b]).distance_m;
+    if (state.kinematics_bound_m >
+        now_m + kLowerBoundMarginPerMetre * (world_edge_m + std::abs(now_m))) {
+      *msg << "pair (" << state.pair.a << "," << state.pair.b << ") bound "
+           << state.kinematics_bound_m << " m exceeds its distance " << now_m
+           << " m at the last kinematics";
+      return;
+    }
+  }
 }
 
 // --- Monitor ------------------------------------------------------------------------------
@@ -555,8 +903,7 @@ const CycleReport& Monitor::Update(const Eigen::Ref<const Eigen::VectorXd>& q) {
   ++report.cycle;
   // Idle cycle: same input bit for bit and an unchanged scene give the same report.
   if (m.IsIdle(q)) {
-    report.moved_primitives = 0;
-    report.counters = BroadPhaseCounters{};
+    ClearCycleWork(&report);
     return report;
   }
   const InputStatus status = m.CheckInput(q);
@@ -565,8 +912,7 @@ const CycleReport& Monitor::Update(const Eigen::Ref<const Eigen::VectorXd>& q) {
     ++m.refused;
     report.input = status;
     report.stop = true;
-    report.moved_primitives = 0;
-    report.counters = BroadPhaseCounters{};
+    ClearCycleWork(&report);
     return report;
   }
   m.RunCycle(q);
@@ -582,8 +928,7 @@ CycleReport Monitor::Check(const Eigen::Ref<const Eigen::VectorXd>& q) const {
   if (m.IsIdle(q)) {
     r = m.report;
     r.cycle = m.report.cycle + 1;
-    r.moved_primitives = 0;
-    r.counters = BroadPhaseCounters{};
+    ClearCycleWork(&r);
     return r;
   }
   r.input = m.CheckInput(q);
@@ -610,6 +955,7 @@ CycleReport Monitor::Check(const Eigen::Ref<const Eigen::VectorXd>& q) const {
         continue;
       }
       Impl::TestPair(a, b, shapes, tol, &r.warnings);
+      ++r.narrow_phase_tests;
     }
   }
   r.stop = !r.warnings.empty();
@@ -618,6 +964,7 @@ CycleReport Monitor::Check(const Eigen::Ref<const Eigen::VectorXd>& q) const {
 
 bool Monitor::Attach(const std::string& object, const std::string& link, std::string* error) {
   Impl& m = *impl_;
+  m.SyncKinematics();
   const int o = m.workcell->FindObject(object);
   if (o < 0) {
     SetError(error, "Attach: unknown object '" + object + "'");
@@ -665,6 +1012,7 @@ bool Monitor::Attach(const std::string& object, const std::string& link, std::st
     m.tol_base[id] = std::max(m.workcell->primitives[id].tolerance_m, holder_tol_m);
     m.tol_now[id] = m.tol_base[id];
     m.Reindex(id, true);
+    m.ComputeLevers(id);
   }
   m.holder[o] = l;
   if (previous >= 0 && previous != l) m.RefreshCompatibility(previous, o);
@@ -675,6 +1023,7 @@ bool Monitor::Attach(const std::string& object, const std::string& link, std::st
 
 bool Monitor::Detach(const std::string& object, std::string* error) {
   Impl& m = *impl_;
+  m.SyncKinematics();
   const int o = m.workcell->FindObject(object);
   if (o < 0) {
     SetError(error, "Detach: unknown object '" + object + "'");
@@ -693,6 +1042,7 @@ bool Monitor::Detach(const std::string& object, std::string* error) {
     m.tol_base[id] = m.workcell->primitives[id].tolerance_m;
     m.tol_now[id] = m.tol_base[id];
     m.Reindex(id, stays_moving);
+    m.ComputeLevers(id);
   }
   m.holder[o] = -1;
   m.RefreshCompatibility(l, o);
@@ -730,6 +1080,7 @@ bool Monitor::SetGraspTarget(const std::string& link, const std::string& object,
 bool Monitor::SwitchModel(const std::string& link, const std::string& variant,
                           std::string* error) {
   Impl& m = *impl_;
+  m.SyncKinematics();
   const int l = m.model->FindLink(link);
   if (l < 0) {
     SetError(error, "SwitchModel: unknown link '" + link + "'");
@@ -790,7 +1141,11 @@ bool Monitor::SetObjectPose(const std::string& object, const Eigen::Isometry3d& 
 }
 
 std::uint32_t Monitor::primitive_count() const { return impl_->n; }
-const Shape& Monitor::shape_W(PrimitiveId id) const { return impl_->shape_W[id]; }
+const Shape& Monitor::shape_W(PrimitiveId id) const {
+  // Lazily brought up to date after bounded cycles (this changes no observable state).
+  impl_->SyncKinematics();
+  return impl_->shape_W[id];
+}
 bool Monitor::is_active(PrimitiveId id) const { return impl_->in_broad_phase[id] != 0; }
 void Monitor::CollectIndexCells(std::vector<IndexCell>* cells) const {
   impl_->broad_phase->CollectCells(cells);
@@ -846,6 +1201,7 @@ bool Monitor::Validate(std::string* error) const {
       }
     }
   }
+  if (msg.tellp() == 0) m.ValidateSlack(&msg);
   const auto& w = m.report.warnings;
   for (std::size_t i = 0; i < w.size() && msg.tellp() == 0; ++i) {
     if (w[i].a >= w[i].b || (i > 0 && !(w[i - 1].a < w[i].a ||
@@ -856,6 +1212,17 @@ bool Monitor::Validate(std::string* error) const {
   if (msg.tellp() == 0) return true;
   SetError(error, msg.str());
   return false;
+}
+
+bool Monitor::ValidateIndex(std::string* error) const {
+  std::string why;
+  if (impl_->broad_phase->Validate(&why)) return true;
+  SetError(error, "broad phase " + impl_->broad_phase->name() + ": " + why);
+  return false;
+}
+
+void Monitor::ForceIndexStampsNearWrap(std::uint32_t steps_before_wrap) {
+  impl_->broad_phase->ForceStampsNearWrap(steps_before_wrap);
 }
 
 }  // namespace arm_collision_monitor

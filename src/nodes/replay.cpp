@@ -26,6 +26,7 @@
 #include "arm_collision_monitor/monitor/monitor.h"
 #include "arm_collision_monitor/ros/joint_state_input.h"
 #include "arm_collision_monitor/scene/workcell.h"
+#include "arm_collision_monitor/scene/workcell_shapes.h"
 #include "arm_collision_monitor/tasks/joint_csv.h"
 #include "arm_collision_monitor/tasks/task_trajectories.h"
 #ifdef ACM_HAVE_PEERS
@@ -228,7 +229,7 @@ class PeerCycleChecker : public Checker {
  public:
   PeerCycleChecker(std::shared_ptr<const Workcell> workcell, const std::string& name,
                    const std::vector<TaskGraspTarget>& targets)
-      : workcell_(std::move(workcell)), X_WL_(workcell_->kinematics.link_count()) {
+      : workcell_(std::move(workcell)), shapes_(*workcell_) {
     const Workcell& wc = *workcell_;
     CompatibilityMatrix compatible = wc.compatible;
     for (const TaskGraspTarget& t : targets) {
@@ -243,19 +244,14 @@ class PeerCycleChecker : public Checker {
         }
       }
     }
-    std::vector<Eigen::Isometry3d> X_WL(wc.kinematics.link_count());
-    wc.kinematics.ComputeLinkPoses(Eigen::VectorXd::Zero(wc.kinematics.q_size()), &X_WL);
+    // Home-pose shapes; only link primitives move (objects stay where the scene puts them).
     std::vector<PeerPrimitive> primitives(wc.primitives.size());
-    shapes_W_.resize(wc.primitives.size());
     for (std::size_t i = 0; i < wc.primitives.size(); ++i) {
       const PrimitiveSpec& p = wc.primitives[i];
-      const bool is_link = p.link_index >= 0;
-      shapes_W_[i] = is_link ? TransformShape(X_WL[p.link_index], p.shape_L) : p.shape_L;
-      primitives[i] = PeerPrimitive{shapes_W_[i], p.tolerance_m, is_link && !p.is_static,
-                                    p.variant.empty()};
-      if (primitives[i].is_moving && primitives[i].is_present) {
-        moving_.push_back(static_cast<PrimitiveId>(i));
-      }
+      const auto id = static_cast<PrimitiveId>(i);
+      primitives[i] = PeerPrimitive{shapes_.shape_W(id), p.tolerance_m,
+                                    p.link_index >= 0 && !p.is_static,
+                                    shapes_.is_default_model(id)};
     }
     peer_ = name == "fcl" ? MakeFclChecker(primitives, compatible, PeerTolerance::kRounded)
                           : MakeBulletChecker(primitives, compatible, PeerTolerance::kRounded);
@@ -263,19 +259,15 @@ class PeerCycleChecker : public Checker {
   void Run(const Eigen::VectorXd& q, CycleResult* result) override {
     const Workcell& wc = *workcell_;
     const auto start = std::chrono::steady_clock::now();
-    wc.kinematics.ComputeLinkPoses(q, &X_WL_);
-    for (const PrimitiveId id : moving_) {
-      const PrimitiveSpec& p = wc.primitives[id];
-      shapes_W_[id] = TransformShape(X_WL_[p.link_index], p.shape_L);
-      peer_->SetShape(id, shapes_W_[id]);
-    }
+    shapes_.Evaluate(q);
+    for (const PrimitiveId id : shapes_.moving()) peer_->SetShape(id, shapes_.shape_W(id));
     peer_->FindWarnings(&pairs_);
     result->time_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     result->refused = false;
     result->warnings.clear();
     for (const CandidatePair& pair : pairs_) {
-      const DistanceResult d = ShapeDistance(shapes_W_[pair.a], shapes_W_[pair.b]);
+      const DistanceResult d = ShapeDistance(shapes_.shape_W(pair.a), shapes_.shape_W(pair.b));
       Warning w;
       w.a = pair.a;
       w.b = pair.b;
@@ -287,9 +279,7 @@ class PeerCycleChecker : public Checker {
 
  private:
   std::shared_ptr<const Workcell> workcell_;
-  std::vector<Eigen::Isometry3d> X_WL_;
-  std::vector<Shape> shapes_W_;
-  std::vector<PrimitiveId> moving_;
+  WorkcellShapes shapes_;
   std::vector<CandidatePair> pairs_;
   std::unique_ptr<PeerChecker> peer_;
 };

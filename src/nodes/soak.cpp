@@ -1,12 +1,16 @@
 // Soak test of the Monitor (offline, ROS-free): many cycles of random smooth joint motion with
-// occasional jumps on a workcell, the octree broad phase against the all-pairs reference every
-// k cycles, and the process's memory at the start and the end. Exits 1 on any divergence.
-// Two comparisons: (1) a Monitor with the octree against a Monitor with the naive broad phase
-// (reports); (2) since the Monitor owns its broad phase, the wrap-around of the octree's 32-bit
-// stamps is soaked on a second octree that follows the first Monitor's shapes every cycle,
-// rebuilt every few thousand cycles with its stamps set a few steps before the wrap (the hook
-// must be used before any Add), against an all-pairs index fed the same (candidate pairs, plus
-// the octree's Validate() after each wrap).
+// occasional jumps on a workcell, on one Monitor with its octree, and the process's memory at
+// the start and the end. Exits 1 on any divergence or Validate() / ValidateIndex() failure.
+// - Brute force: every k cycles (and on every jump) the report of Monitor::Update(q) is compared
+//   with Monitor::Check(q) computed just before it. Check() tests every active, non-compatible
+//   pair on a copy of the model without the broad phase, so it is the all-pairs reference: no
+//   second Monitor with the naive broad phase is needed.
+// - Stamp wrap-around: every kStampForceEveryCycles cycles the 32-bit visit, pair-scan and
+//   distinct-count stamps of the Monitor's own octree are forced r steps before the wrap
+//   (Monitor::ForceIndexStampsNearWrap), r cycling through 0 .. kStampMaxStepsBeforeWrap - 1, so
+//   that the wrap falls in a Move, the pair scan or a merge check of the live index; the next
+//   cycles are all compared with Check() and Monitor::Validate() and ValidateIndex() run
+//   kValidateDelayCycles later.
 //
 //   soak --urdf <file> --scene <file> --config <file> [--cycles N] [--every k] [--seed s]
 //
@@ -16,10 +20,8 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <cstdlib>
 #include <fstream>
 #include <iostream>
-#include <limits>
 #include <memory>
 #include <random>
 #include <stdexcept>
@@ -27,8 +29,6 @@
 #include <vector>
 
 #include "arm_collision_monitor/broadphase/broad_phase_factory.h"
-#include "arm_collision_monitor/broadphase/cell_broad_phase.h"
-#include "arm_collision_monitor/broadphase/naive_broad_phase.h"
 #include "arm_collision_monitor/core/load_error.h"
 #include "arm_collision_monitor/monitor/monitor.h"
 #include "arm_collision_monitor/scene/workcell.h"
@@ -54,10 +54,12 @@ constexpr double kMeanCyclesBetweenJumps = 5000.0;
 constexpr double kJointSpeedFraction = 0.15;
 // Joint speed used when the URDF gives no limit, rad/s or m/s.
 constexpr double kDefaultJointSpeed = 1.0;
-// Every this many cycles the stamp soak's octree is rebuilt with its stamps set r steps before
-// the 32-bit wrap, r cycling through 0 .. kStampMaxStepsBeforeWrap - 1 so that the wrap falls
-// in the Adds, the Moves, the pair scan or a merge check; its Validate() runs
-// kValidateDelayCycles later.
+// Every this many cycles the Monitor's octree has its stamps forced r steps before the 32-bit
+// wrap, r cycling through 0 .. kStampMaxStepsBeforeWrap - 1 so that the wrap falls in a Move,
+// the pair scan or a merge check. Each kind of stamp is drawn at least once per cycle with
+// motion (the merge counter only when a primitive leaves a cell), so the wrap falls within
+// kValidateDelayCycles cycles after forcing: every one of them is compared with Check(), and
+// Validate() runs at the last.
 constexpr std::uint64_t kStampForceEveryCycles = 4096;
 constexpr std::uint32_t kStampMaxStepsBeforeWrap = 64;
 constexpr std::uint64_t kValidateDelayCycles = 2 * 64;
@@ -174,8 +176,8 @@ class MotionGenerator {
   Eigen::VectorXd q_;
 };
 
-// Equal reports: same input status, stop flag and warnings (pairs and distances exactly: both
-// monitors run the same narrow phase on the same shapes).
+// Equal reports: same input status, stop flag and warnings (pairs, distances, thresholds and
+// closest points exactly: Update() and Check() run the same narrow phase on the same shapes).
 bool SameReports(const CycleReport& a, const CycleReport& b, std::string* difference) {
   if (a.input != b.input || a.stop != b.stop || a.warnings.size() != b.warnings.size()) {
     *difference = "status/stop/warning count " + std::to_string(a.warnings.size()) + " vs " +
@@ -186,7 +188,7 @@ bool SameReports(const CycleReport& a, const CycleReport& b, std::string* differ
     const Warning& u = a.warnings[k];
     const Warning& v = b.warnings[k];
     if (u.a != v.a || u.b != v.b || u.distance_m != v.distance_m ||
-        u.threshold_m != v.threshold_m) {
+        u.threshold_m != v.threshold_m || u.p_WA != v.p_WA || u.p_WB != v.p_WB) {
       *difference = "warning " + std::to_string(k) + ": (" + std::to_string(u.a) + ", " +
                     std::to_string(u.b) + ") vs (" + std::to_string(v.a) + ", " +
                     std::to_string(v.b) + ")";
@@ -196,143 +198,67 @@ bool SameReports(const CycleReport& a, const CycleReport& b, std::string* differ
   return true;
 }
 
-// The second octree (see the top of the file) and its all-pairs reference.
-class StampSoak {
- public:
-  StampSoak(const Monitor& monitor, const MonitorOptions& options)
-      : compatible_(monitor.workcell().compatible), octree_options_(options.broad_phase) {
-    octree_options_.method = BroadPhaseMethod::kOctree;
-    // As the Monitor configures its own broad phase (monitor/monitor.h, MonitorOptions).
-    octree_options_.world_W = monitor.workcell().world_W;
-    octree_options_.min_cell_size_m = options.max_speed_mps * options.cycle_period_s;
-    naive_.Reserve(monitor.primitive_count());
-    for (PrimitiveId id = 0; id < monitor.primitive_count(); ++id) {
-      if (!monitor.is_active(id)) continue;
-      active_.push_back(id);
-      const bool is_static = monitor.workcell().primitives[id].is_static;
-      naive_.Add(id, ComputeAabb(monitor.shape_W(id)), monitor.tolerance_m(id),
-                 is_static ? Motion::kStatic : Motion::kMoving);
-      if (!is_static) moving_.push_back(id);
-    }
-    RestartNearWrap(monitor);
-  }
-
-  bool is_cell_structure() const { return cells_ != nullptr; }
-
-  /// A new octree holding the primitives at their current shapes in `monitor`, its stamps set
-  /// a few steps before the wrap (the hook's precondition: before any Add).
-  void RestartNearWrap(const Monitor& monitor) {
-    octree_ = MakeBroadPhase(octree_options_);
-    cells_ = dynamic_cast<CellBroadPhase*>(octree_.get());
-    if (cells_ == nullptr) return;
-    const std::uint32_t steps = static_cast<std::uint32_t>(forced_wraps_ % kStampMaxStepsBeforeWrap);
-    cells_->SetStampsForTest(std::numeric_limits<std::uint32_t>::max() - steps);
-    ++forced_wraps_;
-    for (const PrimitiveId id : active_) {
-      const bool is_static = monitor.workcell().primitives[id].is_static;
-      octree_->Add(id, ComputeAabb(monitor.shape_W(id)), monitor.tolerance_m(id),
-                   is_static ? Motion::kStatic : Motion::kMoving);
-    }
-  }
-
-  /// Moves every moving primitive to its current shape in `monitor`.
-  void Follow(const Monitor& monitor) {
-    for (const PrimitiveId id : moving_) {
-      const Aabb box_W = ComputeAabb(monitor.shape_W(id));
-      octree_->Move(id, box_W);
-      naive_.Move(id, box_W);
-    }
-  }
-
-  bool SamePairs(std::string* difference) {
-    octree_->FindPairs(compatible_, &octree_pairs_);
-    naive_.FindPairs(compatible_, &naive_pairs_);
-    std::sort(octree_pairs_.begin(), octree_pairs_.end());
-    std::sort(naive_pairs_.begin(), naive_pairs_.end());
-    if (octree_pairs_ == naive_pairs_) return true;
-    *difference = "stamp soak: " + std::to_string(octree_pairs_.size()) + " octree pairs, " +
-                  std::to_string(naive_pairs_.size()) + " all-pairs pairs";
-    return false;
-  }
-
-  bool Validate(std::string* difference) const {
-    if (cells_->Validate(difference)) return true;
-    *difference = "stamp soak: octree Validate(): " + *difference;
-    return false;
-  }
-
-  std::uint64_t forced_wraps() const { return forced_wraps_; }
-
- private:
-  const CompatibilityMatrix& compatible_;
-  BroadPhaseOptions octree_options_;
-  std::unique_ptr<BroadPhase> octree_;
-  CellBroadPhase* cells_ = nullptr;  // octree_ seen through the class with the stamp hooks
-  NaiveBroadPhase naive_;
-  std::vector<PrimitiveId> active_, moving_;
-  std::vector<CandidatePair> octree_pairs_, naive_pairs_;
-  std::uint64_t forced_wraps_ = 0;
-};
-
 int RunSoak(const SoakOptions& soak) {
   MonitorOptions options = LoadMonitorOptions(soak.config_path);
   const auto workcell = std::make_shared<const Workcell>(
       LoadWorkcell(soak.urdf_path, soak.scene_path, options.tolerance_m));
-  if (options.speed_scaled_tolerance) {
-    // The reference only sees every k-th cycle, so it cannot know the speeds.
-    std::cerr << "soak: speed_scaled_tolerance must be off in " << soak.config_path << "\n";
-    return 2;
-  }
   options.auto_broad_phase = false;
   options.broad_phase.method = BroadPhaseMethod::kOctree;
-  MonitorOptions reference_options = options;
-  reference_options.broad_phase.method = BroadPhaseMethod::kNaive;
   Monitor monitor(workcell, options);
-  Monitor reference(workcell, reference_options);
   MotionGenerator motion(*workcell, options.cycle_period_s, soak.seed);
-  StampSoak stamp_soak(monitor, options);
-  if (!stamp_soak.is_cell_structure()) {
-    std::cerr << "soak: the octree has no stamps to force (not a CellBroadPhase)\n";
-    return 2;
-  }
 
   long hwm_start_kb = 0, rss_start_kb = 0;
   ReadMemory(&hwm_start_kb, &rss_start_kb);
-  std::printf("soak: seed %llu, %llu cycles, octree vs naive every %llu cycles, %u primitives\n",
+  std::printf("soak: seed %llu, %llu cycles, %s broad phase, Update vs Check (brute force) "
+              "every %llu cycles, stamps forced near the wrap every %llu cycles, %u primitives\n",
               static_cast<unsigned long long>(soak.seed),
-              static_cast<unsigned long long>(soak.cycles),
-              static_cast<unsigned long long>(soak.compare_every), monitor.primitive_count());
+              static_cast<unsigned long long>(soak.cycles), monitor.broad_phase_name().c_str(),
+              static_cast<unsigned long long>(soak.compare_every),
+              static_cast<unsigned long long>(kStampForceEveryCycles), monitor.primitive_count());
   std::printf("soak: start: VmHWM %ld kB, VmRSS %ld kB\n", hwm_start_kb, rss_start_kb);
   std::fflush(stdout);
 
   std::uint64_t divergences = 0, comparisons = 0, jumps = 0, warning_cycles = 0,
-                refused_cycles = 0;
+                refused_cycles = 0, forced_wraps = 0, validations = 0;
+  // Cycles left in which every report is compared after a forced wrap (the wrap happens within
+  // them: at most kStampMaxStepsBeforeWrap stamps of each kind away).
+  std::uint64_t compare_all_until = 0;
   const std::uint64_t progress_every = std::max<std::uint64_t>(soak.cycles / 10, 1);
   const auto start = std::chrono::steady_clock::now();
   for (std::uint64_t cycle = 1; cycle <= soak.cycles; ++cycle) {
     bool jumped = false;
     const Eigen::VectorXd& q = motion.Next(&jumped);
     jumps += jumped;
+    if (cycle % kStampForceEveryCycles == 0) {
+      monitor.ForceIndexStampsNearWrap(
+          static_cast<std::uint32_t>(forced_wraps % kStampMaxStepsBeforeWrap));
+      ++forced_wraps;
+      compare_all_until = cycle + kValidateDelayCycles;
+    }
+    const bool is_compare_cycle =
+        cycle % soak.compare_every == 0 || jumped || cycle <= compare_all_until;
+    CycleReport expected;  // allocates only when filled
+    if (is_compare_cycle) expected = monitor.Check(q);  // before Update: the same model state
     const CycleReport& report = monitor.Update(q);
     warning_cycles += !report.warnings.empty();
     refused_cycles += report.input != InputStatus::kOk;
-    stamp_soak.Follow(monitor);
-    if (cycle % kStampForceEveryCycles == 0) stamp_soak.RestartNearWrap(monitor);
-    const bool is_validate_cycle = cycle % kStampForceEveryCycles == kValidateDelayCycles;
-    if (cycle % soak.compare_every == 0 || jumped || is_validate_cycle) {
+    if (is_compare_cycle) {
       ++comparisons;
       std::string difference;
-      const CycleReport& expected = reference.Update(q);
-      bool same = SameReports(report, expected, &difference) &&
-                  stamp_soak.SamePairs(&difference);
-      if (same && is_validate_cycle) {
-        same = monitor.Validate(&difference) && stamp_soak.Validate(&difference);
-      }
-      if (!same) {
-        if (++divergences <= 10) {
-          std::printf("soak: DIVERGENCE at cycle %llu: %s\n",
-                      static_cast<unsigned long long>(cycle), difference.c_str());
+      bool same = SameReports(report, expected, &difference);
+      if (same && cycle == compare_all_until) {
+        ++validations;
+        if (!monitor.Validate(&difference)) {
+          same = false;
+          difference = "Monitor::Validate(): " + difference;
+        } else if (!monitor.ValidateIndex(&difference)) {
+          same = false;
+          difference = "Monitor::ValidateIndex(): " + difference;
         }
+      }
+      if (!same && ++divergences <= 10) {
+        std::printf("soak: DIVERGENCE at cycle %llu: %s\n",
+                    static_cast<unsigned long long>(cycle), difference.c_str());
       }
     }
     if (cycle % progress_every == 0) {
@@ -358,10 +284,11 @@ int RunSoak(const SoakOptions& soak) {
               static_cast<unsigned long long>(jumps),
               static_cast<unsigned long long>(totals.reinsert_fallbacks),
               static_cast<unsigned long long>(totals.outside_world));
-  std::printf("soak: %llu comparisons with the naive broad phase, %llu forced stamp wraps, "
-              "%llu divergences\n",
+  std::printf("soak: %llu comparisons with Check (brute force), %llu forced stamp wraps, "
+              "%llu Validate() calls, %llu divergences\n",
               static_cast<unsigned long long>(comparisons),
-              static_cast<unsigned long long>(stamp_soak.forced_wraps()),
+              static_cast<unsigned long long>(forced_wraps),
+              static_cast<unsigned long long>(validations),
               static_cast<unsigned long long>(divergences));
   return divergences == 0 ? 0 : 1;
 }

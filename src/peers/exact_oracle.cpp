@@ -3,6 +3,7 @@
 #include "arm_collision_monitor/peers/exact_oracle.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 #include <fcl/fcl.h>
@@ -26,7 +27,7 @@ struct ExactOracle::Impl {
   std::vector<std::string> names;
   std::vector<Owner> owners;
   std::vector<int> owner_of;  // by primitive id
-  std::vector<LinkCylinder> cylinders;
+  std::vector<LinkElement> link_elements;
   fcl::DistanceRequestd request;
 };
 
@@ -73,19 +74,27 @@ ExactOracle::ExactOracle(const Workcell& wc) : impl_(std::make_unique<Impl>()) {
           Impl::Element e;
           e.X_LC = ToIsometry(c->origin);
           std::shared_ptr<fcl::CollisionGeometryd> g;
+          LinkElement element;
+          element.link_index = p.link_index;
+          element.X_LC = e.X_LC;
           switch (c->geometry->type) {
             case urdf::Geometry::CYLINDER: {
               const auto& cyl = static_cast<const urdf::Cylinder&>(*c->geometry);
               g = std::make_shared<fcl::Cylinderd>(cyl.radius, cyl.length);
-              m.cylinders.push_back(LinkCylinder{p.link_index, e.X_LC, cyl.radius, cyl.length});
+              element.kind = LinkElement::Kind::kCylinder;
+              element.radius_m = cyl.radius;
+              element.length_m = cyl.length;
               break;
             }
             case urdf::Geometry::SPHERE:
-              g = std::make_shared<fcl::Sphered>(
-                  static_cast<const urdf::Sphere&>(*c->geometry).radius);
+              element.kind = LinkElement::Kind::kSphere;
+              element.radius_m = static_cast<const urdf::Sphere&>(*c->geometry).radius;
+              g = std::make_shared<fcl::Sphered>(element.radius_m);
               break;
             case urdf::Geometry::BOX: {
               const auto& b = static_cast<const urdf::Box&>(*c->geometry);
+              element.kind = LinkElement::Kind::kBox;
+              element.size_m = Eigen::Vector3d(b.dim.x, b.dim.y, b.dim.z);
               g = std::make_shared<fcl::Boxd>(b.dim.x, b.dim.y, b.dim.z);
               break;
             }
@@ -95,6 +104,7 @@ ExactOracle::ExactOracle(const Workcell& wc) : impl_(std::make_unique<Impl>()) {
           }
           e.object = std::make_unique<fcl::CollisionObjectd>(g, e.X_LC);
           owner.elements.push_back(std::move(e));
+          m.link_elements.push_back(element);
         }
       }
       it = owner_by_name.emplace(owner_name, static_cast<int>(m.owners.size())).first;
@@ -109,7 +119,37 @@ ExactOracle::~ExactOracle() = default;
 
 const std::vector<std::string>& ExactOracle::owner_names() const { return impl_->names; }
 int ExactOracle::OwnerOf(PrimitiveId id) const { return impl_->owner_of[id]; }
-const std::vector<LinkCylinder>& ExactOracle::cylinders() const { return impl_->cylinders; }
+const std::vector<LinkElement>& ExactOracle::link_elements() const {
+  return impl_->link_elements;
+}
+
+bool LinkElement::Contains(const Eigen::Vector3d& p_LQ) const {
+  const Eigen::Vector3d p_CQ = X_LC.inverse() * p_LQ;
+  switch (kind) {
+    case Kind::kCylinder:
+      return std::abs(p_CQ.z()) <= 0.5 * length_m &&
+             p_CQ.head<2>().squaredNorm() <= radius_m * radius_m;
+    case Kind::kSphere:
+      return p_CQ.squaredNorm() <= radius_m * radius_m;
+    case Kind::kBox:
+      return (p_CQ.cwiseAbs().array() <= 0.5 * size_m.array()).all();
+  }
+  return false;
+}
+
+Aabb LinkElement::ComputeAabb_L() const {
+  switch (kind) {
+    case Kind::kCylinder:
+      return Capsule{X_LC * Eigen::Vector3d(0, 0, -0.5 * length_m),
+                     X_LC * Eigen::Vector3d(0, 0, 0.5 * length_m), radius_m}
+          .ComputeAabb();
+    case Kind::kSphere:
+      return Capsule{X_LC.translation(), X_LC.translation(), radius_m}.ComputeAabb();
+    case Kind::kBox:
+      return Box{X_LC, 0.5 * size_m}.ComputeAabb();
+  }
+  return Aabb{};
+}
 
 void ExactOracle::FindWarnings(const std::vector<Eigen::Isometry3d>& X_WL,
                                const CompatibilityMatrix& compatible,

@@ -12,7 +12,7 @@ MonitorOptions LoadMonitorOptions(const std::string& path) {
       root,
       {"broad_phase", "auto_broad_phase", "max_objects_per_leaf", "grid_cells_per_axis",
        "techniques", "tolerance_m", "max_speed_mps", "cycle_period_s", "speed_scaled_tolerance",
-       "reaction_time_s", "stopping_time_s", "fixed_frame"},
+       "reaction_time_s", "stopping_time_s", "index_slack_m", "fixed_frame"},
       top);
   MonitorOptions options;
   if (root["broad_phase"]) {
@@ -59,6 +59,8 @@ MonitorOptions LoadMonitorOptions(const std::string& path) {
                 &options.stopping_time_s);
   ReadIfPresent(root, "speed_scaled_tolerance", top, yaml_fields::ReadBool,
                 &options.speed_scaled_tolerance);
+  ReadIfPresent(root, "index_slack_m", top, yaml_fields::ReadNonNegativeDouble,
+                &options.index_slack_m);
   ReadIfPresent(root, "fixed_frame", top, yaml_fields::ReadName, &options.fixed_frame);
   // The farthest a primitive moves in one cycle: the octree's smallest cell (seed, section 3).
   options.broad_phase.min_cell_size_m = options.max_speed_mps * options.cycle_period_s;

@@ -1,6 +1,7 @@
 // Differential tests: over seeded random scenes, every broad phase (the octree with every
 // technique on and off, the rebuild and reinsert schemes, the uniform grid) returns exactly the
-// pairs of the all-pairs reference after every cycle, and passes Validate() after every cycle.
+// pairs of the all-pairs reference after every cycle, and passes Validate() after every cycle;
+// every few cycles each primitive's FindPairsOf equals its share of those pairs.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -66,24 +67,68 @@ std::string PairsToString(const std::vector<CandidatePair>& pairs) {
   return s;
 }
 
+// Every primitive's FindPairsOf must be exactly the pairs of FindPairs (`all`) that contain it
+// (absent ids: none). Returns false on the first mismatch.
+bool PairsOfMatch(BroadPhase* bp, const std::string& label, int cycle, int count,
+                  const CompatibilityMatrix& compatible, const std::vector<CandidatePair>& all) {
+  std::vector<CandidatePair> of, expected_of;
+  for (PrimitiveId id = 0; id < static_cast<PrimitiveId>(count); ++id) {
+    expected_of.clear();
+    for (const CandidatePair& p : all) {
+      if (p.a == id || p.b == id) expected_of.push_back(p);
+    }
+    bp->FindPairsOf(id, compatible, &of);
+    EXPECT_EQ(of, expected_of) << label << " cycle " << cycle << " FindPairsOf(" << id
+                               << ")\n got      " << PairsToString(of) << "\n expected "
+                               << PairsToString(expected_of);
+    if (of != expected_of) return false;
+  }
+  return true;
+}
+
+// Forcing of the 32-bit stamps near their wrap-around (ForceStampsNearWrap): before the first
+// Add with `first_steps_before_wrap`, then before every `every_cycles`-th cycle's changes with
+// r = 0, 1, .., kMidRunMaxSteps - 1 steps in turn (a wrap mid-run, in a populated structure).
+struct StampForcing {
+  bool enabled = false;
+  std::uint32_t first_steps_before_wrap = 0;
+  int every_cycles = 0;  // 0: only before the first Add
+  static constexpr std::uint32_t kMidRunMaxSteps = 8;
+};
+
 // Runs `cycles` cycles of `config` and checks every candidate against the reference after each.
 // Returns the summed counters of the incremental octree (to check that paths were exercised).
 BroadPhaseCounters RunDifferential(const SceneConfig& config, int cycles, int leaf_capacity,
-                                   std::uint32_t start_visit_stamp = 0) {
+                                   const StampForcing& forcing = StampForcing{}) {
   std::printf("[ seed ] %llu  statics %d movers %d N %d cycles %d\n",
               static_cast<unsigned long long>(config.seed), config.statics, config.movers,
               leaf_capacity, cycles);
   RandomScene scene(config);
   NaiveBroadPhase reference;
   std::vector<Candidate> candidates = MakeCandidates(scene, leaf_capacity);
-  for (Candidate& c : candidates) c.bp->SetStampsForTest(start_visit_stamp);
+  if (forcing.enabled) {
+    for (Candidate& c : candidates) c.bp->ForceStampsNearWrap(forcing.first_steps_before_wrap);
+  }
   std::vector<SceneOp> ops;
   std::vector<CandidatePair> expected, actual;
   scene.Initial(&ops);
+  std::uint32_t mid_run_forcings = 0;
   for (int cycle = 0; cycle <= cycles; ++cycle) {
+    if (forcing.enabled && forcing.every_cycles > 0 && cycle > 0 &&
+        cycle % forcing.every_cycles == 0) {
+      const std::uint32_t steps = mid_run_forcings++ % StampForcing::kMidRunMaxSteps;
+      for (Candidate& c : candidates) c.bp->ForceStampsNearWrap(steps);
+    }
     if (cycle > 0) scene.Step(&ops);
     RandomScene::Apply(ops, &reference);
     reference.FindPairs(scene.compatible(), &expected);
+    // Each primitive's own pairs, on every few cycles (the per-primitive query of a kept pair
+    // set), from the reference and from every candidate.
+    const bool check_pairs_of = cycle % 7 == 0;
+    if (check_pairs_of && !PairsOfMatch(&reference, "naive", cycle, scene.Count(),
+                                        scene.compatible(), expected)) {
+      return candidates[0].bp->counters();
+    }
     for (Candidate& c : candidates) {
       RandomScene::Apply(ops, c.bp.get());
       c.bp->FindPairs(scene.compatible(), &actual);
@@ -94,6 +139,10 @@ BroadPhaseCounters RunDifferential(const SceneConfig& config, int cycles, int le
                                   << PairsToString(actual) << "\n expected "
                                   << PairsToString(expected);
       if (!valid || actual != expected) return candidates[0].bp->counters();
+      if (check_pairs_of && !PairsOfMatch(c.bp.get(), c.label, cycle, scene.Count(),
+                                          scene.compatible(), expected)) {
+        return candidates[0].bp->counters();
+      }
     }
   }
   const BroadPhaseCounters& c = candidates[0].bp->counters();
@@ -202,8 +251,13 @@ TEST(BroadPhaseDifferential, StampsWrapAroundWithoutLosingPairs) {
   config.seed = 71;
   config.statics = 30;
   config.movers = 14;
-  // Both 32-bit stamp counters wrap within the first cycles (14 updates and scans per cycle).
-  RunDifferential(config, 200, 3, 0xffffffffu - 40u);
+  // The stamp counters wrap within the first cycles (14 updates and scans per cycle), then
+  // again after each mid-run forcing, 0 to 7 stamps later, in a populated structure.
+  StampForcing forcing;
+  forcing.enabled = true;
+  forcing.first_steps_before_wrap = 40;
+  forcing.every_cycles = 11;
+  RunDifferential(config, 200, 3, forcing);
 }
 
 }  // namespace

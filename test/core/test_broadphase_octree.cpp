@@ -209,7 +209,7 @@ TEST(Octree, JumpsTakeTheFallbackAndOutsidePrimitivesAreNeverLost) {
 
 TEST(Octree, VisitStampWrapResetsEveryNodeStamp) {
   OctreeBroadPhase octree(SmallWorld(1), CellUpdateStrategy::kIncremental);
-  octree.SetStampsForTest(std::numeric_limits<std::uint32_t>::max() - 2);
+  octree.ForceStampsNearWrap(2);
   octree.Add(0, Box(0.2, 0.2, 0.2, 0.4, 0.4, 0.4), 0.0, Motion::kStatic);
   octree.Add(1, Box(2.2, 2.2, 2.2, 2.4, 2.4, 2.4), 0.0, Motion::kMoving);
   for (int step = 1; step <= 8; ++step) {  // crosses x = 3 and x = 4 while the counter wraps

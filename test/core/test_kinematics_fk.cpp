@@ -3,14 +3,20 @@
 #include <gtest/gtest.h>
 #include <urdf_model/model.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <iostream>
+#include <limits>
 #include <new>
 #include <random>
 #include <string>
 
+#include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/kinematics/kinematic_model.h"
+#include "arm_collision_monitor/kinematics/sin_cos.h"
 #include "arm_collision_monitor/kinematics/urdf_conversions.h"
 #include "allocation_counter.h"
 
@@ -21,6 +27,10 @@ namespace {
 const std::string kWorkcellUrdf = std::string(ACM_SOURCE_DIR) + "/urdf/workcell.urdf";
 const std::string kDataDir = std::string(ACM_SOURCE_DIR) + "/test/data/";
 constexpr double kFkToleranceM = 1e-12;  // the brief's bound: doubles over ~2 m chains
+// Largest |R^T R - I| entry allowed in a computed link rotation (dimensionless, ~1e-15): each
+// of the up to ~8 rotation products along a chain adds about one unit of 2^-53 (1.1e-16); the
+// AngleAxis reference itself reaches ~1e-15 on these models (the test prints both).
+constexpr double kOrthonormalityTolerance = 2e-15;
 constexpr std::uint64_t kSeed = 1234567;
 
 // Pose composition with urdfdom's types: (p1, R1) * (p2, R2) = (p1 + R1 p2, R1 R2).
@@ -121,6 +131,212 @@ TEST(KinematicsFk, ThirdPartyArmWithOffsetsAndPrismaticAndMimicMatches) {
   CompareWithUrdfdom(kDataDir + "three_link_arm.urdf", 1000, &position_err_m, &rotation_err);
   EXPECT_LE(position_err_m, kFkToleranceM);
   EXPECT_LE(rotation_err, 1e-12);
+}
+
+// Joints the bundled files lack: a general (non-coordinate) revolute axis under a rotated
+// origin, a negative coordinate axis, a revolute mimic with multiplier and offset about a negative
+// axis, a continuous joint about a general axis, a prismatic joint along a general axis.
+constexpr char kAwkwardAxesUrdf[] = R"(<?xml version="1.0"?>
+<robot name="awkward_axes">
+  <link name="base"/> <link name="a"/> <link name="b"/> <link name="c"/> <link name="d"/>
+  <link name="e"/>
+  <joint name="j_general" type="revolute"><parent link="base"/><child link="a"/>
+    <origin xyz="0.1 -0.2 0.3" rpy="0.3 -0.7 1.1"/><axis xyz="1 2 -3"/>
+    <limit lower="-2" upper="2.5" effort="1" velocity="1"/></joint>
+  <joint name="j_negative_z" type="revolute"><parent link="a"/><child link="b"/>
+    <origin xyz="0 0.25 0" rpy="0 0 0"/><axis xyz="0 0 -1"/>
+    <limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+  <joint name="j_mimic" type="revolute"><parent link="b"/><child link="c"/>
+    <origin xyz="0.2 0 0.05" rpy="1.5707963267948966 0 0"/><axis xyz="0 -1 0"/>
+    <limit lower="-10" upper="10" effort="1" velocity="1"/>
+    <mimic joint="j_negative_z" multiplier="2" offset="0.1"/></joint>
+  <joint name="j_continuous" type="continuous"><parent link="c"/><child link="d"/>
+    <origin xyz="0 0 0.3" rpy="0 0.4 0"/><axis xyz="0.6 0 0.8"/></joint>
+  <joint name="j_slide" type="prismatic"><parent link="d"/><child link="e"/>
+    <origin xyz="0.1 0 0" rpy="0.2 0.1 0"/><axis xyz="-1 1 0"/>
+    <limit lower="-0.3" upper="0.3" effort="1" velocity="1"/></joint>
+</robot>
+)";
+
+std::string WriteAwkwardAxesUrdf() {
+  const std::string path = ::testing::TempDir() + "awkward_axes.urdf";
+  std::ofstream(path) << kAwkwardAxesUrdf;
+  return path;
+}
+
+// X_WL by the straightforward composition X_WP * X_PJ * AngleAxis(theta, axis) (or a
+// Translation3d for prismatic joints), from the model's parsed JointSpecs: the pre-optimisation
+// ComputeLinkPoses, kept here as the reference.
+std::vector<Eigen::Isometry3d> ReferenceAngleAxisPoses(const KinematicModel& model,
+                                                       const Eigen::VectorXd& q) {
+  std::vector<Eigen::Isometry3d> X_WL(model.link_count());
+  X_WL[0] = model.X_WRoot;
+  for (int link = 1; link < model.link_count(); ++link) {
+    const JointSpec& joint = model.joint(link);
+    double theta = 0.0;
+    if (joint.q_index >= 0) theta = q[joint.q_index];
+    if (joint.mimic_q_index >= 0) {
+      theta = joint.mimic_multiplier * q[joint.mimic_q_index] + joint.mimic_offset;
+    }
+    const Eigen::Isometry3d X_WJ = X_WL[model.parent_link(link)] * joint.X_PJ;
+    if (joint.type == JointType::kPrismatic) {
+      X_WL[link] = X_WJ * Eigen::Translation3d(theta * joint.axis_J);
+    } else if (joint.type == JointType::kFixed) {
+      X_WL[link] = X_WJ;
+    } else {
+      X_WL[link] = X_WJ * Eigen::AngleAxisd(theta, joint.axis_J);
+    }
+  }
+  return X_WL;
+}
+
+// Random q within the limits (continuous joints in [-2 pi, 2 pi], and every 10th sample far
+// outside, where SinCos falls back to std::sin/std::cos); compares every link pose with the
+// reference and checks orthonormality and the exact bottom row.
+void CompareWithAngleAxisReference(const std::string& urdf_path, int samples) {
+  KinematicModel model = KinematicModel::FromUrdfFile(urdf_path);
+  model.X_WRoot = Eigen::Translation3d(0.4, -1.2, 0.7) *
+                  Eigen::AngleAxisd(0.9, Eigen::Vector3d(1.0, -2.0, 2.0).normalized());
+  std::string why;
+  ASSERT_TRUE(model.Validate(&why)) << why;
+  std::cout << "seed " << kSeed << " for " << urdf_path << "\n";
+  std::mt19937_64 rng(kSeed);
+  std::vector<Eigen::Isometry3d> X_WL(model.link_count());
+  Eigen::VectorXd q(model.q_size());
+  double position_err_m = 0.0, rotation_err = 0.0, orthonormality_err = 0.0;
+  double reference_orthonormality_err = 0.0;
+  for (int sample = 0; sample < samples; ++sample) {
+    for (int link = 1; link < model.link_count(); ++link) {
+      const JointSpec& joint = model.joint(link);
+      if (joint.q_index < 0) continue;
+      const double span = sample % 10 == 9 ? 1e7 : 2.0 * M_PI;
+      const double lower = std::isfinite(joint.lower) ? joint.lower : -span;
+      const double upper = std::isfinite(joint.upper) ? joint.upper : span;
+      q[joint.q_index] = std::uniform_real_distribution<double>(lower, upper)(rng);
+    }
+    model.ComputeLinkPoses(q, &X_WL);
+    const std::vector<Eigen::Isometry3d> X_ref = ReferenceAngleAxisPoses(model, q);
+    for (int link = 0; link < model.link_count(); ++link) {
+      position_err_m =
+          std::max(position_err_m, (X_WL[link].translation() - X_ref[link].translation()).norm());
+      rotation_err = std::max(
+          rotation_err, (X_WL[link].linear() - X_ref[link].linear()).cwiseAbs().maxCoeff());
+      auto orthonormality_error = [](const Eigen::Matrix3d& R) {
+        return (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
+      };
+      orthonormality_err = std::max(orthonormality_err, orthonormality_error(X_WL[link].linear()));
+      reference_orthonormality_err =
+          std::max(reference_orthonormality_err, orthonormality_error(X_ref[link].linear()));
+      ASSERT_EQ(X_WL[link].matrix().row(3), Eigen::RowVector4d(0, 0, 0, 1)) << link;
+    }
+  }
+  std::cout << "vs AngleAxis reference: max position error " << position_err_m
+            << " m, max rotation entry error " << rotation_err
+            << ", max |R^T R - I| entry " << orthonormality_err << " (reference "
+            << reference_orthonormality_err << ")\n";
+  EXPECT_LE(position_err_m, kFkToleranceM);
+  EXPECT_LE(rotation_err, 1e-12);
+  EXPECT_LE(orthonormality_err, kOrthonormalityTolerance);
+}
+
+TEST(KinematicsFk, WorkcellMatchesAngleAxisReference) {
+  CompareWithAngleAxisReference(kWorkcellUrdf, 2000);
+}
+
+TEST(KinematicsFk, ThreeLinkArmMatchesAngleAxisReference) {
+  CompareWithAngleAxisReference(kDataDir + "three_link_arm.urdf", 2000);
+}
+
+TEST(KinematicsFk, GeneralAndNegativeAxesAndRevoluteMimicMatchAngleAxisReference) {
+  const std::string path = WriteAwkwardAxesUrdf();
+  const KinematicModel model = KinematicModel::FromUrdfFile(path);
+  ASSERT_EQ(model.q_size(), 4);
+  EXPECT_EQ(model.joint(model.FindJointChildLink("j_mimic")).mimic_q_index,
+            model.joint(model.FindJointChildLink("j_negative_z")).q_index);
+  CompareWithAngleAxisReference(path, 2000);
+  double position_err_m = 0.0, rotation_err = 0.0;
+  CompareWithUrdfdom(path, 1000, &position_err_m, &rotation_err);
+  EXPECT_LE(position_err_m, kFkToleranceM);
+  EXPECT_LE(rotation_err, 1e-12);
+}
+
+// ComputeMovingLinkPoses writes exactly the moving links, bit for bit as ComputeLinkPoses does,
+// and leaves the static ones (root, pedestals, arm bases) as the previous full call left them.
+TEST(KinematicsFk, MovingLinkPosesMatchFullPosesAndSkipStaticLinks) {
+  KinematicModel model = KinematicModel::FromUrdfFile(kWorkcellUrdf);
+  model.X_WRoot =
+      Eigen::Translation3d(1.0, 2.0, 3.0) * Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ());
+  std::cout << "seed " << kSeed << "\n";
+  std::mt19937_64 rng(kSeed);
+  std::uniform_real_distribution<double> angle(-3.0, 3.0);
+  auto random_q = [&] {
+    Eigen::VectorXd q(model.q_size());
+    for (int i = 0; i < q.size(); ++i) q[i] = angle(rng);
+    return q;
+  };
+  int static_links = 0;
+  for (int link = 0; link < model.link_count(); ++link) static_links += !model.is_moving(link);
+  ASSERT_EQ(static_links, 5);  // world, two pedestals, two arm bases
+  ASSERT_TRUE(model.is_moving(model.FindLink("left_link1")));
+  std::vector<Eigen::Isometry3d> X_full(model.link_count()), X_moving(model.link_count());
+  model.ComputeLinkPoses(random_q(), &X_moving);  // the precondition
+  // No moving link hangs directly off the root, so a marked root entry is never read; it shows
+  // whether the static entries are written.
+  const Eigen::Isometry3d marker(Eigen::Translation3d(-7.0, -7.0, -7.0));
+  X_moving[0] = marker;
+  for (int sample = 0; sample < 200; ++sample) {
+    const Eigen::VectorXd q = random_q();
+    model.ComputeMovingLinkPoses(q, &X_moving);
+    model.ComputeLinkPoses(q, &X_full);
+    ASSERT_EQ(X_moving[0].matrix(), marker.matrix());
+    for (int link = 1; link < model.link_count(); ++link) {
+      ASSERT_EQ(X_moving[link].matrix(), X_full[link].matrix()) << model.link_name(link);
+    }
+  }
+}
+
+// SinCos against libm over seeded random angles and named adversarial ones. libm's own error
+// (below one unit of 2^-53 for results in [-1, 1]) is added to the stated bound.
+TEST(KinematicsFk, SinCosIsWithinItsStatedBoundOfLibm) {
+  constexpr double kUnit = 1.1102230246251565e-16;  // 2^-53
+  std::vector<double> angles = {0.0, -0.0, 1e-300, -1e-300, 1e-8, M_PI / 4, -M_PI / 4,
+                                kFastSinCosMaxAngle_rad, -kFastSinCosMaxAngle_rad,
+                                std::nextafter(kFastSinCosMaxAngle_rad, 1e300), 1e300, -3e7};
+  for (int k = -8; k <= 8; ++k) {  // near multiples of pi/2 and of pi/4, where quadrants meet
+    for (const double base : {k * M_PI / 2, k * M_PI / 4, 63661.0 * k * M_PI / 2}) {
+      angles.push_back(base);
+      angles.push_back(std::nextafter(base, 1e300));
+      angles.push_back(std::nextafter(base, -1e300));
+    }
+  }
+  std::cout << "seed " << kSeed << "\n";
+  std::mt19937_64 rng(kSeed);
+  for (int i = 0; i < 200000; ++i) {
+    const double span = i % 2 ? 2.0 * M_PI : kFastSinCosMaxAngle_rad;
+    angles.push_back(std::uniform_real_distribution<double>(-span, span)(rng));
+  }
+  std::vector<double> sin_out(angles.size()), cos_out(angles.size());
+  SinCos(angles.data(), static_cast<int>(angles.size()), sin_out.data(), cos_out.data());
+  double worst_units = 0.0;
+  for (std::size_t i = 0; i < angles.size(); ++i) {
+    const double a = angles[i];
+    if (!(std::abs(a) <= kFastSinCosMaxAngle_rad)) {  // the fallback is libm itself
+      EXPECT_EQ(sin_out[i], std::sin(a)) << a;
+      EXPECT_EQ(cos_out[i], std::cos(a)) << a;
+      continue;
+    }
+    const double units = std::max(std::abs(sin_out[i] - std::sin(a)),
+                                  std::abs(cos_out[i] - std::cos(a))) / kUnit;
+    ASSERT_LE(units, kFastSinCosErrorUlps + 1.0) << "angle " << a;
+    worst_units = std::max(worst_units, units);
+  }
+  std::cout << "worst SinCos error vs libm: " << worst_units << " units of 2^-53\n";
+  double s = 0.0, c = 0.0;
+  for (const double bad : {std::numeric_limits<double>::infinity(),
+                           std::numeric_limits<double>::quiet_NaN()}) {
+    SinCos(&bad, 1, &s, &c);
+    EXPECT_TRUE(std::isnan(s) && std::isnan(c)) << bad;
+  }
 }
 
 TEST(KinematicsFk, WorkcellHomePoseIsStraightUpWithReach1905mm) {

@@ -179,6 +179,7 @@ TEST(SceneLoader, BundledMonitorOptions) {
   EXPECT_NEAR(o.broad_phase.min_cell_size_m, 0.0305, 1e-15);
   EXPECT_FALSE(o.speed_scaled_tolerance);
   EXPECT_FALSE(o.auto_broad_phase);
+  EXPECT_EQ(o.index_slack_m, kDefaultIndexSlack_m);
   EXPECT_EQ(o.fixed_frame, "world");
 }
 
@@ -186,7 +187,8 @@ TEST(SceneLoader, MonitorOptionsOverridesAndErrors) {
   const MonitorOptions o = LoadMonitorOptions(
       WriteFile("monitor.yaml",
                 "broad_phase: grid\ngrid_cells_per_axis: 8\nmax_speed_mps: 1.0\n"
-                "cycle_period_s: 0.01\ntechniques: {inside_node_exit: false}\n"));
+                "cycle_period_s: 0.01\ntechniques: {inside_node_exit: false}\nindex_slack_m: 0\n"));
+  EXPECT_EQ(o.index_slack_m, 0.0);
   EXPECT_EQ(o.broad_phase.method, BroadPhaseMethod::kGrid);
   EXPECT_EQ(o.broad_phase.grid_cells_per_axis, 8);
   EXPECT_NEAR(o.broad_phase.min_cell_size_m, 0.01, 1e-15);
@@ -199,6 +201,7 @@ TEST(SceneLoader, MonitorOptionsOverridesAndErrors) {
   } bad[] = {
       {"broad_phase: kdtree\n", {"broad_phase", "kdtree", "octree"}},
       {"max_speed_mps: -1\n", {"max_speed_mps", "> 0"}},
+      {"index_slack_m: -0.1\n", {"index_slack_m", ">= 0"}},
       {"cycle_period_s: .nan\n", {"cycle_period_s", "finite"}},
       {"max_objects_per_leaf: 0\n", {"max_objects_per_leaf", "positive integer"}},
       {"tolerence_m: 0.03\n", {"unknown key 'tolerence_m'"}},

@@ -79,9 +79,21 @@ class BroadPhase {
   /// implementation returns them sorted (CandidatePair::operator<), so results compare directly.
   virtual void FindPairs(const CompatibilityMatrix& compatible,
                          std::vector<CandidatePair>* pairs) = 0;
+  /// The candidate pairs of one primitive: exactly the pairs of FindPairs() that contain `id`
+  /// (same rules, sorted), for callers that keep the pair set and update it as primitives move.
+  /// Empty when `id` is not present. Replaces the contents of `pairs`.
+  virtual void FindPairsOf(PrimitiveId id, const CompatibilityMatrix& compatible,
+                           std::vector<CandidatePair>* pairs) = 0;
 
   /// The leaf cells (left empty by structures without cells, e.g. all pairs).
   virtual void CollectCells(std::vector<IndexCell>* cells) const { cells->clear(); }
+  /// Test hook: brings every visit stamp the structure keeps to `steps_before_wrap` steps short
+  /// of its 32-bit wrap-around (see CellBroadPhase). Valid at any time between calls; no-op for
+  /// structures without stamps.
+  virtual void ForceStampsNearWrap(std::uint32_t /*steps_before_wrap*/) {}
+  /// True iff the structure's invariants hold (false with the first violation in `why`). Slow:
+  /// for tests and soaks. Structures without invariants beyond their lists return true.
+  virtual bool Validate(std::string* /*why*/) const { return true; }
 
   const BroadPhaseCounters& counters() const { return counters_; }
   void ResetCounters() { counters_ = BroadPhaseCounters{}; }

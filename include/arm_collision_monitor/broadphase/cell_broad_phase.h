@@ -30,20 +30,20 @@ class CellBroadPhase : public BroadPhase {
   void Move(PrimitiveId id, const Aabb& box_W) override;
   void FindPairs(const CompatibilityMatrix& compatible,
                  std::vector<CandidatePair>* pairs) override;
+  void FindPairsOf(PrimitiveId id, const CompatibilityMatrix& compatible,
+                   std::vector<CandidatePair>* pairs) override;
 
   /// True iff every invariant holds (location links equal exactly the cells each primitive's
   /// inflated box overlaps, counts, lists, stamps, plus the derived structure's own rules);
   /// otherwise false with the first violation described in `why`. Slow: for tests.
-  bool Validate(std::string* why) const;
+  bool Validate(std::string* why) const override;
 
-  /// Test hook for the wrap-around of the 32-bit stamps: the next visit (per update), pair scan
-  /// (per moving primitive per FindPairs) and distinct-count (per merge check) stamps will be
-  /// `value` + 1. Precondition: called before any Add (no stamp may exceed the counters).
-  void SetStampsForTest(std::uint32_t value) {
-    visit_stamp_ = value;
-    scan_stamp_ = value;
-    union_stamp_ = value;
-  }
+  /// Test hook for the wrap-around of the 32-bit stamps, valid at any time between calls: does
+  /// what the wrap handling does (every stored cell visit, pair and union stamp back to 0),
+  /// then sets the visit (per update), pair scan (per moving primitive per FindPairs) and
+  /// distinct-count (per merge check) counters to max - `steps_before_wrap`, so that each wraps
+  /// after that many more stamps.
+  void ForceStampsNearWrap(std::uint32_t steps_before_wrap) override;
 
   /// Number of present primitives whose inflated box is not inside the world cube.
   std::size_t outside_count() const { return outside_ids_.size(); }
@@ -188,7 +188,17 @@ class CellBroadPhase : public BroadPhase {
   void RemoveFromList(std::vector<PrimitiveId>* list, std::uint32_t Record::*slot,
                       PrimitiveId id);
   void SetOutside(PrimitiveId id, bool outside);
+  // The wrap handling of each kind of stamp (the seed's lastCheckNo reset): every stored stamp
+  // of that kind and its counter back to 0.
+  void ResetVisitStamps();
+  void ResetScanStamps();
+  void ResetUnionStamps();
   void Rebuild();
+  /// Appends the candidate pairs of `m` found through its cells and, when its box is outside
+  /// the world cube, through the outside list; moving partners with a smaller id are left to
+  /// their own scan when `from_smaller_only` (FindPairs meets such a pair from both sides).
+  void ScanPartners(PrimitiveId m, bool from_smaller_only, const CompatibilityMatrix& compatible,
+                    std::vector<CandidatePair>* pairs);
   bool ValidateShared(std::string* why) const;
 };
 

@@ -21,6 +21,8 @@ class NaiveBroadPhase final : public BroadPhase {
   void Move(PrimitiveId id, const Aabb& box_W) override;
   void FindPairs(const CompatibilityMatrix& compatible,
                  std::vector<CandidatePair>* pairs) override;
+  void FindPairsOf(PrimitiveId id, const CompatibilityMatrix& compatible,
+                   std::vector<CandidatePair>* pairs) override;
 
   /// Sizes the per-id arrays for ids < max_primitives so that Add() does not allocate.
   void Reserve(std::uint32_t max_primitives);

@@ -76,6 +76,20 @@ constexpr double kMinJointAxisNorm = 1e-9;
 /// this of 1 (dimensionless; typical 1e-12). The loader normalises every axis, which leaves the
 /// norm within a few ulps (~1e-16) of 1; a larger error means the model was corrupted.
 constexpr double kUnitAxisNormTolerance = 1e-12;
+/// SinCos (kinematics/sin_cos.h) reduces angles up to this magnitude itself (rad; typical joint
+/// angles are within 2 pi). Its three-part pi/2 keeps the reduction exact to ~1e-32 rad for
+/// quadrant counts below 2^20 (|angle| < 1.6e6 rad); 1e5 leaves margin. Larger angles, inf and
+/// NaN fall back to std::sin/std::cos.
+constexpr double kFastSinCosMaxAngle_rad = 1e5;
+/// SinCos's stated error bound: each of sin and cos within this many units of 2^-53
+/// (absolute, dimensionless; about 1.1e-16 each) of the exact value. Taylor truncation is below
+/// 1e-19 and reduction plus Horner rounding stay below ~2.5 units; the test pins the observed
+/// worst against this.
+constexpr double kFastSinCosErrorUlps = 4.0;
+/// ComputeLinkPoses computes the joint sines and cosines for this many links at a time, on the
+/// stack (no allocation) before composing their poses; 64 covers two 7-DOF arms and their
+/// fixed links in one block and costs 1.5 KiB of stack (angle, sine and cosine arrays).
+constexpr int kFkBlockLinks = 64;
 
 /// The "cylinder plus two end spheres" capsule idiom is recognised when the spheres' radii
 /// and centres match the cylinder's radius and end centres within this fraction of the
@@ -115,6 +129,19 @@ inline constexpr std::uint32_t kAutoOctreeMinPrimitives = 96;
 /// analysis (statics no moving primitive can reach are left out) relies on. Typical 0.10: a
 /// grasped object touches the gripper; 10 cm absorbs perception error.
 inline constexpr double kAttachMaxGap_m = 0.10;
+
+/// Default index slack, m (MonitorOptions::index_slack_m): a moving primitive is re-indexed
+/// once a point of it has moved this far since it was last indexed. Larger means fewer index
+/// updates but more candidate pairs; 0.10 m is about three cycles at the 0.61 m/s speed bound
+/// and 10 to 20 cycles at the tasks' typical link speeds (scripts/bench sweeps it).
+inline constexpr double kDefaultIndexSlack_m = 0.10;
+
+/// Safety margin of the Monitor's distance lower bounds, per metre of the world cube's edge
+/// (dimensionless): a pair skips the narrow phase only when its bound exceeds its threshold by
+/// this times the edge. The bound adds three rounded quantities (a distance and two
+/// displacements), each within ~64 eps of the local length scale (geometry/distance.h), so
+/// 1e-9 per metre is over 10^4 times their error for any shape within the world cube.
+inline constexpr double kLowerBoundMarginPerMetre = 1e-9;
 
 /// Monitor::Validate: a primitive follows its carrier link when its AABB matches the recomputed
 /// one to this relative precision (dimensionless, of the coordinates' magnitude). Typical 1e-9:

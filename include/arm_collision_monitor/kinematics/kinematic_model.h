@@ -56,12 +56,20 @@ class KinematicModel {
   bool is_moving(int link) const { return is_moving_[link]; }
 
   /// X_WL for every link, given actuated positions q (size q_size()). `X_WL` must already have
-  /// link_count() entries.
+  /// link_count() entries. Every entry is written (all 16 matrix coefficients); no allocation.
   void ComputeLinkPoses(const Eigen::Ref<const Eigen::VectorXd>& q,
                         std::vector<Eigen::Isometry3d>* X_WL) const;
+  /// ComputeLinkPoses for the moving links only (is_moving): the entries of the other links
+  /// (the root and everything fixed to it) are left untouched, which saves their products in a
+  /// per-cycle loop. Precondition: those entries already hold their poses, i.e. `X_WL` was
+  /// filled by ComputeLinkPoses since X_WRoot last changed. Same results, bit for bit, as
+  /// ComputeLinkPoses for the links it writes.
+  void ComputeMovingLinkPoses(const Eigen::Ref<const Eigen::VectorXd>& q,
+                              std::vector<Eigen::Isometry3d>* X_WL) const;
 
   /// Checks the invariants (parents precede children, q indices are 0..q_size()-1 once each,
-  /// unit axes, lower <= upper, mimic targets actuated). False with a reason otherwise.
+  /// unit axes, lower <= upper, mimic targets actuated, the forward kinematics' precomputed
+  /// per-joint data matches the joints). False with a reason otherwise.
   bool Validate(std::string* why) const;
 
   /// Start-up only: replaces the position limits of actuated joint `joint_name` (e.g. soft
@@ -75,10 +83,45 @@ class KinematicModel {
   Eigen::Isometry3d X_WRoot = Eigen::Isometry3d::Identity();
 
  private:
+  // What ComputeLinkPoses does for the joint into one link (parent P, joint frame J, link L):
+  // X_WL = X_WP * X_PJ * (joint motion), with everything that does not depend on q precomputed
+  // from the JointSpec by MakeFkStep.
+  enum class FkMotion : char {
+    kNone,                       // fixed joint
+    kTranslate,                  // prismatic: p_JL = position * axis_J
+    kRotateAboutCoordinateAxis,  // revolute/continuous about +e_axis (a -e_axis flips the sign)
+    kRotateAboutAxis,            // revolute/continuous about any other unit axis_J
+  };
+  struct FkStep {
+    FkMotion motion = FkMotion::kNone;
+    int parent = -1;
+    // The joint position is multiplier * q[position_q_index] + offset (1 and 0 for actuated
+    // joints, the mimic's multiplier and offset for mimic joints, both negated when the axis
+    // is -e_axis; index -1 for fixed joints).
+    int position_q_index = -1;
+    double multiplier = 1.0;
+    double offset = 0.0;
+    bool is_R_PJ_identity = false;  // exactly the identity: X_WJ then needs no rotation product
+    Eigen::Matrix3d R_PJ = Eigen::Matrix3d::Identity();
+    Eigen::Vector3d p_PJ = Eigen::Vector3d::Zero();  // m
+    int coordinate_axis = 2;  // kRotateAboutCoordinateAxis: 0, 1, 2 for x, y, z
+    Eigen::Vector3d axis_J = Eigen::Vector3d::UnitZ();
+    // kRotateAboutAxis: K = [axis_J]x and K^2, for R_JL = I + sin K + (1 - cos) K^2.
+    Eigen::Matrix3d K = Eigen::Matrix3d::Zero();
+    Eigen::Matrix3d K2 = Eigen::Matrix3d::Zero();
+  };
+  static FkStep MakeFkStep(const JointSpec& joint, int parent);
+  // The one forward-kinematics loop behind ComputeLinkPoses and ComputeMovingLinkPoses.
+  void ComputePoses(const Eigen::Ref<const Eigen::VectorXd>& q, bool moving_links_only,
+                    std::vector<Eigen::Isometry3d>* X_WL) const;
+  // Exact (bitwise) equality, for Validate.
+  static bool FkStepsEqual(const FkStep& a, const FkStep& b);
+
   std::vector<std::string> link_names_;
   std::vector<int> parent_link_;
   std::vector<JointSpec> joints_;
   std::vector<char> is_moving_;  // char, not bool: plain storage, indexed per link
+  std::vector<FkStep> fk_steps_;  // per link, entry 0 (the root) unused; see MakeFkStep
   int q_size_ = 0;
 };
 

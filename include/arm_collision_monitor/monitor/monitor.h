@@ -44,7 +44,13 @@ struct CycleReport {
   InputStatus input = InputStatus::kOk;
   std::vector<Warning> warnings;  ///< sorted by (a, b)
   bool stop = false;              ///< warnings non-empty, or the input was refused
-  std::uint32_t moved_primitives = 0;
+  std::uint32_t moved_primitives = 0;      ///< primitives whose pose changed
+  std::uint32_t reindexed_primitives = 0;  ///< of those, the ones moved in the index
+  std::uint32_t candidate_pairs = 0;       ///< pairs whose indexed boxes overlap
+  std::uint32_t narrow_phase_tests = 0;    ///< exact distance computations
+  /// Decided by motion bounds alone, without kinematics: every primitive provably within its
+  /// slack and every kept pair provably clear, so no warning (moved_primitives is then 0).
+  bool bounded = false;
   BroadPhaseCounters counters;  ///< broad-phase work done during this cycle only
 };
 
@@ -62,6 +68,12 @@ struct CycleReport {
 /// - A held object gets at least its holder's tolerance and is compatible with its holder link.
 /// - auto_broad_phase: the octree when at least kAutoOctreeMinPrimitives primitives are active
 ///   at start-up, else the all-pairs (naive) broad phase.
+/// - Index slack (MonitorOptions::index_slack_m): moving primitives are indexed by boxes grown
+///   by the slack and re-indexed only after moving farther; the candidate pairs are kept with a
+///   lower bound on their distance, and a pair is tested exactly only when that bound, less both
+///   primitives' motion since, no longer clears its threshold. When bounds on the motion taken
+///   from the joint deltas alone (lever arms from the URDF chain) clear every kept pair, the
+///   cycle skips the kinematics too (CycleReport::bounded); the shapes follow lazily.
 /// - A refused input keeps the last good model and its warnings, sets input and stop.
 class Monitor {
  public:
@@ -105,7 +117,8 @@ class Monitor {
 
   // --- read access for visualisation and diagnostics ---------------------------------------
   std::uint32_t primitive_count() const;
-  /// Current world-frame shape of primitive `id` (uninflated).
+  /// Current world-frame shape of primitive `id` (uninflated), at the last good q (computed on
+  /// first access after bounded cycles).
   const Shape& shape_W(PrimitiveId id) const;
   /// Whether primitive `id` is currently part of the checked scene (false for inactive model
   /// variants and primitives no moving part can reach).
@@ -123,6 +136,13 @@ class Monitor {
   /// Checks the live model's invariants (shapes follow their carriers, compatibility matches
   /// the attach / grasp state, the report is sorted). False with a message in `error`.
   bool Validate(std::string* error) const;
+  /// The spatial index's own invariants (BroadPhase::Validate: cells, location links, stamps).
+  /// Slow (every cell): for soaks and tests, not every cycle.
+  bool ValidateIndex(std::string* error) const;
+  /// Test hook (soak, tests): brings the spatial index's 32-bit visit stamps to
+  /// `steps_before_wrap` stamps short of their wrap-around (BroadPhase::ForceStampsNearWrap).
+  /// Valid between any two calls; the reports must not change.
+  void ForceIndexStampsNearWrap(std::uint32_t steps_before_wrap);
 
  private:
   struct Impl;

@@ -16,12 +16,23 @@
 
 namespace arm_collision_monitor {
 
-/// One URDF cylinder of a link, in the link frame L (axis along z of X_LC, centred at X_LC).
-struct LinkCylinder {
+/// One URDF collision element of a link, in the link frame L: a cylinder (axis along z of its
+/// frame C, centred at C's origin), a sphere (centred at C's origin) or a box (centred at C's
+/// origin, edges along C's axes).
+struct LinkElement {
+  enum class Kind { kCylinder, kSphere, kBox };
   int link_index = -1;
+  Kind kind = Kind::kCylinder;
   Eigen::Isometry3d X_LC = Eigen::Isometry3d::Identity();
-  double radius_m = 0.0;
-  double length_m = 0.0;
+  double radius_m = 0.0;                           ///< cylinder, sphere
+  double length_m = 0.0;                           ///< cylinder
+  Eigen::Vector3d size_m = Eigen::Vector3d::Zero();  ///< box: full edge lengths
+
+  /// True iff point Q (p_LQ, in L) lies in the closed element.
+  bool Contains(const Eigen::Vector3d& p_LQ) const;
+  /// An AABB in L that encloses the element (tight for spheres and boxes; for a cylinder, the
+  /// AABB of the capsule of its axis and radius).
+  Aabb ComputeAabb_L() const;
 };
 
 class ExactOracle {
@@ -37,8 +48,9 @@ class ExactOracle {
   const std::vector<std::string>& owner_names() const;
   /// Owner index of a primitive of the workcell, -1 if it has none.
   int OwnerOf(PrimitiveId id) const;
-  /// The URDF cylinders of the arms' links (the fidelity study shrinks their capsules).
-  const std::vector<LinkCylinder>& cylinders() const;
+  /// The URDF collision elements of every link the oracle checks, in URDF order per link (the
+  /// fidelity study builds its models from them and measures their excess volume).
+  const std::vector<LinkElement>& link_elements() const;
   /// Every owner pair (i < j), at least one moving, not compatible in `compatible` (judged on
   /// their primitives), whose exact geometry is closer than the sum of their tolerances, at
   /// link poses X_WL. Sorted.

@@ -100,8 +100,8 @@ Shape TransformShape(const Eigen::Isometry3d& X_WL, const Shape& shape_L);
 
 /// The Monitor's options (LoadMonitorOptions; format: config/monitor.yaml).
 struct MonitorOptions {
-  /// The broad phase; world_W and min_cell_size_m are filled in from the workcell and from
-  /// max_speed_mps * cycle_period_s.
+  /// The broad phase; world_W and min_cell_size_m are filled in by the Monitor from the
+  /// workcell and from max_speed_mps * cycle_period_s + index_slack_m.
   BroadPhaseOptions broad_phase;
   /// Let the Monitor pick the faster of octree and naive for the scene at start-up.
   bool auto_broad_phase = false;
@@ -112,6 +112,12 @@ struct MonitorOptions {
   bool speed_scaled_tolerance = false;
   double reaction_time_s = 0.1;
   double stopping_time_s = 0.02;
+  /// Slack of the index (m): a moving primitive is indexed by its box grown by this much, and
+  /// re-indexed only once a point of it has moved farther than this since it was last indexed;
+  /// candidate pairs whose last distance, less both primitives' motion since, still exceeds
+  /// their threshold skip the narrow phase. 0: every moved primitive is re-indexed and every
+  /// candidate pair tested each cycle (the seed's loop). The warnings are the same either way.
+  double index_slack_m = kDefaultIndexSlack_m;
   /// Default tolerance of an arm whose scene entry gives none (pass it to LoadWorkcell).
   double tolerance_m = kDefaultArmTolerance_m;
   /// The frame reports are expressed in (the URDF root link).
