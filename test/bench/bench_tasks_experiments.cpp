@@ -769,7 +769,7 @@ std::vector<RunResult> RunScalingImplementations(const Scenario& s, const Refere
 }
 
 // Figure 6 and static scaling: boxes added near the arms and far from them, on the seed's loop
-// (index slack 0).
+// (index slack 0); near the arms also the default Monitor's octree and naive broad phases.
 void ExperimentStaticScaling(const Args& args, const Scenario& base, std::uint64_t* missed_total) {
   Csv csv(args.out_dir + "/static_scaling.csv",
           "placement,added,primitives,active,impl,mean_us,median_us,p99_us,missed,false");
@@ -794,7 +794,16 @@ void ExperimentStaticScaling(const Args& args, const Scenario& base, std::uint64
       // beyond (its cost grows with the scene; the check is the same).
       const Reference ref = BruteForce(s, added > 2000 ? 50 : added > 200 ? 10 : 1);
       const int total = static_cast<int>(s.workcell->primitives.size());
-      const std::vector<RunResult> results = RunScalingImplementations(s, ref, SeedLoopOptions());
+      std::vector<RunResult> results = RunScalingImplementations(s, ref, SeedLoopOptions());
+      if (near) {
+        // The default Monitor (index slack) too: where its octree overtakes its naive broad
+        // phase sets the auto_broad_phase threshold.
+        for (const char* method : {"octree", "naive"}) {
+          MonitorOptions o = DefaultOptions();
+          ParseBroadPhaseMethod(method, &o.broad_phase.method);
+          results.push_back(RunMonitor(s, o, 1, &ref, std::string(method) + " (default slack)"));
+        }
+      }
       std::printf(" %s +%d boxes (%d primitives, %zu active)\n", s.label.c_str(), added, total,
                   results.front().active_primitives);
       for (const RunResult& r : results) {

@@ -118,11 +118,14 @@ constexpr std::uint64_t kAlwaysOverlappingSeed = 20260521;
 inline constexpr double kJointLimitMargin = 0.01;
 
 /// auto_broad_phase rule: with at least this many primitives in the broad phase at start-up
-/// the octree is chosen, below it the all-pairs (naive) broad phase, whose per-cycle cost is
-/// moving x present box tests and wins on small scenes. 96 (dimensionless count): scripts/bench
-/// measured the naive/octree median cycle-time ratio crossing 1 at 85 to 97 active primitives
-/// on the three tasks with boxes added near the arms (build/bench/report.md recomputes it).
-inline constexpr std::uint32_t kAutoOctreeMinPrimitives = 96;
+/// the octree is chosen, below it the all-pairs (naive) broad phase, whose index work is
+/// moving x present box tests and wins on small scenes. 480 (dimensionless count): scripts/bench
+/// measured the default Monitor's (index slack 0.10 m) naive/octree mean cycle-time ratio
+/// crossing 1 at 430 to 480 active primitives (two runs) on the three tasks with boxes added
+/// near the arms (0.88 at 232, 1.02-1.05 at 531; medians are equal, being bounded cycles that
+/// skip the index; on the seed's loop, slack 0, the crossing is about 290-300).
+/// build/bench/report.md recomputes it.
+inline constexpr std::uint32_t kAutoOctreeMinPrimitives = 480;
 
 /// Largest gap (m) between a held object and its holding link's geometry that Attach accepts.
 /// Bounds how far an attached object can reach beyond its arm, which the start-up reach
