@@ -380,9 +380,10 @@ def section_scaling(out_dir, md):
                 md.append(f"\nNo crossing of naive and octree {what} in the sizes measured.\n")
     rows = read(out_dir, "moving_scaling.csv")
     if rows:
-        md.append("\n## 7. Moving scaling: 2 to 8 arms\n\n")
+        md.append("\n## 7. Moving scaling: 1 to 8 arms\n\n")
         md.append("Copies of the arm pair on shifted pedestals, each copy running the tasks "
-                  "shifted in time (seed, section 6: cycle time proportional to the number of "
+                  "shifted in time; one arm = the pair with the right arm's links ignored "
+                  "(seed, section 6: cycle time proportional to the number of "
                   "moving primitives). Our broad phases run the default options (default index "
                   f"slack, {default_slack(out_dir)}).\n\n")
         md.append(table(["arms", "moving primitives", "impl", "median", "mean", "p99",
