@@ -394,29 +394,27 @@ void CellBroadPhase::ScanPartners(PrimitiveId m, bool from_smaller_only,
 
 void CellBroadPhase::FindPairs(const CompatibilityMatrix& compatible,
                                std::vector<CandidatePair>* pairs) {
-  if (needs_rebuild_) {
-    Rebuild();
-    needs_rebuild_ = false;
-  }
-  pairs->clear();
-  // From every moving primitive; a pair of two moving ones is met from both, taken from the
-  // smaller id.
-  for (const PrimitiveId m : moving_ids_) ScanPartners(m, true, compatible, pairs);
-  std::sort(pairs->begin(), pairs->end());
-  if (!techniques_.pair_deduplication) {
-    pairs->erase(std::unique(pairs->begin(), pairs->end()), pairs->end());
-  }
+  // A pair of two moving primitives is met from both; it is taken from the smaller id.
+  CollectPairs(moving_ids_.data(), moving_ids_.size(), true, compatible, pairs);
 }
 
 void CellBroadPhase::FindPairsOf(PrimitiveId id, const CompatibilityMatrix& compatible,
                                  std::vector<CandidatePair>* pairs) {
+  const bool is_present = id < records_.size() && records_[id].present;
+  CollectPairs(&id, is_present ? 1 : 0, false, compatible, pairs);
+}
+
+void CellBroadPhase::CollectPairs(const PrimitiveId* ids, std::size_t count,
+                                  bool from_smaller_only, const CompatibilityMatrix& compatible,
+                                  std::vector<CandidatePair>* pairs) {
   if (needs_rebuild_) {
     Rebuild();
     needs_rebuild_ = false;
   }
   pairs->clear();
-  if (id >= records_.size() || !records_[id].present) return;
-  ScanPartners(id, false, compatible, pairs);
+  for (std::size_t i = 0; i < count; ++i) {
+    ScanPartners(ids[i], from_smaller_only, compatible, pairs);
+  }
   std::sort(pairs->begin(), pairs->end());
   if (!techniques_.pair_deduplication) {
     pairs->erase(std::unique(pairs->begin(), pairs->end()), pairs->end());

@@ -65,6 +65,19 @@ void ClearCycleWork(CycleReport* report) {
   report->counters = BroadPhaseCounters{};
 }
 
+/// The index into q that drives `joint` (its own, or the one it mimics); -1 if it does not move.
+int DrivingQIndex(const JointSpec& joint) {
+  if (joint.type == JointType::kFixed) return -1;
+  return joint.q_index >= 0 ? joint.q_index : joint.mimic_q_index;
+}
+
+/// How far a prismatic joint's child can slide from the joint's origin (inf if unlimited); 0
+/// for other joints.
+double PrismaticTravel_m(const JointSpec& joint) {
+  if (joint.type != JointType::kPrismatic) return 0.0;
+  return std::max(std::abs(joint.lower), std::abs(joint.upper));
+}
+
 void SetError(std::string* error, const std::string& message) {
   if (error != nullptr) *error = message;
 }
@@ -176,6 +189,16 @@ struct Monitor::Impl {
   // moves.
   double IndexTolerance(PrimitiveId id) const {
     return BroadTolerance(id, is_moving[id]) + (is_moving[id] ? options.index_slack_m : 0.0);
+  }
+  // What a distance bound keeps in hand against rounding: far above the rounding of the terms
+  // compared with it (lengths up to the world's edge).
+  double BoundMargin(double bound_m) const {
+    return kLowerBoundMarginPerMetre * (world_edge_m + std::abs(bound_m));
+  }
+  // Each kept pair's distance at the kinematics is at least its indexed distance less both
+  // primitives' motion since they were indexed.
+  double KinematicsBound(const PairState& state) const {
+    return state.lower_bound_m - disp_m[state.pair.a] - disp_m[state.pair.b];
   }
   void AddToBroadPhase(PrimitiveId id) {
     broad_phase->Add(id, ComputeAabb(shape_W[id]), IndexTolerance(id),
@@ -397,9 +420,7 @@ void Monitor::Impl::BuildModel() {
   dq_abs = Eigen::VectorXd::Zero(q0.size());
   link_depth.assign(link_count, 0);
   for (int link = 1; link < link_count; ++link) {
-    const JointSpec& joint = model->joint(link);
-    const bool moves = joint.type != JointType::kFixed &&
-                       (joint.q_index >= 0 || joint.mimic_q_index >= 0);
+    const bool moves = DrivingQIndex(model->joint(link)) >= 0;
     link_depth[link] = link_depth[model->parent_link(link)] + (moves ? 1 : 0);
     max_levers = std::max(max_levers, link_depth[link]);
   }
@@ -465,10 +486,7 @@ void Monitor::Impl::ComputeReachability() {
   for (int link = 1; link < link_count; ++link) {
     const int parent = model->parent_link(link);
     const JointSpec& joint = model->joint(link);
-    double travel_m = 0.0;
-    if (joint.type == JointType::kPrismatic) {
-      travel_m = std::max(std::abs(joint.lower), std::abs(joint.upper));  // inf if unlimited
-    }
+    const double travel_m = PrismaticTravel_m(joint);
     if (is_below_joint[parent]) {
       is_below_joint[link] = 1;
       centre_W[link] = centre_W[parent];
@@ -636,17 +654,13 @@ void Monitor::Impl::ComputeLevers(PrimitiveId id) {
   Lever* out = &levers[static_cast<std::size_t>(id) * max_levers];
   for (int l = link; l > 0; l = model->parent_link(l)) {
     const JointSpec& joint = model->joint(l);
-    const int q_index = joint.q_index >= 0 ? joint.q_index : joint.mimic_q_index;
-    if (joint.type != JointType::kFixed && q_index >= 0) {  // as link_depth counts
+    const int q_index = DrivingQIndex(joint);
+    if (q_index >= 0) {  // as link_depth counts
       const double scale = joint.q_index >= 0 ? 1.0 : std::abs(joint.mimic_multiplier);
       const double lever_m = joint.type == JointType::kPrismatic ? 1.0 : chain_m + extent_m;
       out[lever_count[id]++] = Lever{q_index, scale * lever_m};
     }
-    double travel_m = 0.0;
-    if (joint.type == JointType::kPrismatic) {
-      travel_m = std::max(std::abs(joint.lower), std::abs(joint.upper));
-    }
-    chain_m += joint.X_PJ.translation().norm() + travel_m;
+    chain_m += joint.X_PJ.translation().norm() + PrismaticTravel_m(joint);
   }
 }
 
@@ -667,11 +681,7 @@ std::uint32_t Monitor::Impl::FollowKinematics(const Eigen::Ref<const Eigen::Vect
     }
   }
   UpdatePairStates();
-  // Each kept pair's distance now is at least its indexed distance less both motions since.
-  for (PairState& state : pair_states) {
-    state.kinematics_bound_m =
-        state.lower_bound_m - disp_m[state.pair.a] - disp_m[state.pair.b];
-  }
+  for (PairState& state : pair_states) state.kinematics_bound_m = KinematicsBound(state);
   return moved_count;
 }
 
@@ -705,10 +715,11 @@ bool Monitor::Impl::TryBoundedCycle(const Eigen::Ref<const Eigen::VectorXd>& q) 
     const double motion_m =
         (lever_count[a] > 0 ? lever_sums_m[a * stride + lever_count[a] - shared] : 0.0) +
         (lever_count[b] > 0 ? lever_sums_m[b * stride + lever_count[b] - shared] : 0.0);
-    const double margin_m =
-        kLowerBoundMarginPerMetre * (world_edge_m + std::abs(state.kinematics_bound_m));
     // NaN (no bound) fails the comparison.
-    if (!(state.kinematics_bound_m - motion_m - margin_m > tol_now[a] + tol_now[b])) return false;
+    if (!(state.kinematics_bound_m - motion_m - BoundMargin(state.kinematics_bound_m) >
+          tol_now[a] + tol_now[b])) {
+      return false;
+    }
   }
   // Every kept pair is clear, and every other pair's indexed boxes are apart while both
   // primitives stay within their slack: no warning.
@@ -794,13 +805,14 @@ void Monitor::Impl::TestCandidatePairs() {
     if (std::isnan(state.lower_bound_m)) {
       ++report.narrow_phase_tests;
       state.lower_bound_m = ShapeDistance(shape_ref_W[a], shape_ref_W[b]).distance_m;
-      state.kinematics_bound_m = state.lower_bound_m - disp_m[a] - disp_m[b];
+      state.kinematics_bound_m = KinematicsBound(state);
     }
     // Triangle inequality: dist(now) >= dist(indexed) - motion of a - motion of b.
     const double motion_m = disp_m[a] + disp_m[b];
-    const double margin_m =
-        kLowerBoundMarginPerMetre * (world_edge_m + std::abs(state.lower_bound_m));
-    if (state.lower_bound_m - motion_m - margin_m > tol_now[a] + tol_now[b]) continue;
+    if (state.lower_bound_m - motion_m - BoundMargin(state.lower_bound_m) >
+        tol_now[a] + tol_now[b]) {
+      continue;
+    }
     ++report.narrow_phase_tests;
     const double distance_m = TestPair(a, b, shape_W, tol_now, &report.warnings);
     state.lower_bound_m = std::max(state.lower_bound_m, distance_m - motion_m);
@@ -869,16 +881,14 @@ void Monitor::Impl::ValidateSlack(std::ostringstream* msg) const {
       return;
     }
     const double d_m = ShapeDistance(shape_ref_W[state.pair.a], shape_ref_W[state.pair.b]).distance_m;
-    if (state.lower_bound_m >
-        d_m + kLowerBoundMarginPerMetre * (world_edge_m + std::abs(d_m))) {
+    if (state.lower_bound_m > d_m + BoundMargin(d_m)) {
       *msg << "pair (" << state.pair.a << "," << state.pair.b << ") lower bound "
            << state.lower_bound_m << " m exceeds the indexed shapes' distance " << d_m << " m";
       return;
     }
     // shape_W is at q_kinematics (also after bounded cycles).
     const double now_m = ShapeDistance(shape_W[state.pair.a], shape_W[state.pair.b]).distance_m;
-    if (state.kinematics_bound_m >
-        now_m + kLowerBoundMarginPerMetre * (world_edge_m + std::abs(now_m))) {
+    if (state.kinematics_bound_m > now_m + BoundMargin(now_m)) {
       *msg << "pair (" << state.pair.a << "," << state.pair.b << ") bound "
            << state.kinematics_bound_m << " m exceeds its distance " << now_m
            << " m at the last kinematics";

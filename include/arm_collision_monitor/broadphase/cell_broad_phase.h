@@ -199,6 +199,10 @@ class CellBroadPhase : public BroadPhase {
   /// their own scan when `from_smaller_only` (FindPairs meets such a pair from both sides).
   void ScanPartners(PrimitiveId m, bool from_smaller_only, const CompatibilityMatrix& compatible,
                     std::vector<CandidatePair>* pairs);
+  /// Rebuilds first if the strategy left the cells stale, then sets `pairs` to the sorted,
+  /// distinct pairs that ScanPartners finds from each of ids[0..count).
+  void CollectPairs(const PrimitiveId* ids, std::size_t count, bool from_smaller_only,
+                    const CompatibilityMatrix& compatible, std::vector<CandidatePair>* pairs);
   bool ValidateShared(std::string* why) const;
 };
 
