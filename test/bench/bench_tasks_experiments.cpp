@@ -532,7 +532,8 @@ double ExperimentTasks(const Args& args, const Scenario& s, const Reference& ref
   std::printf("== per-cycle times on the three tasks (%zu cycles)\n", s.cycles());
   Csv summary(args.out_dir + "/tasks_summary.csv",
               "impl,task,mean_us,median_us,p99_us,max_us,warning_cycles,cycles_equal_default,"
-              "missed_vs_brute,false_vs_brute,object_node_tests,object_object_tests,splits,merges");
+              "missed_vs_brute,false_vs_brute,object_node_tests,object_object_tests,splits,merges,"
+              "samples,median_moving_us,moving_samples");
   Csv diffs(args.out_dir + "/peer_differences.csv",
             "impl,task,cycle,a,b,name_a,name_b,kind,distance_m,threshold_m");
   const Workcell& wc = *s.workcell;
@@ -561,6 +562,16 @@ double ExperimentTasks(const Args& args, const Scenario& s, const Reference& ref
   for (std::size_t ti = 0; ti < s.tasks.size(); ++ti) {
     task_of_cycle.insert(task_of_cycle.end(), s.tasks[ti].q.size(), ti);
   }
+  // Per timed sample (each task's first cycle is not timed; the passes repeat the pattern):
+  // whether q differs from the previous cycle's. The Monitor answers a repeated q from its last
+  // report and the peers have no such shortcut, so the medians are also given over the moving
+  // cycles alone.
+  std::vector<std::uint8_t> sample_moves;
+  for (const TaskRun& task : s.tasks) {
+    for (std::size_t c = 1; c < task.q.size(); ++c) {
+      sample_moves.push_back(task.q[c] != task.q[c - 1] ? 1 : 0);
+    }
+  }
   WorkcellShapes eval(wc);
   std::vector<std::size_t> cycle_in_task(task_of_cycle.size());
   for (std::size_t c = 0, k = 0; c < task_of_cycle.size(); ++c) {
@@ -575,18 +586,29 @@ double ExperimentTasks(const Args& args, const Scenario& s, const Reference& ref
       warning_cycles += !r.warnings[c].empty();
       equal += r.warnings[c] == dflt.warnings[c];
     }
-    const Summary all = Summarize(r.t_us);
+    // The samples of task `ti` (every task if ti < 0), and of its moving cycles alone.
+    auto summarize = [&](int ti, Summary* moving_summary) {
+      std::vector<double> slice, moving;
+      for (std::size_t i = 0; i < r.t_us.size(); ++i) {
+        if (ti >= 0 && r.t_task[i] != ti) continue;
+        slice.push_back(r.t_us[i]);
+        if (sample_moves[i % sample_moves.size()]) moving.push_back(r.t_us[i]);
+      }
+      *moving_summary = Summarize(moving);
+      return Summarize(slice);
+    };
+    Summary all_moving;
+    const Summary all = summarize(-1, &all_moving);
     summary.Row(r.impl, "all", all.mean_us, all.median_us, all.p99_us, all.max_us,
                 warning_cycles, equal, r.missed, r.false_warnings, r.counters.object_node_tests,
-                r.counters.object_object_tests, r.counters.splits, r.counters.merges);
+                r.counters.object_object_tests, r.counters.splits, r.counters.merges,
+                all.samples, all_moving.median_us, all_moving.samples);
     for (std::size_t ti = 0; ti < s.tasks.size(); ++ti) {
-      std::vector<double> slice;
-      for (std::size_t i = 0; i < r.t_us.size(); ++i) {
-        if (r.t_task[i] == ti) slice.push_back(r.t_us[i]);
-      }
-      const Summary st = Summarize(slice);
+      Summary task_moving;
+      const Summary st = summarize(static_cast<int>(ti), &task_moving);
       summary.Row(r.impl, s.tasks[ti].name, st.mean_us, st.median_us, st.p99_us, st.max_us, "",
-                  "", "", "", "", "", "", "");
+                  "", "", "", "", "", "", "", st.samples, task_moving.median_us,
+                  task_moving.samples);
     }
     if (r.impl.rfind("fcl", 0) != 0 && r.impl.rfind("bullet", 0) != 0) continue;
     PairSet extra, missing;
