@@ -152,7 +152,6 @@ struct Monitor::Impl {
   int max_levers = 0;                   // moving joints above the deepest link
   std::vector<Lever> levers;            // per primitive, max_levers slots
   std::vector<int> lever_count;         // per primitive; 0: not carried by a moving link
-  std::vector<double> link_lever_m;     // scratch for ComputeLevers: per link
   Eigen::VectorXd q_kinematics;         // q of the last forward kinematics
   Eigen::VectorXd dq_abs;               // scratch: |q - q_kinematics|
   std::vector<int> link_depth;          // per link: levers from it up to the root
@@ -269,6 +268,17 @@ struct Monitor::Impl {
   // joint-space motion bound keeps it within its slack and every kept pair's lower bound, less
   // those bounds, still clears its threshold -- then no pair can warn. False: nothing changed.
   bool TryBoundedCycle(const Eigen::Ref<const Eigen::VectorXd>& q);
+  // After TryBoundedCycle's motion bounds for q: how far a and b can have moved relative to
+  // each other since q_kinematics (joints above both links' common ancestor move both alike).
+  double PairMotionBound(PrimitiveId a, PrimitiveId b) const {
+    const std::size_t stride = static_cast<std::size_t>(max_levers) + 1;
+    const int la = carrier[a], lb = carrier[b];
+    const int shared = la >= 0 && lb >= 0
+                           ? shared_levers[static_cast<std::size_t>(la) * model->link_count() + lb]
+                           : 0;
+    return (lever_count[a] > 0 ? lever_sums_m[a * stride + lever_count[a] - shared] : 0.0) +
+           (lever_count[b] > 0 ? lever_sums_m[b * stride + lever_count[b] - shared] : 0.0);
+  }
   // After bounded cycles: the kinematics (shapes, index, kept pairs) brought to q_good, for
   // readers of the shapes and for scene changes.
   void SyncKinematics() {
@@ -278,6 +288,9 @@ struct Monitor::Impl {
   // Monitor::Validate's part for the index slack: displacements, the kept pair set against the
   // indexed boxes by brute force, and the pairs' lower bounds.
   void ValidateSlack(std::ostringstream* msg) const;
+  // After a bounded cycle: its motion bounds and its claims (every primitive within its slack,
+  // every kept pair clear) against the true shapes at q_good.
+  void ValidateBoundedCycle(std::ostringstream* msg) const;
 };
 
 Monitor::Impl::Impl(std::shared_ptr<const Workcell> wc, const MonitorOptions& opts)
@@ -405,9 +418,9 @@ void Monitor::Impl::BuildModel() {
     if (!std::isfinite(q0[i])) q0[i] = 0.0;
   }
   X_WL.assign(link_count, Eigen::Isometry3d::Identity());
-  X_WL_next = X_WL;
   link_changed.assign(link_count, 0);
   model->ComputeLinkPoses(q0, &X_WL);
+  X_WL_next = X_WL;  // the links fixed to the root keep these poses (ComputeMovingLinkPoses)
   q_good = q0;
   shape_W.resize(n);
   for (PrimitiveId id = 0; id < n; ++id) {
@@ -442,7 +455,6 @@ void Monitor::Impl::BuildModel() {
   lever_sums_m.assign(static_cast<std::size_t>(n) * (max_levers + 1), 0.0);
   levers.assign(static_cast<std::size_t>(n) * max_levers, Lever{});
   lever_count.assign(n, 0);
-  link_lever_m.assign(link_count, 0.0);
   for (PrimitiveId id = 0; id < n; ++id) ComputeLevers(id);
   is_reindexed.assign(n, 0);
   moved.assign(n, 0);
@@ -665,7 +677,7 @@ void Monitor::Impl::ComputeLevers(PrimitiveId id) {
 }
 
 std::uint32_t Monitor::Impl::FollowKinematics(const Eigen::Ref<const Eigen::VectorXd>& q) {
-  model->ComputeLinkPoses(q, &X_WL_next);
+  model->ComputeMovingLinkPoses(q, &X_WL_next);
   MoveCarried(X_WL_next, &link_changed, &shape_W, &moved);
   X_WL.swap(X_WL_next);
   q_kinematics = q;
@@ -700,21 +712,13 @@ bool Monitor::Impl::TryBoundedCycle(const Eigen::Ref<const Eigen::VectorXd>& q) 
     const Lever* l = &levers[static_cast<std::size_t>(id) * max_levers];
     double* sums = &lever_sums_m[id * stride];
     for (int k = 0; k < count; ++k) sums[k + 1] = sums[k] + dq_abs[l[k].q_index] * l[k].m_per_unit;
-    // Motion since indexed <= motion until the kinematics + motion since.
-    if (disp_m[id] + sums[count] > slack_m && in_broad_phase[id]) return false;
+    // Motion since indexed <= motion until the kinematics + motion since; NaN fails.
+    if (in_broad_phase[id] && !(disp_m[id] + sums[count] <= slack_m)) return false;
   }
-  const int link_count = model->link_count();
   for (const PairState& state : pair_states) {
     const PrimitiveId a = state.pair.a;
     const PrimitiveId b = state.pair.b;
-    // Motion relative to each other: joints above both links' common ancestor move both alike.
-    const int la = carrier[a], lb = carrier[b];
-    const int shared = la >= 0 && lb >= 0
-                           ? shared_levers[static_cast<std::size_t>(la) * link_count + lb]
-                           : 0;
-    const double motion_m =
-        (lever_count[a] > 0 ? lever_sums_m[a * stride + lever_count[a] - shared] : 0.0) +
-        (lever_count[b] > 0 ? lever_sums_m[b * stride + lever_count[b] - shared] : 0.0);
+    const double motion_m = PairMotionBound(a, b);
     // NaN (no bound) fails the comparison.
     if (!(state.kinematics_bound_m - motion_m - BoundMargin(state.kinematics_bound_m) >
           tol_now[a] + tol_now[b])) {
@@ -841,6 +845,41 @@ void Monitor::Impl::RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q) {
   broad_phase->ResetCounters();
   has_good = true;
   scene_changed = false;
+}
+
+void Monitor::Impl::ValidateBoundedCycle(std::ostringstream* msg) const {
+  std::vector<Eigen::Isometry3d> X(model->link_count());
+  model->ComputeLinkPoses(q_good, &X);
+  std::vector<Shape> now(shape_W);
+  const std::size_t stride = static_cast<std::size_t>(max_levers) + 1;
+  for (PrimitiveId id = 0; id < n; ++id) {
+    if (carrier[id] < 0) continue;
+    now[id] = TransformShape(X[carrier[id]], shape_C[id]);
+    if (lever_count[id] == 0 || !in_broad_phase[id]) continue;
+    const double moved_m = MaxPointDisplacement(shape_W[id], now[id]);
+    const double bound_m = lever_sums_m[id * stride + lever_count[id]];
+    const double from_ref_m = MaxPointDisplacement(shape_ref_W[id], now[id]);
+    if (moved_m > bound_m + BoundMargin(bound_m) ||
+        from_ref_m > options.index_slack_m + BoundMargin(options.index_slack_m)) {
+      *msg << "bounded cycle: primitive " << id << " moved " << moved_m << " m, bound "
+           << bound_m << " m; " << from_ref_m << " m from its indexed copy, slack "
+           << options.index_slack_m << " m";
+      return;
+    }
+  }
+  for (const PairState& state : pair_states) {
+    const PrimitiveId a = state.pair.a;
+    const PrimitiveId b = state.pair.b;
+    const double then_m = ShapeDistance(shape_W[a], shape_W[b]).distance_m;
+    const double now_m = ShapeDistance(now[a], now[b]).distance_m;
+    const double motion_m = PairMotionBound(a, b);
+    if (now_m < then_m - motion_m - BoundMargin(then_m) || now_m <= tol_now[a] + tol_now[b]) {
+      *msg << "bounded cycle: pair (" << a << "," << b << ") at " << now_m << " m, was "
+           << then_m << " m, relative motion bound " << motion_m << " m, threshold "
+           << tol_now[a] + tol_now[b] << " m";
+      return;
+    }
+  }
 }
 
 void Monitor::Impl::ValidateSlack(std::ostringstream* msg) const {
@@ -1212,6 +1251,7 @@ bool Monitor::Validate(std::string* error) const {
     }
   }
   if (msg.tellp() == 0) m.ValidateSlack(&msg);
+  if (msg.tellp() == 0 && m.kinematics_behind) m.ValidateBoundedCycle(&msg);
   const auto& w = m.report.warnings;
   for (std::size_t i = 0; i < w.size() && msg.tellp() == 0; ++i) {
     if (w[i].a >= w[i].b || (i > 0 && !(w[i - 1].a < w[i].a ||
