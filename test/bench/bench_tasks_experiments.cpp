@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <fstream>
 #include <functional>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <memory>
@@ -441,12 +442,33 @@ RunResult RunMonitor(const Scenario& s, const MonitorOptions& options, int repea
   return r;
 }
 
-// Adds a pass of the same implementation to `all`: its per-cycle times are appended, everything
-// else (warnings, counters, brute-force comparison) is the newest pass's.
+// Adds a pass of the same implementation to `all`: its per-cycle times are appended and the
+// per-task means taken over every pass; everything else (warnings, counters, brute-force
+// comparison) is the newest pass's.
 void AddPass(RunResult pass, RunResult* all) {
   pass.t_us.insert(pass.t_us.begin(), all->t_us.begin(), all->t_us.end());
   pass.t_task.insert(pass.t_task.begin(), all->t_task.begin(), all->t_task.end());
+  std::vector<double> sum_us(pass.task_mean_us.size(), 0.0);
+  std::vector<std::size_t> samples(pass.task_mean_us.size(), 0);
+  for (std::size_t i = 0; i < pass.t_us.size(); ++i) {
+    sum_us[pass.t_task[i]] += pass.t_us[i];
+    ++samples[pass.t_task[i]];
+  }
+  for (std::size_t ti = 0; ti < sum_us.size(); ++ti) {
+    pass.task_mean_us[ti] = sum_us[ti] / std::max<std::size_t>(1, samples[ti]);
+  }
   *all = std::move(pass);
+}
+
+// `repeats` rounds of one pass of each of `runs` in turn, so that a slow spell of a shared
+// machine falls on every variant alike rather than on the few running at the time.
+std::vector<RunResult> RunInTurns(int repeats,
+                                  const std::vector<std::function<RunResult()>>& runs) {
+  std::vector<RunResult> results(runs.size());
+  for (int pass = 0; pass < repeats; ++pass) {
+    for (std::size_t i = 0; i < runs.size(); ++i) AddPass(runs[i](), &results[i]);
+  }
+  return results;
 }
 
 #ifdef ACM_HAVE_PEERS
@@ -553,7 +575,8 @@ double ExperimentTasks(const Args& args, const Scenario& s, const Reference& ref
     runs.push_back([&s, &ref, o, method] { return RunMonitor(s, o, 1, &ref, method); });
     if (runs.size() == 1) {
       // The default Monitor on the seed's loop, beside it.
-      runs.push_back([&s, &ref] { return RunMonitor(s, SeedLoopOptions(), 1, &ref, "octree (slack 0)"); });
+      runs.push_back(
+          [&s, &ref] { return RunMonitor(s, SeedLoopOptions(), 1, &ref, "octree (slack 0)"); });
     }
   }
   runs.push_back([&s, &ref] {
@@ -568,12 +591,7 @@ double ExperimentTasks(const Args& args, const Scenario& s, const Reference& ref
     runs.push_back([&s, &ref, f = factory] { return RunPeer(s, f, 1, &ref); });
   }
 #endif
-  // The passes go round all implementations in turn, so that a slow spell of a shared machine
-  // falls on every implementation alike rather than on the few running at the time.
-  std::vector<RunResult> results(runs.size());
-  for (int pass = 0; pass < args.repeats; ++pass) {
-    for (std::size_t i = 0; i < runs.size(); ++i) AddPass(runs[i](), &results[i]);
-  }
+  const std::vector<RunResult> results = RunInTurns(args.repeats, runs);
   const RunResult& dflt = results.front();
   // Task boundaries in the per-cycle warning arrays.
   std::vector<std::size_t> task_of_cycle;
@@ -698,10 +716,17 @@ void ExperimentSweeps(const Args& args, const Scenario& s, const Reference& ref,
   const std::vector<int> ns = args.quick ? std::vector<int>{1, 2, 5, 10, 20, 40}
                                          : std::vector<int>{1, 2, 3, 4, 5, 6, 8, 10, 12, 15,
                                                             20, 25, 30, 35, 40};
+  std::vector<std::function<RunResult()>> n_runs;
   for (int n : ns) {
     MonitorOptions o = SeedLoopOptions();
     o.broad_phase.max_objects_per_leaf = n;
-    RunResult r = RunMonitor(s, o, args.repeats, &ref, "octree N=" + std::to_string(n));
+    n_runs.push_back(
+        [&s, &ref, o, n] { return RunMonitor(s, o, 1, &ref, "octree N=" + std::to_string(n)); });
+  }
+  const std::vector<RunResult> n_results = RunInTurns(args.repeats, n_runs);
+  for (std::size_t i = 0; i < ns.size(); ++i) {
+    const int n = ns[i];
+    const RunResult& r = n_results[i];
     PrintRow(r);
     *missed_total += r.missed;
     const Summary sm = Summarize(r.t_us);
@@ -714,11 +739,18 @@ void ExperimentSweeps(const Args& args, const Scenario& s, const Reference& ref,
   std::printf("== Figure 7: G swept\n");
   const std::vector<int> gs = args.quick ? std::vector<int>{2, 8, 16, 32, 64}
                                          : std::vector<int>{2, 4, 6, 8, 12, 16, 24, 32, 48, 64};
+  std::vector<std::function<RunResult()>> g_runs;
   for (int g : gs) {
     MonitorOptions o = SeedLoopOptions();
     o.broad_phase.method = BroadPhaseMethod::kGrid;
     o.broad_phase.grid_cells_per_axis = g;
-    RunResult r = RunMonitor(s, o, args.repeats, &ref, "grid G=" + std::to_string(g));
+    g_runs.push_back(
+        [&s, &ref, o, g] { return RunMonitor(s, o, 1, &ref, "grid G=" + std::to_string(g)); });
+  }
+  const std::vector<RunResult> g_results = RunInTurns(args.repeats, g_runs);
+  for (std::size_t i = 0; i < gs.size(); ++i) {
+    const int g = gs[i];
+    const RunResult& r = g_results[i];
     PrintRow(r);
     *missed_total += r.missed;
     const Summary sm = Summarize(r.t_us);
@@ -739,11 +771,19 @@ void ExperimentSweeps(const Args& args, const Scenario& s, const Reference& ref,
                       {"inside_node_exit", &BroadPhaseTechniques::inside_node_exit, 13},
                       {"pair_deduplication", &BroadPhaseTechniques::pair_deduplication, 4},
                       {"bounding_box_pretests", &BroadPhaseTechniques::bounding_box_pretests, 80}};
-  double base_us = 0;
+  std::vector<std::function<RunResult()>> off_runs;
   for (const Off& off : offs) {
     MonitorOptions o = SeedLoopOptions();
     if (off.flag != nullptr) o.broad_phase.techniques.*(off.flag) = false;
-    RunResult r = RunMonitor(s, o, args.repeats, &ref, std::string("without ") + off.name);
+    off_runs.push_back([&s, &ref, o, &off] {
+      return RunMonitor(s, o, 1, &ref, std::string("without ") + off.name);
+    });
+  }
+  const std::vector<RunResult> off_results = RunInTurns(args.repeats, off_runs);
+  double base_us = 0;
+  for (std::size_t i = 0; i < std::size(offs); ++i) {
+    const Off& off = offs[i];
+    const RunResult& r = off_results[i];
     PrintRow(r);
     *missed_total += r.missed;
     const Summary sm = Summarize(r.t_us);
@@ -766,13 +806,20 @@ void ExperimentSlack(const Args& args, const Scenario& s, const Reference& ref,
           "candidate_pairs_per_cycle,narrow_phase_tests_per_cycle,splits_plus_merges,missed,false");
   const double default_slack_m = DefaultOptions().index_slack_m;
   std::printf("== index slack swept (default %.3f m)\n", default_slack_m);
-  for (const double slack_m : {0.0, 0.01, 0.02, 0.05, 0.1, 0.2, 0.4, 0.8}) {
+  const std::vector<double> slacks_m = {0.0, 0.01, 0.02, 0.05, 0.1, 0.2, 0.4, 0.8};
+  std::vector<std::function<RunResult()>> runs;
+  for (const double slack_m : slacks_m) {
     MonitorOptions o = DefaultOptions();
     o.broad_phase.method = BroadPhaseMethod::kOctree;
     o.index_slack_m = slack_m;
     std::ostringstream name;
     name << "slack " << slack_m << " m";
-    const RunResult r = RunMonitor(s, o, args.repeats, &ref, name.str());
+    runs.push_back([&s, &ref, o, label = name.str()] { return RunMonitor(s, o, 1, &ref, label); });
+  }
+  const std::vector<RunResult> results = RunInTurns(args.repeats, runs);
+  for (std::size_t i = 0; i < slacks_m.size(); ++i) {
+    const double slack_m = slacks_m[i];
+    const RunResult& r = results[i];
     PrintRow(r);
     *missed_total += r.missed;
     const Summary sm = Summarize(r.t_us);
