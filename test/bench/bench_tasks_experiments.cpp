@@ -377,66 +377,56 @@ void CheckAgainst(const Reference* ref, RunResult* r) {
   }
 }
 
-// `variant` non-empty: every link that has a model variant of that name is switched to it
-// before the first cycle (Monitor::SwitchModel).
-RunResult RunMonitor(const Scenario& s, const MonitorOptions& options, int repeats,
-                     const Reference* ref, const std::string& impl,
-                     const std::string& variant = "") {
+// One timing pass over every task (RunInTurns merges passes). `variant` non-empty: every link
+// that has a model variant of that name is switched to it before the first cycle
+// (Monitor::SwitchModel).
+RunResult RunMonitor(const Scenario& s, const MonitorOptions& options, const Reference* ref,
+                     const std::string& impl, const std::string& variant = "") {
   RunResult r;
   r.impl = impl;
-  for (int pass = 0; pass < repeats; ++pass) {
-    const bool last = pass + 1 == repeats;
-    if (last) {
-      r.warnings.clear();
-      r.counters = BroadPhaseCounters{};
-      r.reindexed = r.candidate_pairs = r.narrow_phase_tests = 0;
-      r.task_mean_us.assign(s.tasks.size(), 0.0);
+  r.task_mean_us.assign(s.tasks.size(), 0.0);
+  for (std::size_t ti = 0; ti < s.tasks.size(); ++ti) {
+    const TaskRun& task = s.tasks[ti];
+    Monitor monitor(s.workcell, options);
+    for (const ModelVariantSpec& v : s.workcell->variants) {
+      std::string error;
+      if (!variant.empty() && v.name == variant &&
+          !monitor.SwitchModel(v.link, v.name, &error)) {
+        std::fprintf(stderr, "SwitchModel: %s\n", error.c_str());
+        std::exit(1);
+      }
     }
-    for (std::size_t ti = 0; ti < s.tasks.size(); ++ti) {
-      const TaskRun& task = s.tasks[ti];
-      Monitor monitor(s.workcell, options);
-      for (const ModelVariantSpec& v : s.workcell->variants) {
-        std::string error;
-        if (!variant.empty() && v.name == variant &&
-            !monitor.SwitchModel(v.link, v.name, &error)) {
-          std::fprintf(stderr, "SwitchModel: %s\n", error.c_str());
-          std::exit(1);
-        }
+    for (const TaskGraspTarget& g : task.grasp_targets) {
+      std::string error;
+      if (!monitor.SetGraspTarget(g.link, g.object, true, &error)) {
+        std::fprintf(stderr, "SetGraspTarget: %s\n", error.c_str());
       }
-      for (const TaskGraspTarget& g : task.grasp_targets) {
-        std::string error;
-        if (!monitor.SetGraspTarget(g.link, g.object, true, &error)) {
-          std::fprintf(stderr, "SetGraspTarget: %s\n", error.c_str());
-        }
-      }
-      r.chosen = monitor.broad_phase_name();
-      r.active_primitives = 0;
-      for (PrimitiveId id = 0; id < monitor.primitive_count(); ++id) {
-        r.active_primitives += monitor.is_active(id);
-      }
-      double task_sum = 0;
-      for (std::size_t c = 0; c < task.q.size(); ++c) {
-        const auto t0 = Clock::now();
-        const CycleReport& report = monitor.Update(task.q[c]);
-        const double dt = MicrosSince(t0);
-        benchmark::DoNotOptimize(report.stop);
-        if (c > 0) {
-          r.t_us.push_back(dt);
-          r.t_task.push_back(static_cast<std::uint8_t>(ti));
-          task_sum += dt;
-        }
-        if (last) {
-          PairSet w;
-          for (const Warning& warning : report.warnings) w.push_back({warning.a, warning.b});
-          r.warnings.push_back(std::move(w));
-          r.counters += report.counters;
-          r.reindexed += report.reindexed_primitives;
-          r.candidate_pairs += report.candidate_pairs;
-          r.narrow_phase_tests += report.narrow_phase_tests;
-        }
-      }
-      if (last) r.task_mean_us[ti] = task_sum / std::max<std::size_t>(1, task.q.size() - 1);
     }
+    r.chosen = monitor.broad_phase_name();
+    r.active_primitives = 0;
+    for (PrimitiveId id = 0; id < monitor.primitive_count(); ++id) {
+      r.active_primitives += monitor.is_active(id);
+    }
+    double task_sum = 0;
+    for (std::size_t c = 0; c < task.q.size(); ++c) {
+      const auto t0 = Clock::now();
+      const CycleReport& report = monitor.Update(task.q[c]);
+      const double dt = MicrosSince(t0);
+      benchmark::DoNotOptimize(report.stop);
+      if (c > 0) {
+        r.t_us.push_back(dt);
+        r.t_task.push_back(static_cast<std::uint8_t>(ti));
+        task_sum += dt;
+      }
+      PairSet w;
+      for (const Warning& warning : report.warnings) w.push_back({warning.a, warning.b});
+      r.warnings.push_back(std::move(w));
+      r.counters += report.counters;
+      r.reindexed += report.reindexed_primitives;
+      r.candidate_pairs += report.candidate_pairs;
+      r.narrow_phase_tests += report.narrow_phase_tests;
+    }
+    r.task_mean_us[ti] = task_sum / std::max<std::size_t>(1, task.q.size() - 1);
   }
   CheckAgainst(ref, &r);
   return r;
@@ -486,39 +476,32 @@ using PeerFactory = std::function<std::unique_ptr<PeerChecker>(
     const std::vector<PeerPrimitive>&, const CompatibilityMatrix&)>;
 
 // A peer's cycle: the same forward kinematics as the Monitor, the moving shapes handed over,
-// then its query.
-RunResult RunPeer(const Scenario& s, const PeerFactory& factory, int repeats,
-                  const Reference* ref) {
+// then its query. One timing pass over every task, as RunMonitor.
+RunResult RunPeer(const Scenario& s, const PeerFactory& factory, const Reference* ref) {
   RunResult r;
   const Workcell& wc = *s.workcell;
-  for (int pass = 0; pass < repeats; ++pass) {
-    const bool last = pass + 1 == repeats;
-    if (last) {
-      r.warnings.clear();
-      r.task_mean_us.assign(s.tasks.size(), 0.0);
-    }
-    for (std::size_t ti = 0; ti < s.tasks.size(); ++ti) {
-      const TaskRun& task = s.tasks[ti];
-      WorkcellShapes eval(wc);
-      auto peer = factory(PeerPrimitives(wc, eval), TaskCompatibility(wc, task));
-      r.impl = peer->name();
-      PairSet w;
-      double task_sum = 0;
-      for (std::size_t c = 0; c < task.q.size(); ++c) {
-        const auto t0 = Clock::now();
-        eval.Evaluate(task.q[c]);
-        for (const PrimitiveId id : eval.moving()) peer->SetShape(id, eval.shape_W(id));
-        peer->FindWarnings(&w);
-        const double dt = MicrosSince(t0);
-        if (c > 0) {
-          r.t_us.push_back(dt);
-          r.t_task.push_back(static_cast<std::uint8_t>(ti));
-          task_sum += dt;
-        }
-        if (last) r.warnings.push_back(w);
+  r.task_mean_us.assign(s.tasks.size(), 0.0);
+  for (std::size_t ti = 0; ti < s.tasks.size(); ++ti) {
+    const TaskRun& task = s.tasks[ti];
+    WorkcellShapes eval(wc);
+    auto peer = factory(PeerPrimitives(wc, eval), TaskCompatibility(wc, task));
+    r.impl = peer->name();
+    PairSet w;
+    double task_sum = 0;
+    for (std::size_t c = 0; c < task.q.size(); ++c) {
+      const auto t0 = Clock::now();
+      eval.Evaluate(task.q[c]);
+      for (const PrimitiveId id : eval.moving()) peer->SetShape(id, eval.shape_W(id));
+      peer->FindWarnings(&w);
+      const double dt = MicrosSince(t0);
+      if (c > 0) {
+        r.t_us.push_back(dt);
+        r.t_task.push_back(static_cast<std::uint8_t>(ti));
+        task_sum += dt;
       }
-      if (last) r.task_mean_us[ti] = task_sum / std::max<std::size_t>(1, task.q.size() - 1);
+      r.warnings.push_back(w);
     }
+    r.task_mean_us[ti] = task_sum / std::max<std::size_t>(1, task.q.size() - 1);
   }
   CheckAgainst(ref, &r);
   return r;
@@ -572,23 +555,23 @@ double ExperimentTasks(const Args& args, const Scenario& s, const Reference& ref
   for (const char* method : {"octree", "naive", "grid", "rebuild", "reinsert"}) {
     MonitorOptions o = DefaultOptions();
     ParseBroadPhaseMethod(method, &o.broad_phase.method);
-    runs.push_back([&s, &ref, o, method] { return RunMonitor(s, o, 1, &ref, method); });
+    runs.push_back([&s, &ref, o, method] { return RunMonitor(s, o, &ref, method); });
     if (runs.size() == 1) {
       // The default Monitor on the seed's loop, beside it.
       runs.push_back(
-          [&s, &ref] { return RunMonitor(s, SeedLoopOptions(), 1, &ref, "octree (slack 0)"); });
+          [&s, &ref] { return RunMonitor(s, SeedLoopOptions(), &ref, "octree (slack 0)"); });
     }
   }
   runs.push_back([&s, &ref] {
     MonitorOptions o = DefaultOptions();
     o.auto_broad_phase = true;
-    RunResult r = RunMonitor(s, o, 1, &ref, "auto");
+    RunResult r = RunMonitor(s, o, &ref, "auto");
     r.impl = "auto(" + r.chosen + ")";
     return r;
   });
 #ifdef ACM_HAVE_PEERS
   for (const auto& [name, factory] : Peers()) {
-    runs.push_back([&s, &ref, f = factory] { return RunPeer(s, f, 1, &ref); });
+    runs.push_back([&s, &ref, f = factory] { return RunPeer(s, f, &ref); });
   }
 #endif
   const std::vector<RunResult> results = RunInTurns(args.repeats, runs);
@@ -687,7 +670,7 @@ void ExperimentOctreeStatistics(const Args& args, const Scenario& s) {
     ++count;
   }
   const OctreeStatistics st = octree->ComputeStatistics();
-  const RunResult run = RunMonitor(s, SeedLoopOptions(), 1, nullptr, "octree (slack 0)");
+  const RunResult run = RunMonitor(s, SeedLoopOptions(), nullptr, "octree (slack 0)");
   const double events = static_cast<double>(run.counters.splits + run.counters.merges);
   Csv csv(args.out_dir + "/octree_statistics.csv", "statistic,ours,seed");
   csv.Row("primitives", count, 35);
@@ -721,7 +704,7 @@ void ExperimentSweeps(const Args& args, const Scenario& s, const Reference& ref,
     MonitorOptions o = SeedLoopOptions();
     o.broad_phase.max_objects_per_leaf = n;
     n_runs.push_back(
-        [&s, &ref, o, n] { return RunMonitor(s, o, 1, &ref, "octree N=" + std::to_string(n)); });
+        [&s, &ref, o, n] { return RunMonitor(s, o, &ref, "octree N=" + std::to_string(n)); });
   }
   const std::vector<RunResult> n_results = RunInTurns(args.repeats, n_runs);
   for (std::size_t i = 0; i < ns.size(); ++i) {
@@ -745,7 +728,7 @@ void ExperimentSweeps(const Args& args, const Scenario& s, const Reference& ref,
     o.broad_phase.method = BroadPhaseMethod::kGrid;
     o.broad_phase.grid_cells_per_axis = g;
     g_runs.push_back(
-        [&s, &ref, o, g] { return RunMonitor(s, o, 1, &ref, "grid G=" + std::to_string(g)); });
+        [&s, &ref, o, g] { return RunMonitor(s, o, &ref, "grid G=" + std::to_string(g)); });
   }
   const std::vector<RunResult> g_results = RunInTurns(args.repeats, g_runs);
   for (std::size_t i = 0; i < gs.size(); ++i) {
@@ -776,7 +759,7 @@ void ExperimentSweeps(const Args& args, const Scenario& s, const Reference& ref,
     MonitorOptions o = SeedLoopOptions();
     if (off.flag != nullptr) o.broad_phase.techniques.*(off.flag) = false;
     off_runs.push_back([&s, &ref, o, &off] {
-      return RunMonitor(s, o, 1, &ref, std::string("without ") + off.name);
+      return RunMonitor(s, o, &ref, std::string("without ") + off.name);
     });
   }
   const std::vector<RunResult> off_results = RunInTurns(args.repeats, off_runs);
@@ -814,7 +797,7 @@ void ExperimentSlack(const Args& args, const Scenario& s, const Reference& ref,
     o.index_slack_m = slack_m;
     std::ostringstream name;
     name << "slack " << slack_m << " m";
-    runs.push_back([&s, &ref, o, label = name.str()] { return RunMonitor(s, o, 1, &ref, label); });
+    runs.push_back([&s, &ref, o, label = name.str()] { return RunMonitor(s, o, &ref, label); });
   }
   const std::vector<RunResult> results = RunInTurns(args.repeats, runs);
   for (std::size_t i = 0; i < slacks_m.size(); ++i) {
@@ -843,12 +826,12 @@ std::vector<RunResult> RunScalingImplementations(const Scenario& s, const Refere
   for (const char* method : {"octree", "naive", "grid"}) {
     MonitorOptions o = base;
     ParseBroadPhaseMethod(method, &o.broad_phase.method);
-    results.push_back(RunMonitor(s, o, 1, &ref, method));
+    results.push_back(RunMonitor(s, o, &ref, method));
   }
 #ifdef ACM_HAVE_PEERS
   for (const auto& [name, factory] : Peers()) {
     if (name == "fcl_sharp" || name == "bullet_rounded") {
-      results.push_back(RunPeer(s, factory, 1, &ref));
+      results.push_back(RunPeer(s, factory, &ref));
     }
   }
 #endif
@@ -888,7 +871,7 @@ void ExperimentStaticScaling(const Args& args, const Scenario& base, std::uint64
         for (const char* method : {"octree", "naive"}) {
           MonitorOptions o = DefaultOptions();
           ParseBroadPhaseMethod(method, &o.broad_phase.method);
-          results.push_back(RunMonitor(s, o, 1, &ref, std::string(method) + " (default slack)"));
+          results.push_back(RunMonitor(s, o, &ref, std::string(method) + " (default slack)"));
         }
       }
       std::printf(" %s +%d boxes (%d primitives, %zu active)\n", s.label.c_str(), added, total,
@@ -1301,8 +1284,10 @@ void ExperimentFidelity(const Args& args, const std::vector<const Scenario*>& sc
       const CylinderModelInfo& info = kCylinderModels[m];
       const Scenario model = MakeModelScenario(args, s, oracle, info);
       const std::string variant = info.variant ? info.variant : "";
-      const RunResult r =
-          RunMonitor(model, DefaultOptions(), args.repeats, nullptr, info.label, variant);
+      const auto run = [&] {
+        return RunMonitor(model, DefaultOptions(), nullptr, info.label, variant);
+      };
+      const RunResult r = RunInTurns(args.repeats, {run}).front();
       std::uint64_t false_pairs = 0, missed_pairs = 0, total = 0;
       for (std::size_t c = 0; c < r.warnings.size(); ++c) {
         OwnerPairs pairs;
@@ -1627,7 +1612,7 @@ int main(int argc, char** argv) {
       InsertAfterKey(s.scene_yaml, "objects", ExtraBoxesYaml(&clutter_rng, 200, true)));
   if (args.Runs("temporal")) {
     if (check_us == 0.0) {
-      check_us = Summarize(RunMonitor(s, DefaultOptions(), 1, nullptr, "octree").t_us).median_us;
+      check_us = Summarize(RunMonitor(s, DefaultOptions(), nullptr, "octree").t_us).median_us;
     }
     Csv csv(args.out_dir + "/temporal.csv",
             "scene,speed_mps,checks_per_s,schedule,cpu_us_per_s,events,missed_events,contacts,"
