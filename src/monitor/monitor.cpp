@@ -159,6 +159,14 @@ struct Monitor::Impl {
                                             // ancestor (joints that move both alike)
   std::vector<double> lever_sums_m;     // per primitive, max_levers + 1 slots: partial sums of
                                         // |delta q| * lever from its link upward
+  Lever* LeversOf(PrimitiveId id) { return &levers[static_cast<std::size_t>(id) * max_levers]; }
+  // Slot k: the motion bound from primitive id's k lowest levers (slot 0 is 0).
+  double* LeverSumsOf(PrimitiveId id) {
+    return &lever_sums_m[static_cast<std::size_t>(id) * (max_levers + 1)];
+  }
+  const double* LeverSumsOf(PrimitiveId id) const {
+    return &lever_sums_m[static_cast<std::size_t>(id) * (max_levers + 1)];
+  }
   bool kinematics_behind = false;       // bounded cycles since: shape_W is at q_kinematics
   double world_edge_m = 0.0;
   CycleReport report;
@@ -271,13 +279,12 @@ struct Monitor::Impl {
   // After TryBoundedCycle's motion bounds for q: how far a and b can have moved relative to
   // each other since q_kinematics (joints above both links' common ancestor move both alike).
   double PairMotionBound(PrimitiveId a, PrimitiveId b) const {
-    const std::size_t stride = static_cast<std::size_t>(max_levers) + 1;
     const int la = carrier[a], lb = carrier[b];
     const int shared = la >= 0 && lb >= 0
                            ? shared_levers[static_cast<std::size_t>(la) * model->link_count() + lb]
                            : 0;
-    return (lever_count[a] > 0 ? lever_sums_m[a * stride + lever_count[a] - shared] : 0.0) +
-           (lever_count[b] > 0 ? lever_sums_m[b * stride + lever_count[b] - shared] : 0.0);
+    return (lever_count[a] > 0 ? LeverSumsOf(a)[lever_count[a] - shared] : 0.0) +
+           (lever_count[b] > 0 ? LeverSumsOf(b)[lever_count[b] - shared] : 0.0);
   }
   // After bounded cycles: the kinematics (shapes, index, kept pairs) brought to q_good, for
   // readers of the shapes and for scene changes.
@@ -663,7 +670,7 @@ void Monitor::Impl::ComputeLevers(PrimitiveId id) {
   // distance from a joint's axis is at most its distance from the joint's origin.
   const double extent_m = MaxDistanceFromPoint(shape_C[id], Eigen::Vector3d::Zero());
   double chain_m = 0.0;
-  Lever* out = &levers[static_cast<std::size_t>(id) * max_levers];
+  Lever* out = LeversOf(id);
   for (int l = link; l > 0; l = model->parent_link(l)) {
     const JointSpec& joint = model->joint(l);
     const int q_index = DrivingQIndex(joint);
@@ -705,12 +712,11 @@ bool Monitor::Impl::TryBoundedCycle(const Eigen::Ref<const Eigen::VectorXd>& q) 
   }
   dq_abs = (q - q_kinematics).cwiseAbs();
   const double slack_m = options.index_slack_m;
-  const std::size_t stride = static_cast<std::size_t>(max_levers) + 1;
   for (PrimitiveId id = 0; id < n; ++id) {
     const int count = lever_count[id];
     if (count == 0) continue;
-    const Lever* l = &levers[static_cast<std::size_t>(id) * max_levers];
-    double* sums = &lever_sums_m[id * stride];
+    const Lever* l = LeversOf(id);
+    double* sums = LeverSumsOf(id);
     for (int k = 0; k < count; ++k) sums[k + 1] = sums[k] + dq_abs[l[k].q_index] * l[k].m_per_unit;
     // Motion since indexed <= motion until the kinematics + motion since; NaN fails.
     if (in_broad_phase[id] && !(disp_m[id] + sums[count] <= slack_m)) return false;
@@ -851,13 +857,12 @@ void Monitor::Impl::ValidateBoundedCycle(std::ostringstream* msg) const {
   std::vector<Eigen::Isometry3d> X(model->link_count());
   model->ComputeLinkPoses(q_good, &X);
   std::vector<Shape> now(shape_W);
-  const std::size_t stride = static_cast<std::size_t>(max_levers) + 1;
   for (PrimitiveId id = 0; id < n; ++id) {
     if (carrier[id] < 0) continue;
     now[id] = TransformShape(X[carrier[id]], shape_C[id]);
     if (lever_count[id] == 0 || !in_broad_phase[id]) continue;
     const double moved_m = MaxPointDisplacement(shape_W[id], now[id]);
-    const double bound_m = lever_sums_m[id * stride + lever_count[id]];
+    const double bound_m = LeverSumsOf(id)[lever_count[id]];
     const double from_ref_m = MaxPointDisplacement(shape_ref_W[id], now[id]);
     if (moved_m > bound_m + BoundMargin(bound_m) ||
         from_ref_m > options.index_slack_m + BoundMargin(options.index_slack_m)) {

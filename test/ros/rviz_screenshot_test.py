@@ -4,7 +4,8 @@ Xvfb with software GL, shows the monitor's markers; with both arms home the warn
 (almost) absent from the screen, with the arms tilted into each other it covers many pixels.
 
 Screenshots: xwd -root | convert. They are kept in ~screenshot_dir (default: a new temporary
-directory, printed) as clear.png and warning.png."""
+directory, printed) as clear.png and warning.png, beside rviz.log and xvfb.log (the output of
+rviz and of Xvfb); a failure message quotes the end of both and rviz's exit status."""
 import os
 import subprocess
 import sys
@@ -32,6 +33,8 @@ MIN_CLEAR_PIXELS = 2000
 START_TIMEOUT_S = 90.0
 SHOT_TIMEOUT_S = 60.0
 POLL_PERIOD_S = 0.5
+TOOL_TIMEOUT_S = 30.0
+LOG_TAIL_LINES = 25
 
 
 def count_colours(rgb):
@@ -61,6 +64,7 @@ class RvizScreenshotTest(unittest.TestCase):
         cls.publisher.start()
         cls.xvfb = None
         cls.rviz = None
+        cls.tool_error = 'none'
         cls.display = cls.start_xvfb()
         cls.start_rviz()
 
@@ -85,41 +89,84 @@ class RvizScreenshotTest(unittest.TestCase):
     @classmethod
     def start_xvfb(cls):
         read_fd, write_fd = os.pipe()
-        cls.xvfb = subprocess.Popen(
-            ['Xvfb', '-displayfd', str(write_fd), '-screen', '0', '%dx%dx24' % (WIDTH, HEIGHT),
-             '-nolisten', 'tcp'], pass_fds=(write_fd,), stdout=subprocess.DEVNULL,
-            stderr=subprocess.DEVNULL)
+        with open(os.path.join(cls.shot_dir, 'xvfb.log'), 'w') as log:
+            cls.xvfb = subprocess.Popen(
+                ['Xvfb', '-displayfd', str(write_fd), '-screen', '0',
+                 '%dx%dx24' % (WIDTH, HEIGHT), '-nolisten', 'tcp'],
+                pass_fds=(write_fd,), stdout=log, stderr=subprocess.STDOUT)
         os.close(write_fd)
         with os.fdopen(read_fd) as f:
             number = f.readline().strip()  # written once the server accepts connections
-        assert number, 'Xvfb did not start'
+        assert number, 'Xvfb did not start\n' + cls.diagnosis()
         return ':' + number
 
     @classmethod
     def start_rviz(cls):
         env = dict(os.environ, DISPLAY=cls.display, LIBGL_ALWAYS_SOFTWARE='1')
         config = os.path.join(rospkg.RosPack().get_path(PACKAGE), 'rviz', 'monitor.rviz')
-        cls.rviz = subprocess.Popen(['rviz', '-d', config, '__name:=acm_test_rviz'], env=env,
-                                    stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        with open(os.path.join(cls.shot_dir, 'rviz.log'), 'w') as log:
+            cls.rviz = subprocess.Popen(['rviz', '-d', config, '__name:=acm_test_rviz'],
+                                        env=env, stdout=log, stderr=subprocess.STDOUT)
+
+    @classmethod
+    def diagnosis(cls):
+        """For failure messages: how rviz and Xvfb stand, the last screenshot tool error, and
+        the end of both programs' output."""
+        lines = []
+        for name, proc in (('rviz', cls.rviz), ('Xvfb', cls.xvfb)):
+            code = None if proc is None else proc.poll()
+            lines.append('%s: %s' % (name, 'not started' if proc is None else
+                                     'running' if code is None else 'exited with %d' % code))
+        lines.append('last screenshot tool error: %s' % cls.tool_error)
+        for log in ('rviz.log', 'xvfb.log'):
+            try:
+                with open(os.path.join(cls.shot_dir, log), errors='replace') as f:
+                    tail = f.readlines()[-LOG_TAIL_LINES:]
+            except OSError as e:
+                tail = ['(unreadable: %s)\n' % e]
+            lines.append('--- the end of %s ---\n%s' % (log, ''.join(tail).rstrip()))
+        return '\n'.join(lines)
+
+    def assert_rviz_running(self):
+        if self.rviz.poll() is not None:
+            self.fail('rviz exited\n' + self.diagnosis())
 
     def wait_rviz_subscribed(self):
         master = rosgraph.Master('/rviz_screenshot_test')
         deadline = time.time() + START_TIMEOUT_S
         while time.time() < deadline:
-            self.assertIsNone(self.rviz.poll(), 'rviz exited early')
+            self.assert_rviz_running()
             _, subscribers, _ = master.getSystemState()
             for topic, nodes in subscribers:
                 if topic == NODE + '/markers' and '/acm_test_rviz' in nodes:
                     return
             time.sleep(POLL_PERIOD_S)
-        self.fail('rviz never subscribed to the markers')
+        self.fail('rviz never subscribed to the markers\n' + self.diagnosis())
 
     def screenshot(self, png_path):
-        xwd = subprocess.run(['xwd', '-root', '-silent', '-display', self.display],
-                             stdout=subprocess.PIPE, timeout=30, check=True).stdout
-        raw = subprocess.run(['convert', 'xwd:-', '-depth', '8', 'rgb:-'], input=xwd,
-                             stdout=subprocess.PIPE, timeout=30, check=True).stdout
-        subprocess.run(['convert', 'xwd:-', png_path], input=xwd, timeout=30, check=True)
+        """The screen's pixels (n x 3 RGB), also saved to png_path; None if xwd or convert
+        failed or timed out (the error is kept for the failure message): a screenshot tool's
+        hiccup on a loaded machine is not what this test examines, so the caller shoots again
+        until its deadline."""
+        def run(args, data=None):
+            return subprocess.run(args, input=data, stdout=subprocess.PIPE,
+                                  stderr=subprocess.PIPE, timeout=TOOL_TIMEOUT_S,
+                                  check=True).stdout
+        try:
+            xwd = run(['xwd', '-root', '-silent', '-display', self.display])
+            raw = run(['convert', 'xwd:-', '-depth', '8', 'rgb:-'], xwd)
+            run(['convert', 'xwd:-', png_path], xwd)
+        except subprocess.CalledProcessError as e:
+            RvizScreenshotTest.tool_error = '%s (stderr: %s)' % (
+                e, e.stderr.decode(errors='replace').strip())
+            return None
+        except subprocess.TimeoutExpired as e:
+            RvizScreenshotTest.tool_error = str(e)
+            return None
+        if len(raw) != WIDTH * HEIGHT * 3:
+            RvizScreenshotTest.tool_error = 'convert gave %d bytes for %dx%d RGB' % (
+                len(raw), WIDTH, HEIGHT)
+            return None
         return numpy.frombuffer(raw, dtype=numpy.uint8).reshape(-1, 3)
 
     def shoot_until(self, name, predicate):
@@ -127,13 +174,18 @@ class RvizScreenshotTest(unittest.TestCase):
         last one."""
         path = os.path.join(self.shot_dir, name + '.png')
         deadline = time.time() + SHOT_TIMEOUT_S
-        counts = (0, 0)
+        counts = None
         while time.time() < deadline:
-            self.assertIsNone(self.rviz.poll(), 'rviz exited')
-            counts = count_colours(self.screenshot(path))
-            if predicate(*counts):
-                break
+            self.assert_rviz_running()
+            pixels = self.screenshot(path)
+            if pixels is not None:
+                counts = count_colours(pixels)
+                if predicate(*counts):
+                    break
             time.sleep(POLL_PERIOD_S)
+        if counts is None:
+            self.fail('no screenshot could be taken in %.0f s\n%s'
+                      % (SHOT_TIMEOUT_S, self.diagnosis()))
         print('rviz_screenshot_test: %s: %d warning-coloured, %d clear-coloured pixels (%s)'
               % (name, counts[0], counts[1], path))
         return counts
@@ -145,16 +197,18 @@ class RvizScreenshotTest(unittest.TestCase):
         self.assertIsNotNone(c.publish_until(lambda: None, lambda r: not r.warnings and not r.stop,
                                              timeout_s=20.0))
         warning, clear = self.shoot_until('clear', lambda w, g: g >= MIN_CLEAR_PIXELS)
-        self.assertGreaterEqual(clear, MIN_CLEAR_PIXELS, 'the clear primitives are not drawn')
+        self.assertGreaterEqual(clear, MIN_CLEAR_PIXELS,
+                                'the clear primitives are not drawn\n' + self.diagnosis())
         self.assertLessEqual(warning, MAX_WARNING_PIXELS_CLEAR,
-                             'warning colour on screen without a warning')
+                             'warning colour on screen without a warning\n' + self.diagnosis())
 
         RvizScreenshotTest.pose = (LEFT_TOWARDS_RIGHT, RIGHT_TOWARDS_LEFT)
         report = c.publish_until(lambda: None, lambda r: len(r.warnings) > 0, timeout_s=20.0)
         self.assertIsNotNone(report, 'no warning report in the warning pose')
         warning, _ = self.shoot_until('warning', lambda w, g: w >= MIN_WARNING_PIXELS)
         self.assertGreaterEqual(warning, MIN_WARNING_PIXELS,
-                                'the warning colour is not on screen during a warning')
+                                'the warning colour is not on screen during a warning\n'
+                                + self.diagnosis())
         print('rviz_screenshot_test: %.1f s from rviz start to the last screenshot'
               % (time.time() - t0))
 
