@@ -6,6 +6,7 @@ Xvfb with software GL, shows the monitor's markers; with both arms home the warn
 Screenshots: xwd -root | convert. They are kept in ~screenshot_dir (default: a new temporary
 directory, printed) as clear.png and warning.png, beside rviz.log and xvfb.log (the output of
 rviz and of Xvfb); a failure message quotes the end of both and rviz's exit status."""
+import http.client
 import os
 import subprocess
 import sys
@@ -13,6 +14,7 @@ import tempfile
 import threading
 import time
 import unittest
+import xmlrpc.client
 
 import numpy
 import rosgraph
@@ -138,7 +140,8 @@ class RvizScreenshotTest(unittest.TestCase):
             self.assert_rviz_running()
             try:
                 _, subscribers, _ = master.getSystemState()
-            except (OSError, rosgraph.MasterException) as e:  # a busy master may drop a call
+            except (OSError, http.client.HTTPException, xmlrpc.client.Error,
+                    rosgraph.MasterException) as e:  # a busy master may drop a call
                 RvizScreenshotTest.retried_error = 'master: %s' % e
                 subscribers = []
             for topic, nodes in subscribers:
