@@ -356,7 +356,6 @@ struct RunResult {
   std::string impl;
   std::vector<double> t_us;            // per timed cycle (cycle 0 of each task excluded)
   std::vector<std::uint8_t> t_task;    // the task of each sample
-  std::vector<double> task_mean_us;    // per task
   std::vector<PairSet> warnings;       // per cycle, last pass
   BroadPhaseCounters counters;         // summed over one pass
   // Summed over the last pass's cycles (CycleReport): index work and narrow-phase work.
@@ -384,7 +383,6 @@ RunResult RunMonitor(const Scenario& s, const MonitorOptions& options, const Ref
                      const std::string& impl, const std::string& variant = "") {
   RunResult r;
   r.impl = impl;
-  r.task_mean_us.assign(s.tasks.size(), 0.0);
   for (std::size_t ti = 0; ti < s.tasks.size(); ++ti) {
     const TaskRun& task = s.tasks[ti];
     Monitor monitor(s.workcell, options);
@@ -407,7 +405,6 @@ RunResult RunMonitor(const Scenario& s, const MonitorOptions& options, const Ref
     for (PrimitiveId id = 0; id < monitor.primitive_count(); ++id) {
       r.active_primitives += monitor.is_active(id);
     }
-    double task_sum = 0;
     for (std::size_t c = 0; c < task.q.size(); ++c) {
       const auto t0 = Clock::now();
       const CycleReport& report = monitor.Update(task.q[c]);
@@ -416,7 +413,6 @@ RunResult RunMonitor(const Scenario& s, const MonitorOptions& options, const Ref
       if (c > 0) {
         r.t_us.push_back(dt);
         r.t_task.push_back(static_cast<std::uint8_t>(ti));
-        task_sum += dt;
       }
       PairSet w;
       for (const Warning& warning : report.warnings) w.push_back({warning.a, warning.b});
@@ -426,39 +422,55 @@ RunResult RunMonitor(const Scenario& s, const MonitorOptions& options, const Ref
       r.candidate_pairs += report.candidate_pairs;
       r.narrow_phase_tests += report.narrow_phase_tests;
     }
-    r.task_mean_us[ti] = task_sum / std::max<std::size_t>(1, task.q.size() - 1);
   }
   CheckAgainst(ref, &r);
   return r;
 }
 
-// Adds a pass of the same implementation to `all`: its per-cycle times are appended and the
-// per-task means taken over every pass; everything else (warnings, counters, brute-force
-// comparison) is the newest pass's.
-void AddPass(RunResult pass, RunResult* all) {
-  pass.t_us.insert(pass.t_us.begin(), all->t_us.begin(), all->t_us.end());
-  pass.t_task.insert(pass.t_task.begin(), all->t_task.begin(), all->t_task.end());
-  std::vector<double> sum_us(pass.task_mean_us.size(), 0.0);
-  std::vector<std::size_t> samples(pass.task_mean_us.size(), 0);
-  for (std::size_t i = 0; i < pass.t_us.size(); ++i) {
-    sum_us[pass.t_task[i]] += pass.t_us[i];
-    ++samples[pass.t_task[i]];
+// The mean per-cycle time of each of `tasks` tasks, over every timed sample of r.
+std::vector<double> TaskMeans(const RunResult& r, std::size_t tasks) {
+  std::vector<double> sum_us(tasks, 0.0);
+  std::vector<std::size_t> samples(tasks, 0);
+  for (std::size_t i = 0; i < r.t_us.size(); ++i) {
+    sum_us[r.t_task[i]] += r.t_us[i];
+    ++samples[r.t_task[i]];
   }
-  for (std::size_t ti = 0; ti < sum_us.size(); ++ti) {
-    pass.task_mean_us[ti] = sum_us[ti] / std::max<std::size_t>(1, samples[ti]);
-  }
-  *all = std::move(pass);
+  for (std::size_t ti = 0; ti < tasks; ++ti) sum_us[ti] /= std::max<std::size_t>(1, samples[ti]);
+  return sum_us;
 }
 
 // `repeats` rounds of one pass of each of `runs` in turn, so that a slow spell of a shared
-// machine falls on every variant alike rather than on the few running at the time.
+// machine falls on every variant alike rather than on the few running at the time. Each result
+// holds the per-cycle times of every pass; everything else (warnings, counters, brute-force
+// comparison) is its last pass's.
 std::vector<RunResult> RunInTurns(int repeats,
                                   const std::vector<std::function<RunResult()>>& runs) {
   std::vector<RunResult> results(runs.size());
   for (int pass = 0; pass < repeats; ++pass) {
-    for (std::size_t i = 0; i < runs.size(); ++i) AddPass(runs[i](), &results[i]);
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+      RunResult next = runs[i]();
+      next.t_us.insert(next.t_us.begin(), results[i].t_us.begin(), results[i].t_us.end());
+      next.t_task.insert(next.t_task.begin(), results[i].t_task.begin(), results[i].t_task.end());
+      results[i] = std::move(next);
+    }
   }
   return results;
+}
+
+// One labelled Monitor configuration of a sweep.
+struct Configuration {
+  std::string label;
+  MonitorOptions options;
+};
+
+// A sweep's configurations, run in turns (RunInTurns); the results are in their order.
+std::vector<RunResult> RunConfigurations(int repeats, const Scenario& s, const Reference& ref,
+                                         const std::vector<Configuration>& configs) {
+  std::vector<std::function<RunResult()>> runs;
+  for (const Configuration& c : configs) {
+    runs.push_back([&s, &ref, &c] { return RunMonitor(s, c.options, &ref, c.label); });
+  }
+  return RunInTurns(repeats, runs);
 }
 
 #ifdef ACM_HAVE_PEERS
@@ -480,14 +492,12 @@ using PeerFactory = std::function<std::unique_ptr<PeerChecker>(
 RunResult RunPeer(const Scenario& s, const PeerFactory& factory, const Reference* ref) {
   RunResult r;
   const Workcell& wc = *s.workcell;
-  r.task_mean_us.assign(s.tasks.size(), 0.0);
   for (std::size_t ti = 0; ti < s.tasks.size(); ++ti) {
     const TaskRun& task = s.tasks[ti];
     WorkcellShapes eval(wc);
     auto peer = factory(PeerPrimitives(wc, eval), TaskCompatibility(wc, task));
     r.impl = peer->name();
     PairSet w;
-    double task_sum = 0;
     for (std::size_t c = 0; c < task.q.size(); ++c) {
       const auto t0 = Clock::now();
       eval.Evaluate(task.q[c]);
@@ -497,11 +507,9 @@ RunResult RunPeer(const Scenario& s, const PeerFactory& factory, const Reference
       if (c > 0) {
         r.t_us.push_back(dt);
         r.t_task.push_back(static_cast<std::uint8_t>(ti));
-        task_sum += dt;
       }
       r.warnings.push_back(w);
     }
-    r.task_mean_us[ti] = task_sum / std::max<std::size_t>(1, task.q.size() - 1);
   }
   CheckAgainst(ref, &r);
   return r;
@@ -699,22 +707,20 @@ void ExperimentSweeps(const Args& args, const Scenario& s, const Reference& ref,
   const std::vector<int> ns = args.quick ? std::vector<int>{1, 2, 5, 10, 20, 40}
                                          : std::vector<int>{1, 2, 3, 4, 5, 6, 8, 10, 12, 15,
                                                             20, 25, 30, 35, 40};
-  std::vector<std::function<RunResult()>> n_runs;
+  std::vector<Configuration> n_configs;
   for (int n : ns) {
-    MonitorOptions o = SeedLoopOptions();
-    o.broad_phase.max_objects_per_leaf = n;
-    n_runs.push_back(
-        [&s, &ref, o, n] { return RunMonitor(s, o, &ref, "octree N=" + std::to_string(n)); });
+    n_configs.push_back({"octree N=" + std::to_string(n), SeedLoopOptions()});
+    n_configs.back().options.broad_phase.max_objects_per_leaf = n;
   }
-  const std::vector<RunResult> n_results = RunInTurns(args.repeats, n_runs);
+  const std::vector<RunResult> n_results = RunConfigurations(args.repeats, s, ref, n_configs);
   for (std::size_t i = 0; i < ns.size(); ++i) {
-    const int n = ns[i];
     const RunResult& r = n_results[i];
     PrintRow(r);
     *missed_total += r.missed;
     const Summary sm = Summarize(r.t_us);
-    n_csv.Row(n, sm.mean_us, sm.median_us, sm.p99_us, r.task_mean_us[0], r.task_mean_us[1],
-              r.task_mean_us[2], double(r.counters.object_node_tests) / s.cycles(),
+    const std::vector<double> task_us = TaskMeans(r, s.tasks.size());
+    n_csv.Row(ns[i], sm.mean_us, sm.median_us, sm.p99_us, task_us[0], task_us[1], task_us[2],
+              double(r.counters.object_node_tests) / s.cycles(),
               double(r.counters.object_object_tests) / s.cycles(), r.missed);
   }
   Csv g_csv(args.out_dir + "/sweep_g.csv",
@@ -722,23 +728,21 @@ void ExperimentSweeps(const Args& args, const Scenario& s, const Reference& ref,
   std::printf("== Figure 7: G swept\n");
   const std::vector<int> gs = args.quick ? std::vector<int>{2, 8, 16, 32, 64}
                                          : std::vector<int>{2, 4, 6, 8, 12, 16, 24, 32, 48, 64};
-  std::vector<std::function<RunResult()>> g_runs;
+  std::vector<Configuration> g_configs;
   for (int g : gs) {
-    MonitorOptions o = SeedLoopOptions();
-    o.broad_phase.method = BroadPhaseMethod::kGrid;
-    o.broad_phase.grid_cells_per_axis = g;
-    g_runs.push_back(
-        [&s, &ref, o, g] { return RunMonitor(s, o, &ref, "grid G=" + std::to_string(g)); });
+    g_configs.push_back({"grid G=" + std::to_string(g), SeedLoopOptions()});
+    g_configs.back().options.broad_phase.method = BroadPhaseMethod::kGrid;
+    g_configs.back().options.broad_phase.grid_cells_per_axis = g;
   }
-  const std::vector<RunResult> g_results = RunInTurns(args.repeats, g_runs);
+  const std::vector<RunResult> g_results = RunConfigurations(args.repeats, s, ref, g_configs);
   for (std::size_t i = 0; i < gs.size(); ++i) {
-    const int g = gs[i];
     const RunResult& r = g_results[i];
     PrintRow(r);
     *missed_total += r.missed;
     const Summary sm = Summarize(r.t_us);
-    g_csv.Row(g, sm.mean_us, sm.median_us, sm.p99_us, r.task_mean_us[0], r.task_mean_us[1],
-              r.task_mean_us[2], r.missed);
+    const std::vector<double> task_us = TaskMeans(r, s.tasks.size());
+    g_csv.Row(gs[i], sm.mean_us, sm.median_us, sm.p99_us, task_us[0], task_us[1], task_us[2],
+              r.missed);
   }
   std::printf("== ablation: each technique switched off\n");
   Csv a_csv(args.out_dir + "/ablation.csv",
@@ -754,15 +758,12 @@ void ExperimentSweeps(const Args& args, const Scenario& s, const Reference& ref,
                       {"inside_node_exit", &BroadPhaseTechniques::inside_node_exit, 13},
                       {"pair_deduplication", &BroadPhaseTechniques::pair_deduplication, 4},
                       {"bounding_box_pretests", &BroadPhaseTechniques::bounding_box_pretests, 80}};
-  std::vector<std::function<RunResult()>> off_runs;
+  std::vector<Configuration> off_configs;
   for (const Off& off : offs) {
-    MonitorOptions o = SeedLoopOptions();
-    if (off.flag != nullptr) o.broad_phase.techniques.*(off.flag) = false;
-    off_runs.push_back([&s, &ref, o, &off] {
-      return RunMonitor(s, o, &ref, std::string("without ") + off.name);
-    });
+    off_configs.push_back({std::string("without ") + off.name, SeedLoopOptions()});
+    if (off.flag != nullptr) off_configs.back().options.broad_phase.techniques.*(off.flag) = false;
   }
-  const std::vector<RunResult> off_results = RunInTurns(args.repeats, off_runs);
+  const std::vector<RunResult> off_results = RunConfigurations(args.repeats, s, ref, off_configs);
   double base_us = 0;
   for (std::size_t i = 0; i < std::size(offs); ++i) {
     const Off& off = offs[i];
@@ -790,16 +791,15 @@ void ExperimentSlack(const Args& args, const Scenario& s, const Reference& ref,
   const double default_slack_m = DefaultOptions().index_slack_m;
   std::printf("== index slack swept (default %.3f m)\n", default_slack_m);
   const std::vector<double> slacks_m = {0.0, 0.01, 0.02, 0.05, 0.1, 0.2, 0.4, 0.8};
-  std::vector<std::function<RunResult()>> runs;
+  std::vector<Configuration> configs;
   for (const double slack_m : slacks_m) {
-    MonitorOptions o = DefaultOptions();
-    o.broad_phase.method = BroadPhaseMethod::kOctree;
-    o.index_slack_m = slack_m;
     std::ostringstream name;
     name << "slack " << slack_m << " m";
-    runs.push_back([&s, &ref, o, label = name.str()] { return RunMonitor(s, o, &ref, label); });
+    configs.push_back({name.str(), DefaultOptions()});
+    configs.back().options.broad_phase.method = BroadPhaseMethod::kOctree;
+    configs.back().options.index_slack_m = slack_m;
   }
-  const std::vector<RunResult> results = RunInTurns(args.repeats, runs);
+  const std::vector<RunResult> results = RunConfigurations(args.repeats, s, ref, configs);
   for (std::size_t i = 0; i < slacks_m.size(); ++i) {
     const double slack_m = slacks_m[i];
     const RunResult& r = results[i];
