@@ -112,8 +112,8 @@ class RvizScreenshotTest(unittest.TestCase):
 
     @classmethod
     def diagnosis(cls):
-        """For failure messages: how rviz and Xvfb stand, the last screenshot tool error, and
-        the end of both programs' output."""
+        """For failure messages: how rviz and Xvfb stand, the last error retried, and the end
+        of both programs' output."""
         lines = []
         for name, proc in (('rviz', cls.rviz), ('Xvfb', cls.xvfb)):
             code = None if proc is None else proc.poll()
@@ -161,8 +161,7 @@ class RvizScreenshotTest(unittest.TestCase):
                                   check=True).stdout
         try:
             xwd = run(['xwd', '-root', '-silent', '-display', self.display])
-            raw = run(['convert', 'xwd:-', '-depth', '8', 'rgb:-'], xwd)
-            run(['convert', 'xwd:-', png_path], xwd)
+            raw = run(['convert', 'xwd:-', '-depth', '8', '-write', png_path, 'rgb:-'], xwd)
         except subprocess.CalledProcessError as e:
             RvizScreenshotTest.retried_error = '%s (stderr: %s)' % (
                 e, e.stderr.decode(errors='replace').strip())
