@@ -1201,6 +1201,9 @@ const Shape& Monitor::shape_W(PrimitiveId id) const {
   return impl_->shape_W[id];
 }
 bool Monitor::is_active(PrimitiveId id) const { return impl_->in_broad_phase[id] != 0; }
+bool Monitor::AreCompatibleNow(PrimitiveId a, PrimitiveId b) const {
+  return impl_->compatible.AreCompatible(a, b);
+}
 void Monitor::CollectIndexCells(std::vector<IndexCell>* cells) const {
   impl_->broad_phase->CollectCells(cells);
 }

@@ -123,6 +123,9 @@ class Monitor {
   /// Whether primitive `id` is currently part of the checked scene (false for inactive model
   /// variants and primitives no moving part can reach).
   bool is_active(PrimitiveId id) const;
+  /// Whether the pair (a, b) is excused right now: compatible at start-up, or a held object and
+  /// its holder, or a declared grasp target and its link.
+  bool AreCompatibleNow(PrimitiveId a, PrimitiveId b) const;
   /// Leaf cells of the spatial index (empty when the broad phase has no cells).
   void CollectIndexCells(std::vector<IndexCell>* cells) const;
   /// Counters accumulated over the whole run.
