@@ -306,11 +306,7 @@ Monitor::Impl::Impl(std::shared_ptr<const Workcell> wc, const MonitorOptions& op
   model = &workcell->kinematics;
   n = static_cast<std::uint32_t>(workcell->primitives.size());
   options.broad_phase.world_W = workcell->world_W;
-  // The farthest an indexed box moves in one index update: the slack it may already have used
-  // plus one cycle at the speed bound. Cells no smaller keep the seed's incremental update (a
-  // move within one cell of the old cells) the common case.
-  options.broad_phase.min_cell_size_m =
-      options.max_speed_mps * options.cycle_period_s + options.index_slack_m;
+  options.broad_phase.min_cell_size_m = MinCellSize_m(options);
   options.broad_phase.reserve_primitives = std::max(options.broad_phase.reserve_primitives, n);
   world_edge_m = (workcell->world_W.max_W - workcell->world_W.min_W).maxCoeff();
   speed_tol_gain_s =

@@ -14,7 +14,7 @@
 #include "arm_collision_monitor/kinematics/urdf_conversions.h"
 #include "arm_collision_monitor/scene/workcell.h"
 #include "urdf_collision.h"
-#include "yaml_fields.h"
+#include "arm_collision_monitor/scene/yaml_fields.h"
 
 namespace arm_collision_monitor {
 namespace {

@@ -1,4 +1,4 @@
-#include "yaml_fields.h"
+#include "arm_collision_monitor/scene/yaml_fields.h"
 
 #include <cmath>
 #include <fstream>

@@ -661,11 +661,12 @@ double ExperimentTasks(const Args& args, const Scenario& s, const Reference& ref
 // split or merge over the three tasks (the seed's loop, index slack 0).
 void ExperimentOctreeStatistics(const Args& args, const Scenario& s) {
   const Workcell& wc = *s.workcell;
-  const MonitorOptions mo = DefaultOptions();
+  MonitorOptions mo = DefaultOptions();
+  mo.index_slack_m = 0.0;
   BroadPhaseOptions o = mo.broad_phase;
   o.method = BroadPhaseMethod::kOctree;
   o.world_W = wc.world_W;
-  o.min_cell_size_m = mo.max_speed_mps * mo.cycle_period_s;
+  o.min_cell_size_m = MinCellSize_m(mo);
   auto bp = MakeBroadPhase(o);
   auto* octree = dynamic_cast<OctreeBroadPhase*>(bp.get());
   WorkcellShapes eval(wc);

@@ -1,4 +1,4 @@
-// LoadWorkcell and LoadMonitorOptions: the bundled workcell, a third-party-style URDF, and every
+// LoadWorkcell: the bundled workcell, a third-party-style URDF, and every
 // kind of bad input, each rejected with a message naming the file and the element.
 #include <gtest/gtest.h>
 
@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "arm_collision_monitor/scene/workcell.h"
+#include "load_error_expect.h"
 
 namespace arm_collision_monitor {
 namespace {
@@ -14,33 +15,12 @@ namespace {
 const std::string kSource = ACM_SOURCE_DIR;
 const std::string kUrdf = kSource + "/urdf/workcell.urdf";
 const std::string kScene = kSource + "/config/scene.yaml";
-const std::string kMonitorYaml = kSource + "/config/monitor.yaml";
 const std::string kData = kSource + "/test/data/";
 const std::string kArmUrdf = kData + "three_link_arm.urdf";
 const std::string kArmMeshUrdf = kData + "three_link_arm_mesh.urdf";
 
 // A world cube for the small scenes written by the tests.
 const std::string kWorldLine = "world: {center_m: [0, 0, 1], edge_m: 4}\n";
-
-std::string WriteFile(const std::string& name, const std::string& text) {
-  const std::string path = ::testing::TempDir() + "acm_scene_test_" + name;
-  std::ofstream(path) << text;
-  return path;
-}
-
-// Expects LoadError whose message contains every one of `parts`.
-template <typename Load>
-void ExpectLoadError(Load load, const std::vector<std::string>& parts) {
-  try {
-    load();
-    ADD_FAILURE() << "expected a LoadError mentioning " << parts.front();
-  } catch (const LoadError& e) {
-    const std::string message = e.what();
-    for (const std::string& part : parts) {
-      EXPECT_NE(message.find(part), std::string::npos) << "'" << part << "' not in: " << message;
-    }
-  }
-}
 
 // Writes a copy of the three-link arm's URDF with the first `from` replaced by `to`; returns
 // its path.
@@ -51,12 +31,12 @@ std::string WriteEditedArmUrdf(const std::string& name, const std::string& from,
   const std::size_t at = text.find(from);
   EXPECT_NE(at, std::string::npos) << "'" << from << "' not in " << kArmUrdf;
   if (at != std::string::npos) text.replace(at, from.size(), to);
-  return WriteFile(name, text);
+  return WriteTempFile(name, text);
 }
 
 void ExpectSceneError(const std::string& urdf, const std::string& scene_text,
                       const std::vector<std::string>& parts) {
-  const std::string path = WriteFile("scene.yaml", scene_text);
+  const std::string path = WriteTempFile("scene.yaml", scene_text);
   std::vector<std::string> all = parts;
   all.push_back(path);
   ExpectLoadError([&] { LoadWorkcell(urdf, path); }, all);
@@ -169,55 +149,6 @@ TEST(SceneLoader, BundledCompatibility) {
   EXPECT_FALSE(Compatible(w, "left_link7", "front_table_top"));
 }
 
-TEST(SceneLoader, BundledMonitorOptions) {
-  const MonitorOptions o = LoadMonitorOptions(kMonitorYaml);
-  EXPECT_EQ(o.broad_phase.method, BroadPhaseMethod::kOctree);
-  EXPECT_EQ(o.broad_phase.max_objects_per_leaf, 10);
-  EXPECT_EQ(o.tolerance_m, 0.0305);
-  EXPECT_EQ(o.max_speed_mps, 0.61);
-  EXPECT_EQ(o.cycle_period_s, 0.05);
-  EXPECT_NEAR(o.broad_phase.min_cell_size_m, 0.0305, 1e-15);
-  EXPECT_FALSE(o.speed_scaled_tolerance);
-  EXPECT_FALSE(o.auto_broad_phase);
-  EXPECT_EQ(o.index_slack_m, kDefaultIndexSlack_m);
-  EXPECT_EQ(o.fixed_frame, "world");
-}
-
-TEST(SceneLoader, MonitorOptionsOverridesAndErrors) {
-  const MonitorOptions o = LoadMonitorOptions(
-      WriteFile("monitor.yaml",
-                "broad_phase: grid\ngrid_cells_per_axis: 8\nmax_speed_mps: 1.0\n"
-                "cycle_period_s: 0.01\ntechniques: {inside_node_exit: false}\nindex_slack_m: 0\n"));
-  EXPECT_EQ(o.index_slack_m, 0.0);
-  EXPECT_EQ(o.broad_phase.method, BroadPhaseMethod::kGrid);
-  EXPECT_EQ(o.broad_phase.grid_cells_per_axis, 8);
-  EXPECT_NEAR(o.broad_phase.min_cell_size_m, 0.01, 1e-15);
-  EXPECT_FALSE(o.broad_phase.techniques.inside_node_exit);
-  EXPECT_TRUE(o.broad_phase.techniques.directional_neighbours);
-
-  const struct {
-    std::string text;
-    std::vector<std::string> parts;
-  } bad[] = {
-      {"broad_phase: kdtree\n", {"broad_phase", "kdtree", "octree"}},
-      {"max_speed_mps: -1\n", {"max_speed_mps", "> 0"}},
-      {"index_slack_m: -0.1\n", {"index_slack_m", ">= 0"}},
-      {"cycle_period_s: .nan\n", {"cycle_period_s", "finite"}},
-      {"max_objects_per_leaf: 0\n", {"max_objects_per_leaf", "positive integer"}},
-      {"tolerence_m: 0.03\n", {"unknown key 'tolerence_m'"}},
-      {"speed_scaled_tolerance: maybe\n", {"speed_scaled_tolerance", "true or false"}},
-      {"max_speed_mps: [1, 2\n", {"malformed YAML"}},
-  };
-  for (const auto& b : bad) {
-    const std::string path = WriteFile("monitor_bad.yaml", b.text);
-    std::vector<std::string> parts = b.parts;
-    parts.push_back(path);
-    ExpectLoadError([&] { LoadMonitorOptions(path); }, parts);
-  }
-  ExpectLoadError([&] { LoadMonitorOptions(kData + "no_such_monitor.yaml"); },
-                  {"no_such_monitor.yaml", "cannot open"});
-}
-
 // ------------------------------------------------------------------ third-party URDFs ------
 
 TEST(SceneLoader, ThirdPartyCylinderArmLoads) {
@@ -253,7 +184,7 @@ TEST(SceneLoader, ThirdPartyCylinderArmLoads) {
 }
 
 TEST(SceneLoader, MovingLinksOutsideEveryArmKeepTheDefaultTolerance) {
-  const Workcell w = LoadWorkcell(kArmUrdf, WriteFile("no_arms.yaml", kWorldLine),
+  const Workcell w = LoadWorkcell(kArmUrdf, WriteTempFile("no_arms.yaml", kWorldLine),
                                   /*default_arm_tolerance_m=*/0.04);
   EXPECT_EQ(w.primitives[w.FindPrimitive("base_link")].tolerance_m, 0.0);  // fixed to the root
   EXPECT_EQ(w.primitives[w.FindPrimitive("upper_arm")].tolerance_m, 0.04);
@@ -277,14 +208,14 @@ TEST(SceneLoader, MeshWorksThroughAnOverride) {
   EXPECT_TRUE(w.Validate(&why)) << why;
   // Ignoring the link works as well.
   const std::string ignore =
-      WriteFile("ignore.yaml", kWorldLine + "links:\n  forearm: {ignore: true}\n");
+      WriteTempFile("ignore.yaml", kWorldLine + "links:\n  forearm: {ignore: true}\n");
   EXPECT_LT(LoadWorkcell(kArmMeshUrdf, ignore).FindPrimitive("forearm"), 0);
 }
 
 TEST(SceneLoader, LinkOverridesRadiusEndpointsAndTolerance) {
   const Workcell w = LoadWorkcell(
       kArmUrdf,
-      WriteFile("overrides.yaml", kWorldLine + "arms: [{name: arm, root_link: upper_arm}]\n"
+      WriteTempFile("overrides.yaml", kWorldLine + "arms: [{name: arm, root_link: upper_arm}]\n"
                                                "links:\n"
                                                "  upper_arm: {radius_m: 0.07, tolerance_m: 0.05}\n"
                                                "  wrist: {p0_m: [0, 0, 0], p1_m: [0.1, 0, 0]}\n"));
@@ -307,11 +238,11 @@ TEST(SceneLoader, CapsuleIdiomNeedsMatchingSpheres) {
       "</collision>\n"
       "    <collision><origin xyz=\"0 0 1\"/><geometry><sphere radius=\"0.1\"/></geometry>"
       "</collision>\n  </link>\n</robot>\n";
-  const std::string scene = WriteFile("idiom.yaml", kWorldLine);
+  const std::string scene = WriteTempFile("idiom.yaml", kWorldLine);
   auto with_radius = [&](const std::string& radius) {
     std::string text = link_template;
     text.replace(text.find("RADIUS"), 6, radius);
-    return LoadWorkcell(WriteFile("idiom_" + radius + ".urdf", text), scene);
+    return LoadWorkcell(WriteTempFile("idiom_" + radius + ".urdf", text), scene);
   };
   const Workcell merged = with_radius("0.1");
   ASSERT_EQ(merged.primitives.size(), 1u);
@@ -328,7 +259,7 @@ TEST(SceneLoader, PairsOverlappingInEveryConfigurationAreReported) {
   const std::string scene_text = kWorldLine +
                                  "arms: [{name: arm, root_link: upper_arm}]\n"
                                  "links: {upper_arm: {radius_m: 0.5}}\n";
-  const Workcell w = LoadWorkcell(kArmUrdf, WriteFile("always.yaml", scene_text));
+  const Workcell w = LoadWorkcell(kArmUrdf, WriteTempFile("always.yaml", scene_text));
   ASSERT_FALSE(w.warnings.empty());
   bool found = false;
   for (const std::string& warning : w.warnings) {
@@ -338,7 +269,7 @@ TEST(SceneLoader, PairsOverlappingInEveryConfigurationAreReported) {
   EXPECT_TRUE(found) << w.warnings.front();
   // Declaring them compatible silences it.
   const Workcell excused = LoadWorkcell(
-      kArmUrdf, WriteFile("always_excused.yaml",
+      kArmUrdf, WriteTempFile("always_excused.yaml",
                           scene_text + "compatible: [[upper_arm, wrist], [upper_arm, finger_a], "
                                        "[upper_arm, finger_b]]\n"));
   for (const std::string& warning : excused.warnings) {
@@ -348,7 +279,7 @@ TEST(SceneLoader, PairsOverlappingInEveryConfigurationAreReported) {
 
 TEST(SceneLoader, PrimitivesOutsideTheWorldInTheHomePoseAreReported) {
   const Workcell w = LoadWorkcell(
-      kArmUrdf, WriteFile("small_world.yaml", "world: {center_m: [0, 0, 0.2], edge_m: 0.6}\n"));
+      kArmUrdf, WriteTempFile("small_world.yaml", "world: {center_m: [0, 0, 0.2], edge_m: 0.6}\n"));
   bool found = false;
   for (const std::string& warning : w.warnings) {
     found |= warning.find("'upper_arm' with its tolerance is not inside the world cube") !=
@@ -359,7 +290,7 @@ TEST(SceneLoader, PrimitivesOutsideTheWorldInTheHomePoseAreReported) {
 
 TEST(SceneLoader, JointLimitOverrides) {
   const Workcell w = LoadWorkcell(
-      kArmUrdf, WriteFile("limits.yaml", kWorldLine + "joint_limits: {elbow: {lower: -1.0}}\n"));
+      kArmUrdf, WriteTempFile("limits.yaml", kWorldLine + "joint_limits: {elbow: {lower: -1.0}}\n"));
   const JointSpec& elbow = w.kinematics.joint(w.kinematics.FindJointChildLink("elbow"));
   EXPECT_EQ(elbow.lower, -1.0);
   EXPECT_EQ(elbow.upper, 2.0);

@@ -13,6 +13,7 @@
 
 #include "arm_collision_monitor/broadphase/broad_phase.h"
 #include "arm_collision_monitor/geometry/primitives.h"
+#include "arm_collision_monitor/monitor/monitor_options.h"
 #include "arm_collision_monitor/scene/workcell.h"
 
 namespace arm_collision_monitor {

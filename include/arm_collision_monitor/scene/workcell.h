@@ -1,6 +1,6 @@
 // The workcell model, loaded once at start-up and immutable afterwards (Model/Data split): the
 // arms' kinematics (from a URDF), every primitive with its owner and tolerance, the
-// environment (from a scene YAML file) and the compatibility matrix; plus the Monitor's options.
+// environment (from a scene YAML file) and the compatibility matrix.
 #pragma once
 
 #include <string>
@@ -98,38 +98,10 @@ struct Workcell {
 /// The shape `shape_L`, given in frame L, expressed in W (rigid transform X_WL).
 Shape TransformShape(const Eigen::Isometry3d& X_WL, const Shape& shape_L);
 
-/// The Monitor's options (LoadMonitorOptions; format: config/monitor.yaml).
-struct MonitorOptions {
-  /// The broad phase; world_W and min_cell_size_m are filled in by the Monitor from the
-  /// workcell and from max_speed_mps * cycle_period_s + index_slack_m.
-  BroadPhaseOptions broad_phase;
-  /// Let the Monitor pick the faster of octree and naive for the scene at start-up.
-  bool auto_broad_phase = false;
-  double max_speed_mps = 0.61;   ///< 24 in/s: bounds the per-cycle motion
-  double cycle_period_s = 0.05;  ///< 20 Hz
-  /// Optional speed-dependent tolerance (ISO/TS 15066 protective separation distance): each
-  /// moving primitive's tolerance grows by its current speed times (reaction + stopping time).
-  bool speed_scaled_tolerance = false;
-  double reaction_time_s = 0.1;
-  double stopping_time_s = 0.02;
-  /// Slack of the index (m): a moving primitive is indexed by its box grown by this much, and
-  /// re-indexed only once a point of it has moved farther than this since it was last indexed;
-  /// candidate pairs whose last distance, less both primitives' motion since, still exceeds
-  /// their threshold skip the narrow phase. 0: every moved primitive is re-indexed and every
-  /// candidate pair tested each cycle (the seed's loop). The warnings are the same either way.
-  double index_slack_m = kDefaultIndexSlack_m;
-  /// Default tolerance of an arm whose scene entry gives none (pass it to LoadWorkcell).
-  double tolerance_m = kDefaultArmTolerance_m;
-  /// The frame reports are expressed in (the URDF root link).
-  std::string fixed_frame = "world";
-};
-
 /// Loads a URDF and a scene YAML file into a workcell (format: comment block at the top of
-/// config/scene.yaml). `default_arm_tolerance_m` applies to arms whose scene entry gives no
-/// tolerance_m. Throws LoadError naming the file, the element and what was expected.
+/// config/scene.yaml). `default_arm_tolerance_m` (MonitorOptions::tolerance_m) applies to arms
+/// whose scene entry gives no tolerance_m. Throws LoadError naming the file, the element and what was expected.
 Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_path,
                       double default_arm_tolerance_m = kDefaultArmTolerance_m);
-/// Loads Monitor options from a YAML file. Throws LoadError.
-MonitorOptions LoadMonitorOptions(const std::string& path);
 
 }  // namespace arm_collision_monitor

@@ -1,6 +1,6 @@
 // LoadMonitorOptions: config/monitor.yaml, validated once at start-up.
-#include "arm_collision_monitor/scene/workcell.h"
-#include "yaml_fields.h"
+#include "arm_collision_monitor/monitor/monitor_options.h"
+#include "arm_collision_monitor/scene/yaml_fields.h"
 
 namespace arm_collision_monitor {
 
@@ -62,8 +62,6 @@ MonitorOptions LoadMonitorOptions(const std::string& path) {
   ReadIfPresent(root, "index_slack_m", top, yaml_fields::ReadNonNegativeDouble,
                 &options.index_slack_m);
   ReadIfPresent(root, "fixed_frame", top, yaml_fields::ReadName, &options.fixed_frame);
-  // The farthest a primitive moves in one cycle: the octree's smallest cell (seed, section 3).
-  options.broad_phase.min_cell_size_m = options.max_speed_mps * options.cycle_period_s;
   return options;
 }
 

@@ -1,0 +1,48 @@
+// The Monitor's options (format: config/monitor.yaml) and the values derived from them.
+#pragma once
+
+#include <string>
+
+#include "arm_collision_monitor/broadphase/broad_phase_factory.h"
+#include "arm_collision_monitor/core/constants.h"
+
+namespace arm_collision_monitor {
+
+/// The Monitor's options (LoadMonitorOptions; format: config/monitor.yaml).
+struct MonitorOptions {
+  /// The broad phase; world_W and min_cell_size_m are filled in by the Monitor from the
+  /// workcell and from MinCellSize_m().
+  BroadPhaseOptions broad_phase;
+  /// Let the Monitor pick the faster of octree and naive for the scene at start-up.
+  bool auto_broad_phase = false;
+  double max_speed_mps = 0.61;   ///< 24 in/s: bounds the per-cycle motion
+  double cycle_period_s = 0.05;  ///< 20 Hz
+  /// Optional speed-dependent tolerance (ISO/TS 15066 protective separation distance): each
+  /// moving primitive's tolerance grows by its current speed times (reaction + stopping time).
+  bool speed_scaled_tolerance = false;
+  double reaction_time_s = 0.1;
+  double stopping_time_s = 0.02;
+  /// Slack of the index (m): a moving primitive is indexed by its box grown by this much, and
+  /// re-indexed only once a point of it has moved farther than this since it was last indexed;
+  /// candidate pairs whose last distance, less both primitives' motion since, still exceeds
+  /// their threshold skip the narrow phase. 0: every moved primitive is re-indexed and every
+  /// candidate pair tested each cycle (the seed's loop). The warnings are the same either way.
+  double index_slack_m = kDefaultIndexSlack_m;
+  /// Default tolerance of an arm whose scene entry gives none (pass it to LoadWorkcell).
+  double tolerance_m = kDefaultArmTolerance_m;
+  /// The frame reports are expressed in (the URDF root link).
+  std::string fixed_frame = "world";
+};
+
+/// The octree's and the grid's smallest cell (m): the farthest an indexed box moves in one
+/// index update, i.e. the slack it may already have used plus one cycle at the speed bound
+/// (seed, section 3). Cells no smaller keep the seed's incremental update (a move within one cell
+/// of the old cells) the common case.
+inline double MinCellSize_m(const MonitorOptions& options) {
+  return options.max_speed_mps * options.cycle_period_s + options.index_slack_m;
+}
+
+/// Loads Monitor options from a YAML file. Throws LoadError naming the file and the element.
+MonitorOptions LoadMonitorOptions(const std::string& path);
+
+}  // namespace arm_collision_monitor
