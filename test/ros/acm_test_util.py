@@ -20,9 +20,26 @@ HOME = [0.0] * 7
 # cross the gap between them, so left-right warnings are certain.
 LEFT_TOWARDS_RIGHT = [-1.5708, 0.5, 0.0, 0.0, 0.0, 0.0, 0.0]
 RIGHT_TOWARDS_LEFT = [1.5708, 0.5, 0.0, 0.0, 0.0, 0.0, 0.0]
+# Left arm yawed towards the front box (-0.525 rad), shoulder, elbow and wrist pitches putting
+# the gripper (left_link7) on the box top, pointing down: they touch.
+LEFT_AT_FRONT_BOX = [-0.525, 0.849, 0.0, 1.074, 0.0, 1.219, 0.0]
+# Its mirror image: the right gripper on the same spot (touching the box and the left gripper).
+RIGHT_AT_FRONT_BOX = [0.525, 0.849, 0.0, 1.074, 0.0, 1.219, 0.0]
 
 POLL_PERIOD_S = 0.02
 REPUBLISH_PERIOD_S = 0.05
+
+
+def warning_pairs(report):
+    """The report's warnings as a set of (owner, owner) pairs, each sorted by name."""
+    return set(tuple(sorted((w.owner_a, w.owner_b))) for w in report.warnings)
+
+
+def describe_warnings(report):
+    """For failure messages: each warning's owners, primitives and distance."""
+    return ', '.join('%s (%s) - %s (%s) at %.3f m' % (w.owner_a, w.primitive_a_name, w.owner_b,
+                                                        w.primitive_b_name, w.distance_m)
+                     for w in report.warnings) or 'none'
 
 
 def joint_state(names, positions, stamp=None):

@@ -16,15 +16,10 @@ from arm_collision_monitor.msg import MonitorReport
 from arm_collision_monitor.srv import (AttachObject, CheckJointState, DetachObject,
                                        SetGraspTarget)
 
-from acm_test_util import (HOME, LEFT_JOINTS, LEFT_TOWARDS_RIGHT, RIGHT_JOINTS,
-                           RIGHT_TOWARDS_LEFT, MonitorClient, joint_state)
+from acm_test_util import (HOME, LEFT_AT_FRONT_BOX, LEFT_JOINTS, LEFT_TOWARDS_RIGHT,
+                           RIGHT_JOINTS, RIGHT_TOWARDS_LEFT, MonitorClient, joint_state)
 
 NODE = '/arm_collision_monitor'
-
-
-# Left arm yawed towards the front box (-0.525 rad), shoulder, elbow and wrist pitches putting
-# the gripper about 5 cm above the box top, pointing down.
-LEFT_AT_FRONT_BOX = [-0.525, 0.849, 0.0, 1.074, 0.0, 1.219, 0.0]
 
 
 def left_only(positions, stamp=None, names=None):

@@ -1,0 +1,117 @@
+#!/usr/bin/python3
+"""A frame-bound object follows its TF frame (test/ros/frame_bound_object.test).
+
+config/scene.yaml binds the box `camera` (0.12 x 0.2 x 0.1 m, its centre at the frame's origin)
+to the TF frame camera_link. This node broadcasts that frame while it holds both arms home (on
+/tf as tf2_msgs/TFMessage, what tf2_ros's TransformBroadcaster sends: Debian's python3-tf2-ros
+is not among the package's dependencies). At the scene's pose the cell is clear; moved onto the
+left arm's column the camera must warn against a left-arm link, its closest point on the camera
+near the new pose; moved back, the warning must clear."""
+import math
+import sys
+import unittest
+
+import rospy
+import rostest
+from geometry_msgs.msg import Quaternion, TransformStamped
+from tf2_msgs.msg import TFMessage
+
+from arm_collision_monitor.msg import MonitorReport
+
+from acm_test_util import HOME, MonitorClient, describe_warnings
+
+NODE = '/arm_collision_monitor'
+OBJECT = 'camera'
+FRAME = 'camera_link'
+# The scene's pose of the camera (config/scene.yaml): above the front table, far from the arms.
+SCENE_XYZ_M = (1.6, 0.0, 2.4)
+SCENE_RPY = (0.0, 0.6, 0.0)
+# On the left arm's column (the left base is at x 0, y 0.55, z 0.8; home points straight up),
+# at the height of left_link4 (z 1.7 .. 2.0).
+IN_LEFT_ARM_XYZ_M = (0.0, 0.55, 1.85)
+# The camera's half diagonal (0.06, 0.1, 0.05 m): its closest point lies within this of its frame.
+CAMERA_HALF_DIAGONAL_M = 0.127
+TIMEOUT_S = 10.0
+
+
+def quaternion_from_rpy(roll, pitch, yaw):
+    """The rotation Rz(yaw) Ry(pitch) Rx(roll) (URDF's rpy convention) as a quaternion."""
+    cr, sr = math.cos(roll / 2), math.sin(roll / 2)
+    cp, sp = math.cos(pitch / 2), math.sin(pitch / 2)
+    cy, sy = math.cos(yaw / 2), math.sin(yaw / 2)
+    return Quaternion(x=sr * cp * cy - cr * sp * sy, y=cr * sp * cy + sr * cp * sy,
+                      z=cr * cp * sy - sr * sp * cy, w=cr * cp * cy + sr * sp * sy)
+
+
+def camera_warnings(report):
+    return [w for w in report.warnings if OBJECT in (w.owner_a, w.owner_b)]
+
+
+class FrameBoundObjectTest(unittest.TestCase):
+
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node('frame_bound_object_test')
+        cls.client = MonitorClient(NODE)
+        cls.tf_pub = rospy.Publisher('/tf', TFMessage, queue_size=100)
+        assert cls.client.wait_connected(), 'the monitor never subscribed to its input topics'
+
+    def send(self, xyz_m, rpy):
+        """One camera_link transform and one home pose of both arms (the input that makes the
+        monitor cycle and read the frame)."""
+        t = TransformStamped()
+        t.header.stamp = rospy.Time.now()
+        t.header.frame_id = 'world'
+        t.child_frame_id = FRAME
+        t.transform.translation.x, t.transform.translation.y, t.transform.translation.z = xyz_m
+        t.transform.rotation = quaternion_from_rpy(*rpy)
+        self.tf_pub.publish(TFMessage(transforms=[t]))
+        self.client.publish_pose(HOME, HOME)
+
+    def wait_clear(self, what):
+        seen = []
+
+        def clear(report):
+            seen.append(report)
+            return (report.input_status == MonitorReport.INPUT_OK and not report.warnings and
+                    not report.stop)
+        report = self.client.publish_until(lambda: self.send(SCENE_XYZ_M, SCENE_RPY), clear,
+                                           TIMEOUT_S)
+        self.assertIsNotNone(report, '%s: no clear report with the camera at its scene pose; '
+                             'last seen: %s' % (what, self.describe(seen)))
+        return report
+
+    @staticmethod
+    def describe(seen):
+        if not seen:
+            return 'no report at all'
+        r = seen[-1]
+        return 'input_status %d, stop %s (%s), warnings: %s' % (
+            r.input_status, r.stop, r.stop_reason, describe_warnings(r))
+
+    def test_camera_frame_moves_into_the_arm_and_away(self):
+        self.wait_clear('before')
+        seen = []
+
+        def warned(report):
+            seen.append(report)
+            return any(w.owner_a.startswith('left_link') or w.owner_b.startswith('left_link')
+                       for w in camera_warnings(report))
+        report = self.client.publish_until(lambda: self.send(IN_LEFT_ARM_XYZ_M, (0.0, 0.0, 0.0)),
+                                           warned, TIMEOUT_S)
+        self.assertIsNotNone(report, 'no camera - left arm warning with camera_link moved into '
+                             'the left arm; last seen: %s' % self.describe(seen))
+        self.assertTrue(report.stop, 'a warning without a stop request')
+        for w in camera_warnings(report):
+            on_camera = w.point_a if w.owner_a == OBJECT else w.point_b
+            offset = [on_camera.x - IN_LEFT_ARM_XYZ_M[0], on_camera.y - IN_LEFT_ARM_XYZ_M[1],
+                      on_camera.z - IN_LEFT_ARM_XYZ_M[2]]
+            self.assertLessEqual(sum(d * d for d in offset) ** 0.5, CAMERA_HALF_DIAGONAL_M,
+                                 'the closest point on the camera %s is not on the box at the '
+                                 'frame\'s new pose' % (on_camera,))
+        report = self.wait_clear('after moving the frame away')
+        self.assertEqual(camera_warnings(report), [])
+
+
+if __name__ == '__main__':
+    rostest.rosrun('arm_collision_monitor', 'frame_bound_object', FrameBoundObjectTest, sys.argv)
