@@ -1,7 +1,9 @@
 #!/usr/bin/python3
 """Headless rviz check (test/ros/rviz_screenshot.test): rviz with the package's config, under
-Xvfb with software GL, shows the monitor's markers; with both arms home the warning colour is
-(almost) absent from the screen, with the arms tilted into each other it covers many pixels.
+Xvfb with software GL, shows the monitor's markers over the robot's own model (RobotModel on
+robot_description); with both arms home the warning colour is (almost) absent from the screen,
+with the arms tilted into each other it covers many pixels; the octree's cell lines are on
+screen in both.
 
 Screenshots: xwd -root | convert. They are kept in ~screenshot_dir (default: a new temporary
 directory, printed) as clear.png and warning.png, beside rviz.log and xvfb.log (the output of
@@ -32,6 +34,13 @@ WIDTH, HEIGHT = 1280, 800
 MIN_WARNING_PIXELS = 1000    # the tilted arms' warned links: ~2800 at 1280x800
 MAX_WARNING_PIXELS_CLEAR = 150  # anti-aliased edges: ~30 seen
 MIN_CLEAR_PIXELS = 2000
+# The octree's cell lines (MarkerBuilder::AddIndexCells): leaves holding moving primitives are
+# drawn in (0.1, 0.6, 1.0) at alpha 0.8, blue-dominant on screen (static leaves are grey, like
+# the grid, and not counted). In the 3D view: ~450 at home, ~2300 in the warning pose; ~0 with
+# the index_cells namespace switched off.
+MIN_CELL_PIXELS = 200
+# The 3D view's left edge in rviz/monitor.rviz's window layout (1280x800, Displays dock left).
+VIEW_LEFT_PX = 364
 START_TIMEOUT_S = 90.0
 SHOT_TIMEOUT_S = 60.0
 POLL_PERIOD_S = 0.5
@@ -45,7 +54,9 @@ def count_colours(rgb):
     b = rgb[:, 2].astype(numpy.int32)
     warning = (r > 100) & (g * 10 < r * 3) & (b * 10 < r * 3)
     clear = (g > 100) & (r * 10 < g * 7) & (b * 10 < g * 7)
-    return int(warning.sum()), int(clear.sum())
+    # Counted in the 3D view only: the Displays dock's display names are blue too.
+    cells = ((b > 150) & (g * 13 < b * 10) & (r * 10 < b * 3)).reshape(HEIGHT, WIDTH)
+    return int(warning.sum()), int(clear.sum()), int(cells[:, VIEW_LEFT_PX:].sum())
 
 
 class RvizScreenshotTest(unittest.TestCase):
@@ -176,8 +187,8 @@ class RvizScreenshotTest(unittest.TestCase):
         return numpy.frombuffer(raw, dtype=numpy.uint8).reshape(-1, 3)
 
     def shoot_until(self, name, predicate):
-        """Screenshots until predicate(warning_pixels, clear_pixels); returns the counts of the
-        last one."""
+        """Screenshots until predicate(warning_pixels, clear_pixels, cell_pixels); returns the
+        counts of the last one."""
         path = os.path.join(self.shot_dir, name + '.png')
         deadline = time.time() + SHOT_TIMEOUT_S
         counts = None
@@ -192,8 +203,8 @@ class RvizScreenshotTest(unittest.TestCase):
         if counts is None:
             self.fail('no screenshot could be taken in %.0f s\n%s'
                       % (SHOT_TIMEOUT_S, self.diagnosis()))
-        print('rviz_screenshot_test: %s: %d warning-coloured, %d clear-coloured pixels (%s)'
-              % (name, counts[0], counts[1], path))
+        print('rviz_screenshot_test: %s: %d warning-coloured, %d clear-coloured, %d '
+              'cell-coloured pixels (%s)' % (name, counts[0], counts[1], counts[2], path))
         return counts
 
     def test_warning_colour_on_screen(self):
@@ -202,18 +213,25 @@ class RvizScreenshotTest(unittest.TestCase):
         c = self.client
         self.assertIsNotNone(c.publish_until(lambda: None, lambda r: not r.warnings and not r.stop,
                                              timeout_s=20.0))
-        warning, clear = self.shoot_until('clear', lambda w, g: g >= MIN_CLEAR_PIXELS)
+        warning, clear, cells = self.shoot_until(
+            'clear', lambda w, g, cells: g >= MIN_CLEAR_PIXELS and cells >= MIN_CELL_PIXELS)
         self.assertGreaterEqual(clear, MIN_CLEAR_PIXELS,
                                 'the clear primitives are not drawn\n' + self.diagnosis())
         self.assertLessEqual(warning, MAX_WARNING_PIXELS_CLEAR,
                              'warning colour on screen without a warning\n' + self.diagnosis())
+        self.assertGreaterEqual(cells, MIN_CELL_PIXELS,
+                                'the octree cell lines are not drawn\n' + self.diagnosis())
 
         RvizScreenshotTest.pose = (LEFT_TOWARDS_RIGHT, RIGHT_TOWARDS_LEFT)
         report = c.publish_until(lambda: None, lambda r: len(r.warnings) > 0, timeout_s=20.0)
         self.assertIsNotNone(report, 'no warning report in the warning pose')
-        warning, _ = self.shoot_until('warning', lambda w, g: w >= MIN_WARNING_PIXELS)
+        warning, _, cells = self.shoot_until(
+            'warning', lambda w, g, cells: w >= MIN_WARNING_PIXELS and cells >= MIN_CELL_PIXELS)
         self.assertGreaterEqual(warning, MIN_WARNING_PIXELS,
                                 'the warning colour is not on screen during a warning\n'
+                                + self.diagnosis())
+        self.assertGreaterEqual(cells, MIN_CELL_PIXELS,
+                                'the octree cell lines are not drawn in the warning pose\n'
                                 + self.diagnosis())
         print('rviz_screenshot_test: %.1f s from rviz start to the last screenshot'
               % (time.time() - t0))
