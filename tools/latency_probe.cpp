@@ -6,7 +6,6 @@
 // Messages are matched by header.stamp (the report carries its input's stamp); the send time is
 // the stamp itself (ros::Time::now(), wall clock without sim time), so latency is receive time
 // minus stamp.
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>

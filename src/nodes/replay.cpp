@@ -9,7 +9,6 @@
 // merged, then the Monitor runs once (the node instead runs once per message; see README).
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <map>
