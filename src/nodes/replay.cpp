@@ -9,12 +9,12 @@
 // merged, then the Monitor runs once (the node instead runs once per message; see README).
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <ros/package.h>
@@ -22,6 +22,7 @@
 #include <rosbag/view.h>
 #include <sensor_msgs/JointState.h>
 
+#include "arm_collision_monitor/core/timing_summary.h"
 #include "arm_collision_monitor/geometry/distance.h"
 #include "arm_collision_monitor/monitor/monitor.h"
 #include "arm_collision_monitor/ros/joint_state_input.h"
@@ -285,12 +286,6 @@ class PeerCycleChecker : public Checker {
 };
 #endif
 
-// Nearest-rank percentile (p in (0, 100]) of `sorted` (ascending, not empty).
-double Percentile(const std::vector<double>& sorted, double p) {
-  const std::size_t rank = static_cast<std::size_t>(std::ceil(p / 100.0 * sorted.size()));
-  return sorted[std::min(sorted.size(), std::max<std::size_t>(rank, 1)) - 1];
-}
-
 std::string JsonString(const std::string& s) {
   std::string out = "\"";
   for (const char c : s) {
@@ -348,12 +343,8 @@ int Run(const Options& options) {
       if (first < 0) first = static_cast<int>(k);
     }
   }
-  std::sort(times.begin(), times.end());
-  double mean_s = 0.0;
-  for (const double t : times) mean_s += t / times.size();
-  const double p50 = times.empty() ? 0.0 : Percentile(times, 50.0);
-  const double p99 = times.empty() ? 0.0 : Percentile(times, 99.0);
-  const double max = times.empty() ? 0.0 : times.back();
+  const TimingSummary time_s = SummarizeTimings(std::move(times));
+  const double mean_s = time_s.mean, p50 = time_s.median, p99 = time_s.p99, max = time_s.max;
   const BroadPhaseCounters counters = checker->counters();
   std::uint64_t refused_messages = 0;
   for (const auto& [status, count] : input.refused) refused_messages += count;

@@ -16,6 +16,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include "arm_collision_monitor/core/timing_summary.h"
 #include "arm_collision_monitor/monitor/monitor.h"
 #include "arm_collision_monitor/scene/workcell.h"
 
@@ -66,11 +67,6 @@ MonitorOptions Options(BroadPhaseMethod method, bool speed_scaled) {
   return options;
 }
 
-double Percentile(std::vector<double>* sorted_ns, double p) {
-  const std::size_t i = static_cast<std::size_t>(p * (sorted_ns->size() - 1) + 0.5);
-  return (*sorted_ns)[std::min(i, sorted_ns->size() - 1)];
-}
-
 // Each Update timed on its own; two passes over the trajectory, the first one warms caches and
 // pools and is not recorded.
 void PrintPercentiles(BroadPhaseMethod method, bool speed_scaled) {
@@ -107,15 +103,16 @@ void PrintPercentiles(BroadPhaseMethod method, bool speed_scaled) {
     clock_ns[k] = std::chrono::duration<double, std::nano>(stop - start).count();
   }
   std::sort(ns.begin(), ns.end());
-  std::sort(idle_ns.begin(), idle_ns.end());
-  std::sort(clock_ns.begin(), clock_ns.end());
+  const TimingSummary moving = SummarizeTimings(ns);
+  const TimingSummary idle = SummarizeTimings(std::move(idle_ns));
+  const TimingSummary clock_pair = SummarizeTimings(std::move(clock_ns));
   std::printf(
       "%-8s %-12s moving: median %7.0f ns  p99 %7.0f ns  p99.9 %7.0f ns  max %8.0f ns | idle "
       "median %4.0f ns (clock pair alone %2.0f ns) | per cycle: %.1f moved, %.2f warnings, %.1f "
       "box tests\n",
       monitor.broad_phase_name().c_str(), speed_scaled ? "speed-scaled" : "fixed-tol",
-      Percentile(&ns, 0.5), Percentile(&ns, 0.99), Percentile(&ns, 0.999), ns.back(),
-      Percentile(&idle_ns, 0.5), Percentile(&clock_ns, 0.5), static_cast<double>(moved) / qs.size(),
+      moving.median, moving.p99, NearestRankPercentile(ns, 0.999), moving.max, idle.median,
+      clock_pair.median, static_cast<double>(moved) / qs.size(),
       static_cast<double>(warnings) / qs.size(), static_cast<double>(object_tests) / qs.size());
 }
 

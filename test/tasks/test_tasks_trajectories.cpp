@@ -10,7 +10,7 @@
 
 #include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/tasks/task_trajectories.h"
-#include "test_monitor_util.h"
+#include "../core/test_monitor_util.h"
 
 namespace arm_collision_monitor {
 namespace {

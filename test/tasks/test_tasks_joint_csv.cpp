@@ -11,7 +11,7 @@
 #include "arm_collision_monitor/core/load_error.h"
 #include "arm_collision_monitor/tasks/joint_csv.h"
 #include "arm_collision_monitor/tasks/task_trajectories.h"
-#include "test_monitor_util.h"
+#include "../core/test_monitor_util.h"
 
 namespace arm_collision_monitor {
 namespace {

@@ -6,7 +6,6 @@
 // Messages are matched by header.stamp (the report carries its input's stamp); the send time is
 // the stamp itself (ros::Time::now(), wall clock without sim time), so latency is receive time
 // minus stamp.
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -20,6 +19,7 @@
 #include <sensor_msgs/JointState.h>
 
 #include "arm_collision_monitor/MonitorReport.h"
+#include "arm_collision_monitor/core/timing_summary.h"
 
 namespace {
 
@@ -38,14 +38,6 @@ struct Series {
 
 std::uint64_t Key(const ros::Time& stamp) {
   return static_cast<std::uint64_t>(stamp.sec) * 1000000000ull + stamp.nsec;
-}
-
-double Percentile(std::vector<double> values, double fraction) {
-  if (values.empty()) return NAN;
-  const std::size_t k =
-      std::min(values.size() - 1, static_cast<std::size_t>(fraction * values.size()));
-  std::nth_element(values.begin(), values.begin() + k, values.end());
-  return values[k];
 }
 
 std::string CpuModel() {
@@ -138,25 +130,33 @@ int main(int argc, char** argv) {
               measured, rate_hz, warmup, CpuModel().c_str(), std::thread::hardware_concurrency());
   std::printf("  %-28s %9s %9s %9s %9s %8s\n", "publish -> receive (us)", "p50", "p99", "max",
               "received", "dropped");
-  const auto row = [](const char* name, const Series& s, std::size_t dropped) {
-    std::printf("  %-28s %9.1f %9.1f %9.1f %9zu %8zu\n", name, 1e6 * Percentile(s.latency_s, 0.5),
-                1e6 * Percentile(s.latency_s, 0.99),
-                s.latency_s.empty() ? NAN : 1e6 * *std::max_element(s.latency_s.begin(), s.latency_s.end()),
-                s.latency_s.size(), dropped);
+  // p50, p99 and max in microseconds; NaN for a series that received nothing, so that no aim
+  // below reads as met.
+  struct MicrosRow {
+    double p50, p99, max;
   };
-  row("echo node (reference)", echo, echo_pending.size());
-  row("monitor report", report, report_pending.size());
-  std::printf("  monitor cycle time in the node (us): p50 %.1f  p99 %.1f  max %.1f\n",
-              1e6 * Percentile(report.cycle_time_s, 0.5), 1e6 * Percentile(report.cycle_time_s, 0.99),
-              report.cycle_time_s.empty()
-                  ? NAN
-                  : 1e6 * *std::max_element(report.cycle_time_s.begin(), report.cycle_time_s.end()));
-  const double echo_p50 = Percentile(echo.latency_s, 0.5), echo_p99 = Percentile(echo.latency_s, 0.99);
-  const double mon_p50 = Percentile(report.latency_s, 0.5), mon_p99 = Percentile(report.latency_s, 0.99);
+  const auto summarize_us = [](const std::vector<double>& samples_s) {
+    const arm_collision_monitor::TimingSummary s =
+        arm_collision_monitor::SummarizeTimings(samples_s);
+    if (s.count == 0) return MicrosRow{NAN, NAN, NAN};
+    return MicrosRow{1e6 * s.median, 1e6 * s.p99, 1e6 * s.max};
+  };
+  const MicrosRow echo_us = summarize_us(echo.latency_s);
+  const MicrosRow report_us = summarize_us(report.latency_s);
+  const MicrosRow cycle_us = summarize_us(report.cycle_time_s);
+  const auto row = [](const char* name, const MicrosRow& us, std::size_t received,
+                      std::size_t dropped) {
+    std::printf("  %-28s %9.1f %9.1f %9.1f %9zu %8zu\n", name, us.p50, us.p99, us.max, received,
+                dropped);
+  };
+  row("echo node (reference)", echo_us, echo.latency_s.size(), echo_pending.size());
+  row("monitor report", report_us, report.latency_s.size(), report_pending.size());
+  std::printf("  monitor cycle time in the node (us): p50 %.1f  p99 %.1f  max %.1f\n", cycle_us.p50,
+              cycle_us.p99, cycle_us.max);
   std::printf("  aims: p50 <= echo + 20 us: %s (%+.1f us); p99 <= 1.2 x echo: %s (%.2f x); "
               "no drop: %s\n",
-              mon_p50 <= echo_p50 + 20e-6 ? "met" : "missed", 1e6 * (mon_p50 - echo_p50),
-              mon_p99 <= 1.2 * echo_p99 ? "met" : "missed", mon_p99 / echo_p99,
+              report_us.p50 <= echo_us.p50 + 20.0 ? "met" : "missed", report_us.p50 - echo_us.p50,
+              report_us.p99 <= 1.2 * echo_us.p99 ? "met" : "missed", report_us.p99 / echo_us.p99,
               report_pending.empty() ? "met" : "missed");
   std::fflush(stdout);
   return 0;
