@@ -253,8 +253,12 @@ void KinematicModel::ComputePoses(const Eigen::Ref<const Eigen::VectorXd>& q,
 }
 
 KinematicModel KinematicModel::FromUrdfFile(const std::string& urdf_path) {
-  const urdf::ModelInterfaceSharedPtr urdf_model = ParseUrdfFile(urdf_path);
-  const urdf::LinkConstSharedPtr root = urdf_model->getRoot();
+  return FromUrdf(*ParseUrdfFile(urdf_path), urdf_path);
+}
+
+KinematicModel KinematicModel::FromUrdf(const urdf::ModelInterface& urdf_model,
+                                        const std::string& urdf_path) {
+  const urdf::LinkConstSharedPtr root = urdf_model.getRoot();
   if (!root) throw LoadError(urdf_path + ": <robot>: expected exactly one root link");
 
   KinematicModel model;

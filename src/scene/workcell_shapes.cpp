@@ -2,7 +2,7 @@
 
 namespace arm_collision_monitor {
 
-WorkcellShapes::WorkcellShapes(const Workcell& workcell)
+WorkcellShapes::WorkcellShapes(const Workcell& workcell, Models models)
     : workcell_(workcell), X_WL_(workcell.kinematics.link_count()) {
   const std::size_t n = workcell.primitives.size();
   shapes_W_.reserve(n);
@@ -14,7 +14,8 @@ WorkcellShapes::WorkcellShapes(const Workcell& workcell)
     shapes_W_.push_back(p.link_index >= 0 ? TransformShape(X_WL_[p.link_index], p.shape_L)
                                           : p.shape_L);
     is_default_model_.push_back(p.variant.empty());
-    if (p.variant.empty() && p.link_index >= 0 && !p.is_static) {
+    const bool is_evaluated = p.variant.empty() || models == Models::kAll;
+    if (is_evaluated && p.link_index >= 0 && !p.is_static) {
       moving_.push_back(static_cast<PrimitiveId>(i));
     }
   }

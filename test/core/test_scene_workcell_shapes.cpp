@@ -1,7 +1,7 @@
 // WorkcellShapes on the bundled workcell: at seeded random joint positions every world shape it
 // holds equals the primitive's shape_L moved by its link's pose, computed here from the same
 // forward kinematics; objects keep their scene-file shapes; moving() is the default model's
-// primitives on links that move with q.
+// primitives on links that move with q (with Models::kAll, every model's).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -117,6 +117,39 @@ TEST_F(WorkcellShapesTest, ShapesAreLinkPosesTimesShapesInTheLinkFrame) {
   }
   // The random configurations really moved the arms' primitives.
   EXPECT_GT(moved_from_home, 0);
+}
+
+// Models::kAll (the loader's start-up check): the variants' capsules move with their links too.
+TEST_F(WorkcellShapesTest, AllModelsMovesTheVariantsToo) {
+  std::cout << "seed " << kSeed << "\n";
+  std::mt19937_64 rng(kSeed);
+  const KinematicModel& model = workcell_.kinematics;
+  std::vector<Eigen::Isometry3d> X_WL(model.link_count());
+  WorkcellShapes shapes(workcell_, WorkcellShapes::Models::kAll);
+  std::vector<PrimitiveId> want;
+  int variants = 0;
+  for (std::size_t id = 0; id < workcell_.primitives.size(); ++id) {
+    const PrimitiveSpec& p = workcell_.primitives[id];
+    variants += !p.variant.empty();
+    if (p.link_index >= 0 && model.is_moving(p.link_index)) {
+      want.push_back(static_cast<PrimitiveId>(id));
+    }
+  }
+  ASSERT_GT(variants, 0);
+  EXPECT_EQ(shapes.moving(), want);
+  for (int k = 0; k < kConfigurations; ++k) {
+    const Eigen::VectorXd q = RandomQ(model, &rng);
+    shapes.Evaluate(q);
+    model.ComputeLinkPoses(q, &X_WL);
+    for (std::size_t id = 0; id < workcell_.primitives.size(); ++id) {
+      const PrimitiveSpec& p = workcell_.primitives[id];
+      const Shape want_W = p.link_index >= 0 ? TransformShape(X_WL[p.link_index], p.shape_L)
+                                             : p.shape_L;
+      ASSERT_TRUE(SameShape(shapes.shape_W(static_cast<PrimitiveId>(id)), want_W))
+          << "configuration " << k << ", " << p.name;
+      EXPECT_EQ(shapes.is_default_model(static_cast<PrimitiveId>(id)), p.variant.empty());
+    }
+  }
 }
 
 }  // namespace

@@ -14,9 +14,6 @@
 
 namespace arm_collision_monitor {
 
-/// Dense primitive ids 0..n-1, assigned by the caller (the scene).
-using PrimitiveId = std::uint32_t;
-
 /// A candidate pair, a < b.
 struct CandidatePair {
   PrimitiveId a = 0;

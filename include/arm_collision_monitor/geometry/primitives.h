@@ -1,14 +1,20 @@
 // The collision primitives: capsules (the seed's "cylspheres") for links, oriented boxes (its
 // "rectangular solids") for the environment, and the axis-aligned bounding boxes the broad
-// phase indexes them by. All coordinates in metres, in the world frame W unless named otherwise.
+// phase indexes them by; with the rigid transforms that place them. All coordinates in metres,
+// in the world frame W unless named otherwise.
 #pragma once
 
+#include <cstdint>
 #include <variant>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
 namespace arm_collision_monitor {
+
+/// Dense primitive ids 0..n-1, assigned by the caller (the scene): the index of a primitive in
+/// the workcell, in the broad phase and in the compatibility matrix alike.
+using PrimitiveId = std::uint32_t;
 
 /// Axis-aligned bounding box, closed: a box touching another at a face, edge or corner
 /// overlaps it. Every broad phase decides pairs with these same predicates, so their answers
@@ -30,6 +36,11 @@ struct Aabb {
   /// This box grown by `margin_m` (>= 0) on every side.
   Aabb Inflated(double margin_m) const {
     return Aabb{(min_W.array() - margin_m).matrix(), (max_W.array() + margin_m).matrix()};
+  }
+  /// The cube of edge `edge_m` (> 0) centred on `center_W`.
+  static Aabb Cube(const Eigen::Vector3d& center_W, double edge_m) {
+    return Aabb{(center_W.array() - 0.5 * edge_m).matrix(),
+                (center_W.array() + 0.5 * edge_m).matrix()};
   }
 };
 
@@ -67,5 +78,12 @@ using Shape = std::variant<Capsule, Box>;
 inline Aabb ComputeAabb(const Shape& shape) {
   return std::visit([](const auto& s) { return s.ComputeAabb(); }, shape);
 }
+
+/// The shape `shape_L`, given in frame L, expressed in W (rigid transform X_WL).
+Shape TransformShape(const Eigen::Isometry3d& X_WL, const Shape& shape_L);
+
+/// The pose of a frame F in W from its origin `p_WF_m` and URDF-convention angles `rpy_rad`
+/// (fixed-axis roll about x, then pitch about y, then yaw about z: R = Rz(yaw) Ry(pitch) Rx(roll)).
+Eigen::Isometry3d PoseFromXyzRpy(const Eigen::Vector3d& p_WF_m, const Eigen::Vector3d& rpy_rad);
 
 }  // namespace arm_collision_monitor

@@ -9,6 +9,10 @@
 
 #include "arm_collision_monitor/core/load_error.h"
 
+namespace urdf {
+class ModelInterface;  // urdfdom's parsed URDF (urdf_model/model.h)
+}  // namespace urdf
+
 namespace arm_collision_monitor {
 
 /// The URDF joint types the model supports (floating and planar are rejected at load).
@@ -78,6 +82,11 @@ class KinematicModel {
 
   /// Builds the model from a URDF file. Throws LoadError naming the file and element.
   static KinematicModel FromUrdfFile(const std::string& urdf_path);
+  /// Builds the model from a URDF already parsed from `urdf_path` (ParseUrdfFile), for a caller
+  /// that also reads the URDF's collision geometry and must not parse the file twice.
+  /// `urdf_path` only names the file in LoadError messages.
+  static KinematicModel FromUrdf(const urdf::ModelInterface& urdf_model,
+                                 const std::string& urdf_path);
 
   /// Pose of the root link in W (identity unless the caller places the robot).
   Eigen::Isometry3d X_WRoot = Eigen::Isometry3d::Identity();

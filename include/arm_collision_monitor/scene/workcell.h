@@ -6,8 +6,6 @@
 #include <string>
 #include <vector>
 
-#include "arm_collision_monitor/broadphase/broad_phase.h"
-#include "arm_collision_monitor/broadphase/broad_phase_factory.h"
 #include "arm_collision_monitor/broadphase/compatibility_matrix.h"
 #include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/core/load_error.h"
@@ -95,12 +93,10 @@ struct Workcell {
   int FindVariant(const std::string& link, const std::string& variant) const;
 };
 
-/// The shape `shape_L`, given in frame L, expressed in W (rigid transform X_WL).
-Shape TransformShape(const Eigen::Isometry3d& X_WL, const Shape& shape_L);
-
 /// Loads a URDF and a scene YAML file into a workcell (format: comment block at the top of
-/// config/scene.yaml). `default_arm_tolerance_m` (MonitorOptions::tolerance_m) applies to arms
-/// whose scene entry gives no tolerance_m. Throws LoadError naming the file, the element and what was expected.
+/// config/scene.yaml), parsing the URDF once for its kinematics and its collision geometry.
+/// `default_arm_tolerance_m` (MonitorOptions::tolerance_m) applies to arms whose scene entry
+/// gives no tolerance_m. Throws LoadError naming the file, the element and what was expected.
 Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_path,
                       double default_arm_tolerance_m = kDefaultArmTolerance_m);
 

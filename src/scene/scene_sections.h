@@ -1,0 +1,101 @@
+// The scene file's sections (format: the comment block at the top of config/scene.yaml), one
+// reader each. Every reader validates its own section and produces its part of the Workcell;
+// LoadWorkcell calls them in order. Every failure is a LoadError naming the file and the element.
+#pragma once
+
+#include <urdf_model/model.h>
+#include <yaml-cpp/yaml.h>
+
+#include <map>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "arm_collision_monitor/scene/workcell.h"
+#include "arm_collision_monitor/scene/yaml_fields.h"
+
+namespace arm_collision_monitor {
+namespace scene_sections {
+
+using yaml_fields::Where;
+
+/// Link, object and primitive names share one namespace (compatible: may name any of them):
+/// each is claimed once, with where it was declared.
+class NameRegistry {
+ public:
+  /// Records `name` as declared at `origin` ("file: element"). Throws LoadError naming both
+  /// declarations when the name is taken.
+  void Claim(const std::string& name, const std::string& origin);
+
+ private:
+  std::map<std::string, std::string> origin_of_name_;
+};
+
+/// One entry of links: (what replaces or adjusts the URDF collision geometry of a link).
+struct LinkOverride {
+  bool ignore = false;
+  std::optional<double> radius_m;
+  std::optional<Eigen::Vector3d> p0_L;  ///< capsule endpoints in the link frame L, given together
+  std::optional<Eigen::Vector3d> p1_L;
+  std::optional<double> tolerance_m;
+};
+
+/// What arms: and links: say about each link: every primitive of a link (from the URDF or a
+/// model variant) inherits its arm group and tolerance from here.
+struct LinkSettings {
+  std::vector<int> arm_of_link;         ///< per link: index into Workcell::arms, -1 if none
+  std::vector<LinkOverride> overrides;  ///< per link (KinematicModel link order)
+  /// Tolerance of a moving link outside every arm (MonitorOptions::tolerance_m): a moving
+  /// primitive without a tolerance zone could pass a static one between two cycles unseen.
+  double default_tolerance_m = 0.0;
+};
+
+/// The top level: only the known section names.
+void CheckSectionNames(const YAML::Node& scene, const std::string& scene_path);
+
+/// world: the cube the spatial index covers, in the fixed frame.
+Aabb ReadWorld(const YAML::Node& node, const Where& where);
+
+/// joint_limits: soft limits, each within the URDF's limits of an actuated joint; set on `model`.
+void ReadJointLimits(const YAML::Node& node, const Where& where, KinematicModel* model);
+
+/// arms: the arms (tolerance `default_tolerance_m` unless given) and, in `arm_of_link`, the arm
+/// of every link (-1 outside every arm; the arms' subtrees must be disjoint).
+std::vector<ArmSpec> ReadArms(const YAML::Node& node, const Where& where,
+                              const KinematicModel& model, double default_tolerance_m,
+                              std::vector<int>* arm_of_link);
+
+/// links: the per-link overrides, one entry per link of `model`.
+std::vector<LinkOverride> ReadLinkOverrides(const YAML::Node& node, const Where& where,
+                                            const KinematicModel& model);
+
+/// The default model of every link, in link order: the URDF's collision geometry
+/// (ReadUrdfLinkGeometry) after the links: overrides. Claims every link name, then the
+/// primitives' names. `workcell` supplies the kinematics and the arms.
+std::vector<PrimitiveSpec> MakeLinkPrimitives(const urdf::ModelInterface& urdf_model,
+                                              const Workcell& workcell, const LinkSettings& links,
+                                              NameRegistry* names);
+
+/// objects: appends each object and its box primitive to `workcell` (whose world_W must be
+/// read: every box must lie inside it).
+void ReadObjects(const YAML::Node& node, const Where& where, NameRegistry* names,
+                 Workcell* workcell);
+
+/// variants: appends each model variant and its capsules (after all primitives so far) to
+/// `workcell`.
+void ReadVariants(const YAML::Node& node, const Where& where, const LinkSettings& links,
+                  NameRegistry* names, Workcell* workcell);
+
+/// compatible: the listed pairs of primitives, each name resolved to the primitives of that
+/// link, object or primitive of `workcell`.
+std::vector<std::pair<PrimitiveId, PrimitiveId>> ReadCompatiblePairs(const YAML::Node& node,
+                                                                     const Where& where,
+                                                                     const Workcell& workcell);
+
+/// grasp_targets: (link, object) pairs of `workcell`'s links and objects, each listed once.
+std::vector<GraspTargetSpec> ReadGraspTargets(const YAML::Node& node, const Where& where,
+                                              const Workcell& workcell);
+
+}  // namespace scene_sections
+}  // namespace arm_collision_monitor
