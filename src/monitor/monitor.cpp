@@ -14,41 +14,10 @@
 #include "arm_collision_monitor/broadphase/broad_phase_factory.h"
 #include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/geometry/distance.h"
+#include "arm_collision_monitor/monitor/motion_bounds.h"
 
 namespace arm_collision_monitor {
 namespace {
-
-/// Distance from point p to the farthest point of the shape (both in the same frame).
-double MaxDistanceFromPoint(const Shape& shape, const Eigen::Vector3d& p) {
-  if (const auto* capsule = std::get_if<Capsule>(&shape)) {
-    return std::max((capsule->p0_W - p).norm(), (capsule->p1_W - p).norm()) + capsule->radius_m;
-  }
-  const Box& box = std::get<Box>(shape);
-  // The farthest point of a box from p is the vertex opposite p in every axis.
-  const Eigen::Vector3d p_B = box.X_WB.inverse(Eigen::Isometry) * p;
-  return (p_B.cwiseAbs() + box.half_extents_m).norm();
-}
-
-/// Largest displacement of a defining point between two poses of the same primitive: the
-/// endpoints of a capsule, the vertices of a box (the displacement of a rigid motion is affine
-/// in the point, so its norm peaks at a vertex).
-double MaxPointDisplacement(const Shape& before, const Shape& after) {
-  if (const auto* c0 = std::get_if<Capsule>(&before)) {
-    const Capsule& c1 = std::get<Capsule>(after);
-    return std::sqrt(std::max((c1.p0_W - c0->p0_W).squaredNorm(),
-                              (c1.p1_W - c0->p1_W).squaredNorm()));
-  }
-  const Box& b0 = std::get<Box>(before);
-  const Box& b1 = std::get<Box>(after);
-  double max_sq = 0.0;
-  for (int corner = 0; corner < 8; ++corner) {
-    const Eigen::Vector3d v_B((corner & 1) ? b0.half_extents_m.x() : -b0.half_extents_m.x(),
-                              (corner & 2) ? b0.half_extents_m.y() : -b0.half_extents_m.y(),
-                              (corner & 4) ? b0.half_extents_m.z() : -b0.half_extents_m.z());
-    max_sq = std::max(max_sq, (b1.X_WB * v_B - b0.X_WB * v_B).squaredNorm());
-  }
-  return std::sqrt(max_sq);
-}
 
 /// Bit-identical poses: a link whose pose did not change bit for bit has not moved.
 bool IsSamePose(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
@@ -63,19 +32,6 @@ void ClearCycleWork(CycleReport* report) {
   report->narrow_phase_tests = 0;
   report->bounded = false;
   report->counters = BroadPhaseCounters{};
-}
-
-/// The index into q that drives `joint` (its own, or the one it mimics); -1 if it does not move.
-int DrivingQIndex(const JointSpec& joint) {
-  if (joint.type == JointType::kFixed) return -1;
-  return joint.q_index >= 0 ? joint.q_index : joint.mimic_q_index;
-}
-
-/// How far a prismatic joint's child can slide from the joint's origin (inf if unlimited); 0
-/// for other joints.
-double PrismaticTravel_m(const JointSpec& joint) {
-  if (joint.type != JointType::kPrismatic) return 0.0;
-  return std::max(std::abs(joint.lower), std::abs(joint.upper));
 }
 
 void SetError(std::string* error, const std::string& message) {
@@ -142,31 +98,9 @@ struct Monitor::Impl {
   std::vector<PrimitiveId> reindexed;   // this cycle
   std::vector<std::uint8_t> is_reindexed;
   bool pairs_stale = true;              // an index or compatibility change: rebuild the set
-  // Bounded cycles (see TryBoundedCycle): a link-carried primitive's points move by at most
-  // sum_j |delta q_j| * lever_j, the lever being how far the primitive can reach from joint j's
-  // axis (1 for a prismatic joint), times |multiplier| for a mimic joint.
-  struct Lever {
-    int q_index = 0;
-    double m_per_unit = 0.0;  // m per rad (revolute) or per m (prismatic)
-  };
-  int max_levers = 0;                   // moving joints above the deepest link
-  std::vector<Lever> levers;            // per primitive, max_levers slots
-  std::vector<int> lever_count;         // per primitive; 0: not carried by a moving link
+  // Bounded cycles (see TryBoundedCycle): joint-space bounds on each primitive's motion.
+  MotionBounds motion;
   Eigen::VectorXd q_kinematics;         // q of the last forward kinematics
-  Eigen::VectorXd dq_abs;               // scratch: |q - q_kinematics|
-  std::vector<int> link_depth;          // per link: levers from it up to the root
-  std::vector<std::uint8_t> shared_levers;  // link x link: link_depth of their lowest common
-                                            // ancestor (joints that move both alike)
-  std::vector<double> lever_sums_m;     // per primitive, max_levers + 1 slots: partial sums of
-                                        // |delta q| * lever from its link upward
-  Lever* LeversOf(PrimitiveId id) { return &levers[static_cast<std::size_t>(id) * max_levers]; }
-  // Slot k: the motion bound from primitive id's k lowest levers (slot 0 is 0).
-  double* LeverSumsOf(PrimitiveId id) {
-    return &lever_sums_m[static_cast<std::size_t>(id) * (max_levers + 1)];
-  }
-  const double* LeverSumsOf(PrimitiveId id) const {
-    return &lever_sums_m[static_cast<std::size_t>(id) * (max_levers + 1)];
-  }
   bool kinematics_behind = false;       // bounded cycles since: shape_W is at q_kinematics
   double world_edge_m = 0.0;
   CycleReport report;
@@ -267,8 +201,8 @@ struct Monitor::Impl {
   void UpdatePairStates();
   // The narrow phase over pair_states, skipping the pairs whose lower bound clears them.
   void TestCandidatePairs();
-  // The levers of primitive `id` for its current carrier (none when it has none).
-  void ComputeLevers(PrimitiveId id);
+  // The motion bounds of primitive `id` for its current carrier.
+  void ComputeLevers(PrimitiveId id) { motion.SetCarrier(id, carrier[id], is_moving[id], shape_C[id]); }
   // Forward kinematics at q, the moved primitives re-indexed, the kept pairs brought up to
   // date: the model then follows q. Returns the number of primitives that moved.
   std::uint32_t FollowKinematics(const Eigen::Ref<const Eigen::VectorXd>& q);
@@ -276,16 +210,6 @@ struct Monitor::Impl {
   // joint-space motion bound keeps it within its slack and every kept pair's lower bound, less
   // those bounds, still clears its threshold -- then no pair can warn. False: nothing changed.
   bool TryBoundedCycle(const Eigen::Ref<const Eigen::VectorXd>& q);
-  // After TryBoundedCycle's motion bounds for q: how far a and b can have moved relative to
-  // each other since q_kinematics (joints above both links' common ancestor move both alike).
-  double PairMotionBound(PrimitiveId a, PrimitiveId b) const {
-    const int la = carrier[a], lb = carrier[b];
-    const int shared = la >= 0 && lb >= 0
-                           ? shared_levers[static_cast<std::size_t>(la) * model->link_count() + lb]
-                           : 0;
-    return (lever_count[a] > 0 ? LeverSumsOf(a)[lever_count[a] - shared] : 0.0) +
-           (lever_count[b] > 0 ? LeverSumsOf(b)[lever_count[b] - shared] : 0.0);
-  }
   // After bounded cycles: the kinematics (shapes, index, kept pairs) brought to q_good, for
   // readers of the shapes and for scene changes.
   void SyncKinematics() {
@@ -433,31 +357,7 @@ void Monitor::Impl::BuildModel() {
   shape_ref_W = shape_W;
   disp_m.assign(n, 0.0);
   q_kinematics = q0;
-  dq_abs = Eigen::VectorXd::Zero(q0.size());
-  link_depth.assign(link_count, 0);
-  for (int link = 1; link < link_count; ++link) {
-    const bool moves = DrivingQIndex(model->joint(link)) >= 0;
-    link_depth[link] = link_depth[model->parent_link(link)] + (moves ? 1 : 0);
-    max_levers = std::max(max_levers, link_depth[link]);
-  }
-  shared_levers.assign(static_cast<std::size_t>(link_count) * link_count, 0);
-  for (int a = 0; a < link_count; ++a) {
-    for (int b = 0; b < link_count; ++b) {
-      int x = a, y = b;  // parents precede children: climb from the larger index
-      while (x != y) {
-        if (x > y) {
-          x = model->parent_link(x);
-        } else {
-          y = model->parent_link(y);
-        }
-      }
-      shared_levers[static_cast<std::size_t>(a) * link_count + b] =
-          static_cast<std::uint8_t>(link_depth[x]);
-    }
-  }
-  lever_sums_m.assign(static_cast<std::size_t>(n) * (max_levers + 1), 0.0);
-  levers.assign(static_cast<std::size_t>(n) * max_levers, Lever{});
-  lever_count.assign(n, 0);
+  motion = MotionBounds(*model, n);
   for (PrimitiveId id = 0; id < n; ++id) ComputeLevers(id);
   is_reindexed.assign(n, 0);
   moved.assign(n, 0);
@@ -522,7 +422,7 @@ void Monitor::Impl::ComputeReachability() {
     if (!is_below_joint[link]) continue;
     double extent_m = 0.0;
     for (const PrimitiveId id : link_prims[link]) {
-      extent_m = std::max(extent_m, MaxDistanceFromPoint(shape_C[id], Eigen::Vector3d::Zero()));
+      extent_m = std::max(extent_m, MaxDistanceFromPoint_m(shape_C[id], Eigen::Vector3d::Zero()));
     }
     hold_radius_m[link] = extent_m + kAttachMaxGap_m + max_attach_diameter_m;
     if (has_attachable) {
@@ -630,7 +530,7 @@ void Monitor::Impl::ComputeTolerances(const std::vector<Shape>& shapes,
     } else if (!has_good) {
       speed_mps = options.max_speed_mps;
     } else if (moved_flags[id]) {
-      speed_mps = std::min(MaxPointDisplacement(shape_prev_W[id], shapes[id]) /
+      speed_mps = std::min(MaxPointDisplacement_m(shape_prev_W[id], shapes[id]) /
                                options.cycle_period_s,
                            options.max_speed_mps);
     }
@@ -655,28 +555,6 @@ double Monitor::Impl::TestPair(PrimitiveId a, PrimitiveId b, const std::vector<S
     warnings->push_back(w);
   }
   return d.distance_m;
-}
-
-void Monitor::Impl::ComputeLevers(PrimitiveId id) {
-  lever_count[id] = 0;
-  const int link = carrier[id];
-  if (link < 0 || !is_moving[id]) return;
-  // The primitive reaches at most `extent` from its link's origin, and a joint's origin at
-  // most the chain of joint offsets (plus prismatic travel) below it from there; a point's
-  // distance from a joint's axis is at most its distance from the joint's origin.
-  const double extent_m = MaxDistanceFromPoint(shape_C[id], Eigen::Vector3d::Zero());
-  double chain_m = 0.0;
-  Lever* out = LeversOf(id);
-  for (int l = link; l > 0; l = model->parent_link(l)) {
-    const JointSpec& joint = model->joint(l);
-    const int q_index = DrivingQIndex(joint);
-    if (q_index >= 0) {  // as link_depth counts
-      const double scale = joint.q_index >= 0 ? 1.0 : std::abs(joint.mimic_multiplier);
-      const double lever_m = joint.type == JointType::kPrismatic ? 1.0 : chain_m + extent_m;
-      out[lever_count[id]++] = Lever{q_index, scale * lever_m};
-    }
-    chain_m += joint.X_PJ.translation().norm() + PrismaticTravel_m(joint);
-  }
 }
 
 std::uint32_t Monitor::Impl::FollowKinematics(const Eigen::Ref<const Eigen::VectorXd>& q) {
@@ -706,21 +584,18 @@ bool Monitor::Impl::TryBoundedCycle(const Eigen::Ref<const Eigen::VectorXd>& q) 
       report.input != InputStatus::kOk) {
     return false;
   }
-  dq_abs = (q - q_kinematics).cwiseAbs();
+  motion.SetJointMotion(q, q_kinematics);
   const double slack_m = options.index_slack_m;
   for (PrimitiveId id = 0; id < n; ++id) {
-    const int count = lever_count[id];
-    if (count == 0) continue;
-    const Lever* l = LeversOf(id);
-    double* sums = LeverSumsOf(id);
-    for (int k = 0; k < count; ++k) sums[k + 1] = sums[k] + dq_abs[l[k].q_index] * l[k].m_per_unit;
+    if (motion.lever_count(id) == 0) continue;
+    const double bound_m = motion.ComputeBound_m(id);
     // Motion since indexed <= motion until the kinematics + motion since; NaN fails.
-    if (in_broad_phase[id] && !(disp_m[id] + sums[count] <= slack_m)) return false;
+    if (in_broad_phase[id] && !(disp_m[id] + bound_m <= slack_m)) return false;
   }
   for (const PairState& state : pair_states) {
     const PrimitiveId a = state.pair.a;
     const PrimitiveId b = state.pair.b;
-    const double motion_m = PairMotionBound(a, b);
+    const double motion_m = motion.PairBound_m(a, b);
     // NaN (no bound) fails the comparison.
     if (!(state.kinematics_bound_m - motion_m - BoundMargin(state.kinematics_bound_m) >
           tol_now[a] + tol_now[b])) {
@@ -748,7 +623,7 @@ std::uint32_t Monitor::Impl::ReindexMoved() {
     ++moved_count;
     // Every point of the shape lies within this of its indexed copy (the displacement of a
     // point of a capsule or box is a convex combination of its defining points').
-    const double d_m = MaxPointDisplacement(shape_ref_W[id], shape_W[id]);
+    const double d_m = MaxPointDisplacement_m(shape_ref_W[id], shape_W[id]);
     if (d_m <= options.index_slack_m) {
       disp_m[id] = d_m;
       continue;
@@ -856,10 +731,10 @@ void Monitor::Impl::ValidateBoundedCycle(std::ostringstream* msg) const {
   for (PrimitiveId id = 0; id < n; ++id) {
     if (carrier[id] < 0) continue;
     now[id] = TransformShape(X[carrier[id]], shape_C[id]);
-    if (lever_count[id] == 0 || !in_broad_phase[id]) continue;
-    const double moved_m = MaxPointDisplacement(shape_W[id], now[id]);
-    const double bound_m = LeverSumsOf(id)[lever_count[id]];
-    const double from_ref_m = MaxPointDisplacement(shape_ref_W[id], now[id]);
+    if (motion.lever_count(id) == 0 || !in_broad_phase[id]) continue;
+    const double moved_m = MaxPointDisplacement_m(shape_W[id], now[id]);
+    const double bound_m = motion.bound_m(id);
+    const double from_ref_m = MaxPointDisplacement_m(shape_ref_W[id], now[id]);
     if (moved_m > bound_m + BoundMargin(bound_m) ||
         from_ref_m > options.index_slack_m + BoundMargin(options.index_slack_m)) {
       *msg << "bounded cycle: primitive " << id << " moved " << moved_m << " m, bound "
@@ -873,7 +748,7 @@ void Monitor::Impl::ValidateBoundedCycle(std::ostringstream* msg) const {
     const PrimitiveId b = state.pair.b;
     const double then_m = ShapeDistance(shape_W[a], shape_W[b]).distance_m;
     const double now_m = ShapeDistance(now[a], now[b]).distance_m;
-    const double motion_m = PairMotionBound(a, b);
+    const double motion_m = motion.PairBound_m(a, b);
     if (now_m < then_m - motion_m - BoundMargin(then_m) || now_m <= tol_now[a] + tol_now[b]) {
       *msg << "bounded cycle: pair (" << a << "," << b << ") at " << now_m << " m, was "
            << then_m << " m, relative motion bound " << motion_m << " m, threshold "
@@ -886,7 +761,7 @@ void Monitor::Impl::ValidateBoundedCycle(std::ostringstream* msg) const {
 void Monitor::Impl::ValidateSlack(std::ostringstream* msg) const {
   for (PrimitiveId id = 0; id < n; ++id) {
     if (!in_broad_phase[id] || moved[id]) continue;
-    const double d_m = MaxPointDisplacement(shape_ref_W[id], shape_W[id]);
+    const double d_m = MaxPointDisplacement_m(shape_ref_W[id], shape_W[id]);
     if (d_m != disp_m[id] || d_m > options.index_slack_m) {
       *msg << "primitive " << id << " moved " << d_m << " m from its indexed copy, recorded "
            << disp_m[id] << " m, slack " << options.index_slack_m << " m";
@@ -1041,7 +916,7 @@ bool Monitor::Attach(const std::string& object, const std::string& link, std::st
   const Eigen::Isometry3d X_LW = m.X_WL[l].inverse(Eigen::Isometry);
   const Eigen::Vector3d p_WLo = m.X_WL[l].translation();
   for (const PrimitiveId id : m.objects[o].prims) {
-    const double reach_m = MaxDistanceFromPoint(m.shape_W[id], p_WLo);
+    const double reach_m = MaxDistanceFromPoint_m(m.shape_W[id], p_WLo);
     if (reach_m > m.hold_radius_m[l]) {
       std::ostringstream msg;
       msg << "Attach: object '" << object << "' reaches " << reach_m << " m from link '" << link
