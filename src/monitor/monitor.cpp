@@ -15,6 +15,7 @@
 #include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/geometry/distance.h"
 #include "arm_collision_monitor/monitor/motion_bounds.h"
+#include "arm_collision_monitor/monitor/pair_cache.h"
 
 namespace arm_collision_monitor {
 namespace {
@@ -82,22 +83,8 @@ struct Monitor::Impl {
   Eigen::VectorXd q_good;
   bool has_good = false;
   bool scene_changed = true;
-  // Index slack (MonitorOptions::index_slack_m): each moving primitive is indexed by its shape
-  // as of its last re-index, grown by the slack; the candidate pairs are kept between cycles,
-  // each with a lower bound on the distance between the two indexed shapes.
-  struct PairState {
-    CandidatePair pair;
-    double lower_bound_m = 0.0;  // <= distance of the indexed shapes; NaN: not yet computed
-    double kinematics_bound_m = 0.0;  // <= distance at q_kinematics; NaN: unknown
-  };
-  std::vector<Shape> shape_ref_W;       // per primitive: as last indexed
-  std::vector<double> disp_m;           // per primitive: farthest point motion since then
-  std::vector<PairState> pair_states;   // the broad phase's candidate pairs, sorted
-  std::vector<PairState> pair_scratch;
-  std::vector<CandidatePair> pairs, new_pairs;  // scratch for FindPairs / FindPairsOf
-  std::vector<PrimitiveId> reindexed;   // this cycle
-  std::vector<std::uint8_t> is_reindexed;
-  bool pairs_stale = true;              // an index or compatibility change: rebuild the set
+  // Index slack (MonitorOptions::index_slack_m): the indexed copies and the kept pairs.
+  PairCache cache;
   // Bounded cycles (see TryBoundedCycle): joint-space bounds on each primitive's motion.
   MotionBounds motion;
   Eigen::VectorXd q_kinematics;         // q of the last forward kinematics
@@ -131,28 +118,16 @@ struct Monitor::Impl {
   double IndexTolerance(PrimitiveId id) const {
     return BroadTolerance(id, is_moving[id]) + (is_moving[id] ? options.index_slack_m : 0.0);
   }
-  // What a distance bound keeps in hand against rounding: far above the rounding of the terms
-  // compared with it (lengths up to the world's edge).
-  double BoundMargin(double bound_m) const {
-    return kLowerBoundMarginPerMetre * (world_edge_m + std::abs(bound_m));
-  }
-  // Each kept pair's distance at the kinematics is at least its indexed distance less both
-  // primitives' motion since they were indexed.
-  double KinematicsBound(const PairState& state) const {
-    return state.lower_bound_m - disp_m[state.pair.a] - disp_m[state.pair.b];
-  }
   void AddToBroadPhase(PrimitiveId id) {
     broad_phase->Add(id, ComputeAabb(shape_W[id]), IndexTolerance(id),
                      is_moving[id] ? Motion::kMoving : Motion::kStatic);
     in_broad_phase[id] = 1;
-    shape_ref_W[id] = shape_W[id];
-    disp_m[id] = 0.0;
-    pairs_stale = true;
+    cache.SetIndexed(id, shape_W[id]);
   }
   void RemoveFromBroadPhase(PrimitiveId id) {
     broad_phase->Remove(id);
     in_broad_phase[id] = 0;
-    pairs_stale = true;
+    cache.MarkStale();
   }
   // Re-indexes `id` with its current motion and tolerance (Add fixes both).
   void Reindex(PrimitiveId id, bool moving) {
@@ -167,7 +142,7 @@ struct Monitor::Impl {
            holder[object] == link;
   }
   void RefreshCompatibility(int link, int object) {
-    pairs_stale = true;
+    cache.MarkStale();
     for (const PrimitiveId l : link_prims[link]) {
       for (const PrimitiveId o : objects[object].prims) {
         compatible.Set(l, o, CompatibleNow(l, o, link, object));
@@ -196,10 +171,7 @@ struct Monitor::Impl {
                          const std::vector<double>& tol, std::vector<Warning>* warnings);
   // Moves in the index the moved primitives that left their slack; counts the moved ones.
   std::uint32_t ReindexMoved();
-  // Brings pair_states up to date with the index: rebuilt when stale, else the pairs of this
-  // cycle's re-indexed primitives replaced.
-  void UpdatePairStates();
-  // The narrow phase over pair_states, skipping the pairs whose lower bound clears them.
+  // The narrow phase over the kept pairs, skipping the pairs whose lower bound clears them.
   void TestCandidatePairs();
   // The motion bounds of primitive `id` for its current carrier.
   void ComputeLevers(PrimitiveId id) { motion.SetCarrier(id, carrier[id], is_moving[id], shape_C[id]); }
@@ -354,12 +326,9 @@ void Monitor::Impl::BuildModel() {
     shape_W[id] = carrier[id] >= 0 ? TransformShape(X_WL[carrier[id]], shape_C[id]) : shape_C[id];
   }
   shape_prev_W = shape_W;
-  shape_ref_W = shape_W;
-  disp_m.assign(n, 0.0);
   q_kinematics = q0;
   motion = MotionBounds(*model, n);
   for (PrimitiveId id = 0; id < n; ++id) ComputeLevers(id);
-  is_reindexed.assign(n, 0);
   moved.assign(n, 0);
   tol_now = tol_base;
 }
@@ -475,15 +444,11 @@ void Monitor::Impl::BuildBroadPhase() {
         active >= kAutoOctreeMinPrimitives ? BroadPhaseMethod::kOctree : BroadPhaseMethod::kNaive;
   }
   broad_phase = MakeBroadPhase(options.broad_phase);
+  cache = PairCache(n, options.index_slack_m, world_edge_m);
   for (PrimitiveId id = 0; id < n; ++id) {
     if (ShouldBeInBroadPhase(id)) AddToBroadPhase(id);
   }
   const std::size_t max_pairs = static_cast<std::size_t>(n) * (n > 0 ? n - 1 : 0) / 2;
-  pairs.reserve(max_pairs);
-  new_pairs.reserve(max_pairs);
-  pair_states.reserve(max_pairs);
-  pair_scratch.reserve(max_pairs);
-  reindexed.reserve(n);
   report.warnings.reserve(max_pairs);
   report.stop = true;  // nothing is known before the first good input
   total = BroadPhaseCounters{};
@@ -573,14 +538,13 @@ std::uint32_t Monitor::Impl::FollowKinematics(const Eigen::Ref<const Eigen::Vect
       moved[id] = 0;
     }
   }
-  UpdatePairStates();
-  for (PairState& state : pair_states) state.kinematics_bound_m = KinematicsBound(state);
+  cache.Update(broad_phase.get(), compatible);
   return moved_count;
 }
 
 bool Monitor::Impl::TryBoundedCycle(const Eigen::Ref<const Eigen::VectorXd>& q) {
   // Speed-scaled tolerances need the motion itself; a scene change re-plans the pairs.
-  if (!has_good || scene_changed || pairs_stale || speed_tol_gain_s != 0.0 ||
+  if (!has_good || scene_changed || cache.is_stale() || speed_tol_gain_s != 0.0 ||
       report.input != InputStatus::kOk) {
     return false;
   }
@@ -590,15 +554,13 @@ bool Monitor::Impl::TryBoundedCycle(const Eigen::Ref<const Eigen::VectorXd>& q) 
     if (motion.lever_count(id) == 0) continue;
     const double bound_m = motion.ComputeBound_m(id);
     // Motion since indexed <= motion until the kinematics + motion since; NaN fails.
-    if (in_broad_phase[id] && !(disp_m[id] + bound_m <= slack_m)) return false;
+    if (in_broad_phase[id] && !(cache.displacement_m(id) + bound_m <= slack_m)) return false;
   }
-  for (const PairState& state : pair_states) {
-    const PrimitiveId a = state.pair.a;
-    const PrimitiveId b = state.pair.b;
-    const double motion_m = motion.PairBound_m(a, b);
-    // NaN (no bound) fails the comparison.
-    if (!(state.kinematics_bound_m - motion_m - BoundMargin(state.kinematics_bound_m) >
-          tol_now[a] + tol_now[b])) {
+  for (const KeptPair& kept : cache.pairs()) {
+    const PrimitiveId a = kept.pair.a;
+    const PrimitiveId b = kept.pair.b;
+    // NaN (no bound) is not clear.
+    if (!cache.IsClear(kept.kinematics_bound_m, motion.PairBound_m(a, b), tol_now[a] + tol_now[b])) {
       return false;
     }
   }
@@ -609,7 +571,7 @@ bool Monitor::Impl::TryBoundedCycle(const Eigen::Ref<const Eigen::VectorXd>& q) 
   report.warnings.clear();
   report.stop = false;
   ClearCycleWork(&report);
-  report.candidate_pairs = static_cast<std::uint32_t>(pair_states.size());
+  report.candidate_pairs = static_cast<std::uint32_t>(cache.pairs().size());
   report.bounded = true;
   kinematics_behind = true;
   return true;
@@ -617,88 +579,20 @@ bool Monitor::Impl::TryBoundedCycle(const Eigen::Ref<const Eigen::VectorXd>& q) 
 
 std::uint32_t Monitor::Impl::ReindexMoved() {
   std::uint32_t moved_count = 0;
-  reindexed.clear();
+  cache.BeginReindex();
   for (PrimitiveId id = 0; id < n; ++id) {
     if (!moved[id] || !in_broad_phase[id]) continue;
     ++moved_count;
-    // Every point of the shape lies within this of its indexed copy (the displacement of a
-    // point of a capsule or box is a convex combination of its defining points').
-    const double d_m = MaxPointDisplacement_m(shape_ref_W[id], shape_W[id]);
-    if (d_m <= options.index_slack_m) {
-      disp_m[id] = d_m;
-      continue;
-    }
-    shape_ref_W[id] = shape_W[id];
-    disp_m[id] = 0.0;
-    broad_phase->Move(id, ComputeAabb(shape_W[id]));
-    reindexed.push_back(id);
+    if (cache.FollowMoved(id, shape_W[id])) broad_phase->Move(id, ComputeAabb(shape_W[id]));
   }
   return moved_count;
 }
 
-void Monitor::Impl::UpdatePairStates() {
-  constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
-  if (pairs_stale) {
-    broad_phase->FindPairs(compatible, &pairs);
-    pair_states.clear();
-    for (const CandidatePair& p : pairs) pair_states.push_back({p, kUnknown});
-    pairs_stale = false;
-    return;
-  }
-  if (reindexed.empty()) return;
-  for (const PrimitiveId id : reindexed) is_reindexed[id] = 1;
-  // The pairs of primitives that stayed within their slack keep their bounds ...
-  pair_states.erase(std::remove_if(pair_states.begin(), pair_states.end(),
-                                   [&](const PairState& s) {
-                                     return is_reindexed[s.pair.a] || is_reindexed[s.pair.b];
-                                   }),
-                    pair_states.end());
-  // ... and the re-indexed ones get theirs anew; a pair of two re-indexed primitives is taken
-  // from the smaller id's query.
-  new_pairs.clear();
-  for (const PrimitiveId id : reindexed) {
-    broad_phase->FindPairsOf(id, compatible, &pairs);
-    for (const CandidatePair& p : pairs) {
-      const PrimitiveId other = p.a == id ? p.b : p.a;
-      if (is_reindexed[other] && other < id) continue;
-      new_pairs.push_back(p);
-    }
-  }
-  for (const PrimitiveId id : reindexed) is_reindexed[id] = 0;
-  std::sort(new_pairs.begin(), new_pairs.end());
-  pair_scratch.clear();
-  auto old_it = pair_states.begin();
-  for (const CandidatePair& p : new_pairs) {
-    while (old_it != pair_states.end() && old_it->pair < p) pair_scratch.push_back(*old_it++);
-    pair_scratch.push_back({p, kUnknown});
-  }
-  pair_scratch.insert(pair_scratch.end(), old_it, pair_states.end());
-  pair_states.swap(pair_scratch);
-}
-
 void Monitor::Impl::TestCandidatePairs() {
   report.warnings.clear();
-  report.narrow_phase_tests = 0;
-  for (PairState& state : pair_states) {
-    const PrimitiveId a = state.pair.a;
-    const PrimitiveId b = state.pair.b;
-    // A new pair: the distance of the indexed shapes, exact until either is re-indexed.
-    if (std::isnan(state.lower_bound_m)) {
-      ++report.narrow_phase_tests;
-      state.lower_bound_m = ShapeDistance(shape_ref_W[a], shape_ref_W[b]).distance_m;
-      state.kinematics_bound_m = KinematicsBound(state);
-    }
-    // Triangle inequality: dist(now) >= dist(indexed) - motion of a - motion of b.
-    const double motion_m = disp_m[a] + disp_m[b];
-    if (state.lower_bound_m - motion_m - BoundMargin(state.lower_bound_m) >
-        tol_now[a] + tol_now[b]) {
-      continue;
-    }
-    ++report.narrow_phase_tests;
-    const double distance_m = TestPair(a, b, shape_W, tol_now, &report.warnings);
-    state.lower_bound_m = std::max(state.lower_bound_m, distance_m - motion_m);
-    state.kinematics_bound_m = distance_m;
-  }
+  report.narrow_phase_tests = cache.TestPairs(tol_now, [this](PrimitiveId a, PrimitiveId b) {
+    return TestPair(a, b, shape_W, tol_now, &report.warnings);
+  });
 }
 
 void Monitor::Impl::RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q) {
@@ -714,8 +608,8 @@ void Monitor::Impl::RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q) {
   report.input = InputStatus::kOk;
   report.stop = !report.warnings.empty();
   report.moved_primitives = moved_count;
-  report.reindexed_primitives = static_cast<std::uint32_t>(reindexed.size());
-  report.candidate_pairs = static_cast<std::uint32_t>(pair_states.size());
+  report.reindexed_primitives = static_cast<std::uint32_t>(cache.reindexed().size());
+  report.candidate_pairs = static_cast<std::uint32_t>(cache.pairs().size());
   report.bounded = false;
   report.counters = broad_phase->counters();
   total += report.counters;
@@ -734,22 +628,22 @@ void Monitor::Impl::ValidateBoundedCycle(std::ostringstream* msg) const {
     if (motion.lever_count(id) == 0 || !in_broad_phase[id]) continue;
     const double moved_m = MaxPointDisplacement_m(shape_W[id], now[id]);
     const double bound_m = motion.bound_m(id);
-    const double from_ref_m = MaxPointDisplacement_m(shape_ref_W[id], now[id]);
-    if (moved_m > bound_m + BoundMargin(bound_m) ||
-        from_ref_m > options.index_slack_m + BoundMargin(options.index_slack_m)) {
+    const double from_ref_m = MaxPointDisplacement_m(cache.indexed_shape_W(id), now[id]);
+    if (moved_m > bound_m + cache.BoundMargin_m(bound_m) ||
+        from_ref_m > options.index_slack_m + cache.BoundMargin_m(options.index_slack_m)) {
       *msg << "bounded cycle: primitive " << id << " moved " << moved_m << " m, bound "
            << bound_m << " m; " << from_ref_m << " m from its indexed copy, slack "
            << options.index_slack_m << " m";
       return;
     }
   }
-  for (const PairState& state : pair_states) {
-    const PrimitiveId a = state.pair.a;
-    const PrimitiveId b = state.pair.b;
+  for (const KeptPair& kept : cache.pairs()) {
+    const PrimitiveId a = kept.pair.a;
+    const PrimitiveId b = kept.pair.b;
     const double then_m = ShapeDistance(shape_W[a], shape_W[b]).distance_m;
     const double now_m = ShapeDistance(now[a], now[b]).distance_m;
     const double motion_m = motion.PairBound_m(a, b);
-    if (now_m < then_m - motion_m - BoundMargin(then_m) || now_m <= tol_now[a] + tol_now[b]) {
+    if (now_m < then_m - motion_m - cache.BoundMargin_m(then_m) || now_m <= tol_now[a] + tol_now[b]) {
       *msg << "bounded cycle: pair (" << a << "," << b << ") at " << now_m << " m, was "
            << then_m << " m, relative motion bound " << motion_m << " m, threshold "
            << tol_now[a] + tol_now[b] << " m";
@@ -759,57 +653,32 @@ void Monitor::Impl::ValidateBoundedCycle(std::ostringstream* msg) const {
 }
 
 void Monitor::Impl::ValidateSlack(std::ostringstream* msg) const {
+  std::string why;
   for (PrimitiveId id = 0; id < n; ++id) {
     if (!in_broad_phase[id] || moved[id]) continue;
-    const double d_m = MaxPointDisplacement_m(shape_ref_W[id], shape_W[id]);
-    if (d_m != disp_m[id] || d_m > options.index_slack_m) {
-      *msg << "primitive " << id << " moved " << d_m << " m from its indexed copy, recorded "
-           << disp_m[id] << " m, slack " << options.index_slack_m << " m";
+    if (!cache.ValidatePrimitive(id, shape_W[id], &why)) {
+      *msg << why;
       return;
     }
   }
-  if (pairs_stale) return;  // a scene change since the last cycle: rebuilt in the next one
+  if (cache.is_stale()) return;  // a scene change since the last cycle: rebuilt in the next one
+  // The pairs whose indexed boxes overlap, by brute force.
   std::vector<CandidatePair> expected;
   for (PrimitiveId a = 0; a < n; ++a) {
     if (!in_broad_phase[a]) continue;
-    const Aabb box_a = ComputeAabb(shape_ref_W[a]).Inflated(IndexTolerance(a));
+    const Aabb box_a = ComputeAabb(cache.indexed_shape_W(a)).Inflated(IndexTolerance(a));
     for (PrimitiveId b = a + 1; b < n; ++b) {
       if (!in_broad_phase[b] || (!is_moving[a] && !is_moving[b]) ||
           compatible.AreCompatible(a, b)) {
         continue;
       }
-      if (box_a.Overlaps(ComputeAabb(shape_ref_W[b]).Inflated(IndexTolerance(b)))) {
+      if (box_a.Overlaps(ComputeAabb(cache.indexed_shape_W(b)).Inflated(IndexTolerance(b)))) {
         expected.push_back({a, b});
       }
     }
   }
-  if (expected.size() != pair_states.size()) {
-    *msg << pair_states.size() << " kept candidate pairs, " << expected.size()
-         << " indexed boxes overlapping";
-    return;
-  }
-  for (std::size_t i = 0; i < expected.size(); ++i) {
-    const PairState& state = pair_states[i];
-    if (!(state.pair == expected[i])) {
-      *msg << "kept candidate pair " << i << " is (" << state.pair.a << "," << state.pair.b
-           << "), expected (" << expected[i].a << "," << expected[i].b << ")";
-      return;
-    }
-    const double d_m = ShapeDistance(shape_ref_W[state.pair.a], shape_ref_W[state.pair.b]).distance_m;
-    if (state.lower_bound_m > d_m + BoundMargin(d_m)) {
-      *msg << "pair (" << state.pair.a << "," << state.pair.b << ") lower bound "
-           << state.lower_bound_m << " m exceeds the indexed shapes' distance " << d_m << " m";
-      return;
-    }
-    // shape_W is at q_kinematics (also after bounded cycles).
-    const double now_m = ShapeDistance(shape_W[state.pair.a], shape_W[state.pair.b]).distance_m;
-    if (state.kinematics_bound_m > now_m + BoundMargin(now_m)) {
-      *msg << "pair (" << state.pair.a << "," << state.pair.b << ") bound "
-           << state.kinematics_bound_m << " m exceeds its distance " << now_m
-           << " m at the last kinematics";
-      return;
-    }
-  }
+  // shape_W is at q_kinematics (also after bounded cycles).
+  if (!cache.ValidatePairs(expected, shape_W, &why)) *msg << why;
 }
 
 // --- Monitor ------------------------------------------------------------------------------
