@@ -183,7 +183,7 @@ struct Monitor::Impl {
   // those bounds, still clears its threshold -- then no pair can warn. False: nothing changed.
   bool TryBoundedCycle(const Eigen::Ref<const Eigen::VectorXd>& q);
   // After bounded cycles: the kinematics (shapes, index, kept pairs) brought to q_good, for
-  // readers of the shapes and for scene changes.
+  // SyncShapes and the scene changes that read or re-express shapes.
   void SyncKinematics() {
     if (kinematics_behind) FollowKinematics(q_good);
   }
@@ -731,6 +731,8 @@ CycleReport Monitor::Check(const Eigen::Ref<const Eigen::VectorXd>& q) const {
     r.stop = true;
     return r;
   }
+  // No sync (const): the shapes and X_WL are both at q_kinematics, and the carried shapes are
+  // recomputed for q from the links whose pose differs.
   std::vector<Eigen::Isometry3d> X_WL_q(m.X_WL.size());
   m.model->ComputeLinkPoses(q, &X_WL_q);
   std::vector<std::uint8_t> changed(m.X_WL.size(), 0);
@@ -847,6 +849,7 @@ bool Monitor::Detach(const std::string& object, std::string* error) {
 bool Monitor::SetGraspTarget(const std::string& link, const std::string& object, bool is_target,
                              std::string* error) {
   Impl& m = *impl_;
+  // No sync: only the compatibility changes (the pair set is rebuilt by the next cycle).
   const int l = m.model->FindLink(link);
   if (l < 0) {
     SetError(error, "SetGraspTarget: unknown link '" + link + "'");
@@ -905,6 +908,7 @@ bool Monitor::SwitchModel(const std::string& link, const std::string& variant,
 bool Monitor::SetObjectPose(const std::string& object, const Eigen::Isometry3d& X_WO,
                             std::string* error) {
   Impl& m = *impl_;
+  // No sync: a free object's shape does not depend on q.
   const int o = m.workcell->FindObject(object);
   if (o < 0) {
     SetError(error, "SetObjectPose: unknown object '" + object + "'");
@@ -935,11 +939,9 @@ bool Monitor::SetObjectPose(const std::string& object, const Eigen::Isometry3d& 
 }
 
 std::uint32_t Monitor::primitive_count() const { return impl_->n; }
-const Shape& Monitor::shape_W(PrimitiveId id) const {
-  // Lazily brought up to date after bounded cycles (this changes no observable state).
-  impl_->SyncKinematics();
-  return impl_->shape_W[id];
-}
+const Shape& Monitor::shape_W(PrimitiveId id) const { return impl_->shape_W[id]; }
+bool Monitor::are_shapes_current() const { return !impl_->kinematics_behind; }
+void Monitor::SyncShapes() { impl_->SyncKinematics(); }
 bool Monitor::is_active(PrimitiveId id) const { return impl_->in_broad_phase[id] != 0; }
 bool Monitor::AreCompatibleNow(PrimitiveId a, PrimitiveId b) const {
   return impl_->compatible.AreCompatible(a, b);
