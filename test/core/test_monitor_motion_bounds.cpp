@@ -188,7 +188,8 @@ TEST(MonitorMotionBounds, PairBoundLeavesOutTheSharedJoints) {
   // Two primitives of one link move rigidly together.
   EXPECT_EQ(bounds.PairBound_m(0, 1), 0.0);
   // The fingers share every joint but their own slides: only those count.
-  const double slide_m = std::abs(q1[bounds.levers(0)[0].q_index] - q0[bounds.levers(0)[0].q_index]);
+  const int slide = bounds.levers(0)[0].q_index;
+  const double slide_m = std::abs(q1[slide] - q0[slide]);
   EXPECT_EQ(bounds.PairBound_m(0, 2), 2.0 * slide_m);
   EXPECT_EQ(bounds.PairBound_m(0, 2), bounds.PairBound_m(2, 0));
 }

@@ -89,7 +89,9 @@ struct RandomScene {
     cache = PairCache(n, slack_m, kWorldEdge_m);
     for (std::uint32_t id = 0; id < n; ++id) Add(id);
   }
-  double IndexTolerance(PrimitiveId id) const { return tol_m[id] + (is_moving[id] ? slack_m : 0.0); }
+  double IndexTolerance(PrimitiveId id) const {
+    return tol_m[id] + (is_moving[id] ? slack_m : 0.0);
+  }
   void Add(PrimitiveId id) {
     broad_phase->Add(id, ComputeAabb(shapes_W[id]), IndexTolerance(id),
                      is_moving[id] ? Motion::kMoving : Motion::kStatic);
@@ -251,7 +253,9 @@ TEST(MonitorPairCache, MatchesBruteForceOverRandomScenes) {
                     static_cast<unsigned long long>(scene.narrow_phase_calls),
                     static_cast<unsigned long long>(scene.reindexed));
         EXPECT_GT(scene.narrow_phase_calls, 0u);
-        if (slack_m > 0.0) EXPECT_LT(scene.narrow_phase_calls, scene.kept_pair_visits);
+        if (slack_m > 0.0) {
+          EXPECT_LT(scene.narrow_phase_calls, scene.kept_pair_visits);
+        }
       }
     }
   }
