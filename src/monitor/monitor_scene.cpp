@@ -54,7 +54,7 @@ void Monitor::Impl::RefreshCompatibility(int link, int object) {
 
 bool Monitor::Attach(const std::string& object, const std::string& link, std::string* error) {
   Impl& m = *impl_;
-  m.SyncKinematics();
+  m.SyncKinematics();  // the object is re-expressed in the link frame at the link's pose now
   const int o = m.model.workcell->FindObject(object);
   if (o < 0) {
     SetError(error, "Attach: unknown object '" + object + "'");
@@ -115,7 +115,7 @@ bool Monitor::Attach(const std::string& object, const std::string& link, std::st
 
 bool Monitor::Detach(const std::string& object, std::string* error) {
   Impl& m = *impl_;
-  m.SyncKinematics();
+  m.SyncKinematics();  // the object stays where it is let go: at the last good q
   const int o = m.model.workcell->FindObject(object);
   if (o < 0) {
     SetError(error, "Detach: unknown object '" + object + "'");
@@ -173,7 +173,7 @@ bool Monitor::SetGraspTarget(const std::string& link, const std::string& object,
 bool Monitor::SwitchModel(const std::string& link, const std::string& variant,
                           std::string* error) {
   Impl& m = *impl_;
-  m.SyncKinematics();
+  m.SyncKinematics();  // the new variant is placed at the link's pose now
   const int l = m.model.kinematics->FindLink(link);
   if (l < 0) {
     SetError(error, "SwitchModel: unknown link '" + link + "'");
