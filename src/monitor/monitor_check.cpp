@@ -1,6 +1,8 @@
 // Monitor::Check (generate-and-test by brute force on a copy) and the Monitor's validation of
 // its own invariants (for tests and soaks; slow, allocates).
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/geometry/distance.h"
@@ -56,6 +58,8 @@ bool Monitor::Validate(std::string* error) const {
   std::ostringstream msg;
   m.ValidatePrimitives(&msg);
   if (msg.tellp() == 0) m.ValidateCompatibility(&msg);
+  std::string why;
+  if (msg.tellp() == 0 && !m.motion.Validate(&why)) msg << "motion bounds: " << why;
   if (msg.tellp() == 0) m.ValidateSlack(&msg);
   if (msg.tellp() == 0 && m.kinematics_behind) m.ValidateBoundedCycle(&msg);
   const auto& w = m.report.warnings;

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 namespace arm_collision_monitor {
 
@@ -94,6 +95,33 @@ void MotionBounds::SetCarrier(PrimitiveId id, int link, bool is_moving, const Sh
     }
     chain_m += joint.X_PJ.translation().norm() + PrismaticTravel_m(joint);
   }
+}
+
+bool MotionBounds::Validate(std::string* why) const {
+  std::ostringstream msg;
+  for (std::size_t id = 0; id < carrier_.size() && msg.tellp() == 0; ++id) {
+    const int link = carrier_[id];
+    if (link < -1 || link >= link_count_) {
+      msg << "primitive " << id << " carried by link " << link << " of " << link_count_;
+      break;
+    }
+    const int count = lever_count_[id];
+    if (count != 0 && (link < 0 || count != link_depth_[link])) {
+      msg << "primitive " << id << " has " << count << " levers on link " << link;
+      break;
+    }
+    const Lever* l = levers(static_cast<PrimitiveId>(id));
+    for (int k = 0; k < count; ++k) {
+      if (l[k].q_index < 0 || l[k].q_index >= model_->q_size() || !(l[k].m_per_unit >= 0.0)) {
+        msg << "primitive " << id << " lever " << k << ": q index " << l[k].q_index << ", "
+            << l[k].m_per_unit << " m per unit";
+        break;
+      }
+    }
+  }
+  if (msg.tellp() == 0) return true;
+  *why = msg.str();
+  return false;
 }
 
 }  // namespace arm_collision_monitor

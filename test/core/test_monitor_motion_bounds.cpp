@@ -7,6 +7,7 @@
 #include <limits>
 #include <memory>
 #include <random>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -38,6 +39,8 @@ MotionBounds BoundsOf(const Workcell& wc) {
     const PrimitiveSpec& spec = wc.primitives[id];
     bounds.SetCarrier(id, spec.link_index, spec.link_index >= 0 && !spec.is_static, spec.shape_L);
   }
+  std::string why;
+  EXPECT_TRUE(bounds.Validate(&why)) << why;
   return bounds;
 }
 
@@ -157,6 +160,15 @@ TEST(MonitorMotionBounds, LeversOfTheThreeLinkChain) {
   bounds.SetCarrier(2, -1, true, unit_ball);
   EXPECT_EQ(bounds.lever_count(1), 0);
   EXPECT_EQ(bounds.lever_count(2), 0);
+  std::string why;
+  EXPECT_TRUE(bounds.Validate(&why)) << why;
+  // An attached object moves to another carrier and back to none: levers follow.
+  bounds.SetCarrier(2, model.FindLink("forearm"), true, unit_ball);
+  EXPECT_EQ(bounds.lever_count(2), 2);
+  EXPECT_TRUE(bounds.Validate(&why)) << why;
+  bounds.SetCarrier(2, -1, true, unit_ball);
+  EXPECT_EQ(bounds.lever_count(2), 0);
+  EXPECT_TRUE(bounds.Validate(&why)) << why;
   Eigen::VectorXd q0 = Eigen::VectorXd::Zero(model.q_size());
   Eigen::VectorXd q1 = q0;
   bounds.SetJointMotion(q1, q0);

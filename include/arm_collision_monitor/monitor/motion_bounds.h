@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -84,6 +85,12 @@ class MotionBounds {
     return (lever_count_[a] > 0 ? LeverSums(a)[lever_count_[a] - shared] : 0.0) +
            (lever_count_[b] > 0 ? LeverSums(b)[lever_count_[b] - shared] : 0.0);
   }
+
+  /// Checks the invariants: every carrier is a link or -1; a primitive has either no levers or
+  /// one per moving joint above its link, each driven by a valid q index with a lever >= 0
+  /// (+inf for unlimited prismatic travel; NaN would void the sums). False with the first
+  /// violation in `why`.
+  bool Validate(std::string* why) const;
 
  private:
   // Slot k: the motion bound from primitive id's k lowest levers (slot 0 is 0).
