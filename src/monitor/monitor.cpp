@@ -1,602 +1,125 @@
 // The per-cycle Monitor: the seed's update loop (Shaffer & Herb, TR 90-28, section 3: joint
 // angles -> kinematics -> index update of the moved primitives -> intersection tests of the
 // tolerance-grown primitives), with its section 6 extensions (model switching, grasped objects,
-// speed-dependent tolerance) done without allocation in the cycle.
+// speed-dependent tolerance) done without allocation in the cycle. Read top-down: Update, then
+// the cycle's steps, then the start-up of the data, then the read accessors.
 #include "arm_collision_monitor/monitor/monitor.h"
 
 #include <algorithm>
-#include <cmath>
 #include <cstring>
-#include <limits>
-#include <sstream>
 #include <utility>
 
 #include "arm_collision_monitor/broadphase/broad_phase_factory.h"
-#include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/geometry/distance.h"
+#include "monitor_impl.h"
 
 namespace arm_collision_monitor {
 namespace {
-
-/// Distance from point p to the farthest point of the shape (both in the same frame).
-double MaxDistanceFromPoint(const Shape& shape, const Eigen::Vector3d& p) {
-  if (const auto* capsule = std::get_if<Capsule>(&shape)) {
-    return std::max((capsule->p0_W - p).norm(), (capsule->p1_W - p).norm()) + capsule->radius_m;
-  }
-  const Box& box = std::get<Box>(shape);
-  // The farthest point of a box from p is the vertex opposite p in every axis.
-  const Eigen::Vector3d p_B = box.X_WB.inverse(Eigen::Isometry) * p;
-  return (p_B.cwiseAbs() + box.half_extents_m).norm();
-}
-
-/// Largest displacement of a defining point between two poses of the same primitive: the
-/// endpoints of a capsule, the vertices of a box (the displacement of a rigid motion is affine
-/// in the point, so its norm peaks at a vertex).
-double MaxPointDisplacement(const Shape& before, const Shape& after) {
-  if (const auto* c0 = std::get_if<Capsule>(&before)) {
-    const Capsule& c1 = std::get<Capsule>(after);
-    return std::sqrt(std::max((c1.p0_W - c0->p0_W).squaredNorm(),
-                              (c1.p1_W - c0->p1_W).squaredNorm()));
-  }
-  const Box& b0 = std::get<Box>(before);
-  const Box& b1 = std::get<Box>(after);
-  double max_sq = 0.0;
-  for (int corner = 0; corner < 8; ++corner) {
-    const Eigen::Vector3d v_B((corner & 1) ? b0.half_extents_m.x() : -b0.half_extents_m.x(),
-                              (corner & 2) ? b0.half_extents_m.y() : -b0.half_extents_m.y(),
-                              (corner & 4) ? b0.half_extents_m.z() : -b0.half_extents_m.z());
-    max_sq = std::max(max_sq, (b1.X_WB * v_B - b0.X_WB * v_B).squaredNorm());
-  }
-  return std::sqrt(max_sq);
-}
 
 /// Bit-identical poses: a link whose pose did not change bit for bit has not moved.
 bool IsSamePose(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
   return std::memcmp(a.matrix().data(), b.matrix().data(), sizeof(double) * 16) == 0;
 }
 
-// An idle or refused cycle does no work.
-void ClearCycleWork(CycleReport* report) {
-  report->moved_primitives = 0;
-  report->reindexed_primitives = 0;
-  report->candidate_pairs = 0;
-  report->narrow_phase_tests = 0;
-  report->bounded = false;
-  report->counters = BroadPhaseCounters{};
-}
-
-/// The index into q that drives `joint` (its own, or the one it mimics); -1 if it does not move.
-int DrivingQIndex(const JointSpec& joint) {
-  if (joint.type == JointType::kFixed) return -1;
-  return joint.q_index >= 0 ? joint.q_index : joint.mimic_q_index;
-}
-
-/// How far a prismatic joint's child can slide from the joint's origin (inf if unlimited); 0
-/// for other joints.
-double PrismaticTravel_m(const JointSpec& joint) {
-  if (joint.type != JointType::kPrismatic) return 0.0;
-  return std::max(std::abs(joint.lower), std::abs(joint.upper));
-}
-
-void SetError(std::string* error, const std::string& message) {
-  if (error != nullptr) *error = message;
-}
-
 }  // namespace
 
-struct Monitor::Impl {
-  // --- model: fixed after construction -------------------------------------------------
-  std::shared_ptr<const Workcell> workcell;
-  MonitorOptions options;
-  const KinematicModel* model = nullptr;
-  std::uint32_t n = 0;                  // primitive count
-  Eigen::VectorXd q_lower, q_upper;     // joint limits by q index, margin included
-  std::vector<std::vector<PrimitiveId>> link_prims;  // every variant's primitives per link
-  std::vector<std::vector<std::string>> link_variants;  // [0] is always ""
-  std::vector<int> variant_index;       // per primitive, into link_variants of its link; 0 for objects
-  struct Object {
-    std::vector<PrimitiveId> prims;
-    Eigen::Isometry3d X_OW_start;  // inverse of the start pose: shape_L = X_WO_start * shape_O
-    bool is_attachable = false;
-    bool is_frame_bound = false;   // moved by SetObjectPose
-  };
-  std::vector<Object> objects;     // parallel to Workcell::objects
-  std::vector<int> object_of;           // per primitive, -1 for link primitives
-  std::vector<double> tol_base;         // per primitive, m
-  std::vector<double> hold_radius_m;    // per link: farthest a held object may reach from its origin
-  double speed_tol_gain_s = 0.0;        // reaction + stopping time when speed-scaled, else 0
+// --- the cycle ------------------------------------------------------------------------------
 
-  // --- live state --------------------------------------------------------------------------
-  std::unique_ptr<BroadPhase> broad_phase;
-  CompatibilityMatrix compatible;
-  std::vector<std::uint8_t> grasp;      // link_count x object_count: is a grasp target
-  std::vector<int> holder;              // per object: holding link, -1 if none
-  std::vector<int> active_variant;      // per link
-  std::vector<Shape> shape_C;           // per primitive: in its carrier link's frame (attached or link)
-  std::vector<int> carrier;             // per primitive: link it moves with, -1 for none
-  std::vector<Shape> shape_W;
-  std::vector<Shape> shape_prev_W;      // at the last good cycle (speed-scaled tolerance only)
-  std::vector<std::uint8_t> is_moving;  // Motion it is indexed with
-  std::vector<std::uint8_t> is_reachable;  // false: static no moving primitive can reach
-  std::vector<std::uint8_t> in_broad_phase;
-  std::vector<std::uint8_t> moved;      // pose changed since the last good cycle
-  std::vector<double> tol_now;          // per primitive this cycle, m
-  std::vector<Eigen::Isometry3d> X_WL, X_WL_next;
-  std::vector<std::uint8_t> link_changed;
-  Eigen::VectorXd q_good;
-  bool has_good = false;
-  bool scene_changed = true;
-  // Index slack (MonitorOptions::index_slack_m): each moving primitive is indexed by its shape
-  // as of its last re-index, grown by the slack; the candidate pairs are kept between cycles,
-  // each with a lower bound on the distance between the two indexed shapes.
-  struct PairState {
-    CandidatePair pair;
-    double lower_bound_m = 0.0;  // <= distance of the indexed shapes; NaN: not yet computed
-    double kinematics_bound_m = 0.0;  // <= distance at q_kinematics; NaN: unknown
-  };
-  std::vector<Shape> shape_ref_W;       // per primitive: as last indexed
-  std::vector<double> disp_m;           // per primitive: farthest point motion since then
-  std::vector<PairState> pair_states;   // the broad phase's candidate pairs, sorted
-  std::vector<PairState> pair_scratch;
-  std::vector<CandidatePair> pairs, new_pairs;  // scratch for FindPairs / FindPairsOf
-  std::vector<PrimitiveId> reindexed;   // this cycle
-  std::vector<std::uint8_t> is_reindexed;
-  bool pairs_stale = true;              // an index or compatibility change: rebuild the set
-  // Bounded cycles (see TryBoundedCycle): a link-carried primitive's points move by at most
-  // sum_j |delta q_j| * lever_j, the lever being how far the primitive can reach from joint j's
-  // axis (1 for a prismatic joint), times |multiplier| for a mimic joint.
-  struct Lever {
-    int q_index = 0;
-    double m_per_unit = 0.0;  // m per rad (revolute) or per m (prismatic)
-  };
-  int max_levers = 0;                   // moving joints above the deepest link
-  std::vector<Lever> levers;            // per primitive, max_levers slots
-  std::vector<int> lever_count;         // per primitive; 0: not carried by a moving link
-  Eigen::VectorXd q_kinematics;         // q of the last forward kinematics
-  Eigen::VectorXd dq_abs;               // scratch: |q - q_kinematics|
-  std::vector<int> link_depth;          // per link: levers from it up to the root
-  std::vector<std::uint8_t> shared_levers;  // link x link: link_depth of their lowest common
-                                            // ancestor (joints that move both alike)
-  std::vector<double> lever_sums_m;     // per primitive, max_levers + 1 slots: partial sums of
-                                        // |delta q| * lever from its link upward
-  Lever* LeversOf(PrimitiveId id) { return &levers[static_cast<std::size_t>(id) * max_levers]; }
-  // Slot k: the motion bound from primitive id's k lowest levers (slot 0 is 0).
-  double* LeverSumsOf(PrimitiveId id) {
-    return &lever_sums_m[static_cast<std::size_t>(id) * (max_levers + 1)];
+const CycleReport& Monitor::Update(const Eigen::Ref<const Eigen::VectorXd>& q) {
+  Impl& m = *impl_;
+  // Idle cycle: same input bit for bit and an unchanged scene give the same report.
+  if (m.IsIdle(q)) {
+    m.RecordCycle(Impl::CycleKind::kIdle, InputStatus::kOk, {});
+    return m.report;
   }
-  const double* LeverSumsOf(PrimitiveId id) const {
-    return &lever_sums_m[static_cast<std::size_t>(id) * (max_levers + 1)];
+  const InputStatus status = m.CheckInput(q);
+  if (status != InputStatus::kOk) {
+    // Fail safe: keep the last good state (and its warnings), request a stop.
+    ++m.refused;
+    m.RecordCycle(Impl::CycleKind::kRefused, status, {});
+    return m.report;
   }
-  bool kinematics_behind = false;       // bounded cycles since: shape_W is at q_kinematics
-  double world_edge_m = 0.0;
-  CycleReport report;
-  BroadPhaseCounters total;
-  std::uint64_t refused = 0;
-
-  Impl(std::shared_ptr<const Workcell> wc, const MonitorOptions& opts);
-  void ValidateOptions() const;
-  void BuildModel();
-  void ComputeReachability();
-  // A static left out as unreachable becomes active for good once `mover` (a frame-bound
-  // object) comes within the sum of their indexed tolerances.
-  void MarkStaticsNearReachable(PrimitiveId mover);
-  void BuildBroadPhase();
-
-  bool IsActiveVariant(PrimitiveId id) const {
-    const int link = workcell->primitives[id].link_index;
-    return link < 0 || variant_index[id] == active_variant[link];
-  }
-  bool ShouldBeInBroadPhase(PrimitiveId id) const {
-    return IsActiveVariant(id) && (is_moving[id] || is_reachable[id]);
-  }
-  double BroadTolerance(PrimitiveId id, bool moving) const {
-    return tol_base[id] + (moving ? options.max_speed_mps * speed_tol_gain_s : 0.0);
-  }
-  // What the index grows a primitive's box by: its largest tolerance, plus the slack when it
-  // moves.
-  double IndexTolerance(PrimitiveId id) const {
-    return BroadTolerance(id, is_moving[id]) + (is_moving[id] ? options.index_slack_m : 0.0);
-  }
-  // What a distance bound keeps in hand against rounding: far above the rounding of the terms
-  // compared with it (lengths up to the world's edge).
-  double BoundMargin(double bound_m) const {
-    return kLowerBoundMarginPerMetre * (world_edge_m + std::abs(bound_m));
-  }
-  // Each kept pair's distance at the kinematics is at least its indexed distance less both
-  // primitives' motion since they were indexed.
-  double KinematicsBound(const PairState& state) const {
-    return state.lower_bound_m - disp_m[state.pair.a] - disp_m[state.pair.b];
-  }
-  void AddToBroadPhase(PrimitiveId id) {
-    broad_phase->Add(id, ComputeAabb(shape_W[id]), IndexTolerance(id),
-                     is_moving[id] ? Motion::kMoving : Motion::kStatic);
-    in_broad_phase[id] = 1;
-    shape_ref_W[id] = shape_W[id];
-    disp_m[id] = 0.0;
-    pairs_stale = true;
-  }
-  void RemoveFromBroadPhase(PrimitiveId id) {
-    broad_phase->Remove(id);
-    in_broad_phase[id] = 0;
-    pairs_stale = true;
-  }
-  // Re-indexes `id` with its current motion and tolerance (Add fixes both).
-  void Reindex(PrimitiveId id, bool moving) {
-    const bool was_in = in_broad_phase[id];
-    if (was_in) RemoveFromBroadPhase(id);
-    is_moving[id] = moving;
-    if (was_in || ShouldBeInBroadPhase(id)) AddToBroadPhase(id);
-  }
-  bool CompatibleNow(PrimitiveId link_prim, PrimitiveId object_prim, int link, int object) const {
-    return workcell->compatible.AreCompatible(link_prim, object_prim) ||
-           grasp[static_cast<std::size_t>(link) * objects.size() + object] ||
-           holder[object] == link;
-  }
-  void RefreshCompatibility(int link, int object) {
-    pairs_stale = true;
-    for (const PrimitiveId l : link_prims[link]) {
-      for (const PrimitiveId o : objects[object].prims) {
-        compatible.Set(l, o, CompatibleNow(l, o, link, object));
-      }
-    }
-  }
-
-  InputStatus CheckInput(const Eigen::Ref<const Eigen::VectorXd>& q) const;
-  bool IsIdle(const Eigen::Ref<const Eigen::VectorXd>& q) const {
-    return has_good && !scene_changed && report.input == InputStatus::kOk &&
-           q.size() == q_good.size() &&
-           std::memcmp(q.data(), q_good.data(), sizeof(double) * q.size()) == 0;
-  }
-  // Writes into `shapes` the primitives carried by links whose pose differs between the live X_WL
-  // and `X_WL_new`, and flags them in `moved_flags`; `changed` is per-link scratch.
-  void MoveCarried(const std::vector<Eigen::Isometry3d>& X_WL_new,
-                   std::vector<std::uint8_t>* changed, std::vector<Shape>* shapes,
-                   std::vector<std::uint8_t>* moved_flags) const;
-  // This cycle's tolerance of every primitive (speed-scaled for the moving ones when enabled).
-  void ComputeTolerances(const std::vector<Shape>& shapes,
-                         const std::vector<std::uint8_t>& moved_flags,
-                         std::vector<double>* tol) const;
-  // Narrow phase of one pair: appends a warning when closer than the sum of the tolerances (or
-  // touching); returns the distance.
-  static double TestPair(PrimitiveId a, PrimitiveId b, const std::vector<Shape>& shapes,
-                         const std::vector<double>& tol, std::vector<Warning>* warnings);
-  // Moves in the index the moved primitives that left their slack; counts the moved ones.
-  std::uint32_t ReindexMoved();
-  // Brings pair_states up to date with the index: rebuilt when stale, else the pairs of this
-  // cycle's re-indexed primitives replaced.
-  void UpdatePairStates();
-  // The narrow phase over pair_states, skipping the pairs whose lower bound clears them.
-  void TestCandidatePairs();
-  // The levers of primitive `id` for its current carrier (none when it has none).
-  void ComputeLevers(PrimitiveId id);
-  // Forward kinematics at q, the moved primitives re-indexed, the kept pairs brought up to
-  // date: the model then follows q. Returns the number of primitives that moved.
-  std::uint32_t FollowKinematics(const Eigen::Ref<const Eigen::VectorXd>& q);
-  // A cycle without kinematics: true (and the report written) when every moving primitive's
-  // joint-space motion bound keeps it within its slack and every kept pair's lower bound, less
-  // those bounds, still clears its threshold -- then no pair can warn. False: nothing changed.
-  bool TryBoundedCycle(const Eigen::Ref<const Eigen::VectorXd>& q);
-  // After TryBoundedCycle's motion bounds for q: how far a and b can have moved relative to
-  // each other since q_kinematics (joints above both links' common ancestor move both alike).
-  double PairMotionBound(PrimitiveId a, PrimitiveId b) const {
-    const int la = carrier[a], lb = carrier[b];
-    const int shared = la >= 0 && lb >= 0
-                           ? shared_levers[static_cast<std::size_t>(la) * model->link_count() + lb]
-                           : 0;
-    return (lever_count[a] > 0 ? LeverSumsOf(a)[lever_count[a] - shared] : 0.0) +
-           (lever_count[b] > 0 ? LeverSumsOf(b)[lever_count[b] - shared] : 0.0);
-  }
-  // After bounded cycles: the kinematics (shapes, index, kept pairs) brought to q_good, for
-  // readers of the shapes and for scene changes.
-  void SyncKinematics() {
-    if (kinematics_behind) FollowKinematics(q_good);
-  }
-  void RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q);
-  // Monitor::Validate's part for the index slack: displacements, the kept pair set against the
-  // indexed boxes by brute force, and the pairs' lower bounds.
-  void ValidateSlack(std::ostringstream* msg) const;
-  // After a bounded cycle: its motion bounds and its claims (every primitive within its slack,
-  // every kept pair clear) against the true shapes at q_good.
-  void ValidateBoundedCycle(std::ostringstream* msg) const;
-};
-
-Monitor::Impl::Impl(std::shared_ptr<const Workcell> wc, const MonitorOptions& opts)
-    : workcell(std::move(wc)), options(opts) {
-  if (!workcell) throw LoadError("monitor: no workcell given");
-  model = &workcell->kinematics;
-  n = static_cast<std::uint32_t>(workcell->primitives.size());
-  options.broad_phase.world_W = workcell->world_W;
-  options.broad_phase.min_cell_size_m = MinCellSize_m(options);
-  options.broad_phase.reserve_primitives = std::max(options.broad_phase.reserve_primitives, n);
-  world_edge_m = (workcell->world_W.max_W - workcell->world_W.min_W).maxCoeff();
-  speed_tol_gain_s =
-      options.speed_scaled_tolerance ? options.reaction_time_s + options.stopping_time_s : 0.0;
-  ValidateOptions();
-  BuildModel();
-  ComputeReachability();
-  BuildBroadPhase();
+  m.RunCycle(q);
+  return m.report;
 }
 
-void Monitor::Impl::ValidateOptions() const {
-  auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
-  auto non_negative = [](double v) { return std::isfinite(v) && v >= 0.0; };
-  if (!positive(options.max_speed_mps)) {
-    throw LoadError("monitor options: max_speed_mps must be a positive number");
-  }
-  if (!positive(options.cycle_period_s)) {
-    throw LoadError("monitor options: cycle_period_s must be a positive number");
-  }
-  if (!non_negative(options.reaction_time_s) || !non_negative(options.stopping_time_s)) {
-    throw LoadError("monitor options: reaction_time_s and stopping_time_s must be >= 0");
-  }
-  if (!non_negative(options.index_slack_m)) {
-    throw LoadError("monitor options: index_slack_m must be >= 0");
-  }
-  if (options.broad_phase.max_objects_per_leaf < 1) {
-    throw LoadError("monitor options: broad_phase max_objects_per_leaf must be >= 1");
-  }
-  const Aabb& world = options.broad_phase.world_W;
-  if (!world.min_W.allFinite() || !world.max_W.allFinite() ||
-      !(world.min_W.array() < world.max_W.array()).all()) {
-    throw LoadError(workcell->scene_path + ": world box must have min < max on every axis");
-  }
-  if (static_cast<int>(workcell->joint_names.size()) != model->q_size()) {
-    throw LoadError(workcell->urdf_path + ": " + std::to_string(workcell->joint_names.size()) +
-                    " joint names for " + std::to_string(model->q_size()) + " actuated joints");
-  }
-  if (workcell->compatible.size() != n) {
-    throw LoadError(workcell->scene_path + ": compatibility matrix size " +
-                    std::to_string(workcell->compatible.size()) + " for " + std::to_string(n) +
-                    " primitives");
-  }
-}
-
-void Monitor::Impl::BuildModel() {
-  const int link_count = model->link_count();
-  q_lower = Eigen::VectorXd::Constant(model->q_size(), -std::numeric_limits<double>::infinity());
-  q_upper = Eigen::VectorXd::Constant(model->q_size(), std::numeric_limits<double>::infinity());
-  for (int link = 1; link < link_count; ++link) {
-    const JointSpec& joint = model->joint(link);
-    if (joint.q_index < 0 || joint.type == JointType::kContinuous) continue;
-    q_lower[joint.q_index] = joint.lower - kJointLimitMargin;
-    q_upper[joint.q_index] = joint.upper + kJointLimitMargin;
-  }
-
-  link_prims.assign(link_count, {});
-  link_variants.assign(link_count, std::vector<std::string>{""});
-  variant_index.assign(n, 0);
-  object_of.assign(n, -1);
-  tol_base.resize(n);
-  carrier.assign(n, -1);
-  shape_C.resize(n);
-  is_moving.assign(n, 0);
-  for (PrimitiveId id = 0; id < n; ++id) {
-    const PrimitiveSpec& spec = workcell->primitives[id];
-    tol_base[id] = spec.tolerance_m;
-    shape_C[id] = spec.shape_L;
-    if (spec.link_index >= 0) {
-      if (spec.link_index >= link_count) {
-        throw LoadError(workcell->scene_path + ": primitive '" + spec.name +
-                        "' has link index " + std::to_string(spec.link_index) + " of " +
-                        std::to_string(link_count) + " links");
-      }
-      link_prims[spec.link_index].push_back(id);
-      auto& variants = link_variants[spec.link_index];
-      const auto it = std::find(variants.begin(), variants.end(), spec.variant);
-      variant_index[id] = static_cast<int>(it - variants.begin());
-      if (it == variants.end()) variants.push_back(spec.variant);
-      carrier[id] = spec.link_index;
-      is_moving[id] = spec.is_static ? 0 : 1;  // links with only fixed joints above never move
-    } else {
-      const int o = spec.object_index;
-      if (o < 0 || o >= static_cast<int>(workcell->objects.size())) {
-        throw LoadError(workcell->scene_path + ": primitive '" + spec.name +
-                        "' has neither a link nor an object");
-      }
-      object_of[id] = o;
-    }
-  }
-  objects.resize(workcell->objects.size());
-  for (std::size_t o = 0; o < objects.size(); ++o) {
-    const ObjectSpec& spec = workcell->objects[o];
-    objects[o].X_OW_start = spec.X_WO_start.inverse(Eigen::Isometry);
-    objects[o].is_attachable = spec.is_attachable;
-    objects[o].is_frame_bound = !spec.frame.empty();
-    for (PrimitiveId id = 0; id < n; ++id) {
-      if (object_of[id] == static_cast<int>(o)) objects[o].prims.push_back(id);
-    }
-    // Resting objects are static (never tested against other statics) until held; only the
-    // frame-bound ones move on their own.
-    for (const PrimitiveId id : objects[o].prims) is_moving[id] = objects[o].is_frame_bound;
-  }
-  active_variant.assign(link_count, 0);
-  grasp.assign(static_cast<std::size_t>(link_count) * objects.size(), 0);
-  holder.assign(objects.size(), -1);
-  compatible = workcell->compatible;
-
-  // Start-up pose: every joint at 0 clamped into its limits; the first good Update moves all.
-  Eigen::VectorXd q0 = Eigen::VectorXd::Zero(model->q_size());
-  for (int i = 0; i < q0.size(); ++i) {
-    q0[i] = std::min(std::max(0.0, q_lower[i] + kJointLimitMargin), q_upper[i] - kJointLimitMargin);
-    if (!std::isfinite(q0[i])) q0[i] = 0.0;
-  }
-  X_WL.assign(link_count, Eigen::Isometry3d::Identity());
-  link_changed.assign(link_count, 0);
-  model->ComputeLinkPoses(q0, &X_WL);
-  X_WL_next = X_WL;  // the links fixed to the root keep these poses (ComputeMovingLinkPoses)
-  q_good = q0;
-  shape_W.resize(n);
-  for (PrimitiveId id = 0; id < n; ++id) {
-    shape_W[id] = carrier[id] >= 0 ? TransformShape(X_WL[carrier[id]], shape_C[id]) : shape_C[id];
-  }
-  shape_prev_W = shape_W;
-  shape_ref_W = shape_W;
-  disp_m.assign(n, 0.0);
-  q_kinematics = q0;
-  dq_abs = Eigen::VectorXd::Zero(q0.size());
-  link_depth.assign(link_count, 0);
-  for (int link = 1; link < link_count; ++link) {
-    const bool moves = DrivingQIndex(model->joint(link)) >= 0;
-    link_depth[link] = link_depth[model->parent_link(link)] + (moves ? 1 : 0);
-    max_levers = std::max(max_levers, link_depth[link]);
-  }
-  shared_levers.assign(static_cast<std::size_t>(link_count) * link_count, 0);
-  for (int a = 0; a < link_count; ++a) {
-    for (int b = 0; b < link_count; ++b) {
-      int x = a, y = b;  // parents precede children: climb from the larger index
-      while (x != y) {
-        if (x > y) {
-          x = model->parent_link(x);
-        } else {
-          y = model->parent_link(y);
-        }
-      }
-      shared_levers[static_cast<std::size_t>(a) * link_count + b] =
-          static_cast<std::uint8_t>(link_depth[x]);
-    }
-  }
-  lever_sums_m.assign(static_cast<std::size_t>(n) * (max_levers + 1), 0.0);
-  levers.assign(static_cast<std::size_t>(n) * max_levers, Lever{});
-  lever_count.assign(n, 0);
-  for (PrimitiveId id = 0; id < n; ++id) ComputeLevers(id);
-  is_reindexed.assign(n, 0);
-  moved.assign(n, 0);
-  tol_now = tol_base;
-}
-
-// Reach envelope (the seed's observation that stationary objects only cost time when they share
-// cells with moving ones, taken to the limit): a link L's points stay within a sphere centred on
-// the origin of the first moving joint above it, of radius (sum of the joint offsets between
-// that joint and L, plus prismatic travel) + (farthest point of L's geometry, or of an object it
-// may hold, from L's origin) -- the triangle inequality over the chain, valid for every q.
-// Frame-bound objects reach what is near their current pose (SetObjectPose re-checks).
-void Monitor::Impl::ComputeReachability() {
-  const int link_count = model->link_count();
-  double max_attach_diameter_m = 0.0;
-  bool has_attachable = false;
-  double max_moving_tol_m = 0.0;
-  for (PrimitiveId id = 0; id < n; ++id) {
-    const int o = object_of[id];
-    if (is_moving[id] || (o >= 0 && objects[o].is_attachable)) {
-      max_moving_tol_m = std::max(max_moving_tol_m, BroadTolerance(id, true));
-    }
-  }
-  for (const Object& object : objects) {
-    if (!object.is_attachable) continue;
-    has_attachable = true;
-    Aabb box = ComputeAabb(workcell->primitives[object.prims.front()].shape_L);
-    for (const PrimitiveId id : object.prims) {
-      const Aabb b = ComputeAabb(workcell->primitives[id].shape_L);
-      box.min_W = box.min_W.cwiseMin(b.min_W);
-      box.max_W = box.max_W.cwiseMax(b.max_W);
-    }
-    // The AABB diagonal bounds the object's diameter (which a rigid motion keeps).
-    max_attach_diameter_m = std::max(max_attach_diameter_m, (box.max_W - box.min_W).norm());
-  }
-
-  // Per link: world centre of its reach sphere and the chain length from that centre.
-  std::vector<Eigen::Vector3d> centre_W(link_count, Eigen::Vector3d::Zero());
-  std::vector<double> chain_m(link_count, 0.0);
-  std::vector<std::uint8_t> is_below_joint(link_count, 0);  // a non-fixed joint above it
-  for (int link = 1; link < link_count; ++link) {
-    const int parent = model->parent_link(link);
-    const JointSpec& joint = model->joint(link);
-    const double travel_m = PrismaticTravel_m(joint);
-    if (is_below_joint[parent]) {
-      is_below_joint[link] = 1;
-      centre_W[link] = centre_W[parent];
-      chain_m[link] = chain_m[parent] + joint.X_PJ.translation().norm() + travel_m;
-    } else if (joint.type != JointType::kFixed) {
-      // The first moving joint (actuated or mimic): its origin is fixed (revolute) or slides by
-      // `travel_m`.
-      is_below_joint[link] = 1;
-      centre_W[link] = X_WL[parent] * joint.X_PJ.translation();
-      chain_m[link] = travel_m;
-    }
-  }
-  // Only links below a moving joint may hold objects (holding with a fixed link would make a
-  // static object "moving" for nothing); hold_radius_m < 0 marks the others.
-  hold_radius_m.assign(link_count, -1.0);
-  std::vector<double> reach_m(link_count, -1.0);  // < 0: reaches nothing
-  for (int link = 0; link < link_count; ++link) {
-    if (!is_below_joint[link]) continue;
-    double extent_m = 0.0;
-    for (const PrimitiveId id : link_prims[link]) {
-      extent_m = std::max(extent_m, MaxDistanceFromPoint(shape_C[id], Eigen::Vector3d::Zero()));
-    }
-    hold_radius_m[link] = extent_m + kAttachMaxGap_m + max_attach_diameter_m;
-    if (has_attachable) {
-      reach_m[link] = chain_m[link] + hold_radius_m[link];
-    } else if (!link_prims[link].empty()) {
-      reach_m[link] = chain_m[link] + extent_m;
-    }
-  }
-
-  is_reachable.assign(n, 1);
-  for (PrimitiveId id = 0; id < n; ++id) {
-    if (is_moving[id] || (object_of[id] >= 0 && objects[object_of[id]].is_attachable)) continue;
-    bool reachable = false;
-    for (int link = 0; link < link_count && !reachable; ++link) {
-      if (reach_m[link] < 0.0) continue;
-      if (!std::isfinite(reach_m[link])) {
-        reachable = true;
-        break;
-      }
-      const Capsule sphere{centre_W[link], centre_W[link], reach_m[link]};
-      // <=, as the broad phase's closed boxes: touching counts.
-      reachable = ShapeDistance(sphere, shape_W[id]).distance_m <=
-                  tol_base[id] + max_moving_tol_m;
-    }
-    is_reachable[id] = reachable ? 1 : 0;
-  }
-  for (const Object& object : objects) {
-    if (!object.is_frame_bound) continue;
-    for (const PrimitiveId id : object.prims) MarkStaticsNearReachable(id);
-  }
-}
-
-void Monitor::Impl::MarkStaticsNearReachable(PrimitiveId mover) {
-  for (PrimitiveId id = 0; id < n; ++id) {
-    if (is_moving[id] || is_reachable[id]) continue;
-    if (ShapeDistance(shape_W[mover], shape_W[id]).distance_m <=
-        tol_base[id] + BroadTolerance(mover, true)) {
-      is_reachable[id] = 1;
-      if (broad_phase && ShouldBeInBroadPhase(id)) AddToBroadPhase(id);
-    }
-  }
-}
-
-void Monitor::Impl::BuildBroadPhase() {
-  in_broad_phase.assign(n, 0);
-  std::uint32_t active = 0;
-  for (PrimitiveId id = 0; id < n; ++id) active += ShouldBeInBroadPhase(id) ? 1 : 0;
-  if (options.auto_broad_phase) {
-    options.broad_phase.method =
-        active >= kAutoOctreeMinPrimitives ? BroadPhaseMethod::kOctree : BroadPhaseMethod::kNaive;
-  }
-  broad_phase = MakeBroadPhase(options.broad_phase);
-  for (PrimitiveId id = 0; id < n; ++id) {
-    if (ShouldBeInBroadPhase(id)) AddToBroadPhase(id);
-  }
-  const std::size_t max_pairs = static_cast<std::size_t>(n) * (n > 0 ? n - 1 : 0) / 2;
-  pairs.reserve(max_pairs);
-  new_pairs.reserve(max_pairs);
-  pair_states.reserve(max_pairs);
-  pair_scratch.reserve(max_pairs);
-  reindexed.reserve(n);
-  report.warnings.reserve(max_pairs);
-  report.stop = true;  // nothing is known before the first good input
-  total = BroadPhaseCounters{};
+void Monitor::Impl::RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q) {
+  // Work done by scene changes since the last cycle belongs to the run, not to this cycle.
+  total += broad_phase->counters();
   broad_phase->ResetCounters();
+  CycleWork work;
+  if (IsProvablyClear(q)) {
+    // Every kept pair is clear, and every other pair's indexed boxes are apart while both
+    // primitives stay within their slack: no warning, and the kinematics can wait.
+    q_good = q;
+    kinematics_behind = true;
+    work.candidate_pairs = static_cast<std::uint32_t>(cache.pairs().size());
+    RecordCycle(CycleKind::kBounded, InputStatus::kOk, work);
+    return;
+  }
+  work.moved = FollowKinematics(q);
+  q_good = q;
+  work.narrow_phase_tests = TestCandidatePairs();
+  work.reindexed = static_cast<std::uint32_t>(cache.reindexed().size());
+  work.candidate_pairs = static_cast<std::uint32_t>(cache.pairs().size());
+  RecordCycle(CycleKind::kKinematics, InputStatus::kOk, work);
+  has_good = true;
+  scene_changed = false;
 }
 
 InputStatus Monitor::Impl::CheckInput(const Eigen::Ref<const Eigen::VectorXd>& q) const {
-  if (q.size() != q_lower.size()) return InputStatus::kWrongSize;
+  if (q.size() != model.q_lower.size()) return InputStatus::kWrongSize;
   if (!q.allFinite()) return InputStatus::kNonFinite;
-  if ((q.array() < q_lower.array()).any() || (q.array() > q_upper.array()).any()) {
+  if ((q.array() < model.q_lower.array()).any() || (q.array() > model.q_upper.array()).any()) {
     return InputStatus::kOutOfLimits;
   }
   return InputStatus::kOk;
+}
+
+bool Monitor::Impl::IsProvablyClear(const Eigen::Ref<const Eigen::VectorXd>& q) {
+  // Speed-scaled tolerances need the motion itself; a scene change re-plans the pairs.
+  if (!has_good || scene_changed || cache.is_stale() || model.speed_tol_gain_s != 0.0 ||
+      report.input != InputStatus::kOk) {
+    return false;
+  }
+  motion.SetJointMotion(q, q_kinematics);
+  const double slack_m = model.options.index_slack_m;
+  for (PrimitiveId id = 0; id < model.primitive_count; ++id) {
+    if (motion.lever_count(id) == 0) continue;
+    const double bound_m = motion.ComputeBound_m(id);
+    // Motion since indexed <= motion until the kinematics + motion since; NaN fails.
+    if (in_broad_phase[id] && !(cache.displacement_m(id) + bound_m <= slack_m)) return false;
+  }
+  for (const KeptPair& kept : cache.pairs()) {
+    const PrimitiveId a = kept.pair.a;
+    const PrimitiveId b = kept.pair.b;
+    // NaN (no bound) is not clear.
+    if (!cache.IsClear(kept.kinematics_bound_m, motion.PairBound_m(a, b),
+                       tol_now[a] + tol_now[b])) {
+      return false;
+    }
+  }
+  return true;
+}
+
+std::uint32_t Monitor::Impl::FollowKinematics(const Eigen::Ref<const Eigen::VectorXd>& q) {
+  model.kinematics->ComputeMovingLinkPoses(q, &X_WL_next);
+  MoveCarried(X_WL_next, &link_changed, &shape_W, &moved);
+  X_WL.swap(X_WL_next);
+  q_kinematics = q;
+  kinematics_behind = false;
+  const std::uint32_t moved_count = ReindexMoved();
+  // Fixed tolerances: tol_now already equals tol_base (Attach / Detach keep both).
+  const bool is_speed_scaled = model.speed_tol_gain_s != 0.0;
+  if (is_speed_scaled) ComputeTolerances(shape_W, moved, &tol_now);
+  for (PrimitiveId id = 0; id < model.primitive_count; ++id) {
+    if (moved[id]) {
+      if (is_speed_scaled) shape_prev_W[id] = shape_W[id];  // only speed estimates read it
+      moved[id] = 0;
+    }
+  }
+  cache.Update(broad_phase.get(), compatible);
+  return moved_count;
 }
 
 void Monitor::Impl::MoveCarried(const std::vector<Eigen::Isometry3d>& X_WL_new,
@@ -605,7 +128,7 @@ void Monitor::Impl::MoveCarried(const std::vector<Eigen::Isometry3d>& X_WL_new,
   for (std::size_t link = 0; link < X_WL_new.size(); ++link) {
     (*changed)[link] = IsSamePose(X_WL_new[link], X_WL[link]) ? 0 : 1;
   }
-  for (PrimitiveId id = 0; id < n; ++id) {
+  for (PrimitiveId id = 0; id < model.primitive_count; ++id) {
     const int link = carrier[id];
     if (link < 0 || !(*changed)[link]) continue;
     (*shapes)[id] = TransformShape(X_WL_new[link], shape_C[id]);
@@ -613,29 +136,48 @@ void Monitor::Impl::MoveCarried(const std::vector<Eigen::Isometry3d>& X_WL_new,
   }
 }
 
+std::uint32_t Monitor::Impl::ReindexMoved() {
+  std::uint32_t moved_count = 0;
+  cache.BeginReindex();
+  for (PrimitiveId id = 0; id < model.primitive_count; ++id) {
+    if (!moved[id] || !in_broad_phase[id]) continue;
+    ++moved_count;
+    if (cache.FollowMoved(id, shape_W[id])) broad_phase->Move(id, ComputeAabb(shape_W[id]));
+  }
+  return moved_count;
+}
+
 void Monitor::Impl::ComputeTolerances(const std::vector<Shape>& shapes,
                                       const std::vector<std::uint8_t>& moved_flags,
                                       std::vector<double>* tol) const {
-  if (speed_tol_gain_s == 0.0) {
+  if (model.speed_tol_gain_s == 0.0) {
     std::copy(tol_base.begin(), tol_base.end(), tol->begin());
     return;
   }
   // ISO/TS 15066 protective separation: speed x (reaction + stopping time) added per primitive.
   // Speeds are clamped to max_speed_mps so the broad phase, inflated for that speed, stays
   // conservative; before the first good cycle the speed is unknown and taken as the maximum.
-  for (PrimitiveId id = 0; id < n; ++id) {
+  const MonitorOptions& options = model.options;
+  for (PrimitiveId id = 0; id < model.primitive_count; ++id) {
     double speed_mps = 0.0;
     if (!is_moving[id]) {
       speed_mps = 0.0;
     } else if (!has_good) {
       speed_mps = options.max_speed_mps;
     } else if (moved_flags[id]) {
-      speed_mps = std::min(MaxPointDisplacement(shape_prev_W[id], shapes[id]) /
+      speed_mps = std::min(MaxPointDisplacement_m(shape_prev_W[id], shapes[id]) /
                                options.cycle_period_s,
                            options.max_speed_mps);
     }
-    (*tol)[id] = tol_base[id] + speed_mps * speed_tol_gain_s;
+    (*tol)[id] = tol_base[id] + speed_mps * model.speed_tol_gain_s;
   }
+}
+
+std::uint32_t Monitor::Impl::TestCandidatePairs() {
+  report.warnings.clear();
+  return cache.TestPairs(tol_now, [this](PrimitiveId a, PrimitiveId b) {
+    return TestPair(a, b, shape_W, tol_now, &report.warnings);
+  });
 }
 
 double Monitor::Impl::TestPair(PrimitiveId a, PrimitiveId b, const std::vector<Shape>& shapes,
@@ -657,545 +199,94 @@ double Monitor::Impl::TestPair(PrimitiveId a, PrimitiveId b, const std::vector<S
   return d.distance_m;
 }
 
-void Monitor::Impl::ComputeLevers(PrimitiveId id) {
-  lever_count[id] = 0;
-  const int link = carrier[id];
-  if (link < 0 || !is_moving[id]) return;
-  // The primitive reaches at most `extent` from its link's origin, and a joint's origin at
-  // most the chain of joint offsets (plus prismatic travel) below it from there; a point's
-  // distance from a joint's axis is at most its distance from the joint's origin.
-  const double extent_m = MaxDistanceFromPoint(shape_C[id], Eigen::Vector3d::Zero());
-  double chain_m = 0.0;
-  Lever* out = LeversOf(id);
-  for (int l = link; l > 0; l = model->parent_link(l)) {
-    const JointSpec& joint = model->joint(l);
-    const int q_index = DrivingQIndex(joint);
-    if (q_index >= 0) {  // as link_depth counts
-      const double scale = joint.q_index >= 0 ? 1.0 : std::abs(joint.mimic_multiplier);
-      const double lever_m = joint.type == JointType::kPrismatic ? 1.0 : chain_m + extent_m;
-      out[lever_count[id]++] = Lever{q_index, scale * lever_m};
-    }
-    chain_m += joint.X_PJ.translation().norm() + PrismaticTravel_m(joint);
+void Monitor::Impl::RecordCycle(CycleKind kind, InputStatus input, const CycleWork& work) {
+  ++report.cycle;
+  // An idle cycle repeats the last good report (input kOk); a refused one keeps its warnings;
+  // a bounded one has none; a kinematics cycle has the narrow phase's.
+  if (kind == CycleKind::kBounded) report.warnings.clear();
+  report.input = input;
+  report.stop = input != InputStatus::kOk || !report.warnings.empty();
+  report.moved_primitives = work.moved;
+  report.reindexed_primitives = work.reindexed;
+  report.candidate_pairs = work.candidate_pairs;
+  report.narrow_phase_tests = work.narrow_phase_tests;
+  report.bounded = kind == CycleKind::kBounded;
+  report.counters = BroadPhaseCounters{};
+  if (kind == CycleKind::kKinematics) {
+    report.counters = broad_phase->counters();
+    total += report.counters;
+    broad_phase->ResetCounters();
   }
 }
 
-std::uint32_t Monitor::Impl::FollowKinematics(const Eigen::Ref<const Eigen::VectorXd>& q) {
-  model->ComputeMovingLinkPoses(q, &X_WL_next);
-  MoveCarried(X_WL_next, &link_changed, &shape_W, &moved);
-  X_WL.swap(X_WL_next);
-  q_kinematics = q;
-  kinematics_behind = false;
-  const std::uint32_t moved_count = ReindexMoved();
-  // Fixed tolerances: tol_now already equals tol_base (Attach / Detach keep both).
-  if (speed_tol_gain_s != 0.0) ComputeTolerances(shape_W, moved, &tol_now);
-  const bool keeps_previous = speed_tol_gain_s != 0.0;  // only speed estimates read it
-  for (PrimitiveId id = 0; id < n; ++id) {
-    if (moved[id]) {
-      if (keeps_previous) shape_prev_W[id] = shape_W[id];
-      moved[id] = 0;
-    }
-  }
-  UpdatePairStates();
-  for (PairState& state : pair_states) state.kinematics_bound_m = KinematicsBound(state);
-  return moved_count;
-}
+void Monitor::SyncShapes() { impl_->SyncKinematics(); }
 
-bool Monitor::Impl::TryBoundedCycle(const Eigen::Ref<const Eigen::VectorXd>& q) {
-  // Speed-scaled tolerances need the motion itself; a scene change re-plans the pairs.
-  if (!has_good || scene_changed || pairs_stale || speed_tol_gain_s != 0.0 ||
-      report.input != InputStatus::kOk) {
-    return false;
-  }
-  dq_abs = (q - q_kinematics).cwiseAbs();
-  const double slack_m = options.index_slack_m;
-  for (PrimitiveId id = 0; id < n; ++id) {
-    const int count = lever_count[id];
-    if (count == 0) continue;
-    const Lever* l = LeversOf(id);
-    double* sums = LeverSumsOf(id);
-    for (int k = 0; k < count; ++k) sums[k + 1] = sums[k] + dq_abs[l[k].q_index] * l[k].m_per_unit;
-    // Motion since indexed <= motion until the kinematics + motion since; NaN fails.
-    if (in_broad_phase[id] && !(disp_m[id] + sums[count] <= slack_m)) return false;
-  }
-  for (const PairState& state : pair_states) {
-    const PrimitiveId a = state.pair.a;
-    const PrimitiveId b = state.pair.b;
-    const double motion_m = PairMotionBound(a, b);
-    // NaN (no bound) fails the comparison.
-    if (!(state.kinematics_bound_m - motion_m - BoundMargin(state.kinematics_bound_m) >
-          tol_now[a] + tol_now[b])) {
-      return false;
-    }
-  }
-  // Every kept pair is clear, and every other pair's indexed boxes are apart while both
-  // primitives stay within their slack: no warning.
-  q_good = q;
-  report.input = InputStatus::kOk;
-  report.warnings.clear();
-  report.stop = false;
-  ClearCycleWork(&report);
-  report.candidate_pairs = static_cast<std::uint32_t>(pair_states.size());
-  report.bounded = true;
-  kinematics_behind = true;
-  return true;
-}
-
-std::uint32_t Monitor::Impl::ReindexMoved() {
-  std::uint32_t moved_count = 0;
-  reindexed.clear();
-  for (PrimitiveId id = 0; id < n; ++id) {
-    if (!moved[id] || !in_broad_phase[id]) continue;
-    ++moved_count;
-    // Every point of the shape lies within this of its indexed copy (the displacement of a
-    // point of a capsule or box is a convex combination of its defining points').
-    const double d_m = MaxPointDisplacement(shape_ref_W[id], shape_W[id]);
-    if (d_m <= options.index_slack_m) {
-      disp_m[id] = d_m;
-      continue;
-    }
-    shape_ref_W[id] = shape_W[id];
-    disp_m[id] = 0.0;
-    broad_phase->Move(id, ComputeAabb(shape_W[id]));
-    reindexed.push_back(id);
-  }
-  return moved_count;
-}
-
-void Monitor::Impl::UpdatePairStates() {
-  constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
-  if (pairs_stale) {
-    broad_phase->FindPairs(compatible, &pairs);
-    pair_states.clear();
-    for (const CandidatePair& p : pairs) pair_states.push_back({p, kUnknown});
-    pairs_stale = false;
-    return;
-  }
-  if (reindexed.empty()) return;
-  for (const PrimitiveId id : reindexed) is_reindexed[id] = 1;
-  // The pairs of primitives that stayed within their slack keep their bounds ...
-  pair_states.erase(std::remove_if(pair_states.begin(), pair_states.end(),
-                                   [&](const PairState& s) {
-                                     return is_reindexed[s.pair.a] || is_reindexed[s.pair.b];
-                                   }),
-                    pair_states.end());
-  // ... and the re-indexed ones get theirs anew; a pair of two re-indexed primitives is taken
-  // from the smaller id's query.
-  new_pairs.clear();
-  for (const PrimitiveId id : reindexed) {
-    broad_phase->FindPairsOf(id, compatible, &pairs);
-    for (const CandidatePair& p : pairs) {
-      const PrimitiveId other = p.a == id ? p.b : p.a;
-      if (is_reindexed[other] && other < id) continue;
-      new_pairs.push_back(p);
-    }
-  }
-  for (const PrimitiveId id : reindexed) is_reindexed[id] = 0;
-  std::sort(new_pairs.begin(), new_pairs.end());
-  pair_scratch.clear();
-  auto old_it = pair_states.begin();
-  for (const CandidatePair& p : new_pairs) {
-    while (old_it != pair_states.end() && old_it->pair < p) pair_scratch.push_back(*old_it++);
-    pair_scratch.push_back({p, kUnknown});
-  }
-  pair_scratch.insert(pair_scratch.end(), old_it, pair_states.end());
-  pair_states.swap(pair_scratch);
-}
-
-void Monitor::Impl::TestCandidatePairs() {
-  report.warnings.clear();
-  report.narrow_phase_tests = 0;
-  for (PairState& state : pair_states) {
-    const PrimitiveId a = state.pair.a;
-    const PrimitiveId b = state.pair.b;
-    // A new pair: the distance of the indexed shapes, exact until either is re-indexed.
-    if (std::isnan(state.lower_bound_m)) {
-      ++report.narrow_phase_tests;
-      state.lower_bound_m = ShapeDistance(shape_ref_W[a], shape_ref_W[b]).distance_m;
-      state.kinematics_bound_m = KinematicsBound(state);
-    }
-    // Triangle inequality: dist(now) >= dist(indexed) - motion of a - motion of b.
-    const double motion_m = disp_m[a] + disp_m[b];
-    if (state.lower_bound_m - motion_m - BoundMargin(state.lower_bound_m) >
-        tol_now[a] + tol_now[b]) {
-      continue;
-    }
-    ++report.narrow_phase_tests;
-    const double distance_m = TestPair(a, b, shape_W, tol_now, &report.warnings);
-    state.lower_bound_m = std::max(state.lower_bound_m, distance_m - motion_m);
-    state.kinematics_bound_m = distance_m;
-  }
-}
-
-void Monitor::Impl::RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q) {
-  // Work done by scene changes since the last cycle belongs to the run, not to this cycle.
-  total += broad_phase->counters();
-  broad_phase->ResetCounters();
-  if (TryBoundedCycle(q)) return;
-
-  const std::uint32_t moved_count = FollowKinematics(q);
-  q_good = q;
-  TestCandidatePairs();
-
-  report.input = InputStatus::kOk;
-  report.stop = !report.warnings.empty();
-  report.moved_primitives = moved_count;
-  report.reindexed_primitives = static_cast<std::uint32_t>(reindexed.size());
-  report.candidate_pairs = static_cast<std::uint32_t>(pair_states.size());
-  report.bounded = false;
-  report.counters = broad_phase->counters();
-  total += report.counters;
-  broad_phase->ResetCounters();
-  has_good = true;
-  scene_changed = false;
-}
-
-void Monitor::Impl::ValidateBoundedCycle(std::ostringstream* msg) const {
-  std::vector<Eigen::Isometry3d> X(model->link_count());
-  model->ComputeLinkPoses(q_good, &X);
-  std::vector<Shape> now(shape_W);
-  for (PrimitiveId id = 0; id < n; ++id) {
-    if (carrier[id] < 0) continue;
-    now[id] = TransformShape(X[carrier[id]], shape_C[id]);
-    if (lever_count[id] == 0 || !in_broad_phase[id]) continue;
-    const double moved_m = MaxPointDisplacement(shape_W[id], now[id]);
-    const double bound_m = LeverSumsOf(id)[lever_count[id]];
-    const double from_ref_m = MaxPointDisplacement(shape_ref_W[id], now[id]);
-    if (moved_m > bound_m + BoundMargin(bound_m) ||
-        from_ref_m > options.index_slack_m + BoundMargin(options.index_slack_m)) {
-      *msg << "bounded cycle: primitive " << id << " moved " << moved_m << " m, bound "
-           << bound_m << " m; " << from_ref_m << " m from its indexed copy, slack "
-           << options.index_slack_m << " m";
-      return;
-    }
-  }
-  for (const PairState& state : pair_states) {
-    const PrimitiveId a = state.pair.a;
-    const PrimitiveId b = state.pair.b;
-    const double then_m = ShapeDistance(shape_W[a], shape_W[b]).distance_m;
-    const double now_m = ShapeDistance(now[a], now[b]).distance_m;
-    const double motion_m = PairMotionBound(a, b);
-    if (now_m < then_m - motion_m - BoundMargin(then_m) || now_m <= tol_now[a] + tol_now[b]) {
-      *msg << "bounded cycle: pair (" << a << "," << b << ") at " << now_m << " m, was "
-           << then_m << " m, relative motion bound " << motion_m << " m, threshold "
-           << tol_now[a] + tol_now[b] << " m";
-      return;
-    }
-  }
-}
-
-void Monitor::Impl::ValidateSlack(std::ostringstream* msg) const {
-  for (PrimitiveId id = 0; id < n; ++id) {
-    if (!in_broad_phase[id] || moved[id]) continue;
-    const double d_m = MaxPointDisplacement(shape_ref_W[id], shape_W[id]);
-    if (d_m != disp_m[id] || d_m > options.index_slack_m) {
-      *msg << "primitive " << id << " moved " << d_m << " m from its indexed copy, recorded "
-           << disp_m[id] << " m, slack " << options.index_slack_m << " m";
-      return;
-    }
-  }
-  if (pairs_stale) return;  // a scene change since the last cycle: rebuilt in the next one
-  std::vector<CandidatePair> expected;
-  for (PrimitiveId a = 0; a < n; ++a) {
-    if (!in_broad_phase[a]) continue;
-    const Aabb box_a = ComputeAabb(shape_ref_W[a]).Inflated(IndexTolerance(a));
-    for (PrimitiveId b = a + 1; b < n; ++b) {
-      if (!in_broad_phase[b] || (!is_moving[a] && !is_moving[b]) ||
-          compatible.AreCompatible(a, b)) {
-        continue;
-      }
-      if (box_a.Overlaps(ComputeAabb(shape_ref_W[b]).Inflated(IndexTolerance(b)))) {
-        expected.push_back({a, b});
-      }
-    }
-  }
-  if (expected.size() != pair_states.size()) {
-    *msg << pair_states.size() << " kept candidate pairs, " << expected.size()
-         << " indexed boxes overlapping";
-    return;
-  }
-  for (std::size_t i = 0; i < expected.size(); ++i) {
-    const PairState& state = pair_states[i];
-    if (!(state.pair == expected[i])) {
-      *msg << "kept candidate pair " << i << " is (" << state.pair.a << "," << state.pair.b
-           << "), expected (" << expected[i].a << "," << expected[i].b << ")";
-      return;
-    }
-    const double d_m = ShapeDistance(shape_ref_W[state.pair.a], shape_ref_W[state.pair.b]).distance_m;
-    if (state.lower_bound_m > d_m + BoundMargin(d_m)) {
-      *msg << "pair (" << state.pair.a << "," << state.pair.b << ") lower bound "
-           << state.lower_bound_m << " m exceeds the indexed shapes' distance " << d_m << " m";
-      return;
-    }
-    // shape_W is at q_kinematics (also after bounded cycles).
-    const double now_m = ShapeDistance(shape_W[state.pair.a], shape_W[state.pair.b]).distance_m;
-    if (state.kinematics_bound_m > now_m + BoundMargin(now_m)) {
-      *msg << "pair (" << state.pair.a << "," << state.pair.b << ") bound "
-           << state.kinematics_bound_m << " m exceeds its distance " << now_m
-           << " m at the last kinematics";
-      return;
-    }
-  }
-}
-
-// --- Monitor ------------------------------------------------------------------------------
+// --- start-up -------------------------------------------------------------------------------
 
 Monitor::Monitor(std::shared_ptr<const Workcell> workcell, const MonitorOptions& options)
     : impl_(std::make_unique<Impl>(std::move(workcell), options)) {}
 
 Monitor::~Monitor() = default;
 
-const Workcell& Monitor::workcell() const { return *impl_->workcell; }
-const MonitorOptions& Monitor::options() const { return impl_->options; }
-
-const CycleReport& Monitor::Update(const Eigen::Ref<const Eigen::VectorXd>& q) {
-  Impl& m = *impl_;
-  CycleReport& report = m.report;
-  ++report.cycle;
-  // Idle cycle: same input bit for bit and an unchanged scene give the same report.
-  if (m.IsIdle(q)) {
-    ClearCycleWork(&report);
-    return report;
-  }
-  const InputStatus status = m.CheckInput(q);
-  if (status != InputStatus::kOk) {
-    // Fail safe: keep the last good model (and its warnings), request a stop.
-    ++m.refused;
-    report.input = status;
-    report.stop = true;
-    ClearCycleWork(&report);
-    return report;
-  }
-  m.RunCycle(q);
-  return report;
+Monitor::Impl::Impl(std::shared_ptr<const Workcell> workcell, const MonitorOptions& options)
+    : model(std::move(workcell), options) {
+  InitData();
+  BuildBroadPhase();
 }
 
+void Monitor::Impl::InitData() {
+  const std::uint32_t n = model.primitive_count;
+  const int link_count = model.kinematics->link_count();
+  compatible = model.workcell->compatible;
+  grasp.assign(static_cast<std::size_t>(link_count) * model.objects.size(), 0);
+  holder.assign(model.objects.size(), -1);
+  active_variant.assign(link_count, 0);
+  carrier = model.carrier_start;
+  is_moving = model.is_moving_start;
+  is_reachable = model.is_reachable_start;
+  shape_C.resize(n);
+  tol_base.resize(n);
+  for (PrimitiveId id = 0; id < n; ++id) {
+    shape_C[id] = model.workcell->primitives[id].shape_L;
+    tol_base[id] = model.workcell->primitives[id].tolerance_m;
+  }
+  motion = MotionBounds(*model.kinematics, n);
+  for (PrimitiveId id = 0; id < n; ++id) SetCarrierBounds(id);
+  // The links fixed to the root keep their start poses in both (ComputeMovingLinkPoses).
+  X_WL = model.X_WL_start;
+  X_WL_next = model.X_WL_start;
+  link_changed.assign(link_count, 0);
+  q_good = model.q_start;
+  q_kinematics = model.q_start;
+  shape_W = model.shape_W_start;
+  shape_prev_W = model.shape_W_start;
+  moved.assign(n, 0);
+  tol_now = tol_base;
+}
+
+void Monitor::Impl::BuildBroadPhase() {
+  const std::uint32_t n = model.primitive_count;
+  in_broad_phase.assign(n, 0);
+  broad_phase = MakeBroadPhase(model.options.broad_phase);
+  cache = PairCache(n, model.options.index_slack_m, model.world_edge_m);
+  for (PrimitiveId id = 0; id < n; ++id) {
+    if (ShouldBeInBroadPhase(id)) AddToBroadPhase(id);
+  }
+  const std::size_t max_pairs = static_cast<std::size_t>(n) * (n > 0 ? n - 1 : 0) / 2;
+  report.warnings.reserve(max_pairs);
+  report.stop = true;  // nothing is known before the first good input
+  total = BroadPhaseCounters{};
+  broad_phase->ResetCounters();
+}
+
+// --- read access ----------------------------------------------------------------------------
+
+const Workcell& Monitor::workcell() const { return *impl_->model.workcell; }
+const MonitorOptions& Monitor::options() const { return impl_->model.options; }
 const CycleReport& Monitor::report() const { return impl_->report; }
-
-CycleReport Monitor::Check(const Eigen::Ref<const Eigen::VectorXd>& q) const {
-  const Impl& m = *impl_;
-  CycleReport r;
-  r.cycle = m.report.cycle + 1;
-  if (m.IsIdle(q)) {
-    r = m.report;
-    r.cycle = m.report.cycle + 1;
-    ClearCycleWork(&r);
-    return r;
-  }
-  r.input = m.CheckInput(q);
-  if (r.input != InputStatus::kOk) {
-    r.warnings = m.report.warnings;
-    r.stop = true;
-    return r;
-  }
-  std::vector<Eigen::Isometry3d> X_WL_q(m.X_WL.size());
-  m.model->ComputeLinkPoses(q, &X_WL_q);
-  std::vector<std::uint8_t> changed(m.X_WL.size(), 0);
-  std::vector<Shape> shapes = m.shape_W;
-  std::vector<std::uint8_t> moved_flags = m.moved;
-  m.MoveCarried(X_WL_q, &changed, &shapes, &moved_flags);
-  std::vector<double> tol(m.n);
-  m.ComputeTolerances(shapes, moved_flags, &tol);
-  // Generate-and-test by brute force over every active, non-compatible, not-both-static pair.
-  for (PrimitiveId a = 0; a < m.n; ++a) {
-    if (!m.in_broad_phase[a]) continue;
-    if (moved_flags[a]) ++r.moved_primitives;
-    for (PrimitiveId b = a + 1; b < m.n; ++b) {
-      if (!m.in_broad_phase[b] || (!m.is_moving[a] && !m.is_moving[b]) ||
-          m.compatible.AreCompatible(a, b)) {
-        continue;
-      }
-      Impl::TestPair(a, b, shapes, tol, &r.warnings);
-      ++r.narrow_phase_tests;
-    }
-  }
-  r.stop = !r.warnings.empty();
-  return r;
-}
-
-bool Monitor::Attach(const std::string& object, const std::string& link, std::string* error) {
-  Impl& m = *impl_;
-  m.SyncKinematics();
-  const int o = m.workcell->FindObject(object);
-  if (o < 0) {
-    SetError(error, "Attach: unknown object '" + object + "'");
-    return false;
-  }
-  const int l = m.model->FindLink(link);
-  if (l < 0) {
-    SetError(error, "Attach: unknown link '" + link + "'");
-    return false;
-  }
-  if (!m.has_good) {
-    SetError(error, "Attach: no joint state yet, the link's pose is unknown");
-    return false;
-  }
-  if (!m.objects[o].is_attachable) {
-    SetError(error, "Attach: object '" + object + "' is not attachable in " +
-                        m.workcell->scene_path);
-    return false;
-  }
-  if (m.hold_radius_m[l] < 0.0) {
-    SetError(error, "Attach: link '" + link + "' has no moving joint above it");
-    return false;
-  }
-  const Eigen::Isometry3d X_LW = m.X_WL[l].inverse(Eigen::Isometry);
-  const Eigen::Vector3d p_WLo = m.X_WL[l].translation();
-  for (const PrimitiveId id : m.objects[o].prims) {
-    const double reach_m = MaxDistanceFromPoint(m.shape_W[id], p_WLo);
-    if (reach_m > m.hold_radius_m[l]) {
-      std::ostringstream msg;
-      msg << "Attach: object '" << object << "' reaches " << reach_m << " m from link '" << link
-          << "', more than the " << m.hold_radius_m[l]
-          << " m a held object may (link extent + kAttachMaxGap_m + largest object)";
-      SetError(error, msg.str());
-      return false;
-    }
-  }
-  // A held object moves with the arm, so it gets at least the holder's tolerance zone (the
-  // seed's tolerance around each moving object).
-  double holder_tol_m = 0.0;
-  for (const PrimitiveId id : m.link_prims[l]) holder_tol_m = std::max(holder_tol_m, m.tol_base[id]);
-  const int previous = m.holder[o];
-  for (const PrimitiveId id : m.objects[o].prims) {
-    m.shape_C[id] = TransformShape(X_LW, m.shape_W[id]);
-    m.carrier[id] = l;
-    m.tol_base[id] = std::max(m.workcell->primitives[id].tolerance_m, holder_tol_m);
-    m.tol_now[id] = m.tol_base[id];
-    m.Reindex(id, true);
-    m.ComputeLevers(id);
-  }
-  m.holder[o] = l;
-  if (previous >= 0 && previous != l) m.RefreshCompatibility(previous, o);
-  m.RefreshCompatibility(l, o);
-  m.scene_changed = true;
-  return true;
-}
-
-bool Monitor::Detach(const std::string& object, std::string* error) {
-  Impl& m = *impl_;
-  m.SyncKinematics();
-  const int o = m.workcell->FindObject(object);
-  if (o < 0) {
-    SetError(error, "Detach: unknown object '" + object + "'");
-    return false;
-  }
-  const int l = m.holder[o];
-  if (l < 0) {
-    SetError(error, "Detach: object '" + object + "' is not attached");
-    return false;
-  }
-  // It stays where it was let go; a static object rests again (no static-static tests).
-  const bool stays_moving = m.objects[o].is_frame_bound;
-  for (const PrimitiveId id : m.objects[o].prims) {
-    m.carrier[id] = -1;
-    m.is_reachable[id] = 1;  // it was let go within its holder's reach
-    m.tol_base[id] = m.workcell->primitives[id].tolerance_m;
-    m.tol_now[id] = m.tol_base[id];
-    m.Reindex(id, stays_moving);
-    m.ComputeLevers(id);
-  }
-  m.holder[o] = -1;
-  m.RefreshCompatibility(l, o);
-  m.scene_changed = true;
-  return true;
-}
-
-bool Monitor::SetGraspTarget(const std::string& link, const std::string& object, bool is_target,
-                             std::string* error) {
-  Impl& m = *impl_;
-  const int l = m.model->FindLink(link);
-  if (l < 0) {
-    SetError(error, "SetGraspTarget: unknown link '" + link + "'");
-    return false;
-  }
-  const int o = m.workcell->FindObject(object);
-  if (o < 0) {
-    SetError(error, "SetGraspTarget: unknown object '" + object + "'");
-    return false;
-  }
-  const auto& targets = m.workcell->grasp_targets;
-  if (std::none_of(targets.begin(), targets.end(), [&](const GraspTargetSpec& t) {
-        return t.link_index == l && t.object_index == o;
-      })) {
-    SetError(error, "SetGraspTarget: '" + object + "' is not a grasp target of link '" + link +
-                        "' in " + m.workcell->scene_path);
-    return false;
-  }
-  m.grasp[static_cast<std::size_t>(l) * m.objects.size() + o] = is_target ? 1 : 0;
-  m.RefreshCompatibility(l, o);
-  m.scene_changed = true;
-  return true;
-}
-
-bool Monitor::SwitchModel(const std::string& link, const std::string& variant,
-                          std::string* error) {
-  Impl& m = *impl_;
-  m.SyncKinematics();
-  const int l = m.model->FindLink(link);
-  if (l < 0) {
-    SetError(error, "SwitchModel: unknown link '" + link + "'");
-    return false;
-  }
-  const auto& variants = m.link_variants[l];
-  const auto it = std::find(variants.begin(), variants.end(), variant);
-  if (it == variants.end()) {
-    SetError(error, "SwitchModel: link '" + link + "' has no model variant '" + variant + "'");
-    return false;
-  }
-  const int v = static_cast<int>(it - variants.begin());
-  if (v == m.active_variant[l]) return true;
-  for (const PrimitiveId id : m.link_prims[l]) {
-    if (m.in_broad_phase[id]) m.RemoveFromBroadPhase(id);
-  }
-  m.active_variant[l] = v;
-  for (const PrimitiveId id : m.link_prims[l]) {
-    if (m.variant_index[id] != v) continue;
-    m.shape_W[id] = TransformShape(m.X_WL[l], m.shape_C[id]);
-    m.shape_prev_W[id] = m.shape_W[id];
-    m.AddToBroadPhase(id);
-  }
-  m.scene_changed = true;
-  return true;
-}
-
-bool Monitor::SetObjectPose(const std::string& object, const Eigen::Isometry3d& X_WO,
-                            std::string* error) {
-  Impl& m = *impl_;
-  const int o = m.workcell->FindObject(object);
-  if (o < 0) {
-    SetError(error, "SetObjectPose: unknown object '" + object + "'");
-    return false;
-  }
-  if (!m.objects[o].is_frame_bound) {
-    SetError(error, "SetObjectPose: object '" + object + "' is static, not frame-bound");
-    return false;
-  }
-  if (m.holder[o] >= 0) {
-    SetError(error, "SetObjectPose: object '" + object + "' is held by link '" +
-                        m.model->link_name(m.holder[o]) + "'");
-    return false;
-  }
-  if (!X_WO.matrix().allFinite()) {
-    SetError(error, "SetObjectPose: non-finite pose for object '" + object + "'");
-    return false;
-  }
-  // shape_L is the object at X_WO_start; the cycle moves it in the index.
-  const Eigen::Isometry3d X_WW = X_WO * m.objects[o].X_OW_start;
-  for (const PrimitiveId id : m.objects[o].prims) {
-    m.shape_W[id] = TransformShape(X_WW, m.workcell->primitives[id].shape_L);
-    m.moved[id] = 1;
-    m.MarkStaticsNearReachable(id);
-  }
-  m.scene_changed = true;
-  return true;
-}
-
-std::uint32_t Monitor::primitive_count() const { return impl_->n; }
-const Shape& Monitor::shape_W(PrimitiveId id) const {
-  // Lazily brought up to date after bounded cycles (this changes no observable state).
-  impl_->SyncKinematics();
-  return impl_->shape_W[id];
-}
+std::uint32_t Monitor::primitive_count() const { return impl_->model.primitive_count; }
+const Shape& Monitor::shape_W(PrimitiveId id) const { return impl_->shape_W[id]; }
+bool Monitor::are_shapes_current() const { return !impl_->kinematics_behind; }
 bool Monitor::is_active(PrimitiveId id) const { return impl_->in_broad_phase[id] != 0; }
 bool Monitor::AreCompatibleNow(PrimitiveId a, PrimitiveId b) const {
   return impl_->compatible.AreCompatible(a, b);
@@ -1207,76 +298,5 @@ const BroadPhaseCounters& Monitor::total_counters() const { return impl_->total;
 std::uint64_t Monitor::refused_inputs() const { return impl_->refused; }
 std::string Monitor::broad_phase_name() const { return impl_->broad_phase->name(); }
 double Monitor::tolerance_m(PrimitiveId id) const { return impl_->tol_now[id]; }
-
-bool Monitor::Validate(std::string* error) const {
-  const Impl& m = *impl_;
-  std::ostringstream msg;
-  for (PrimitiveId id = 0; id < m.n; ++id) {
-    const bool should = m.ShouldBeInBroadPhase(id);
-    if (static_cast<bool>(m.in_broad_phase[id]) != should) {
-      msg << "primitive " << id << " in broad phase: " << int(m.in_broad_phase[id])
-          << ", expected " << should;
-      break;
-    }
-    const int link = m.carrier[id];
-    if (link >= 0 && !m.moved[id] && m.IsActiveVariant(id)) {
-      const Shape expected = TransformShape(m.X_WL[link], m.shape_C[id]);
-      // Attach re-expresses the shape in the link frame: equal up to rounding, not bit for bit.
-      const Aabb a = ComputeAabb(expected);
-      const Aabb b = ComputeAabb(m.shape_W[id]);
-      if (!a.min_W.isApprox(b.min_W, kValidateShapeTolerance_rel) ||
-          !a.max_W.isApprox(b.max_W, kValidateShapeTolerance_rel)) {
-        msg << "primitive " << id << " does not follow link " << link;
-        break;
-      }
-    }
-    if (m.speed_tol_gain_s == 0.0 && m.tol_now[id] != m.tol_base[id]) {
-      msg << "primitive " << id << " tolerance " << m.tol_now[id] << " != " << m.tol_base[id];
-      break;
-    }
-    const int o = m.object_of[id];
-    if (o >= 0 && (m.holder[o] >= 0) != (link >= 0)) {
-      msg << "object primitive " << id << " carrier disagrees with its holder";
-      break;
-    }
-  }
-  if (msg.tellp() == 0) {
-    for (std::size_t o = 0; o < m.objects.size() && msg.tellp() == 0; ++o) {
-      for (int l = 0; l < m.model->link_count() && msg.tellp() == 0; ++l) {
-        for (const PrimitiveId lp : m.link_prims[l]) {
-          for (const PrimitiveId op : m.objects[o].prims) {
-            if (m.compatible.AreCompatible(lp, op) !=
-                m.CompatibleNow(lp, op, l, static_cast<int>(o))) {
-              msg << "compatibility of " << lp << " and " << op << " is stale";
-            }
-          }
-        }
-      }
-    }
-  }
-  if (msg.tellp() == 0) m.ValidateSlack(&msg);
-  if (msg.tellp() == 0 && m.kinematics_behind) m.ValidateBoundedCycle(&msg);
-  const auto& w = m.report.warnings;
-  for (std::size_t i = 0; i < w.size() && msg.tellp() == 0; ++i) {
-    if (w[i].a >= w[i].b || (i > 0 && !(w[i - 1].a < w[i].a ||
-                                        (w[i - 1].a == w[i].a && w[i - 1].b < w[i].b)))) {
-      msg << "report warnings not sorted or not a < b at index " << i;
-    }
-  }
-  if (msg.tellp() == 0) return true;
-  SetError(error, msg.str());
-  return false;
-}
-
-bool Monitor::ValidateIndex(std::string* error) const {
-  std::string why;
-  if (impl_->broad_phase->Validate(&why)) return true;
-  SetError(error, "broad phase " + impl_->broad_phase->name() + ": " + why);
-  return false;
-}
-
-void Monitor::ForceIndexStampsNearWrap(std::uint32_t steps_before_wrap) {
-  impl_->broad_phase->ForceStampsNearWrap(steps_before_wrap);
-}
 
 }  // namespace arm_collision_monitor

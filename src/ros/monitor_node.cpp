@@ -363,6 +363,7 @@ void MonitorNode::PublishVisualisation() {
   }
   bool is_published = false;
   if (markers_pub_.getNumSubscribers() > 0) {
+    monitor_->SyncShapes();  // the markers read shape_W: at the last good q
     // Stamp 0: rviz draws with the latest transform of the fixed frame.
     markers_pub_.publish(markers_->Build(report_.warnings, ros::Time(0)));
     is_published = true;

@@ -164,6 +164,7 @@ TEST(MonitorScene, AttachedBoxMovesWithTheGripperAndWarnsAgainstAnotherTable) {
     wc->kinematics.ComputeLinkPoses(q, &X_WL);
     const Shape expected_shape = TransformShape(X_WL[gripper_link], scene.held[box].shape_L);
     const Box& expected = std::get<Box>(expected_shape);
+    monitor.SyncShapes();
     const Box& actual = std::get<Box>(monitor.shape_W(box));
     EXPECT_TRUE(actual.X_WB.isApprox(expected.X_WB, 1e-12));
     ExpectValid(monitor);

@@ -64,7 +64,7 @@ struct CycleReport {
 ///   against statics) while attached. Frame-bound objects always move.
 /// - Statics that no arm can reach -- with anything it may hold -- are left out at start-up
 ///   (is_active false): the reach envelope of each link is a sphere about the first actuated
-///   joint above it (see ComputeReachability in monitor.cpp). A frame-bound object brings the
+///   joint above it (see MonitorModel, monitor_model.cpp). A frame-bound object brings the
 ///   statics near its pose back in (SetObjectPose).
 /// - A held object gets at least its holder's tolerance and is compatible with its holder link.
 /// - auto_broad_phase: the octree when at least kAutoOctreeMinPrimitives primitives are active
@@ -72,9 +72,17 @@ struct CycleReport {
 /// - Index slack (MonitorOptions::index_slack_m): moving primitives are indexed by boxes grown
 ///   by the slack and re-indexed only after moving farther; the candidate pairs are kept with a
 ///   lower bound on their distance, and a pair is tested exactly only when that bound, less both
-///   primitives' motion since, no longer clears its threshold. When bounds on the motion taken
-///   from the joint deltas alone (lever arms from the URDF chain) clear every kept pair, the
-///   cycle skips the kinematics too (CycleReport::bounded); the shapes follow lazily.
+///   primitives' motion since, no longer clears its threshold (PairCache, pair_cache.h). When
+///   bounds on the motion taken from the joint deltas alone (lever arms from the URDF chain;
+///   MotionBounds, motion_bounds.h) clear every kept pair, the cycle skips the kinematics too
+///   (CycleReport::bounded).
+/// - Synchronisation is explicit: a bounded cycle leaves the shapes, the index and the kept
+///   pairs at the q of the last kinematics, which is sound since every bound is taken from
+///   there, and keeps bounded cycles cheap (no kinematics at all). The next kinematics cycle,
+///   Attach, Detach and SwitchModel (which read or re-express shapes), and SyncShapes() bring
+///   them to the last good q; SetGraspTarget (only the compatibility), SetObjectPose (a free
+///   object, whatever q) and Check (on a copy, from the poses the shapes are at) need not. No
+///   const accessor computes: shape_W() is a plain read.
 /// - A refused input keeps the last good model and its warnings, sets input and stop.
 class Monitor {
  public:
@@ -118,9 +126,18 @@ class Monitor {
 
   // --- read access for visualisation and diagnostics ---------------------------------------
   std::uint32_t primitive_count() const;
-  /// Current world-frame shape of primitive `id` (uninflated), at the last good q (computed on
-  /// first access after bounded cycles).
+  /// World-frame shape of primitive `id` (uninflated), a plain read: at the last good q, except
+  /// after bounded cycles (see SyncShapes), when the link-carried shapes are still at the q of
+  /// the last kinematics -- within the index slack of where they are.
   const Shape& shape_W(PrimitiveId id) const;
+  /// Whether shape_W() is at the last good q (false only after bounded cycles).
+  bool are_shapes_current() const;
+  /// Brings the shapes to the last good q after bounded cycles: the forward kinematics a bounded
+  /// cycle skipped, with the index and the kept pairs following (its broad-phase work is counted
+  /// in the run's totals at the next Update). A no-op when the shapes are current. Call it
+  /// before reading shape_W() for display; the cycle itself does not, so that bounded cycles
+  /// stay cheap. Does not allocate.
+  void SyncShapes();
   /// Whether primitive `id` is currently part of the checked scene (false for inactive model
   /// variants and primitives no moving part can reach).
   bool is_active(PrimitiveId id) const;

@@ -1,0 +1,117 @@
+// Joint-space motion bounds for the Monitor's bounded cycles: how far a primitive carried by a
+// link can have moved between two joint vectors, from the joint deltas alone (no kinematics).
+// Per joint j above the link, a point moves by at most |delta q_j| times its lever arm about
+// j's axis (1 for a prismatic joint, |multiplier| times that for a mimic joint); summed over the
+// chain by the triangle inequality. The levers are fixed per (primitive, carrier link): they
+// change only when Attach / Detach change an object's carrier.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "arm_collision_monitor/broadphase/broad_phase.h"
+#include "arm_collision_monitor/geometry/primitives.h"
+#include "arm_collision_monitor/kinematics/kinematic_model.h"
+
+namespace arm_collision_monitor {
+
+/// Distance (m) from point p to the farthest point of `shape` (both in the same frame).
+double MaxDistanceFromPoint_m(const Shape& shape, const Eigen::Vector3d& p);
+
+/// Largest displacement (m) of a defining point between two poses of the same primitive: the
+/// endpoints of a capsule, the vertices of a box. The displacement of a rigid motion is affine
+/// in the point, so this bounds the displacement of every point of the shape.
+double MaxPointDisplacement_m(const Shape& before, const Shape& after);
+
+/// How far the prismatic joint's child can slide from the joint's origin (m; inf if unlimited);
+/// 0 for other joints.
+double PrismaticTravel_m(const JointSpec& joint);
+
+/// The index into q that drives `joint` (its own, or the one it mimics); -1 if it does not move.
+int DrivingQIndex(const JointSpec& joint);
+
+/// Per-primitive levers over a kinematic chain, and the motion bounds they give for a joint
+/// motion (see the file comment). Built once per model; SetCarrier allocates nothing.
+class MotionBounds {
+ public:
+  /// One moving joint above a primitive: its points move by at most |delta q[q_index]| times
+  /// m_per_unit (m per rad for a revolute joint, per m for a prismatic one).
+  struct Lever {
+    int q_index = 0;
+    double m_per_unit = 0.0;
+  };
+
+  MotionBounds() = default;
+  /// Start-up: the chain structure of `model` (which must outlive this) for `primitive_count`
+  /// primitives, none carried yet.
+  MotionBounds(const KinematicModel& model, std::uint32_t primitive_count);
+
+  /// Primitive `id` is carried by `link` (-1: by none) with shape `shape_L` in the link frame;
+  /// it gets levers only when `is_moving` (a primitive on a link fixed to the root has none).
+  void SetCarrier(PrimitiveId id, int link, bool is_moving, const Shape& shape_L);
+
+  /// The levers of `id` from its link upward; lever_count(id) of them.
+  int lever_count(PrimitiveId id) const { return lever_count_[id]; }
+  const Lever* levers(PrimitiveId id) const {
+    return &levers_[static_cast<std::size_t>(id) * max_levers_];
+  }
+
+  /// Per cycle: the joint motion |q - q_from| that the following bounds are for.
+  void SetJointMotion(const Eigen::Ref<const Eigen::VectorXd>& q,
+                      const Eigen::Ref<const Eigen::VectorXd>& q_from) {
+    dq_abs_ = (q - q_from).cwiseAbs();
+  }
+  /// Bound (m) on the motion of every point of `id` for the joint motion set last (0 without
+  /// levers); keeps its partial sums for PairBound_m. NaN when a delta is NaN.
+  double ComputeBound_m(PrimitiveId id) {
+    const int count = lever_count_[id];
+    const Lever* l = levers(id);
+    double* sums = LeverSums(id);
+    for (int k = 0; k < count; ++k) sums[k + 1] = sums[k] + dq_abs_[l[k].q_index] * l[k].m_per_unit;
+    return sums[count];
+  }
+  /// The bound ComputeBound_m(id) returned last (m).
+  double bound_m(PrimitiveId id) const { return LeverSums(id)[lever_count_[id]]; }
+  /// After ComputeBound_m of both (of those with levers): how far a and b can have moved
+  /// relative to each other (m). The joints above both carriers' lowest common ancestor move
+  /// both alike and leave their distance unchanged, so they are left out.
+  double PairBound_m(PrimitiveId a, PrimitiveId b) const {
+    const int la = carrier_[a], lb = carrier_[b];
+    const int shared =
+        la >= 0 && lb >= 0 ? shared_levers_[static_cast<std::size_t>(la) * link_count_ + lb] : 0;
+    return (lever_count_[a] > 0 ? LeverSums(a)[lever_count_[a] - shared] : 0.0) +
+           (lever_count_[b] > 0 ? LeverSums(b)[lever_count_[b] - shared] : 0.0);
+  }
+
+  /// Checks the invariants: every carrier is a link or -1; a primitive has either no levers or
+  /// one per moving joint above its link, each driven by a valid q index with a lever >= 0
+  /// (+inf for unlimited prismatic travel; NaN would void the sums). False with the first
+  /// violation in `why`.
+  bool Validate(std::string* why) const;
+
+ private:
+  // Slot k: the motion bound from primitive id's k lowest levers (slot 0 is 0).
+  double* LeverSums(PrimitiveId id) {
+    return &lever_sums_m_[static_cast<std::size_t>(id) * (max_levers_ + 1)];
+  }
+  const double* LeverSums(PrimitiveId id) const {
+    return &lever_sums_m_[static_cast<std::size_t>(id) * (max_levers_ + 1)];
+  }
+
+  const KinematicModel* model_ = nullptr;
+  int link_count_ = 0;
+  int max_levers_ = 0;                        // moving joints above the deepest link
+  std::vector<int> link_depth_;               // per link: moving joints from it up to the root
+  std::vector<std::uint8_t> shared_levers_;   // link x link: link_depth_ of their lowest
+                                              // common ancestor
+  std::vector<int> carrier_;                  // per primitive, -1 for none
+  std::vector<Lever> levers_;                 // per primitive, max_levers_ slots
+  std::vector<int> lever_count_;              // per primitive
+  std::vector<double> lever_sums_m_;          // per primitive, max_levers_ + 1 slots
+  Eigen::VectorXd dq_abs_;                    // |q - q_from| of the last SetJointMotion
+};
+
+}  // namespace arm_collision_monitor

@@ -1,0 +1,161 @@
+// Monitor::Impl, shared by the Monitor's sources (monitor.cpp: the cycle; monitor_scene.cpp: the
+// run-time scene changes; monitor_check.cpp: Check and the validation). Private to the module.
+//
+// Model / Data split: `model` is built once and const; every other member is the data, all of
+// it preallocated at construction -- the scene state (what Attach, Detach, SetGraspTarget,
+// SwitchModel and SetObjectPose change) and the per-cycle state.
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "arm_collision_monitor/monitor/monitor.h"
+#include "arm_collision_monitor/monitor/monitor_model.h"
+#include "arm_collision_monitor/monitor/motion_bounds.h"
+#include "arm_collision_monitor/monitor/pair_cache.h"
+
+namespace arm_collision_monitor {
+
+struct Monitor::Impl {
+  const MonitorModel model;
+
+  // --- scene state -----------------------------------------------------------------------
+  CompatibilityMatrix compatible;       // start-up's, plus held objects and grasp targets
+  std::vector<std::uint8_t> grasp;      // link_count x object_count: is a grasp target
+  std::vector<int> holder;              // per object: holding link, -1 if none
+  std::vector<int> active_variant;      // per link
+  std::vector<Shape> shape_C;           // per primitive: in its carrier link's frame
+  std::vector<int> carrier;             // per primitive: link it moves with, -1 for none
+  std::vector<double> tol_base;         // per primitive, m (a held object: at least its holder's)
+  std::vector<std::uint8_t> is_moving;  // per primitive: Motion it is indexed with
+  std::vector<std::uint8_t> is_reachable;  // false: a static no moving primitive can reach
+  MotionBounds motion;                  // levers per primitive for its current carrier
+
+  // --- per-cycle state -------------------------------------------------------------------
+  std::unique_ptr<BroadPhase> broad_phase;
+  std::vector<std::uint8_t> in_broad_phase;
+  PairCache cache;                      // the index slack's indexed copies and kept pairs
+  std::vector<Shape> shape_W;           // at q_kinematics
+  std::vector<Shape> shape_prev_W;      // at the last good cycle (speed-scaled tolerance only)
+  std::vector<std::uint8_t> moved;      // pose changed since the last kinematics
+  std::vector<double> tol_now;          // per primitive this cycle, m
+  std::vector<Eigen::Isometry3d> X_WL, X_WL_next;  // at q_kinematics; scratch
+  std::vector<std::uint8_t> link_changed;          // scratch
+  Eigen::VectorXd q_good;               // the last accepted q
+  Eigen::VectorXd q_kinematics;         // q of the last forward kinematics
+  bool has_good = false;
+  bool scene_changed = true;
+  bool kinematics_behind = false;       // bounded cycles since: q_kinematics != q_good
+  CycleReport report;
+  BroadPhaseCounters total;
+  std::uint64_t refused = 0;
+
+  Impl(std::shared_ptr<const Workcell> workcell, const MonitorOptions& options);
+  // The data's start state (from the model's) and the index.
+  void InitData();
+  void BuildBroadPhase();
+
+  // --- the cycle (monitor.cpp) --------------------------------------------------------------
+  // What a cycle did, for RecordCycle.
+  enum class CycleKind : std::uint8_t { kIdle, kRefused, kBounded, kKinematics };
+  struct CycleWork {
+    std::uint32_t moved = 0;
+    std::uint32_t reindexed = 0;
+    std::uint32_t candidate_pairs = 0;
+    std::uint32_t narrow_phase_tests = 0;
+  };
+  InputStatus CheckInput(const Eigen::Ref<const Eigen::VectorXd>& q) const;
+  bool IsIdle(const Eigen::Ref<const Eigen::VectorXd>& q) const {
+    return has_good && !scene_changed && report.input == InputStatus::kOk &&
+           q.size() == q_good.size() &&
+           std::memcmp(q.data(), q_good.data(), sizeof(double) * q.size()) == 0;
+  }
+  // A good q: a bounded cycle if the bounds allow, else the kinematics and the narrow phase.
+  void RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q);
+  // True when, without kinematics, every moving primitive's joint-space motion bound since
+  // q_kinematics keeps it within its slack and every kept pair's bound, less those motions,
+  // still clears its threshold -- then no pair can warn. Changes nothing but bound scratch.
+  bool IsProvablyClear(const Eigen::Ref<const Eigen::VectorXd>& q);
+  // Forward kinematics at q, the moved primitives re-indexed, the kept pairs brought up to
+  // date: the shapes then follow q. Returns the number of primitives that moved.
+  std::uint32_t FollowKinematics(const Eigen::Ref<const Eigen::VectorXd>& q);
+  // Moves in the index the moved primitives that left their slack; counts the moved ones.
+  std::uint32_t ReindexMoved();
+  // The narrow phase over the kept pairs into report.warnings; returns the tests done.
+  std::uint32_t TestCandidatePairs();
+  // The one place the report is written (the narrow phase fills its warnings).
+  void RecordCycle(CycleKind kind, InputStatus input, const CycleWork& work);
+  // After bounded cycles: the kinematics (shapes, index, kept pairs) brought to q_good, for
+  // SyncShapes and the scene changes that read or re-express shapes.
+  void SyncKinematics() {
+    if (kinematics_behind) FollowKinematics(q_good);
+  }
+  // Writes into `shapes` the primitives carried by links whose pose differs between X_WL and
+  // `X_WL_new`, and flags them in `moved_flags`; `changed` is per-link scratch.
+  void MoveCarried(const std::vector<Eigen::Isometry3d>& X_WL_new,
+                   std::vector<std::uint8_t>* changed, std::vector<Shape>* shapes,
+                   std::vector<std::uint8_t>* moved_flags) const;
+  // This cycle's tolerance of every primitive (speed-scaled for the moving ones when enabled).
+  void ComputeTolerances(const std::vector<Shape>& shapes,
+                         const std::vector<std::uint8_t>& moved_flags,
+                         std::vector<double>* tol) const;
+  // Narrow phase of one pair: appends a warning when closer than the sum of the tolerances (or
+  // touching); returns the distance.
+  static double TestPair(PrimitiveId a, PrimitiveId b, const std::vector<Shape>& shapes,
+                         const std::vector<double>& tol, std::vector<Warning>* warnings);
+
+  // --- the index (monitor_scene.cpp) ----------------------------------------------------------
+  bool IsActiveVariant(PrimitiveId id) const {
+    const int link = model.workcell->primitives[id].link_index;
+    return link < 0 || model.variant_index[id] == active_variant[link];
+  }
+  bool ShouldBeInBroadPhase(PrimitiveId id) const {
+    return IsActiveVariant(id) && (is_moving[id] || is_reachable[id]);
+  }
+  // What the index grows a primitive's box by: its largest tolerance, plus the slack when it
+  // moves.
+  double IndexTolerance(PrimitiveId id) const {
+    return model.BroadTolerance_m(tol_base[id], is_moving[id]) +
+           (is_moving[id] ? model.options.index_slack_m : 0.0);
+  }
+  void AddToBroadPhase(PrimitiveId id);
+  void RemoveFromBroadPhase(PrimitiveId id);
+  // Re-indexes `id` with its current motion and tolerance (Add fixes both).
+  void Reindex(PrimitiveId id, bool moving);
+  // The motion bounds of primitive `id` for its current carrier.
+  void SetCarrierBounds(PrimitiveId id) {
+    motion.SetCarrier(id, carrier[id], is_moving[id], shape_C[id]);
+  }
+  // A static left out as unreachable becomes active for good once `mover` (a frame-bound
+  // object) comes within the sum of their indexed tolerances.
+  void MarkStaticsNearReachable(PrimitiveId mover);
+  bool CompatibleNow(PrimitiveId link_prim, PrimitiveId object_prim, int link, int object) const {
+    return model.workcell->compatible.AreCompatible(link_prim, object_prim) ||
+           grasp[static_cast<std::size_t>(link) * model.objects.size() + object] ||
+           holder[object] == link;
+  }
+  void RefreshCompatibility(int link, int object);
+
+  // --- validation (monitor_check.cpp) ---------------------------------------------------------
+  // Shapes follow their carriers, index membership, tolerances, holders.
+  void ValidatePrimitives(std::ostringstream* msg) const;
+  // The compatibility matrix against the attach / grasp state.
+  void ValidateCompatibility(std::ostringstream* msg) const;
+  // The index slack: displacements, the kept pair set against the indexed boxes by brute force,
+  // and the pairs' bounds.
+  void ValidateSlack(std::ostringstream* msg) const;
+  // After a bounded cycle: its motion bounds and its claims (every primitive within its slack,
+  // every kept pair clear) against the true shapes at q_good.
+  void ValidateBoundedCycle(std::ostringstream* msg) const;
+};
+
+/// Writes `message` into `error` when given.
+inline void SetError(std::string* error, const std::string& message) {
+  if (error != nullptr) *error = message;
+}
+
+}  // namespace arm_collision_monitor

@@ -1,0 +1,276 @@
+// The Monitor's model, built once (see monitor_model.h): options checked against the workcell,
+// primitives sorted by link, variant and object, the start pose, the reach envelope of the arms,
+// and the broad phase chosen.
+#include "arm_collision_monitor/monitor/monitor_model.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+#include "arm_collision_monitor/core/constants.h"
+#include "arm_collision_monitor/geometry/distance.h"
+#include "arm_collision_monitor/monitor/motion_bounds.h"
+
+namespace arm_collision_monitor {
+
+MonitorModel::MonitorModel(std::shared_ptr<const Workcell> wc, const MonitorOptions& opts)
+    : workcell(std::move(wc)), options(opts) {
+  if (!workcell) throw LoadError("monitor: no workcell given");
+  kinematics = &workcell->kinematics;
+  primitive_count = static_cast<std::uint32_t>(workcell->primitives.size());
+  options.broad_phase.world_W = workcell->world_W;
+  options.broad_phase.min_cell_size_m = MinCellSize_m(options);
+  options.broad_phase.reserve_primitives =
+      std::max(options.broad_phase.reserve_primitives, primitive_count);
+  world_edge_m = (workcell->world_W.max_W - workcell->world_W.min_W).maxCoeff();
+  speed_tol_gain_s =
+      options.speed_scaled_tolerance ? options.reaction_time_s + options.stopping_time_s : 0.0;
+  ValidateOptions();
+  BuildPrimitives();
+  BuildStartPose();
+  ComputeReachability();
+  ChooseBroadPhase();
+}
+
+bool MonitorModel::Reaches(const Shape& mover_W, double mover_tol_m, const Shape& static_W,
+                           double static_tol_m) const {
+  return ShapeDistance(mover_W, static_W).distance_m <=
+         static_tol_m + BroadTolerance_m(mover_tol_m, true);
+}
+
+void MonitorModel::ValidateOptions() const {
+  auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
+  auto non_negative = [](double v) { return std::isfinite(v) && v >= 0.0; };
+  if (!positive(options.max_speed_mps)) {
+    throw LoadError("monitor options: max_speed_mps must be a positive number");
+  }
+  if (!positive(options.cycle_period_s)) {
+    throw LoadError("monitor options: cycle_period_s must be a positive number");
+  }
+  if (!non_negative(options.reaction_time_s) || !non_negative(options.stopping_time_s)) {
+    throw LoadError("monitor options: reaction_time_s and stopping_time_s must be >= 0");
+  }
+  if (!non_negative(options.index_slack_m)) {
+    throw LoadError("monitor options: index_slack_m must be >= 0");
+  }
+  if (options.broad_phase.max_objects_per_leaf < 1) {
+    throw LoadError("monitor options: broad_phase max_objects_per_leaf must be >= 1");
+  }
+  const Aabb& world = options.broad_phase.world_W;
+  if (!world.min_W.allFinite() || !world.max_W.allFinite() ||
+      !(world.min_W.array() < world.max_W.array()).all()) {
+    throw LoadError(workcell->scene_path + ": world box must have min < max on every axis");
+  }
+  if (static_cast<int>(workcell->joint_names.size()) != kinematics->q_size()) {
+    throw LoadError(workcell->urdf_path + ": " + std::to_string(workcell->joint_names.size()) +
+                    " joint names for " + std::to_string(kinematics->q_size()) +
+                    " actuated joints");
+  }
+  if (workcell->compatible.size() != primitive_count) {
+    throw LoadError(workcell->scene_path + ": compatibility matrix size " +
+                    std::to_string(workcell->compatible.size()) + " for " +
+                    std::to_string(primitive_count) + " primitives");
+  }
+}
+
+void MonitorModel::BuildPrimitives() {
+  const int link_count = kinematics->link_count();
+  const std::uint32_t n = primitive_count;
+  link_prims.assign(link_count, {});
+  link_variants.assign(link_count, std::vector<std::string>{""});
+  variant_index.assign(n, 0);
+  object_of.assign(n, -1);
+  carrier_start.assign(n, -1);
+  is_moving_start.assign(n, 0);
+  for (PrimitiveId id = 0; id < n; ++id) {
+    const PrimitiveSpec& spec = workcell->primitives[id];
+    if (spec.link_index >= 0) {
+      if (spec.link_index >= link_count) {
+        throw LoadError(workcell->scene_path + ": primitive '" + spec.name +
+                        "' has link index " + std::to_string(spec.link_index) + " of " +
+                        std::to_string(link_count) + " links");
+      }
+      link_prims[spec.link_index].push_back(id);
+      auto& variants = link_variants[spec.link_index];
+      const auto it = std::find(variants.begin(), variants.end(), spec.variant);
+      variant_index[id] = static_cast<int>(it - variants.begin());
+      if (it == variants.end()) variants.push_back(spec.variant);
+      carrier_start[id] = spec.link_index;
+      // Links with only fixed joints above them never move.
+      is_moving_start[id] = spec.is_static ? 0 : 1;
+    } else {
+      const int o = spec.object_index;
+      if (o < 0 || o >= static_cast<int>(workcell->objects.size())) {
+        throw LoadError(workcell->scene_path + ": primitive '" + spec.name +
+                        "' has neither a link nor an object");
+      }
+      object_of[id] = o;
+    }
+  }
+  objects.resize(workcell->objects.size());
+  for (std::size_t o = 0; o < objects.size(); ++o) {
+    const ObjectSpec& spec = workcell->objects[o];
+    objects[o].X_OW_start = spec.X_WO_start.inverse(Eigen::Isometry);
+    objects[o].is_attachable = spec.is_attachable;
+    objects[o].is_frame_bound = !spec.frame.empty();
+    for (PrimitiveId id = 0; id < n; ++id) {
+      if (object_of[id] == static_cast<int>(o)) objects[o].prims.push_back(id);
+    }
+    // Resting objects are static (never tested against other statics) until held; only the
+    // frame-bound ones move on their own.
+    for (const PrimitiveId id : objects[o].prims) is_moving_start[id] = objects[o].is_frame_bound;
+  }
+}
+
+void MonitorModel::BuildStartPose() {
+  q_lower = Eigen::VectorXd::Constant(kinematics->q_size(),
+                                      -std::numeric_limits<double>::infinity());
+  q_upper = Eigen::VectorXd::Constant(kinematics->q_size(),
+                                      std::numeric_limits<double>::infinity());
+  for (int link = 1; link < kinematics->link_count(); ++link) {
+    const JointSpec& joint = kinematics->joint(link);
+    if (joint.q_index < 0 || joint.type == JointType::kContinuous) continue;
+    q_lower[joint.q_index] = joint.lower - kJointLimitMargin;
+    q_upper[joint.q_index] = joint.upper + kJointLimitMargin;
+  }
+  q_start = Eigen::VectorXd::Zero(kinematics->q_size());
+  for (int i = 0; i < q_start.size(); ++i) {
+    q_start[i] = std::min(std::max(0.0, q_lower[i] + kJointLimitMargin),
+                          q_upper[i] - kJointLimitMargin);
+    if (!std::isfinite(q_start[i])) q_start[i] = 0.0;
+  }
+  X_WL_start.assign(kinematics->link_count(), Eigen::Isometry3d::Identity());
+  kinematics->ComputeLinkPoses(q_start, &X_WL_start);
+  shape_W_start.resize(primitive_count);
+  for (PrimitiveId id = 0; id < primitive_count; ++id) {
+    const int link = carrier_start[id];
+    const Shape& shape_L = workcell->primitives[id].shape_L;
+    shape_W_start[id] = link >= 0 ? TransformShape(X_WL_start[link], shape_L) : shape_L;
+  }
+}
+
+// Reach envelope (the seed's observation that stationary objects only cost time when they share
+// cells with moving ones, taken to the limit): a link L's points stay within a sphere centred on
+// the origin of the first moving joint above it, of radius (sum of the joint offsets between
+// that joint and L, plus prismatic travel) + (farthest point of L's geometry, or of an object it
+// may hold, from L's origin) -- the triangle inequality over the chain, valid for every q.
+// Frame-bound objects reach what is near their start pose (SetObjectPose re-checks).
+std::vector<Capsule> MonitorModel::ComputeReachSpheres() {
+  const int link_count = kinematics->link_count();
+  double max_attach_diameter_m = 0.0;
+  bool has_attachable = false;
+  for (const Object& object : objects) {
+    if (!object.is_attachable) continue;
+    has_attachable = true;
+    Aabb box = ComputeAabb(workcell->primitives[object.prims.front()].shape_L);
+    for (const PrimitiveId id : object.prims) {
+      const Aabb b = ComputeAabb(workcell->primitives[id].shape_L);
+      box.min_W = box.min_W.cwiseMin(b.min_W);
+      box.max_W = box.max_W.cwiseMax(b.max_W);
+    }
+    // The AABB diagonal bounds the object's diameter (which a rigid motion keeps).
+    max_attach_diameter_m = std::max(max_attach_diameter_m, (box.max_W - box.min_W).norm());
+  }
+  // Per link: world centre of its reach sphere and the chain length from that centre.
+  std::vector<Eigen::Vector3d> centre_W(link_count, Eigen::Vector3d::Zero());
+  std::vector<double> chain_m(link_count, 0.0);
+  std::vector<std::uint8_t> is_below_joint(link_count, 0);  // a non-fixed joint above it
+  for (int link = 1; link < link_count; ++link) {
+    const int parent = kinematics->parent_link(link);
+    const JointSpec& joint = kinematics->joint(link);
+    const double travel_m = PrismaticTravel_m(joint);
+    if (is_below_joint[parent]) {
+      is_below_joint[link] = 1;
+      centre_W[link] = centre_W[parent];
+      chain_m[link] = chain_m[parent] + joint.X_PJ.translation().norm() + travel_m;
+    } else if (joint.type != JointType::kFixed) {
+      // The first moving joint (actuated or mimic): its origin is fixed (revolute) or slides by
+      // `travel_m`.
+      is_below_joint[link] = 1;
+      centre_W[link] = X_WL_start[parent] * joint.X_PJ.translation();
+      chain_m[link] = travel_m;
+    }
+  }
+  // Only links below a moving joint may hold objects (holding with a fixed link would make a
+  // static object "moving" for nothing); hold_radius_m < 0 marks the others.
+  hold_radius_m.assign(link_count, -1.0);
+  std::vector<Capsule> spheres(link_count, Capsule{Eigen::Vector3d::Zero(),
+                                                   Eigen::Vector3d::Zero(), -1.0});
+  for (int link = 0; link < link_count; ++link) {
+    if (!is_below_joint[link]) continue;
+    double extent_m = 0.0;
+    for (const PrimitiveId id : link_prims[link]) {
+      extent_m = std::max(extent_m, MaxDistanceFromPoint_m(workcell->primitives[id].shape_L,
+                                                           Eigen::Vector3d::Zero()));
+    }
+    hold_radius_m[link] = extent_m + kAttachMaxGap_m + max_attach_diameter_m;
+    spheres[link].p0_W = spheres[link].p1_W = centre_W[link];
+    if (has_attachable) {
+      spheres[link].radius_m = chain_m[link] + hold_radius_m[link];
+    } else if (!link_prims[link].empty()) {
+      spheres[link].radius_m = chain_m[link] + extent_m;
+    }
+  }
+  return spheres;
+}
+
+void MonitorModel::ComputeReachability() {
+  const std::uint32_t n = primitive_count;
+  double max_moving_tol_m = 0.0;
+  for (PrimitiveId id = 0; id < n; ++id) {
+    const int o = object_of[id];
+    if (is_moving_start[id] || (o >= 0 && objects[o].is_attachable)) {
+      max_moving_tol_m =
+          std::max(max_moving_tol_m, BroadTolerance_m(workcell->primitives[id].tolerance_m, true));
+    }
+  }
+  const std::vector<Capsule> spheres = ComputeReachSpheres();
+  is_reachable_start.assign(n, 1);
+  for (PrimitiveId id = 0; id < n; ++id) {
+    if (is_moving_start[id] || (object_of[id] >= 0 && objects[object_of[id]].is_attachable)) {
+      continue;
+    }
+    bool reachable = false;
+    for (std::size_t link = 0; link < spheres.size() && !reachable; ++link) {
+      if (spheres[link].radius_m < 0.0) continue;  // reaches nothing
+      if (!std::isfinite(spheres[link].radius_m)) {
+        reachable = true;
+        break;
+      }
+      // <=, as the broad phase's closed boxes: touching counts.
+      reachable = ShapeDistance(spheres[link], shape_W_start[id]).distance_m <=
+                  workcell->primitives[id].tolerance_m + max_moving_tol_m;
+    }
+    is_reachable_start[id] = reachable ? 1 : 0;
+  }
+  // A frame-bound object reaches the statics near its start pose.
+  for (const Object& object : objects) {
+    if (!object.is_frame_bound) continue;
+    for (const PrimitiveId mover : object.prims) {
+      for (PrimitiveId id = 0; id < n; ++id) {
+        if (is_moving_start[id] || is_reachable_start[id]) continue;
+        if (Reaches(shape_W_start[mover], workcell->primitives[mover].tolerance_m,
+                    shape_W_start[id], workcell->primitives[id].tolerance_m)) {
+          is_reachable_start[id] = 1;
+        }
+      }
+    }
+  }
+}
+
+// auto_broad_phase: the octree when enough primitives are active at start-up, else all pairs.
+void MonitorModel::ChooseBroadPhase() {
+  if (!options.auto_broad_phase) return;
+  std::uint32_t active = 0;
+  for (PrimitiveId id = 0; id < primitive_count; ++id) {
+    // The default variants; moving or reachable.
+    const bool is_active =
+        variant_index[id] == 0 && (is_moving_start[id] || is_reachable_start[id]);
+    active += is_active ? 1 : 0;
+  }
+  options.broad_phase.method =
+      active >= kAutoOctreeMinPrimitives ? BroadPhaseMethod::kOctree : BroadPhaseMethod::kNaive;
+}
+
+}  // namespace arm_collision_monitor

@@ -1,0 +1,237 @@
+// The Monitor's run-time scene changes (the seed's section 6: grasped objects, model switching,
+// moving environment objects) and the index bookkeeping they share. None allocates: every
+// structure they touch was sized at start-up.
+#include <algorithm>
+#include <sstream>
+
+#include "arm_collision_monitor/geometry/distance.h"
+#include "monitor_impl.h"
+
+namespace arm_collision_monitor {
+
+// --- the index ------------------------------------------------------------------------------
+
+void Monitor::Impl::AddToBroadPhase(PrimitiveId id) {
+  broad_phase->Add(id, ComputeAabb(shape_W[id]), IndexTolerance(id),
+                   is_moving[id] ? Motion::kMoving : Motion::kStatic);
+  in_broad_phase[id] = 1;
+  cache.SetIndexed(id, shape_W[id]);
+}
+
+void Monitor::Impl::RemoveFromBroadPhase(PrimitiveId id) {
+  broad_phase->Remove(id);
+  in_broad_phase[id] = 0;
+  cache.MarkStale();
+}
+
+void Monitor::Impl::Reindex(PrimitiveId id, bool moving) {
+  const bool was_in = in_broad_phase[id];
+  if (was_in) RemoveFromBroadPhase(id);
+  is_moving[id] = moving;
+  if (was_in || ShouldBeInBroadPhase(id)) AddToBroadPhase(id);
+}
+
+void Monitor::Impl::MarkStaticsNearReachable(PrimitiveId mover) {
+  for (PrimitiveId id = 0; id < model.primitive_count; ++id) {
+    if (is_moving[id] || is_reachable[id]) continue;
+    if (model.Reaches(shape_W[mover], tol_base[mover], shape_W[id], tol_base[id])) {
+      is_reachable[id] = 1;
+      if (ShouldBeInBroadPhase(id)) AddToBroadPhase(id);
+    }
+  }
+}
+
+void Monitor::Impl::RefreshCompatibility(int link, int object) {
+  cache.MarkStale();
+  for (const PrimitiveId l : model.link_prims[link]) {
+    for (const PrimitiveId o : model.objects[object].prims) {
+      compatible.Set(l, o, CompatibleNow(l, o, link, object));
+    }
+  }
+}
+
+// --- the scene changes ------------------------------------------------------------------------
+
+bool Monitor::Attach(const std::string& object, const std::string& link, std::string* error) {
+  Impl& m = *impl_;
+  m.SyncKinematics();  // the object is re-expressed in the link frame at the link's pose now
+  const int o = m.model.workcell->FindObject(object);
+  if (o < 0) {
+    SetError(error, "Attach: unknown object '" + object + "'");
+    return false;
+  }
+  const int l = m.model.kinematics->FindLink(link);
+  if (l < 0) {
+    SetError(error, "Attach: unknown link '" + link + "'");
+    return false;
+  }
+  if (!m.has_good) {
+    SetError(error, "Attach: no joint state yet, the link's pose is unknown");
+    return false;
+  }
+  if (!m.model.objects[o].is_attachable) {
+    SetError(error, "Attach: object '" + object + "' is not attachable in " +
+                        m.model.workcell->scene_path);
+    return false;
+  }
+  if (m.model.hold_radius_m[l] < 0.0) {
+    SetError(error, "Attach: link '" + link + "' has no moving joint above it");
+    return false;
+  }
+  const Eigen::Isometry3d X_LW = m.X_WL[l].inverse(Eigen::Isometry);
+  const Eigen::Vector3d p_WLo = m.X_WL[l].translation();
+  for (const PrimitiveId id : m.model.objects[o].prims) {
+    const double reach_m = MaxDistanceFromPoint_m(m.shape_W[id], p_WLo);
+    if (reach_m > m.model.hold_radius_m[l]) {
+      std::ostringstream msg;
+      msg << "Attach: object '" << object << "' reaches " << reach_m << " m from link '" << link
+          << "', more than the " << m.model.hold_radius_m[l]
+          << " m a held object may (link extent + kAttachMaxGap_m + largest object)";
+      SetError(error, msg.str());
+      return false;
+    }
+  }
+  // A held object moves with the arm, so it gets at least the holder's tolerance zone (the
+  // seed's tolerance around each moving object).
+  double holder_tol_m = 0.0;
+  for (const PrimitiveId id : m.model.link_prims[l]) {
+    holder_tol_m = std::max(holder_tol_m, m.tol_base[id]);
+  }
+  const int previous = m.holder[o];
+  for (const PrimitiveId id : m.model.objects[o].prims) {
+    m.shape_C[id] = TransformShape(X_LW, m.shape_W[id]);
+    m.carrier[id] = l;
+    m.tol_base[id] = std::max(m.model.workcell->primitives[id].tolerance_m, holder_tol_m);
+    m.tol_now[id] = m.tol_base[id];
+    m.Reindex(id, true);
+    m.SetCarrierBounds(id);
+  }
+  m.holder[o] = l;
+  if (previous >= 0 && previous != l) m.RefreshCompatibility(previous, o);
+  m.RefreshCompatibility(l, o);
+  m.scene_changed = true;
+  return true;
+}
+
+bool Monitor::Detach(const std::string& object, std::string* error) {
+  Impl& m = *impl_;
+  m.SyncKinematics();  // the object stays where it is let go: at the last good q
+  const int o = m.model.workcell->FindObject(object);
+  if (o < 0) {
+    SetError(error, "Detach: unknown object '" + object + "'");
+    return false;
+  }
+  const int l = m.holder[o];
+  if (l < 0) {
+    SetError(error, "Detach: object '" + object + "' is not attached");
+    return false;
+  }
+  // It stays where it was let go; a static object rests again (no static-static tests).
+  const bool stays_moving = m.model.objects[o].is_frame_bound;
+  for (const PrimitiveId id : m.model.objects[o].prims) {
+    m.carrier[id] = -1;
+    m.is_reachable[id] = 1;  // it was let go within its holder's reach
+    m.tol_base[id] = m.model.workcell->primitives[id].tolerance_m;
+    m.tol_now[id] = m.tol_base[id];
+    m.Reindex(id, stays_moving);
+    m.SetCarrierBounds(id);
+  }
+  m.holder[o] = -1;
+  m.RefreshCompatibility(l, o);
+  m.scene_changed = true;
+  return true;
+}
+
+bool Monitor::SetGraspTarget(const std::string& link, const std::string& object, bool is_target,
+                             std::string* error) {
+  Impl& m = *impl_;
+  // No sync: only the compatibility changes (the pair set is rebuilt by the next cycle).
+  const int l = m.model.kinematics->FindLink(link);
+  if (l < 0) {
+    SetError(error, "SetGraspTarget: unknown link '" + link + "'");
+    return false;
+  }
+  const int o = m.model.workcell->FindObject(object);
+  if (o < 0) {
+    SetError(error, "SetGraspTarget: unknown object '" + object + "'");
+    return false;
+  }
+  const auto& targets = m.model.workcell->grasp_targets;
+  if (std::none_of(targets.begin(), targets.end(), [&](const GraspTargetSpec& t) {
+        return t.link_index == l && t.object_index == o;
+      })) {
+    SetError(error, "SetGraspTarget: '" + object + "' is not a grasp target of link '" + link +
+                        "' in " + m.model.workcell->scene_path);
+    return false;
+  }
+  m.grasp[static_cast<std::size_t>(l) * m.model.objects.size() + o] = is_target ? 1 : 0;
+  m.RefreshCompatibility(l, o);
+  m.scene_changed = true;
+  return true;
+}
+
+bool Monitor::SwitchModel(const std::string& link, const std::string& variant,
+                          std::string* error) {
+  Impl& m = *impl_;
+  m.SyncKinematics();  // the new variant is placed at the link's pose now
+  const int l = m.model.kinematics->FindLink(link);
+  if (l < 0) {
+    SetError(error, "SwitchModel: unknown link '" + link + "'");
+    return false;
+  }
+  const auto& variants = m.model.link_variants[l];
+  const auto it = std::find(variants.begin(), variants.end(), variant);
+  if (it == variants.end()) {
+    SetError(error, "SwitchModel: link '" + link + "' has no model variant '" + variant + "'");
+    return false;
+  }
+  const int v = static_cast<int>(it - variants.begin());
+  if (v == m.active_variant[l]) return true;
+  for (const PrimitiveId id : m.model.link_prims[l]) {
+    if (m.in_broad_phase[id]) m.RemoveFromBroadPhase(id);
+  }
+  m.active_variant[l] = v;
+  for (const PrimitiveId id : m.model.link_prims[l]) {
+    if (m.model.variant_index[id] != v) continue;
+    m.shape_W[id] = TransformShape(m.X_WL[l], m.shape_C[id]);
+    m.shape_prev_W[id] = m.shape_W[id];
+    m.AddToBroadPhase(id);
+  }
+  m.scene_changed = true;
+  return true;
+}
+
+bool Monitor::SetObjectPose(const std::string& object, const Eigen::Isometry3d& X_WO,
+                            std::string* error) {
+  Impl& m = *impl_;
+  // No sync: a free object's shape does not depend on q.
+  const int o = m.model.workcell->FindObject(object);
+  if (o < 0) {
+    SetError(error, "SetObjectPose: unknown object '" + object + "'");
+    return false;
+  }
+  if (!m.model.objects[o].is_frame_bound) {
+    SetError(error, "SetObjectPose: object '" + object + "' is static, not frame-bound");
+    return false;
+  }
+  if (m.holder[o] >= 0) {
+    SetError(error, "SetObjectPose: object '" + object + "' is held by link '" +
+                        m.model.kinematics->link_name(m.holder[o]) + "'");
+    return false;
+  }
+  if (!X_WO.matrix().allFinite()) {
+    SetError(error, "SetObjectPose: non-finite pose for object '" + object + "'");
+    return false;
+  }
+  // shape_L is the object at X_WO_start; the cycle moves it in the index.
+  const Eigen::Isometry3d X_WW = X_WO * m.model.objects[o].X_OW_start;
+  for (const PrimitiveId id : m.model.objects[o].prims) {
+    m.shape_W[id] = TransformShape(X_WW, m.model.workcell->primitives[id].shape_L);
+    m.moved[id] = 1;
+    m.MarkStaticsNearReachable(id);
+  }
+  m.scene_changed = true;
+  return true;
+}
+
+}  // namespace arm_collision_monitor

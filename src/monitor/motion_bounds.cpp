@@ -1,0 +1,127 @@
+// Lever arms over a URDF chain for joint-space motion bounds (see motion_bounds.h).
+#include "arm_collision_monitor/monitor/motion_bounds.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace arm_collision_monitor {
+
+double MaxDistanceFromPoint_m(const Shape& shape, const Eigen::Vector3d& p) {
+  if (const auto* capsule = std::get_if<Capsule>(&shape)) {
+    return std::max((capsule->p0_W - p).norm(), (capsule->p1_W - p).norm()) + capsule->radius_m;
+  }
+  const Box& box = std::get<Box>(shape);
+  // The farthest point of a box from p is the vertex opposite p in every axis.
+  const Eigen::Vector3d p_B = box.X_WB.inverse(Eigen::Isometry) * p;
+  return (p_B.cwiseAbs() + box.half_extents_m).norm();
+}
+
+double MaxPointDisplacement_m(const Shape& before, const Shape& after) {
+  if (const auto* c0 = std::get_if<Capsule>(&before)) {
+    const Capsule& c1 = std::get<Capsule>(after);
+    return std::sqrt(std::max((c1.p0_W - c0->p0_W).squaredNorm(),
+                              (c1.p1_W - c0->p1_W).squaredNorm()));
+  }
+  const Box& b0 = std::get<Box>(before);
+  const Box& b1 = std::get<Box>(after);
+  double max_sq = 0.0;
+  for (int corner = 0; corner < 8; ++corner) {
+    const Eigen::Vector3d v_B((corner & 1) ? b0.half_extents_m.x() : -b0.half_extents_m.x(),
+                              (corner & 2) ? b0.half_extents_m.y() : -b0.half_extents_m.y(),
+                              (corner & 4) ? b0.half_extents_m.z() : -b0.half_extents_m.z());
+    max_sq = std::max(max_sq, (b1.X_WB * v_B - b0.X_WB * v_B).squaredNorm());
+  }
+  return std::sqrt(max_sq);
+}
+
+double PrismaticTravel_m(const JointSpec& joint) {
+  if (joint.type != JointType::kPrismatic) return 0.0;
+  return std::max(std::abs(joint.lower), std::abs(joint.upper));
+}
+
+int DrivingQIndex(const JointSpec& joint) {
+  if (joint.type == JointType::kFixed) return -1;
+  return joint.q_index >= 0 ? joint.q_index : joint.mimic_q_index;
+}
+
+MotionBounds::MotionBounds(const KinematicModel& model, std::uint32_t primitive_count)
+    : model_(&model), link_count_(model.link_count()) {
+  link_depth_.assign(link_count_, 0);
+  for (int link = 1; link < link_count_; ++link) {
+    const bool moves = DrivingQIndex(model.joint(link)) >= 0;
+    link_depth_[link] = link_depth_[model.parent_link(link)] + (moves ? 1 : 0);
+    max_levers_ = std::max(max_levers_, link_depth_[link]);
+  }
+  shared_levers_.assign(static_cast<std::size_t>(link_count_) * link_count_, 0);
+  for (int a = 0; a < link_count_; ++a) {
+    for (int b = 0; b < link_count_; ++b) {
+      int x = a, y = b;  // parents precede children: climb from the larger index
+      while (x != y) {
+        if (x > y) {
+          x = model.parent_link(x);
+        } else {
+          y = model.parent_link(y);
+        }
+      }
+      shared_levers_[static_cast<std::size_t>(a) * link_count_ + b] =
+          static_cast<std::uint8_t>(link_depth_[x]);
+    }
+  }
+  carrier_.assign(primitive_count, -1);
+  lever_sums_m_.assign(static_cast<std::size_t>(primitive_count) * (max_levers_ + 1), 0.0);
+  levers_.assign(static_cast<std::size_t>(primitive_count) * max_levers_, Lever{});
+  lever_count_.assign(primitive_count, 0);
+  dq_abs_ = Eigen::VectorXd::Zero(model.q_size());
+}
+
+void MotionBounds::SetCarrier(PrimitiveId id, int link, bool is_moving, const Shape& shape_L) {
+  carrier_[id] = link;
+  lever_count_[id] = 0;
+  if (link < 0 || !is_moving) return;
+  // The primitive reaches at most `extent` from its link's origin, and a joint's origin at
+  // most the chain of joint offsets (plus prismatic travel) below it from there; a point's
+  // distance from a joint's axis is at most its distance from the joint's origin.
+  const double extent_m = MaxDistanceFromPoint_m(shape_L, Eigen::Vector3d::Zero());
+  double chain_m = 0.0;
+  Lever* out = &levers_[static_cast<std::size_t>(id) * max_levers_];
+  for (int l = link; l > 0; l = model_->parent_link(l)) {
+    const JointSpec& joint = model_->joint(l);
+    const int q_index = DrivingQIndex(joint);
+    if (q_index >= 0) {  // as link_depth_ counts
+      const double scale = joint.q_index >= 0 ? 1.0 : std::abs(joint.mimic_multiplier);
+      const double lever_m = joint.type == JointType::kPrismatic ? 1.0 : chain_m + extent_m;
+      out[lever_count_[id]++] = Lever{q_index, scale * lever_m};
+    }
+    chain_m += joint.X_PJ.translation().norm() + PrismaticTravel_m(joint);
+  }
+}
+
+bool MotionBounds::Validate(std::string* why) const {
+  std::ostringstream msg;
+  for (std::size_t id = 0; id < carrier_.size() && msg.tellp() == 0; ++id) {
+    const int link = carrier_[id];
+    if (link < -1 || link >= link_count_) {
+      msg << "primitive " << id << " carried by link " << link << " of " << link_count_;
+      break;
+    }
+    const int count = lever_count_[id];
+    if (count != 0 && (link < 0 || count != link_depth_[link])) {
+      msg << "primitive " << id << " has " << count << " levers on link " << link;
+      break;
+    }
+    const Lever* l = levers(static_cast<PrimitiveId>(id));
+    for (int k = 0; k < count; ++k) {
+      if (l[k].q_index < 0 || l[k].q_index >= model_->q_size() || !(l[k].m_per_unit >= 0.0)) {
+        msg << "primitive " << id << " lever " << k << ": q index " << l[k].q_index << ", "
+            << l[k].m_per_unit << " m per unit";
+        break;
+      }
+    }
+  }
+  if (msg.tellp() == 0) return true;
+  *why = msg.str();
+  return false;
+}
+
+}  // namespace arm_collision_monitor

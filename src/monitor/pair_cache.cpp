@@ -1,0 +1,136 @@
+// The index slack and the kept candidate pairs (see pair_cache.h).
+#include "arm_collision_monitor/monitor/pair_cache.h"
+
+#include <algorithm>
+#include <sstream>
+
+#include "arm_collision_monitor/monitor/motion_bounds.h"
+
+namespace arm_collision_monitor {
+
+PairCache::PairCache(std::uint32_t primitive_count, double slack_m, double world_edge_m)
+    : slack_m_(slack_m), world_edge_m_(world_edge_m) {
+  const std::size_t n = primitive_count;
+  const std::size_t max_pairs = n * (n > 0 ? n - 1 : 0) / 2;
+  indexed_W_.resize(n);
+  disp_m_.assign(n, 0.0);
+  pairs_.reserve(max_pairs);
+  scratch_.reserve(max_pairs);
+  found_.reserve(max_pairs);
+  new_pairs_.reserve(max_pairs);
+  reindexed_.reserve(n);
+  is_reindexed_.assign(n, 0);
+}
+
+void PairCache::SetIndexed(PrimitiveId id, const Shape& shape_W) {
+  indexed_W_[id] = shape_W;
+  disp_m_[id] = 0.0;
+  is_stale_ = true;
+}
+
+bool PairCache::FollowMoved(PrimitiveId id, const Shape& shape_W) {
+  // Every point of the shape lies within this of its indexed copy (the displacement of a point
+  // of a capsule or box is a convex combination of its defining points').
+  const double d_m = MaxPointDisplacement_m(indexed_W_[id], shape_W);
+  if (d_m <= slack_m_) {
+    disp_m_[id] = d_m;
+    return false;
+  }
+  indexed_W_[id] = shape_W;
+  disp_m_[id] = 0.0;
+  reindexed_.push_back(id);
+  return true;
+}
+
+void PairCache::Update(BroadPhase* broad_phase, const CompatibilityMatrix& compatible) {
+  UpdatePairs(broad_phase, compatible);
+  for (KeptPair& kept : pairs_) kept.kinematics_bound_m = KinematicsBound_m(kept);
+}
+
+void PairCache::UpdatePairs(BroadPhase* broad_phase, const CompatibilityMatrix& compatible) {
+  constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
+  if (is_stale_) {
+    broad_phase->FindPairs(compatible, &found_);
+    pairs_.clear();
+    for (const CandidatePair& p : found_) pairs_.push_back({p, kUnknown});
+    is_stale_ = false;
+    return;
+  }
+  if (reindexed_.empty()) return;
+  for (const PrimitiveId id : reindexed_) is_reindexed_[id] = 1;
+  // The pairs of primitives that stayed within their slack keep their bounds ...
+  pairs_.erase(std::remove_if(pairs_.begin(), pairs_.end(),
+                              [&](const KeptPair& k) {
+                                return is_reindexed_[k.pair.a] || is_reindexed_[k.pair.b];
+                              }),
+               pairs_.end());
+  // ... and the re-indexed ones get theirs anew; a pair of two re-indexed primitives is taken
+  // from the smaller id's query.
+  new_pairs_.clear();
+  for (const PrimitiveId id : reindexed_) {
+    broad_phase->FindPairsOf(id, compatible, &found_);
+    for (const CandidatePair& p : found_) {
+      const PrimitiveId other = p.a == id ? p.b : p.a;
+      if (is_reindexed_[other] && other < id) continue;
+      new_pairs_.push_back(p);
+    }
+  }
+  for (const PrimitiveId id : reindexed_) is_reindexed_[id] = 0;
+  std::sort(new_pairs_.begin(), new_pairs_.end());
+  scratch_.clear();
+  auto old_it = pairs_.begin();
+  for (const CandidatePair& p : new_pairs_) {
+    while (old_it != pairs_.end() && old_it->pair < p) scratch_.push_back(*old_it++);
+    scratch_.push_back({p, kUnknown});
+  }
+  scratch_.insert(scratch_.end(), old_it, pairs_.end());
+  pairs_.swap(scratch_);
+}
+
+bool PairCache::ValidatePrimitive(PrimitiveId id, const Shape& shape_W, std::string* why) const {
+  const double d_m = MaxPointDisplacement_m(indexed_W_[id], shape_W);
+  if (d_m == disp_m_[id] && d_m <= slack_m_) return true;
+  std::ostringstream msg;
+  msg << "primitive " << id << " moved " << d_m << " m from its indexed copy, recorded "
+      << disp_m_[id] << " m, slack " << slack_m_ << " m";
+  *why = msg.str();
+  return false;
+}
+
+bool PairCache::ValidatePairs(const std::vector<CandidatePair>& expected,
+                              const std::vector<Shape>& shapes_W, std::string* why) const {
+  if (is_stale_) return true;  // a scene change since the last cycle: rebuilt in the next one
+  std::ostringstream msg;
+  if (expected.size() != pairs_.size()) {
+    msg << pairs_.size() << " kept candidate pairs, " << expected.size()
+        << " indexed boxes overlapping";
+    *why = msg.str();
+    return false;
+  }
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    const KeptPair& kept = pairs_[i];
+    const PrimitiveId a = kept.pair.a, b = kept.pair.b;
+    if (!(kept.pair == expected[i])) {
+      msg << "kept candidate pair " << i << " is (" << a << "," << b << "), expected ("
+          << expected[i].a << "," << expected[i].b << ")";
+      break;
+    }
+    const double d_m = ShapeDistance(indexed_W_[a], indexed_W_[b]).distance_m;
+    if (kept.lower_bound_m > d_m + BoundMargin_m(d_m)) {
+      msg << "pair (" << a << "," << b << ") lower bound " << kept.lower_bound_m
+          << " m exceeds the indexed shapes' distance " << d_m << " m";
+      break;
+    }
+    const double now_m = ShapeDistance(shapes_W[a], shapes_W[b]).distance_m;
+    if (kept.kinematics_bound_m > now_m + BoundMargin_m(now_m)) {
+      msg << "pair (" << a << "," << b << ") bound " << kept.kinematics_bound_m
+          << " m exceeds its distance " << now_m << " m at the last kinematics";
+      break;
+    }
+  }
+  if (msg.tellp() == 0) return true;
+  *why = msg.str();
+  return false;
+}
+
+}  // namespace arm_collision_monitor

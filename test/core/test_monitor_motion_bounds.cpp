@@ -1,0 +1,232 @@
+// MotionBounds (monitor/motion_bounds.h): the levers of known chains, the pair bound's shared
+// joints, and a differential test against exact forward kinematics: over seeded random joint
+// motions, no sampled surface point of a primitive moves farther than its bound, and no pair's
+// distance shrinks by more than its pair bound, at a dense set of samples along the motion.
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "arm_collision_monitor/core/constants.h"
+#include "arm_collision_monitor/geometry/distance.h"
+#include "arm_collision_monitor/monitor/motion_bounds.h"
+#include "arm_collision_monitor/scene/workcell.h"
+#include "test_monitor_util.h"
+
+namespace arm_collision_monitor {
+namespace {
+
+constexpr std::uint64_t kSeed = 20261123;
+constexpr int kMotions = 60;          // random joint motions per workcell
+constexpr int kSamplesPerMotion = 64;  // points along each motion, both ends included
+
+std::shared_ptr<const Workcell> ThreeLinkWorkcell() {
+  static const auto workcell = std::make_shared<const Workcell>(
+      LoadWorkcell(ACM_SOURCE_DIR "/test/data/three_link_arm.urdf",
+                   ACM_SOURCE_DIR "/test/data/three_link_scene.yaml"));
+  return workcell;
+}
+
+// Every primitive of the workcell carried by its link, as the Monitor sets them at start-up.
+MotionBounds BoundsOf(const Workcell& wc) {
+  MotionBounds bounds(wc.kinematics, static_cast<std::uint32_t>(wc.primitives.size()));
+  for (PrimitiveId id = 0; id < wc.primitives.size(); ++id) {
+    const PrimitiveSpec& spec = wc.primitives[id];
+    bounds.SetCarrier(id, spec.link_index, spec.link_index >= 0 && !spec.is_static, spec.shape_L);
+  }
+  std::string why;
+  EXPECT_TRUE(bounds.Validate(&why)) << why;
+  return bounds;
+}
+
+double Margin_m(double bound_m) { return kLowerBoundMarginPerMetre * (1.0 + std::abs(bound_m)); }
+
+// Surface points of a shape in its own frame: a capsule's endpoints pushed out by its radius
+// along the axes and random directions, a box's vertices.
+std::vector<Eigen::Vector3d> SurfacePoints(const Shape& shape, std::mt19937_64* rng) {
+  std::vector<Eigen::Vector3d> points;
+  if (const auto* c = std::get_if<Capsule>(&shape)) {
+    std::normal_distribution<double> normal(0.0, 1.0);
+    for (const Eigen::Vector3d& end : {c->p0_W, c->p1_W}) {
+      for (int axis = 0; axis < 3; ++axis) {
+        points.push_back(end + c->radius_m * Eigen::Vector3d::Unit(axis));
+        points.push_back(end - c->radius_m * Eigen::Vector3d::Unit(axis));
+      }
+      for (int k = 0; k < 8; ++k) {
+        const Eigen::Vector3d dir(normal(*rng), normal(*rng), normal(*rng));
+        points.push_back(end + c->radius_m * dir.normalized());
+      }
+    }
+    return points;
+  }
+  const Box& b = std::get<Box>(shape);
+  for (int corner = 0; corner < 8; ++corner) {
+    const Eigen::Vector3d v_B((corner & 1) ? b.half_extents_m.x() : -b.half_extents_m.x(),
+                              (corner & 2) ? b.half_extents_m.y() : -b.half_extents_m.y(),
+                              (corner & 4) ? b.half_extents_m.z() : -b.half_extents_m.z());
+    points.push_back(b.X_WB * v_B);
+  }
+  return points;
+}
+
+// Random q inside the limits (continuous joints within +-pi); the mimic joints follow.
+Eigen::VectorXd RandomQ(const Workcell& wc, std::mt19937_64* rng) {
+  return test::RandomQ(test::LimitsOf(wc), rng);
+}
+
+// The differential test for one workcell: bounds against exact forward kinematics.
+void ExpectBoundsHold(const Workcell& wc, std::mt19937_64* rng) {
+  MotionBounds bounds = BoundsOf(wc);
+  const KinematicModel& model = wc.kinematics;
+  const std::uint32_t n = static_cast<std::uint32_t>(wc.primitives.size());
+  std::vector<std::vector<Eigen::Vector3d>> points_L(n);
+  std::vector<PrimitiveId> moving;
+  for (PrimitiveId id = 0; id < n; ++id) {
+    points_L[id] = SurfacePoints(wc.primitives[id].shape_L, rng);
+    if (bounds.lever_count(id) > 0) moving.push_back(id);
+  }
+  ASSERT_FALSE(moving.empty());
+  std::vector<Eigen::Isometry3d> X0(model.link_count()), Xt(model.link_count());
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int checked_points = 0, checked_pairs = 0;
+  for (int motion = 0; motion < kMotions; ++motion) {
+    const Eigen::VectorXd q0 = RandomQ(wc, rng);
+    Eigen::VectorXd q1 = RandomQ(wc, rng);
+    if (motion % 2 == 1) q1 = q0 + unit(*rng) * 0.05 * (q1 - q0);  // small motions too
+    bounds.SetJointMotion(q1, q0);
+    for (const PrimitiveId id : moving) bounds.ComputeBound_m(id);
+    model.ComputeLinkPoses(q0, &X0);
+    for (int s = 0; s <= kSamplesPerMotion; ++s) {
+      const Eigen::VectorXd qt = q0 + (static_cast<double>(s) / kSamplesPerMotion) * (q1 - q0);
+      model.ComputeLinkPoses(qt, &Xt);
+      for (const PrimitiveId id : moving) {
+        const int link = wc.primitives[id].link_index;
+        double moved_m = 0.0;
+        for (const Eigen::Vector3d& p_L : points_L[id]) {
+          moved_m = std::max(moved_m, (Xt[link] * p_L - X0[link] * p_L).norm());
+          ++checked_points;
+        }
+        ASSERT_LE(moved_m, bounds.bound_m(id) + Margin_m(bounds.bound_m(id)))
+            << "primitive " << wc.primitives[id].name << " motion " << motion << " sample " << s;
+      }
+      for (std::size_t i = 0; i < moving.size(); ++i) {
+        for (std::size_t j = i + 1; j < moving.size(); ++j) {
+          const PrimitiveId a = moving[i], b = moving[j];
+          const int la = wc.primitives[a].link_index, lb = wc.primitives[b].link_index;
+          const Shape& a_L = wc.primitives[a].shape_L;
+          const Shape& b_L = wc.primitives[b].shape_L;
+          const double then_m =
+              ShapeDistance(TransformShape(X0[la], a_L), TransformShape(X0[lb], b_L)).distance_m;
+          const double now_m =
+              ShapeDistance(TransformShape(Xt[la], a_L), TransformShape(Xt[lb], b_L)).distance_m;
+          const double bound_m = bounds.PairBound_m(a, b);
+          ASSERT_GE(now_m, then_m - bound_m - Margin_m(then_m + bound_m))
+              << "pair " << wc.primitives[a].name << ", " << wc.primitives[b].name << " motion "
+              << motion << " sample " << s;
+          ++checked_pairs;
+        }
+      }
+    }
+  }
+  std::printf("motion bounds: %d point displacements, %d pair distances checked\n",
+              checked_points, checked_pairs);
+}
+
+TEST(MonitorMotionBounds, LeversOfTheThreeLinkChain) {
+  const auto wc = ThreeLinkWorkcell();
+  const KinematicModel& model = wc->kinematics;
+  MotionBounds bounds(model, 3);
+  const Capsule unit_ball{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), 1.0};
+  // finger_b: below a mimic prismatic joint (multiplier -1), the continuous spin, the elbow and
+  // the shoulder.
+  bounds.SetCarrier(0, model.FindLink("finger_b"), true, unit_ball);
+  ASSERT_EQ(bounds.lever_count(0), 4);
+  const MotionBounds::Lever* l = bounds.levers(0);
+  EXPECT_EQ(l[0].q_index, model.joint(model.FindLink("finger_a")).q_index);  // mimics slide
+  EXPECT_EQ(l[0].m_per_unit, 1.0);  // prismatic: 1 m per m, times |-1|
+  EXPECT_EQ(l[1].q_index, model.joint(model.FindLink("wrist")).q_index);
+  // Revolute levers: the unit ball's extent plus the chain of joint offsets (and the prismatic
+  // travel, 0.2 m) below the joint.
+  EXPECT_NEAR(l[1].m_per_unit, 1.0 + 0.05 + 0.2, 1e-12);
+  EXPECT_NEAR(l[2].m_per_unit, 1.0 + 0.05 + 0.2 + 0.35, 1e-12);
+  EXPECT_NEAR(l[3].m_per_unit, 1.0 + 0.05 + 0.2 + 0.35 + 0.4, 1e-12);
+  // A primitive that does not move, or has no carrier, has no levers and no motion.
+  bounds.SetCarrier(1, model.FindLink("finger_b"), false, unit_ball);
+  bounds.SetCarrier(2, -1, true, unit_ball);
+  EXPECT_EQ(bounds.lever_count(1), 0);
+  EXPECT_EQ(bounds.lever_count(2), 0);
+  std::string why;
+  EXPECT_TRUE(bounds.Validate(&why)) << why;
+  // An attached object moves to another carrier and back to none: levers follow.
+  bounds.SetCarrier(2, model.FindLink("forearm"), true, unit_ball);
+  EXPECT_EQ(bounds.lever_count(2), 2);
+  EXPECT_TRUE(bounds.Validate(&why)) << why;
+  bounds.SetCarrier(2, -1, true, unit_ball);
+  EXPECT_EQ(bounds.lever_count(2), 0);
+  EXPECT_TRUE(bounds.Validate(&why)) << why;
+  Eigen::VectorXd q0 = Eigen::VectorXd::Zero(model.q_size());
+  Eigen::VectorXd q1 = q0;
+  bounds.SetJointMotion(q1, q0);
+  EXPECT_EQ(bounds.ComputeBound_m(0), 0.0);
+  q1[l[0].q_index] = 0.1;   // slide by 0.1 m
+  q1[l[3].q_index] = -0.5;  // shoulder by 0.5 rad
+  bounds.SetJointMotion(q1, q0);
+  EXPECT_NEAR(bounds.ComputeBound_m(0), 0.1 + 0.5 * l[3].m_per_unit, 1e-12);
+  EXPECT_EQ(bounds.ComputeBound_m(1), 0.0);
+  EXPECT_EQ(bounds.PairBound_m(1, 2), 0.0);
+  q1[0] = std::numeric_limits<double>::quiet_NaN();
+  bounds.SetJointMotion(q1, q0);
+  EXPECT_TRUE(std::isnan(bounds.ComputeBound_m(0)));
+}
+
+TEST(MonitorMotionBounds, PairBoundLeavesOutTheSharedJoints) {
+  const auto wc = ThreeLinkWorkcell();
+  const KinematicModel& model = wc->kinematics;
+  MotionBounds bounds(model, 3);
+  const Capsule ball{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), 0.1};
+  bounds.SetCarrier(0, model.FindLink("finger_a"), true, ball);
+  bounds.SetCarrier(1, model.FindLink("finger_a"), true, ball);
+  bounds.SetCarrier(2, model.FindLink("finger_b"), true, ball);
+  std::mt19937_64 rng(kSeed);
+  std::printf("seed %llu\n", static_cast<unsigned long long>(kSeed));
+  const Eigen::VectorXd q0 = RandomQ(*wc, &rng), q1 = RandomQ(*wc, &rng);
+  bounds.SetJointMotion(q1, q0);
+  for (PrimitiveId id = 0; id < 3; ++id) EXPECT_GT(bounds.ComputeBound_m(id), 0.0);
+  // Two primitives of one link move rigidly together.
+  EXPECT_EQ(bounds.PairBound_m(0, 1), 0.0);
+  // The fingers share every joint but their own slides: only those count.
+  const int slide = bounds.levers(0)[0].q_index;
+  const double slide_m = std::abs(q1[slide] - q0[slide]);
+  EXPECT_EQ(bounds.PairBound_m(0, 2), 2.0 * slide_m);
+  EXPECT_EQ(bounds.PairBound_m(0, 2), bounds.PairBound_m(2, 0));
+}
+
+TEST(MonitorMotionBounds, BoundsHoldAgainstExactKinematics) {
+  std::printf("seed %llu\n", static_cast<unsigned long long>(kSeed));
+  std::mt19937_64 rng(kSeed);
+  ExpectBoundsHold(*test::LoadBundledWorkcell(), &rng);
+  ExpectBoundsHold(*ThreeLinkWorkcell(), &rng);
+}
+
+TEST(MonitorMotionBounds, PointHelpers) {
+  const Capsule c{Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0), 0.5};
+  EXPECT_DOUBLE_EQ(MaxDistanceFromPoint_m(c, Eigen::Vector3d(-1, 0, 0)), 2.5);
+  Box b;
+  b.X_WB = Eigen::Isometry3d::Identity();
+  b.half_extents_m = Eigen::Vector3d(1, 2, 2);
+  EXPECT_DOUBLE_EQ(MaxDistanceFromPoint_m(b, Eigen::Vector3d::Zero()), 3.0);
+  Box moved = b;
+  moved.X_WB.translation() = Eigen::Vector3d(0, 0, 0.25);
+  EXPECT_DOUBLE_EQ(MaxPointDisplacement_m(b, moved), 0.25);
+  Capsule turned = c;
+  turned.p1_W = Eigen::Vector3d(0, 1, 0);
+  EXPECT_DOUBLE_EQ(MaxPointDisplacement_m(c, turned), std::sqrt(2.0));
+}
+
+}  // namespace
+}  // namespace arm_collision_monitor
