@@ -131,9 +131,16 @@ Vector2d SmallestCircleCentre(const std::vector<Vector2d>& p) {
   return disc.centre;
 }
 
-// The points in a fixed pseudo-random order (Fisher-Yates with a seeded mt19937_64, whose
-// sequence the standard fixes, so every platform shuffles alike).
-Points Shuffled(Points points) {
+// The distinct points in a fixed pseudo-random order (Fisher-Yates with a seeded mt19937_64,
+// whose sequence the standard fixes, so every platform shuffles alike). Repeated points (a
+// corner shared by six triangles, clipped once per triangle or stored once per STL facet) would
+// only slow every pass of the fit.
+Points ShuffledDistinct(Points points) {
+  auto less = [](const Vector3d& p, const Vector3d& r) {
+    return std::tie(p.x(), p.y(), p.z()) < std::tie(r.x(), r.y(), r.z());
+  };
+  std::sort(points.begin(), points.end(), less);
+  points.erase(std::unique(points.begin(), points.end()), points.end());
   std::mt19937_64 rng(kMeshFitShuffleSeed);
   for (std::size_t i = points.size(); i > 1; --i) std::swap(points[i - 1], points[rng() % i]);
   return points;
@@ -498,20 +505,20 @@ LocalMesh ToLocal(const Points& vertices_L) {
 std::vector<Shape> FitShapes_L(const TriangleMesh& mesh, const MeshFitOptions& options) {
   const LocalMesh local = ToLocal(mesh.vertices_L);
   const Matrix3d surface_axes = PrincipalAxes(SurfaceCovariance(local.q, mesh));
-  const Points shuffled_q = Shuffled(local.q);
+  const Points shuffled_q = ShuffledDistinct(local.q);
   std::vector<Shape> shapes;
   if (options.kind == MeshFitKind::kOneCapsule) {
     const Matrix3d vertex_axes = PrincipalAxes(VertexCovariance(shuffled_q));
     const AxisCapsule fit = BestCapsule(shuffled_q, {surface_axes, vertex_axes});
     shapes.push_back(ToCapsule_L(fit, local.o_L, local.margin_m));
   } else if (options.kind == MeshFitKind::kOrientedBox) {
-    const FrameBox fit = BestBox(local.q, {surface_axes});
+    const FrameBox fit = BestBox(shuffled_q, {surface_axes});
     shapes.push_back(ToBox_L(fit, local.o_L, local.margin_m));
   } else {
     for (const Points& slab :
          SlabPoints(local.q, mesh, surface_axes.col(0), options.capsule_count)) {
       if (slab.empty()) continue;
-      const Points shuffled_slab = Shuffled(slab);
+      const Points shuffled_slab = ShuffledDistinct(slab);
       const AxisCapsule fit =
           BestCapsule(shuffled_slab, {PrincipalAxes(VertexCovariance(shuffled_slab))});
       shapes.push_back(ToCapsule_L(fit, local.o_L, local.margin_m));
