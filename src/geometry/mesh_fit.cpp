@@ -32,15 +32,6 @@ double CapsuleVolume_m3(double radius_m, double length_m) {
   return kPi * radius_m * radius_m * length_m + 4.0 / 3.0 * kPi * radius_m * radius_m * radius_m;
 }
 
-Aabb BoundingBox(const Points& points) {
-  Aabb box{points.front(), points.front()};
-  for (const Vector3d& p : points) {
-    box.min_W = box.min_W.cwiseMin(p);
-    box.max_W = box.max_W.cwiseMax(p);
-  }
-  return box;
-}
-
 // Eigenvectors of a symmetric 3x3 matrix as the columns of a rotation, largest eigenvalue first.
 Matrix3d PrincipalAxes(const Matrix3d& covariance) {
   const Eigen::SelfAdjointEigenSolver<Matrix3d> solver(covariance);
@@ -56,6 +47,28 @@ Matrix3d VertexCovariance(const Points& q) {
   Matrix3d covariance = Matrix3d::Zero();
   for (const Vector3d& p : q) covariance += (p - mean) * (p - mean).transpose();
   return covariance / static_cast<double>(q.size());
+}
+
+// The points' extents along the axes of a frame (the columns of R_LB), and the box volume.
+struct FrameBox {
+  Matrix3d R_LB = Matrix3d::Identity();  // columns: the box axes
+  Vector3d lo = Vector3d::Zero();        // extents along them (local coordinates)
+  Vector3d hi = Vector3d::Zero();
+  double volume_m3 = std::numeric_limits<double>::infinity();
+};
+
+FrameBox BoxInFrame(const Points& q, const Matrix3d& R_LB) {
+  FrameBox box;
+  box.R_LB = R_LB;
+  box.lo = Vector3d::Constant(std::numeric_limits<double>::infinity());
+  box.hi = -box.lo;
+  for (const Vector3d& p : q) {
+    const Vector3d p_B = R_LB.transpose() * p;
+    box.lo = box.lo.cwiseMin(p_B);
+    box.hi = box.hi.cwiseMax(p_B);
+  }
+  box.volume_m3 = (box.hi - box.lo).prod();
+  return box;
 }
 
 // Covariance of the surface with uniform area density: a triangle's second moment about the
@@ -182,9 +195,9 @@ AxisCapsule CapsuleAlong(const Points& q, const Vector3d& direction,
     highest_start = std::max(highest_start, t - h);
     lowest_end = std::min(lowest_end, t + h);
   }
-  fit.s0 = std::min(lowest_end, highest_start);
-  fit.s1 = highest_start;
-  if (lowest_end > highest_start) fit.s0 = fit.s1 = 0.5 * (lowest_end + highest_start);
+  const bool is_sphere = lowest_end > highest_start;
+  fit.s0 = is_sphere ? 0.5 * (lowest_end + highest_start) : lowest_end;
+  fit.s1 = is_sphere ? fit.s0 : highest_start;
   fit.line_point = centre.x() * a + centre.y() * b;
   fit.radius_m = std::sqrt(radius2);
   fit.volume_m3 = CapsuleVolume_m3(fit.radius_m, fit.s1 - fit.s0);
@@ -217,14 +230,8 @@ Fit CompassSearch(Fit best, int direction_count, const Perturb& perturbed) {
 Points CandidateAxes(const Points& q, const std::vector<Matrix3d>& frames) {
   Points axes;
   for (const Matrix3d& frame : frames) {
-    Vector3d lo = Vector3d::Constant(std::numeric_limits<double>::infinity());
-    Vector3d hi = -lo;
-    for (const Vector3d& p : q) {
-      const Vector3d p_F = frame.transpose() * p;
-      lo = lo.cwiseMin(p_F);
-      hi = hi.cwiseMax(p_F);
-    }
-    const Vector3d half = 0.5 * (hi - lo);
+    const FrameBox box = BoxInFrame(q, frame);
+    const Vector3d half = 0.5 * (box.hi - box.lo);
     for (int k = 0; k < 3; ++k) axes.push_back(frame.col(k));
     for (const double s1 : {1.0, -1.0}) {
       for (const double s2 : {1.0, -1.0}) {
@@ -323,27 +330,6 @@ std::vector<Points> SlabPoints(const Points& q, const TriangleMesh& mesh, const 
 
 // ---------------------------------------------------------------------------------------------
 // Oriented box.
-
-struct FrameBox {
-  Matrix3d R_LB = Matrix3d::Identity();  // columns: the box axes
-  Vector3d lo = Vector3d::Zero();        // extents along them (local coordinates)
-  Vector3d hi = Vector3d::Zero();
-  double volume_m3 = std::numeric_limits<double>::infinity();
-};
-
-FrameBox BoxInFrame(const Points& q, const Matrix3d& R_LB) {
-  FrameBox box;
-  box.R_LB = R_LB;
-  box.lo = Vector3d::Constant(std::numeric_limits<double>::infinity());
-  box.hi = -box.lo;
-  for (const Vector3d& p : q) {
-    const Vector3d p_B = R_LB.transpose() * p;
-    box.lo = box.lo.cwiseMin(p_B);
-    box.hi = box.hi.cwiseMax(p_B);
-  }
-  box.volume_m3 = (box.hi - box.lo).prod();
-  return box;
-}
 
 // A frame whose first axis is `axis`, the other two the principal axes of the points' projection
 // on the plane normal to it.
@@ -462,14 +448,8 @@ MeshCheck Refusal(MeshStatus status, const std::string& message) { return {statu
 // Distance between the two planes, normal to the vertices' least principal axis, that hold
 // them all: zero for coplanar, collinear and one-point meshes (up to rounding).
 double Thickness_m(const Points& q) {
-  const Vector3d normal = PrincipalAxes(VertexCovariance(q)).col(2);
-  double lo = std::numeric_limits<double>::infinity();
-  double hi = -lo;
-  for (const Vector3d& p : q) {
-    lo = std::min(lo, p.dot(normal));
-    hi = std::max(hi, p.dot(normal));
-  }
-  return hi - lo;
+  const FrameBox box = BoxInFrame(q, PrincipalAxes(VertexCovariance(q)));
+  return box.hi.z() - box.lo.z();
 }
 
 MeshCheck CheckOptions(const MeshFitOptions& options) {
@@ -483,6 +463,19 @@ MeshCheck CheckOptions(const MeshFitOptions& options) {
   return {};
 }
 
+// The vertices' bounding-box centre and diagonal, and their largest |coordinate|.
+struct MeshSize {
+  Vector3d centre_L;
+  double extent_m;
+  double reach_m;
+};
+
+MeshSize SizeOf(const Points& vertices_L) {
+  const FrameBox box = BoxInFrame(vertices_L, Matrix3d::Identity());
+  return MeshSize{0.5 * (box.lo + box.hi), (box.hi - box.lo).norm(),
+                  std::max(box.lo.cwiseAbs().maxCoeff(), box.hi.cwiseAbs().maxCoeff())};
+}
+
 // Vertices relative to the centre of their bounding box, and the fit's margin.
 struct LocalMesh {
   Vector3d o_L;
@@ -491,14 +484,12 @@ struct LocalMesh {
 };
 
 LocalMesh ToLocal(const Points& vertices_L) {
-  const Aabb box = BoundingBox(vertices_L);
+  const MeshSize size = SizeOf(vertices_L);
   LocalMesh local;
-  local.o_L = 0.5 * (box.min_W + box.max_W);
+  local.o_L = size.centre_L;
   local.q.reserve(vertices_L.size());
   for (const Vector3d& p : vertices_L) local.q.push_back(p - local.o_L);
-  const double scale_m = (box.max_W - box.min_W).norm() +
-                         std::max(box.min_W.cwiseAbs().maxCoeff(), box.max_W.cwiseAbs().maxCoeff());
-  local.margin_m = kMeshFitMarginRel * scale_m;
+  local.margin_m = kMeshFitMarginRel * (size.extent_m + size.reach_m);
   return local;
 }
 
@@ -585,26 +576,23 @@ MeshCheck CheckMesh(const TriangleMesh& mesh) {
       }
     }
   }
-  const Aabb box = BoundingBox(mesh.vertices_L);
-  const double extent_m = (box.max_W - box.min_W).norm();
-  const double reach_m =
-      std::max(box.min_W.cwiseAbs().maxCoeff(), box.max_W.cwiseAbs().maxCoeff());
+  const MeshSize size = SizeOf(mesh.vertices_L);
   std::ostringstream text;
-  if (extent_m > kMeshMaxExtent_m || reach_m > kMeshMaxCoordinate_m) {
-    text << "the mesh spans " << extent_m << " m and reaches " << reach_m
+  if (size.extent_m > kMeshMaxExtent_m || size.reach_m > kMeshMaxCoordinate_m) {
+    text << "the mesh spans " << size.extent_m << " m and reaches " << size.reach_m
          << " m from its link origin; expected at most " << kMeshMaxExtent_m << " m and "
          << kMeshMaxCoordinate_m << " m (wrong scale or units?)";
     return Refusal(MeshStatus::kTooLarge, text.str());
   }
   const double thickness_m = Thickness_m(ToLocal(mesh.vertices_L).q);
-  if (thickness_m <= kMeshMinThicknessRel * extent_m) {
-    text << "all vertices lie within " << thickness_m << " m of a plane (mesh extent "
-         << extent_m << " m, at least " << kMeshMinThicknessRel
+  if (thickness_m <= kMeshMinThicknessRel * size.extent_m) {
+    text << "all vertices lie between two parallel planes " << thickness_m << " m apart (extent "
+         << size.extent_m << " m, at least " << kMeshMinThicknessRel
          << " of it expected): flat, collinear or a single point";
     return Refusal(MeshStatus::kNoVolume, text.str());
   }
-  if (extent_m < kMeshMinExtent_m) {
-    text << "the mesh spans " << extent_m << " m, below " << kMeshMinExtent_m
+  if (size.extent_m < kMeshMinExtent_m) {
+    text << "the mesh spans " << size.extent_m << " m, below " << kMeshMinExtent_m
          << " m (wrong scale or units?)";
     return Refusal(MeshStatus::kTooSmall, text.str());
   }

@@ -66,7 +66,7 @@ enum class MeshFitKind {
   kOrientedBox,   ///< One oriented box.
 };
 
-/// Fit request. Part of the cache key (MeshFitHash).
+/// Fit request; part of the cache key (MeshFitHash).
 struct MeshFitOptions {
   MeshFitKind kind = MeshFitKind::kOneCapsule;
   /// Capsules of a kCapsuleChain fit, in [1, kMeshFitMaxCapsules]; ignored by the other kinds.
@@ -114,10 +114,11 @@ struct MeshFit {
 /// projection), then a compass search of small rotations; the smallest-volume box is kept.
 MeshFit FitMesh(const TriangleMesh& mesh, const MeshFitOptions& options);
 
-/// Cache key of a fit: 64-bit FNV-1a (Fowler, Noll, Vo) over the vertex coordinates' IEEE-754
-/// bits, the triangle indices, the options and kMeshFitAlgorithmVersion, each fed as
-/// little-endian bytes with its count first. Deterministic across runs and platforms; equal
-/// inputs give equal keys, and any changed bit changes the key except for 64-bit collisions.
+/// Cache key of a fit: 64-bit FNV-1a (Fowler, Noll, Vo) over kMeshFitAlgorithmVersion, the vertex
+/// coordinates' IEEE-754 bits, the triangle indices and the options (the capsule count only for
+/// a chain, the one kind it changes), each fed as little-endian 64-bit words, lists with their
+/// length first. Deterministic across runs and platforms; any changed bit (even -0.0 for 0.0, a
+/// rotated triangle) changes the key except for 64-bit collisions.
 std::uint64_t MeshFitHash(const TriangleMesh& mesh, const MeshFitOptions& options);
 
 }  // namespace arm_collision_monitor
