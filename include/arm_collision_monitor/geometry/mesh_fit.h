@@ -107,7 +107,8 @@ struct MeshFit {
 ///
 /// Capsule chain: the mesh is cut into capsule_count equal slabs along its surface's principal
 /// axis; every triangle is clipped to every slab it crosses (Sutherland-Hodgman), and each slab's
-/// vertices and clip points get a one-capsule fit as above.
+/// vertices and clip points get a one-capsule fit as above (candidate axes from the principal
+/// axes of those points). Slabs holding no point (a mesh in separate parts) get no capsule.
 ///
 /// Oriented box: exact extents along candidate frames (the surface's principal axes, the link
 /// frame's axes, and each candidate capsule axis completed by the principal axes of the
