@@ -164,4 +164,46 @@ inline constexpr double kTaskMaxPointSpeed_mps = 0.61;
 /// regenerated bag is byte-identical; 2020-09-13 12:26:40 UTC, an arbitrary round number).
 inline constexpr double kTaskBagStartStamp_s = 1600000000.0;
 
+// ---------------------------------------------------------------------------------------------
+// Mesh fitting (geometry/mesh_fit.h: URDF mesh collision geometry to enclosing primitives)
+// ---------------------------------------------------------------------------------------------
+
+/// Growth of every fitted radius and half extent, as a fraction of the mesh's scale S (its
+/// bounding-box diagonal plus its largest |coordinate|; dimensionless; typical 1e-9). The fit's
+/// own rounding is a few hundred eps * S (~1e-13 S), so 1e-9 keeps every vertex inside in
+/// floating point with 10^4 to spare, and costs 1 nm per metre of mesh.
+inline constexpr double kMeshFitMarginRel = 1e-9;
+/// A mesh whose vertices all lie within this fraction of its extent (bounding-box diagonal) of
+/// one plane has no volume (dimensionless; typical 1e-6): a flat, collinear or one-point mesh
+/// cannot be a link's solid. Meshes exported flat have thickness ~1e-7 of their size or less;
+/// real parts are thicker than 1e-3 of their size.
+inline constexpr double kMeshMinThicknessRel = 1e-6;
+/// Largest accepted mesh extent, m (the bounding-box diagonal; typical 1000): a robot link is
+/// metres long, so a kilometre means the URDF scale or the file's units are wrong.
+inline constexpr double kMeshMaxExtent_m = 1000.0;
+/// Smallest accepted mesh extent, m (typical 1e-6): below a micrometre the mesh is a unit
+/// error (e.g. a scale applied twice), not a part.
+inline constexpr double kMeshMinExtent_m = 1e-6;
+/// Largest accepted |vertex coordinate| in the link frame, m (typical 1e4): farther than
+/// 10 km from its link a mesh is a unit or offset error, and the margin (relative to it) would
+/// grow past a micrometre.
+inline constexpr double kMeshMaxCoordinate_m = 1e4;
+/// Most capsules a chain fit may ask for (dimensionless; typical 64): each costs a primitive in
+/// every cycle, and a link needing more is better modelled by hand.
+inline constexpr int kMeshFitMaxCapsules = 64;
+/// Compass search of the fit's axis (and box frame): first step and smallest step, rad. 0.1 rad
+/// reaches past the principal axes' typical error on near-symmetric meshes; below 1e-3 rad the
+/// volume changes by less than ~1e-3 relative, too little to matter.
+inline constexpr double kMeshFitSearchStartStep_rad = 0.1;
+inline constexpr double kMeshFitSearchMinStep_rad = 1e-3;
+/// Most volume evaluations one compass search makes (dimensionless; typical 64), bounding the
+/// fit's time: each costs one pass over the vertices.
+inline constexpr int kMeshFitMaxSearchEvaluations = 64;
+/// Seed of the fixed shuffle in the smallest-enclosing-circle step (Welzl's algorithm expects
+/// random order; a fixed seed keeps fits deterministic).
+inline constexpr std::uint64_t kMeshFitShuffleSeed = 20261123;
+/// Version of the fitting algorithm, hashed into MeshFitHash: bump it when a fit's result
+/// changes, so that cached fits of the old algorithm are not reused.
+inline constexpr std::uint64_t kMeshFitAlgorithmVersion = 1;
+
 }  // namespace arm_collision_monitor
