@@ -75,8 +75,9 @@ Eigen::Quaterniond ReadOrientation(const YAML::Node& node, const Where& where) {
   }
   const double norm = xyzw.norm();
   if (norm == 0.0) {
-    where.Fail(node, "a zero quaternion is not a rotation (expected a unit quaternion; write "
-                     "w: 1 for none)");
+    where.Fail(node,
+               "a zero quaternion is not a rotation (expected a unit quaternion; write "
+               "w: 1 for none)");
   }
   if (std::abs(norm - 1.0) > kQuaternionUnitNormTolerance) {
     where.Fail(node, "quaternion norm " + std::to_string(norm) +
@@ -92,8 +93,8 @@ Eigen::Isometry3d ReadPose(const YAML::Node& node, const Where& where) {
   Eigen::Isometry3d X_AB = Eigen::Isometry3d::Identity();
   if (node["position"]) X_AB.translation() = ReadPoint(node["position"], where.Child("position"));
   if (node["orientation"]) {
-    X_AB.linear() = ReadOrientation(node["orientation"], where.Child("orientation"))
-                        .toRotationMatrix();
+    X_AB.linear() =
+        ReadOrientation(node["orientation"], where.Child("orientation")).toRotationMatrix();
   }
   return X_AB;
 }
@@ -111,9 +112,8 @@ std::vector<Eigen::Isometry3d> ReadShapePoses(const YAML::Node& object, const ch
   }
   if (pose_count != count) {
     where.Child(key).Fail(poses.IsDefined() ? poses : object,
-                          std::to_string(pose_count) + " poses for " + std::to_string(count) +
-                              " " + shapes_key + " (expected one pose per entry of " +
-                              shapes_key + ")");
+                          std::to_string(pose_count) + " poses for " + std::to_string(count) + " " +
+                              shapes_key + " (expected one pose per entry of " + shapes_key + ")");
   }
   std::vector<Eigen::Isometry3d> X_FS;
   for (std::size_t i = 0; i < pose_count; ++i) {
@@ -155,8 +155,8 @@ std::uint32_t ReadVertexIndex(const YAML::Node& node, std::size_t vertex_count,
   if (!node.IsDefined() || !node.IsScalar() || !YAML::convert<long long>::decode(node, index) ||
       index < 0 || index >= static_cast<long long>(vertex_count)) {
     where.Fail(node, "bad vertex index '" + (node.IsScalar() ? node.Scalar() : std::string()) +
-                         "' (expected an integer from 0 to " + std::to_string(vertex_count) +
-                         " - 1, the mesh's vertex count - 1)");
+                         "' (expected an integer from 0 to " + std::to_string(vertex_count - 1) +
+                         ": the mesh has " + std::to_string(vertex_count) + " vertices)");
   }
   return static_cast<std::uint32_t>(index);
 }
@@ -165,8 +165,10 @@ std::uint32_t ReadVertexIndex(const YAML::Node& node, std::size_t vertex_count,
 SceneMesh ReadMesh(const YAML::Node& node, const Where& where) {
   yaml_fields::RequireMap(node, where);
   if (node["resource"]) {
-    where.Child("resource").Fail(node["resource"], "mesh files are not read (expected the mesh "
-                                                   "inline: vertices and triangles)");
+    where.Child("resource")
+        .Fail(node["resource"],
+              "mesh files are not read (expected the mesh "
+              "inline: vertices and triangles)");
   }
   yaml_fields::CheckKeys(node, {"vertices", "triangles"}, where);
   SceneMesh mesh;
@@ -176,8 +178,9 @@ SceneMesh ReadMesh(const YAML::Node& node, const Where& where) {
   const YAML::Node triangles = node["triangles"];
   if (!vertices.IsDefined() || !vertices.IsSequence() || vertices.size() == 0 ||
       !triangles.IsDefined() || !triangles.IsSequence() || triangles.size() == 0) {
-    where.Fail(node, "expected vertices (a list of points) and triangles (a list of "
-                     "{vertex_indices: [i, j, k]}), both non-empty");
+    where.Fail(node,
+               "expected vertices (a list of points) and triangles (a list of "
+               "{vertex_indices: [i, j, k]}), both non-empty");
   }
   for (std::size_t i = 0; i < vertices.size(); ++i) {
     mesh.vertices_M.push_back(ReadPoint(vertices[i], vertices_where.Entry(i)));
@@ -187,9 +190,8 @@ SceneMesh ReadMesh(const YAML::Node& node, const Where& where) {
     if (is_message) {
       yaml_fields::CheckKeys(triangles[t], {"vertex_indices"}, triangles_where.Entry(t));
     }
-    const Where triangle_where = is_message
-                                     ? triangles_where.Entry(t).Child("vertex_indices")
-                                     : triangles_where.Entry(t);
+    const Where triangle_where =
+        is_message ? triangles_where.Entry(t).Child("vertex_indices") : triangles_where.Entry(t);
     const YAML::Node indices = is_message ? triangles[t]["vertex_indices"] : triangles[t];
     if (!indices.IsDefined() || !indices.IsSequence() || indices.size() != 3) {
       triangle_where.Fail(indices.IsDefined() ? indices : triangles[t],
@@ -215,19 +217,20 @@ SceneCollisionObject ReadCollisionObject(const YAML::Node& node, const Where& en
   const Where where{entry.file, entry.element + " '" + object.id + "'"};
   object.element = where.element;
   object.line = node.Mark().is_null() ? 0 : node.Mark().line + 1;
-  yaml_fields::CheckKeys(node,
-                         {"header", "pose", "id", "type", "primitives", "primitive_poses",
-                          "meshes", "mesh_poses", "planes", "plane_poses", "subframe_names",
-                          "subframe_poses", "operation"},
-                         where);
+  yaml_fields::CheckKeys(
+      node,
+      {"header", "pose", "id", "type", "primitives", "primitive_poses", "meshes", "mesh_poses",
+       "planes", "plane_poses", "subframe_names", "subframe_poses", "operation"},
+      where);
   if (node["operation"]) {
     const int operation =
         ReadEnum(node["operation"], where.Child("operation"), {"add", "remove", "append", "move"},
                  0, "an operation: 0 ADD, 1 REMOVE, 2 APPEND, 3 MOVE, or its name");
     if (operation != 0) {
       where.Child("operation")
-          .Fail(node["operation"], "only ADD (0) is read: REMOVE, APPEND and MOVE edit an "
-                                   "earlier scene (expected operation: 0 or none)");
+          .Fail(node["operation"],
+                "only ADD (0) is read: REMOVE, APPEND and MOVE edit an "
+                "earlier scene (expected operation: 0 or none)");
     }
   }
   if (const YAML::Node header = node["header"]) {
@@ -236,8 +239,9 @@ SceneCollisionObject ReadCollisionObject(const YAML::Node& node, const Where& en
     object.frame_id = ReadOptionalString(header["frame_id"], where.Child("header.frame_id"));
   }
   if (node["planes"] && node["planes"].size() > 0) {
-    where.Child("planes").Fail(node["planes"], "planes are not supported (expected primitives "
-                                               "or meshes)");
+    where.Child("planes").Fail(node["planes"],
+                               "planes are not supported (expected primitives "
+                               "or meshes)");
   }
   Eigen::Isometry3d X_FO = Eigen::Isometry3d::Identity();
   yaml_fields::ReadIfPresent(node, "pose", where, ReadPose, &X_FO);
@@ -250,8 +254,8 @@ SceneCollisionObject ReadCollisionObject(const YAML::Node& node, const Where& en
   if (primitive_count + mesh_count == 0) {
     where.Fail(node, "no shape (expected primitives or meshes)");
   }
-  const auto X_FP = ReadShapePoses(node, "primitive_poses", "primitives", primitive_count, X_FO,
-                                   where);
+  const auto X_FP =
+      ReadShapePoses(node, "primitive_poses", "primitives", primitive_count, X_FO, where);
   for (std::size_t i = 0; i < primitive_count; ++i) {
     object.primitives.push_back(ReadPrimitive(primitives[i], where.Child("primitives").Entry(i)));
     object.primitives.back().X_FP = X_FP[i];
@@ -308,9 +312,8 @@ SceneAllowedCollisions ReadAllowedCollisions(const YAML::Node& node, const Where
   const Where rows_where = where.Child("entry_values");
   if (!names.empty() || rows) {
     if (!rows.IsDefined() || !rows.IsSequence() || rows.size() != names.size()) {
-      rows_where.Fail(rows.IsDefined() ? rows : node,
-                      "expected " + std::to_string(names.size()) +
-                          " rows, one per entry_names entry");
+      rows_where.Fail(rows.IsDefined() ? rows : node, "expected " + std::to_string(names.size()) +
+                                                          " rows, one per entry_names entry");
     }
   }
   std::vector<std::vector<bool>> matrix;
@@ -358,9 +361,9 @@ YAML::Node FindPath(const YAML::Node& node, const std::vector<const char*>& keys
 void AddNotices(const YAML::Node& root, PlanningSceneFile* scene) {
   const YAML::Node attached = FindPath(root, {"robot_state", "attached_collision_objects"});
   if (attached.IsDefined() && attached.IsSequence() && attached.size() > 0) {
-    scene->notices.push_back("robot_state.attached_collision_objects: " +
-                             std::to_string(attached.size()) +
-                             " objects attached to the robot are ignored");
+    scene->notices.push_back(
+        "robot_state.attached_collision_objects: " + std::to_string(attached.size()) +
+        " objects attached to the robot are ignored");
   }
   const YAML::Node octomap = FindPath(root, {"world", "octomap", "octomap", "data"});
   if (octomap.IsDefined() && octomap.IsSequence() && octomap.size() > 0) {
@@ -376,8 +379,8 @@ PlanningSceneFile ReadPlanningSceneFile(const std::string& path) {
   const Where top{path, ""};
   yaml_fields::CheckKeys(root,
                          {"name", "robot_state", "robot_model_name", "fixed_frame_transforms",
-                          "allowed_collision_matrix", "link_padding", "link_scale",
-                          "object_colors", "world", "is_diff"},
+                          "allowed_collision_matrix", "link_padding", "link_scale", "object_colors",
+                          "world", "is_diff"},
                          top);
   PlanningSceneFile scene;
   scene.name = ReadOptionalString(root["name"], top.Child("name"));
@@ -392,15 +395,14 @@ PlanningSceneFile ReadPlanningSceneFile(const std::string& path) {
       for (std::size_t i = 0; i < objects.size(); ++i) {
         scene.objects.push_back(ReadCollisionObject(objects[i], objects_where.Entry(i)));
         if (!ids.insert(scene.objects.back().id).second) {
-          objects_where.Entry(i).Fail(objects[i], "id '" + scene.objects.back().id +
-                                                      "' repeated (expected unique ids)");
+          objects_where.Entry(i).Fail(
+              objects[i], "id '" + scene.objects.back().id + "' repeated (expected unique ids)");
         }
       }
     }
   }
   if (const YAML::Node matrix = root["allowed_collision_matrix"]) {
-    scene.allowed_collisions =
-        ReadAllowedCollisions(matrix, top.Child("allowed_collision_matrix"));
+    scene.allowed_collisions = ReadAllowedCollisions(matrix, top.Child("allowed_collision_matrix"));
   }
   AddNotices(root, &scene);
   return scene;

@@ -15,9 +15,13 @@ namespace arm_collision_monitor {
 namespace {
 
 // The SRDF elements MoveIt reads that carry no collision rule (srdfdom's srdf::Model).
-constexpr const char* kIgnoredElements[] = {"group",         "group_state",   "end_effector",
-                                             "virtual_joint", "passive_joint", "joint_property",
-                                             "link_sphere_approximation"};
+constexpr const char* kIgnoredElements[] = {"group",
+                                            "group_state",
+                                            "end_effector",
+                                            "virtual_joint",
+                                            "passive_joint",
+                                            "joint_property",
+                                            "link_sphere_approximation"};
 
 [[noreturn]] void Fail(const std::string& path, int line, const std::string& element,
                        const std::string& what) {
@@ -41,9 +45,8 @@ std::string Trimmed(const char* text) {
 }
 
 /// The trimmed value of the required attribute `name` of `xml`; fails when absent or empty.
-std::string RequiredName(const tinyxml2::XMLElement& xml, const char* name,
-                         const std::string& path, const std::string& element,
-                         const std::string& form) {
+std::string RequiredName(const tinyxml2::XMLElement& xml, const char* name, const std::string& path,
+                         const std::string& element, const std::string& form) {
   const char* value = xml.Attribute(name);
   const std::string trimmed = value == nullptr ? "" : Trimmed(value);
   if (trimmed.empty()) {
@@ -72,7 +75,9 @@ std::string ReadWholeFile(const std::string& path) {
   std::error_code error;
   std::ifstream in;
   if (std::filesystem::is_regular_file(path, error)) in.open(path);
-  if (!in.is_open()) throw LoadError(path + ": cannot open the file (expected a readable SRDF file)");
+  if (!in.is_open()) {
+    throw LoadError(path + ": cannot open the file (expected a readable SRDF file)");
+  }
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();
@@ -105,8 +110,8 @@ SrdfCollisionRules ReadSrdfCollisionRules(const std::string& path) {
     } else if (name == "enable_collisions") {
       rules.enabled_pairs.push_back(ReadLinkPair(*xml, path, element));
     } else if (name == "disable_default_collisions") {
-      const std::string link = RequiredName(*xml, "link", path, element,
-                                            "<disable_default_collisions link=\"LINK\"/>");
+      const std::string link =
+          RequiredName(*xml, "link", path, element, "<disable_default_collisions link=\"LINK\"/>");
       rules.default_disabled_links.push_back(SrdfLink{link, xml->GetLineNum()});
     } else if (!IsIgnored(name.c_str())) {
       Fail(path, xml->GetLineNum(), element,

@@ -5,7 +5,6 @@
 // was expected.
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <string>
 #include <vector>
 
@@ -33,7 +32,7 @@ TEST(PlanningSceneReader, RostopicEchoDump) {
   EXPECT_EQ(scene.name, "workcell_shelf");
   EXPECT_TRUE(scene.notices.empty());  // no attached objects, an empty octomap
   ASSERT_EQ(scene.objects.size(), 8u);
-  const std::vector<std::string> ids = {"shelf", "can_1", "can_2", "can_3",
+  const std::vector<std::string> ids = {"shelf", "can_1",  "can_2", "can_3",
                                         "ball",  "funnel", "wedge", "tray"};
   for (std::size_t i = 0; i < ids.size(); ++i) EXPECT_EQ(scene.objects[i].id, ids[i]);
 
@@ -48,9 +47,9 @@ TEST(PlanningSceneReader, RostopicEchoDump) {
                   {1.0, 0.39, 0.5});
   EXPECT_TRUE(shelf.primitives[4].X_FP.linear().isIdentity(kTight));
 
-  ExpectPrimitive(scene.objects[2].primitives.at(0), SolidPrimitiveType::kCylinder,
-                  {0.12, 0.033}, {1.0, 0.0, 0.57});  // [height, radius]
-  EXPECT_EQ(scene.objects[4].frame_id, "");          // the planning frame
+  ExpectPrimitive(scene.objects[2].primitives.at(0), SolidPrimitiveType::kCylinder, {0.12, 0.033},
+                  {1.0, 0.0, 0.57});         // [height, radius]
+  EXPECT_EQ(scene.objects[4].frame_id, "");  // the planning frame
   ExpectPrimitive(scene.objects[4].primitives.at(0), SolidPrimitiveType::kSphere, {0.05},
                   {0.9, 0.25, 1.05});
   ExpectPrimitive(scene.objects[5].primitives.at(0), SolidPrimitiveType::kCone, {0.1, 0.04},
@@ -90,8 +89,8 @@ TEST(PlanningSceneReader, RostopicEchoDump) {
   const SceneAllowedCollisions& acm = scene.allowed_collisions;
   EXPECT_EQ(acm.allowed_pairs, (NamePairs{{"left_link7", "left_tool"}, {"left_tool", "can_1"}}));
   EXPECT_EQ(acm.disallowed_pairs.size(), 10u - 2u);  // 5 names: 10 pairs above the diagonal
-  EXPECT_EQ(acm.disallowed_pairs.front(), (std::pair<std::string, std::string>{
-                                              "left_link7", "right_tool"}));
+  EXPECT_EQ(acm.disallowed_pairs.front(),
+            (std::pair<std::string, std::string>{"left_link7", "right_tool"}));
   EXPECT_EQ(acm.default_allowed_names, std::vector<std::string>{"world"});
 }
 
@@ -143,100 +142,91 @@ std::string OneObject(const std::string& fields) {
 const std::string kBox = "primitives: [{type: 1, dimensions: [1, 1, 1]}], primitive_poses: [{}]";
 const std::string kObject = "world.collision_objects[0] 'a'";
 
+void ReadScene(const std::string& path) { ReadPlanningSceneFile(path); }
+
 TEST(PlanningSceneReader, BadObjectsNameFileElementAndExpectation) {
-  const struct {
-    std::string text;
-    std::vector<std::string> parts;
-  } bad[] = {
-      {OneObject("id: a, " + kBox), {}},  // the valid base case: no error expected (checked below)
-      {OneObject("primitives: [{type: 1, dimensions: [1, 1, 1]}], primitive_poses: [{}]"),
-       {"world.collision_objects[0]", "without id", "id: NAME"}},
-      {OneObject("id: a, " + kBox) + "    - {id: a, " + kBox + "}\n",
-       {":4:", "world.collision_objects[1]", "id 'a' repeated", "unique ids"}},
-      {OneObject("id: a"), {kObject, "no shape", "primitives or meshes"}},
-      {OneObject("id: a, primitives: [{type: 7, dimensions: [1]}], primitive_poses: [{}]"),
-       {kObject + ".primitives[0].type", "unknown value '7'", "1 BOX, 2 SPHERE"}},
-      {OneObject("id: a, primitives: [{type: prism, dimensions: [1]}], primitive_poses: [{}]"),
-       {kObject + ".primitives[0].type", "unknown value 'prism'", "4 CONE"}},
-      {OneObject("id: a, primitives: [{type: 3, dimensions: [0.1]}], primitive_poses: [{}]"),
-       {kObject + ".primitives[0].dimensions", "expected 2 dimensions",
-        "cylinder: [height, radius]"}},
-      {OneObject("id: a, primitives: [{type: box, dimensions: [1, -2, 1]}], "
-                 "primitive_poses: [{}]"),
-       {kObject + ".primitives[0].dimensions[1]", "expected a number > 0"}},
-      {OneObject("id: a, primitives: [{type: 2, dimensions: [.nan]}], primitive_poses: [{}]"),
-       {kObject + ".primitives[0].dimensions[0]", "expected a finite number"}},
-      {OneObject("id: a, primitives: [{type: 2, dimensions: [1]}, {type: 2, dimensions: [1]}], "
-                 "primitive_poses: [{}]"),
-       {kObject + ".primitive_poses", "1 poses for 2 primitives", "one pose per entry"}},
-      {OneObject("id: a, " + kBox + ", pose: {orientation: {x: 0, y: 0, z: 0, w: 0}}"),
-       {kObject + ".pose.orientation", "zero quaternion", "w: 1"}},
-      {OneObject("id: a, primitives: [{type: 1, dimensions: [1, 1, 1]}], "
-                 "primitive_poses: [{orientation: [0, 0, 1, 1]}]"),
-       {kObject + ".primitive_poses[0].orientation", "norm 1.41", "unit quaternion"}},
-      {OneObject("id: a, meshes: [{vertices: [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "
-                 "triangles: [{vertex_indices: [0, 1, 3]}]}], mesh_poses: [{}]"),
-       {kObject + ".meshes[0].triangles[0].vertex_indices[2]", "bad vertex index '3'",
-        "from 0 to 3 - 1"}},
-      {OneObject("id: a, meshes: [{vertices: [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "
-                 "triangles: [[0, -1, 2]]}], mesh_poses: [{}]"),
-       {kObject + ".meshes[0].triangles[0][1]", "bad vertex index '-1'"}},
-      {OneObject("id: a, meshes: [{vertices: [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "
-                 "triangles: [[0, 1]]}], mesh_poses: [{}]"),
-       {kObject + ".meshes[0].triangles[0]", "3 vertex indices"}},
-      {OneObject("id: a, meshes: [{vertices: [], triangles: []}], mesh_poses: [{}]"),
-       {kObject + ".meshes[0]", "both non-empty"}},
-      {OneObject("id: a, meshes: [{resource: 'package://p/m.stl'}], mesh_poses: [{}]"),
-       {kObject + ".meshes[0].resource", "not read", "vertices and triangles"}},
-      {OneObject("id: a, " + kBox + ", operation: 1"),
-       {kObject + ".operation", "only ADD (0)", "operation: 0 or none"}},
-      {OneObject("id: a, " + kBox + ", operation: move"), {kObject + ".operation", "only ADD"}},
-      {OneObject("id: a, " + kBox + ", operation: 9"),
-       {kObject + ".operation", "unknown value '9'", "0 ADD, 1 REMOVE"}},
-      {OneObject("id: a, " + kBox + ", planes: [{coef: [0, 0, 1, 0]}], plane_poses: [{}]"),
-       {kObject + ".planes", "not supported"}},
-      {OneObject("id: a, " + kBox + ", primitve_poses: []"),
-       {kObject, "unknown key 'primitve_poses'", "primitive_poses"}},
-  };
-  for (const auto& b : bad) {
-    const std::string path = WriteTempFile("bad_scene.yaml", b.text);
-    if (b.parts.empty()) {
-      EXPECT_EQ(ReadPlanningSceneFile(path).objects.size(), 1u);
-      continue;
-    }
-    std::vector<std::string> parts = b.parts;
-    parts.push_back(path);
-    ExpectLoadError([&] { ReadPlanningSceneFile(path); }, parts);
-  }
+  // The valid base case of the bad objects below.
+  EXPECT_EQ(ReadPlanningSceneFile(WriteTempFile("good_scene.yaml", OneObject("id: a, " + kBox)))
+                .objects.size(),
+            1u);
+  ExpectBadInputFilesRejected(
+      "bad_scene.yaml",
+      {
+          {OneObject("primitives: [{type: 1, dimensions: [1, 1, 1]}], primitive_poses: [{}]"),
+           {"world.collision_objects[0]", "without id", "id: NAME"}},
+          {OneObject("id: a, " + kBox) + "    - {id: a, " + kBox + "}\n",
+           {":4:", "world.collision_objects[1]", "id 'a' repeated", "unique ids"}},
+          {OneObject("id: a"), {kObject, "no shape", "primitives or meshes"}},
+          {OneObject("id: a, primitives: [{type: 7, dimensions: [1]}], primitive_poses: [{}]"),
+           {kObject + ".primitives[0].type", "unknown value '7'", "1 BOX, 2 SPHERE"}},
+          {OneObject("id: a, primitives: [{type: prism, dimensions: [1]}], primitive_poses: [{}]"),
+           {kObject + ".primitives[0].type", "unknown value 'prism'", "4 CONE"}},
+          {OneObject("id: a, primitives: [{type: 3, dimensions: [0.1]}], primitive_poses: [{}]"),
+           {kObject + ".primitives[0].dimensions", "expected 2 dimensions",
+            "cylinder: [height, radius]"}},
+          {OneObject("id: a, primitives: [{type: box, dimensions: [1, -2, 1]}], "
+                     "primitive_poses: [{}]"),
+           {kObject + ".primitives[0].dimensions[1]", "expected a number > 0"}},
+          {OneObject("id: a, primitives: [{type: 2, dimensions: [.nan]}], primitive_poses: [{}]"),
+           {kObject + ".primitives[0].dimensions[0]", "expected a finite number"}},
+          {OneObject("id: a, primitives: [{type: 2, dimensions: [1]}, {type: 2, dimensions: [1]}], "
+                     "primitive_poses: [{}]"),
+           {kObject + ".primitive_poses", "1 poses for 2 primitives", "one pose per entry"}},
+          {OneObject("id: a, " + kBox + ", pose: {orientation: {x: 0, y: 0, z: 0, w: 0}}"),
+           {kObject + ".pose.orientation", "zero quaternion", "w: 1"}},
+          {OneObject("id: a, primitives: [{type: 1, dimensions: [1, 1, 1]}], "
+                     "primitive_poses: [{orientation: [0, 0, 1, 1]}]"),
+           {kObject + ".primitive_poses[0].orientation", "norm 1.41", "unit quaternion"}},
+          {OneObject("id: a, meshes: [{vertices: [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "
+                     "triangles: [{vertex_indices: [0, 1, 3]}]}], mesh_poses: [{}]"),
+           {kObject + ".meshes[0].triangles[0].vertex_indices[2]", "bad vertex index '3'",
+            "from 0 to 2: the mesh has 3 vertices"}},
+          {OneObject("id: a, meshes: [{vertices: [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "
+                     "triangles: [[0, -1, 2]]}], mesh_poses: [{}]"),
+           {kObject + ".meshes[0].triangles[0][1]", "bad vertex index '-1'"}},
+          {OneObject("id: a, meshes: [{vertices: [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "
+                     "triangles: [[0, 1]]}], mesh_poses: [{}]"),
+           {kObject + ".meshes[0].triangles[0]", "3 vertex indices"}},
+          {OneObject("id: a, meshes: [{vertices: [], triangles: []}], mesh_poses: [{}]"),
+           {kObject + ".meshes[0]", "both non-empty"}},
+          {OneObject("id: a, meshes: [{resource: 'package://p/m.stl'}], mesh_poses: [{}]"),
+           {kObject + ".meshes[0].resource", "not read", "vertices and triangles"}},
+          {OneObject("id: a, " + kBox + ", operation: 1"),
+           {kObject + ".operation", "only ADD (0)", "operation: 0 or none"}},
+          {OneObject("id: a, " + kBox + ", operation: move"), {kObject + ".operation", "only ADD"}},
+          {OneObject("id: a, " + kBox + ", operation: 9"),
+           {kObject + ".operation", "unknown value '9'", "0 ADD, 1 REMOVE"}},
+          {OneObject("id: a, " + kBox + ", planes: [{coef: [0, 0, 1, 0]}], plane_poses: [{}]"),
+           {kObject + ".planes", "not supported"}},
+          {OneObject("id: a, " + kBox + ", primitve_poses: []"),
+           {kObject, "unknown key 'primitve_poses'", "primitive_poses"}},
+      },
+      ReadScene);
 }
 
 TEST(PlanningSceneReader, BadMatricesNameFileElementAndExpectation) {
   const std::string acm = "allowed_collision_matrix";
-  const struct {
-    std::string text;
-    std::vector<std::string> parts;
-  } bad[] = {
-      {"allowed_collision_matrix:\n  entry_names: [a, b]\n  entry_values:\n"
-       "    - enabled: [false, true]\n    - enabled: [false, false]\n",
-       {":5:", acm + ".entry_values[1]", "(b, a) differs from (a, b)", "symmetric"}},
-      {"allowed_collision_matrix: {entry_names: [a, b], entry_values: [[false, true]]}\n",
-       {acm + ".entry_values", "expected 2 rows"}},
-      {"allowed_collision_matrix: {entry_names: [a, b], entry_values: [[false], [true, false]]}\n",
-       {acm + ".entry_values[0]", "expected 2 booleans, one per entry_names entry"}},
-      {"allowed_collision_matrix: {entry_names: [a, a], entry_values: [[0, 0], [0, 0]]}\n",
-       {acm + ".entry_names[1]", "'a' repeated", "unique names"}},
-      {"allowed_collision_matrix: {entry_names: [a], entry_values: [[maybe]]}\n",
-       {acm + ".entry_values[0][0]", "true or false"}},
-      {"allowed_collision_matrix: {default_entry_names: [a, b], default_entry_values: [true]}\n",
-       {acm + ".default_entry_values", "one per default_entry_names entry"}},
-      {"allowed_colision_matrix: {}\n", {"unknown key 'allowed_colision_matrix'"}},
-  };
-  for (const auto& b : bad) {
-    const std::string path = WriteTempFile("bad_acm.yaml", b.text);
-    std::vector<std::string> parts = b.parts;
-    parts.push_back(path);
-    ExpectLoadError([&] { ReadPlanningSceneFile(path); }, parts);
-  }
+  ExpectBadInputFilesRejected(
+      "bad_acm.yaml",
+      {
+          {"allowed_collision_matrix:\n  entry_names: [a, b]\n  entry_values:\n"
+           "    - enabled: [false, true]\n    - enabled: [false, false]\n",
+           {":5:", acm + ".entry_values[1]", "(b, a) differs from (a, b)", "symmetric"}},
+          {"allowed_collision_matrix: {entry_names: [a, b], entry_values: [[false, true]]}\n",
+           {acm + ".entry_values", "expected 2 rows"}},
+          {"allowed_collision_matrix: {entry_names: [a, b], entry_values: [[false], [true, "
+           "false]]}\n",
+           {acm + ".entry_values[0]", "expected 2 booleans, one per entry_names entry"}},
+          {"allowed_collision_matrix: {entry_names: [a, a], entry_values: [[0, 0], [0, 0]]}\n",
+           {acm + ".entry_names[1]", "'a' repeated", "unique names"}},
+          {"allowed_collision_matrix: {entry_names: [a], entry_values: [[maybe]]}\n",
+           {acm + ".entry_values[0][0]", "true or false"}},
+          {"allowed_collision_matrix: {default_entry_names: [a, b], default_entry_values: "
+           "[true]}\n",
+           {acm + ".default_entry_values", "one per default_entry_names entry"}},
+          {"allowed_colision_matrix: {}\n", {"unknown key 'allowed_colision_matrix'"}},
+      },
+      ReadScene);
 }
 
 }  // namespace

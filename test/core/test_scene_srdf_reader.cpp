@@ -42,10 +42,10 @@ TEST(SrdfReader, SetupAssistantFile) {
 }
 
 TEST(SrdfReader, NamesAreTrimmedAndReasonIsOptional) {
-  const SrdfCollisionRules rules = ReadSrdfCollisionRules(WriteTempFile(
-      "trim.srdf",
-      "<robot name=' r '>\n<disable_collisions link1=' a ' link2='b\n'/>\n"
-      "<disable_default_collisions link=' c'/>\n</robot>\n"));
+  const SrdfCollisionRules rules = ReadSrdfCollisionRules(
+      WriteTempFile("trim.srdf",
+                    "<robot name=' r '>\n<disable_collisions link1=' a ' link2='b\n'/>\n"
+                    "<disable_default_collisions link=' c'/>\n</robot>\n"));
   EXPECT_EQ(rules.robot_name, "r");
   ASSERT_EQ(rules.disabled_pairs.size(), 1u);
   ExpectPair(rules.disabled_pairs[0], "a", "b", "", 2);
@@ -64,35 +64,29 @@ TEST(SrdfReader, NotAFile) {
 }
 
 TEST(SrdfReader, BadInputNamesFileElementAndExpectation) {
-  const struct {
-    std::string text;
-    std::vector<std::string> parts;
-  } bad[] = {
-      {"<robot name='r'>\n<group name='arm'>\n</robot>\n",
-       {":2:", "malformed XML", "MISMATCHED_ELEMENT", "name=group", "well-formed SRDF"}},
-      {"", {"malformed XML", "EMPTY_DOCUMENT", "well-formed SRDF"}},
-      {"<?xml version='1.0'?>\n<model name='r'/>\n",
-       {":2:", "<model>", "expected the root element <robot"}},
-      {"<robot>\n<disable_collisions link1='a'/>\n</robot>\n",
-       {":2:", "robot.disable_collisions[0]", "missing attribute link2", "link1=\"LINK\""}},
-      {"<robot>\n<disable_collisions link1='a' link2='b'/>\n"
-       "<disable_collisions link2='b'/>\n</robot>\n",
-       {":3:", "robot.disable_collisions[1]", "missing attribute link1"}},
-      {"<robot>\n<enable_collisions link1='a' link2=' '/>\n</robot>\n",
-       {":2:", "robot.enable_collisions[0]", "empty attribute link2", "non-empty link1"}},
-      {"<robot>\n\n<disable_default_collisions/>\n</robot>\n",
-       {":3:", "robot.disable_default_collisions[0]", "missing attribute link",
-        "<disable_default_collisions link=\"LINK\"/>"}},
-      {"<robot>\n<enable_colisions link1='a' link2='b'/>\n</robot>\n",
-       {":2:", "robot.enable_colisions[0]", "unknown element <enable_colisions>",
-        "expected disable_collisions, enable_collisions"}},
-  };
-  for (const auto& b : bad) {
-    const std::string path = WriteTempFile("bad.srdf", b.text);
-    std::vector<std::string> parts = b.parts;
-    parts.push_back(path);
-    ExpectLoadError([&] { ReadSrdfCollisionRules(path); }, parts);
-  }
+  ExpectBadInputFilesRejected(
+      "bad.srdf",
+      {
+          {"<robot name='r'>\n<group name='arm'>\n</robot>\n",
+           {":2:", "malformed XML", "MISMATCHED_ELEMENT", "name=group", "well-formed SRDF"}},
+          {"", {"malformed XML", "EMPTY_DOCUMENT", "well-formed SRDF"}},
+          {"<?xml version='1.0'?>\n<model name='r'/>\n",
+           {":2:", "<model>", "expected the root element <robot"}},
+          {"<robot>\n<disable_collisions link1='a'/>\n</robot>\n",
+           {":2:", "robot.disable_collisions[0]", "missing attribute link2", "link1=\"LINK\""}},
+          {"<robot>\n<disable_collisions link1='a' link2='b'/>\n"
+           "<disable_collisions link2='b'/>\n</robot>\n",
+           {":3:", "robot.disable_collisions[1]", "missing attribute link1"}},
+          {"<robot>\n<enable_collisions link1='a' link2=' '/>\n</robot>\n",
+           {":2:", "robot.enable_collisions[0]", "empty attribute link2", "non-empty link1"}},
+          {"<robot>\n\n<disable_default_collisions/>\n</robot>\n",
+           {":3:", "robot.disable_default_collisions[0]", "missing attribute link",
+            "<disable_default_collisions link=\"LINK\"/>"}},
+          {"<robot>\n<enable_colisions link1='a' link2='b'/>\n</robot>\n",
+           {":2:", "robot.enable_colisions[0]", "unknown element <enable_colisions>",
+            "expected disable_collisions, enable_collisions"}},
+      },
+      [](const std::string& path) { ReadSrdfCollisionRules(path); });
 }
 
 }  // namespace

@@ -41,8 +41,9 @@ struct SceneMesh {
 struct SceneCollisionObject {
   std::string id;        ///< unique in the file
   std::string frame_id;  ///< header.frame_id; "" (or no header) means the planning (fixed) frame
-  std::string element;   ///< where it is, for the caller's messages: "world.collision_objects[2] 'can1'"
-  int line = 0;          ///< its line in the file (1-based; 0 if unknown)
+  /// Where it is, for the caller's messages: "world.collision_objects[2] 'can1'".
+  std::string element;
+  int line = 0;  ///< its line in the file (1-based; 0 if unknown)
   std::vector<ScenePrimitive> primitives;
   std::vector<SceneMesh> meshes;
 };
