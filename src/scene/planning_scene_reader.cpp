@@ -29,7 +29,8 @@ std::string ReadOptionalString(const YAML::Node& node, const Where& where) {
   return node.Scalar();
 }
 
-/// A message enum written as its number or its name (any case): the index of `name` in `names`.
+/// A message constant written as its number or its name (any case): its value, `first_value`
+/// for names[0], `first_value` + 1 for names[1], ...
 int ReadEnum(const YAML::Node& node, const Where& where, const std::vector<std::string>& names,
              int first_value, const std::string& expected) {
   if (!node.IsDefined() || !node.IsScalar()) where.Fail(node, "expected " + expected);
@@ -167,8 +168,7 @@ SceneMesh ReadMesh(const YAML::Node& node, const Where& where) {
   if (node["resource"]) {
     where.Child("resource")
         .Fail(node["resource"],
-              "mesh files are not read (expected the mesh "
-              "inline: vertices and triangles)");
+              "mesh files are not read (expected the mesh inline: vertices and triangles)");
   }
   yaml_fields::CheckKeys(node, {"vertices", "triangles"}, where);
   SceneMesh mesh;
@@ -229,8 +229,8 @@ SceneCollisionObject ReadCollisionObject(const YAML::Node& node, const Where& en
     if (operation != 0) {
       where.Child("operation")
           .Fail(node["operation"],
-                "only ADD (0) is read: REMOVE, APPEND and MOVE edit an "
-                "earlier scene (expected operation: 0 or none)");
+                "only ADD (0) is read: REMOVE, APPEND and MOVE edit an earlier scene "
+                "(expected operation: 0 or none)");
     }
   }
   if (const YAML::Node header = node["header"]) {
@@ -238,10 +238,13 @@ SceneCollisionObject ReadCollisionObject(const YAML::Node& node, const Where& en
     yaml_fields::CheckKeys(header, {"seq", "stamp", "frame_id"}, where.Child("header"));
     object.frame_id = ReadOptionalString(header["frame_id"], where.Child("header.frame_id"));
   }
-  if (node["planes"] && node["planes"].size() > 0) {
-    where.Child("planes").Fail(node["planes"],
-                               "planes are not supported (expected primitives "
-                               "or meshes)");
+  if (const YAML::Node planes = node["planes"]) {
+    yaml_fields::RequireSequence(planes, where.Child("planes"));
+    if (planes.size() > 0) {
+      where.Child("planes").Fail(planes,
+                                 "planes are not supported (expected primitives or "
+                                 "meshes)");
+    }
   }
   Eigen::Isometry3d X_FO = Eigen::Isometry3d::Identity();
   yaml_fields::ReadIfPresent(node, "pose", where, ReadPose, &X_FO);

@@ -129,9 +129,10 @@ TEST(PlanningSceneReader, NoticesForIgnoredGeometry) {
 
 TEST(PlanningSceneReader, MissingOrMalformedFile) {
   const std::string missing = ::testing::TempDir() + "acm_test_no_such_scene.yaml";
-  ExpectLoadError([&] { ReadPlanningSceneFile(missing); }, {missing, "cannot open"});
+  ExpectLoadError([&] { ReadPlanningSceneFile(missing); },
+                  {missing, "cannot open", "readable YAML file"});
   const std::string malformed = WriteTempFile("malformed_scene.yaml", "world: [\n");
-  ExpectLoadError([&] { ReadPlanningSceneFile(malformed); }, {malformed, "malformed YAML"});
+  ExpectLoadError([&] { ReadPlanningSceneFile(malformed); }, {malformed + ":2:", "malformed YAML"});
 }
 
 /// A scene of one collision object whose fields are `fields` (YAML flow-map entries).
@@ -193,11 +194,12 @@ TEST(PlanningSceneReader, BadObjectsNameFileElementAndExpectation) {
            {kObject + ".meshes[0].resource", "not read", "vertices and triangles"}},
           {OneObject("id: a, " + kBox + ", operation: 1"),
            {kObject + ".operation", "only ADD (0)", "operation: 0 or none"}},
-          {OneObject("id: a, " + kBox + ", operation: move"), {kObject + ".operation", "only ADD"}},
+          {OneObject("id: a, " + kBox + ", operation: move"),
+           {kObject + ".operation", "only ADD", "operation: 0 or none"}},
           {OneObject("id: a, " + kBox + ", operation: 9"),
            {kObject + ".operation", "unknown value '9'", "0 ADD, 1 REMOVE"}},
           {OneObject("id: a, " + kBox + ", planes: [{coef: [0, 0, 1, 0]}], plane_poses: [{}]"),
-           {kObject + ".planes", "not supported"}},
+           {kObject + ".planes", "not supported", "expected primitives or meshes"}},
           {OneObject("id: a, " + kBox + ", primitve_poses: []"),
            {kObject, "unknown key 'primitve_poses'", "primitive_poses"}},
       },
