@@ -9,7 +9,7 @@ namespace arm_collision_monitor {
 
 /// One <disable_collisions> or <enable_collisions> element. Names are trimmed of surrounding
 /// whitespace (as srdfdom does); `reason` is "" when absent (Setup Assistant writes "Adjacent",
-/// "Never", "Default", "User").
+/// "Never", "Always", "Default", "User").
 struct SrdfLinkPair {
   std::string link1;
   std::string link2;
@@ -42,7 +42,8 @@ struct SrdfCollisionRules {
 /// <disable_default_collisions link>. Ignored (they describe planning, not collision geometry):
 /// <group>, <group_state>, <end_effector>, <virtual_joint>, <passive_joint>, <joint_property>,
 /// <link_sphere_approximation>. Any other element under <robot> is rejected, so that a misspelt
-/// rule (say <enable_colisions>) is not silently dropped.
+/// rule (say <enable_colisions>) is not silently dropped; so is an unexpanded .srdf.xacro (its
+/// <xacro:...> elements): run xacro first.
 ///
 /// Throws LoadError "path[:line]: element: what was expected" when the path is not a readable
 /// regular file, the XML is malformed (with its line), the root element is not <robot>, an
