@@ -32,4 +32,23 @@ void ExpectLoadError(Load load, const std::vector<std::string>& parts) {
   }
 }
 
+/// A bad input file: its text and what the LoadError message must contain besides its path.
+struct BadInputFile {
+  std::string text;
+  std::vector<std::string> parts;
+};
+
+/// For each case, writes its text to the temporary file `name` and expects `load(path)` to throw
+/// a LoadError whose message contains the path and every one of the case's parts.
+template <typename Load>
+void ExpectBadInputFilesRejected(const std::string& name, const std::vector<BadInputFile>& cases,
+                                 Load load) {
+  for (const BadInputFile& bad : cases) {
+    const std::string path = WriteTempFile(name, bad.text);
+    std::vector<std::string> parts = bad.parts;
+    parts.push_back(path);
+    ExpectLoadError([&] { load(path); }, parts);
+  }
+}
+
 }  // namespace arm_collision_monitor

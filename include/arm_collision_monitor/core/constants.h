@@ -97,6 +97,12 @@ constexpr int kFkBlockLinks = 64;
 /// 1e-6 tolerates their rounding and still rejects deliberately different spheres.
 constexpr double kCapsuleIdiomMatchRel = 1e-6;
 
+/// A quaternion read from a MoveIt planning-scene file is normalised when its norm is within
+/// this of 1 (dimensionless; typical 1e-2): quaternions printed with two decimals (0.71, 0.71)
+/// miss unit norm by ~4e-3. Farther from 1 it is rejected: not a rotation written as a unit
+/// quaternion (Euler angles in quaternion fields, a typo), which normalising would hide.
+constexpr double kQuaternionUnitNormTolerance = 1e-2;
+
 /// Default tolerance zone around each arm capsule, metres: 1.2 in, the seed's buffer beyond
 /// the approximated surface of each arm (TR 90-28, section 3).
 constexpr double kDefaultArmTolerance_m = 0.0305;

@@ -1,0 +1,98 @@
+// Reader of a whole moveit_msgs/PlanningScene written as YAML: the world's collision objects and
+// the allowed collision matrix, as plain structs. ROS-free; the caller maps frames and names
+// onto its workcell.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+namespace arm_collision_monitor {
+
+/// shape_msgs/SolidPrimitive's types, with their message values.
+enum class SolidPrimitiveType { kBox = 1, kSphere = 2, kCylinder = 3, kCone = 4 };
+
+/// One entry of a collision object's `primitives`. Dimensions in metres, in shape_msgs' order:
+/// box [x, y, z] (full edge lengths along the primitive frame's axes); sphere [radius];
+/// cylinder and cone [height, radius] (axis along the primitive frame's z, centred on its origin;
+/// the cone's tip towards +z). Every dimension is finite and > 0.
+struct ScenePrimitive {
+  SolidPrimitiveType type = SolidPrimitiveType::kBox;
+  std::vector<double> dimensions_m;
+  /// Pose of the primitive frame P in the object's header frame F: object pose * primitive pose.
+  Eigen::Isometry3d X_FP = Eigen::Isometry3d::Identity();
+};
+
+/// One entry of a collision object's `meshes` (shape_msgs/Mesh).
+struct SceneMesh {
+  std::vector<Eigen::Vector3d> vertices_M;  ///< in the mesh frame M, metres
+  /// Vertex indices of each triangle, each < vertices_M.size().
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  /// Pose of the mesh frame M in the object's header frame F: object pose * mesh pose.
+  Eigen::Isometry3d X_FM = Eigen::Isometry3d::Identity();
+};
+
+/// One collision object of `world.collision_objects` (operation ADD).
+struct SceneCollisionObject {
+  std::string id;        ///< unique in the file
+  std::string frame_id;  ///< header.frame_id; "" (or no header) means the planning (fixed) frame
+  /// Where it is, for the caller's messages: "world.collision_objects[2] 'can1'".
+  std::string element;
+  int line = 0;  ///< its line in the file (1-based; 0 if unknown)
+  std::vector<ScenePrimitive> primitives;
+  std::vector<SceneMesh> meshes;
+};
+
+/// The allowed_collision_matrix (moveit_msgs/AllowedCollisionMatrix), entry by entry. MoveIt's
+/// rule: an explicit pair entry wins; otherwise a pair is allowed when a default entry of either
+/// name allows it. Only the upper triangle of a symmetric matrix is returned (name1 before name2
+/// in entry_names order); the diagonal is ignored.
+struct SceneAllowedCollisions {
+  std::vector<std::pair<std::string, std::string>> allowed_pairs;     ///< enabled: true
+  std::vector<std::pair<std::string, std::string>> disallowed_pairs;  ///< enabled: false
+  std::vector<std::string> default_allowed_names;  ///< default_entry_values: true
+};
+
+/// What a planning-scene file holds for the monitor.
+struct PlanningSceneFile {
+  std::string name;  ///< the scene's `name`, "" when absent
+  std::vector<SceneCollisionObject> objects;
+  SceneAllowedCollisions allowed_collisions;
+  /// Content the monitor does not use but the user should know was dropped, one sentence each:
+  /// a non-empty octomap, attached collision objects in robot_state.
+  std::vector<std::string> notices;
+};
+
+/// Reads a planning-scene YAML file: the fields of moveit_msgs/PlanningScene as `rostopic echo`
+/// (or a YAML dump of the message) writes them, and the compact form of benchmark suites
+/// (robowflex, MotionBenchMaker): positions as [x, y, z], orientations as [x, y, z, w],
+/// primitive types as names (box, sphere, cylinder, cone; any case), triangles as [i, j, k],
+/// matrix rows as lists of booleans. Every key is optional.
+///
+/// Read: world.collision_objects (id, header.frame_id, pose, primitives + primitive_poses,
+/// meshes + mesh_poses, operation), allowed_collision_matrix and name. Ignored: robot_state (a
+/// notice if it has attached objects), robot_model_name, fixed_frame_transforms,
+/// link_padding, link_scale, object_colors, world.octomap (a notice if it has data), is_diff,
+/// and each object's type (object_recognition_msgs/ObjectType), subframe_names, subframe_poses.
+///
+/// Policies: only operation ADD (0, "add") or none is accepted: REMOVE, APPEND and MOVE are edits
+/// of an earlier scene, which a file alone cannot replay. Poses compose object pose * shape pose
+/// (an absent pose or orientation is the identity). A quaternion of norm within
+/// kQuaternionUnitNormTolerance of 1 is normalised; zero or farther from 1 is an error (MoveIt
+/// reads an all-zero quaternion as the identity; here it must be written). Planes are rejected
+/// (no half-spaces in the monitor), as are mesh `resource` files (expected inline vertices).
+///
+/// Throws LoadError "path[:line]: element: what was expected" for a missing file, malformed
+/// YAML, an unknown key, a collision object without id, a repeated id or one with no shape, an
+/// unknown primitive type, a wrong number of dimensions, a dimension that is not a finite
+/// number > 0, shape and pose lists of different lengths, a bad quaternion, a mesh without
+/// triangles or with a vertex index out of range, and a matrix that is not square, symmetric and
+/// named by unique names.
+PlanningSceneFile ReadPlanningSceneFile(const std::string& path);
+
+}  // namespace arm_collision_monitor
