@@ -8,6 +8,7 @@
 #include <limits>
 #include <utility>
 
+#include "arm_collision_monitor/broadphase/broad_phase_util.h"
 #include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/geometry/distance.h"
 #include "arm_collision_monitor/monitor/motion_bounds.h"
@@ -23,7 +24,7 @@ MonitorModel::MonitorModel(std::shared_ptr<const Workcell> wc, const MonitorOpti
   options.broad_phase.min_cell_size_m = MinCellSize_m(options);
   options.broad_phase.reserve_primitives =
       std::max(options.broad_phase.reserve_primitives, primitive_count);
-  world_edge_m = (workcell->world_W.max_W - workcell->world_W.min_W).maxCoeff();
+  world_edge_m = WorldCubeEdge(workcell->world_W);
   speed_tol_gain_s =
       options.speed_scaled_tolerance ? options.reaction_time_s + options.stopping_time_s : 0.0;
   ValidateOptions();

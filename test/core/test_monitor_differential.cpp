@@ -199,7 +199,9 @@ TEST(MonitorSlack, EverySlackGivesTheBruteForceWarnings) {
         } else if (slack_m >= kDefaultIndexSlack_m) {
           EXPECT_LT(work.reindexed, work.moved / 3) << slack_m;
           // Bounded cycles happen (and were checked against the brute force above).
-          if (!speed_scaled) EXPECT_GT(work.bounded, 0u) << slack_m;
+          if (!speed_scaled) {
+            EXPECT_GT(work.bounded, 0u) << slack_m;
+          }
           // In slow motion most kept pairs are cleared by their bounds (not all: links two
           // apart on one arm stay within their slack of each other).
           EXPECT_LT(work.slow_narrow, work.slow_candidates / 2) << slack_m;
