@@ -5,6 +5,8 @@
 //
 //   rosrun arm_collision_monitor replay [options] <file.bag | file.csv>
 //
+// Start-up is the node's (MonitorNode): the config's tolerance_m reaches LoadWorkcell and the
+// workcell's start-up findings are printed (on stderr) before the run.
 // A bag cycle is one sample of every arm: consecutive messages with the same header stamp are
 // merged, then the Monitor runs once (the node instead runs once per message; see README).
 #include <algorithm>
@@ -43,6 +45,7 @@ struct Options {
   bool json = false;
   std::vector<TaskGraspTarget> grasp_targets;
   std::string input;
+  bool help = false;  ///< -h or --help: print the usage on stdout and exit 0
 };
 
 const char* kUsage =
@@ -64,7 +67,10 @@ const char* kUsage =
     "  --grasp L:O    declare object O the grasp target of link L before the first cycle\n"
     "                 (repeatable)\n"
     "  --task N       the grasp targets of the seed's task N (task 3: right_link7:front_box)\n"
-    "  --json         machine-readable output\n";
+    "  --json         machine-readable output\n"
+    "  -h, --help     this text (on stdout)\n"
+    "The monitor options are loaded before the workcell and give it the default arm tolerance,\n"
+    "as in the node; the workcell's start-up findings are printed on stderr before the run.\n";
 
 bool ParseOptions(int argc, char** argv, Options* options, std::string* error) {
   for (int i = 1; i < argc; ++i) {
@@ -107,7 +113,8 @@ bool ParseOptions(int argc, char** argv, Options* options, std::string* error) {
         options->grasp_targets.push_back(t);
       }
     } else if (arg == "-h" || arg == "--help") {
-      return false;
+      options->help = true;
+      return true;
     } else if (!arg.empty() && arg[0] == '-') {
       *error = "unknown option " + arg;
       return false;
@@ -498,10 +505,15 @@ void PrintText(const Options& options, const Workcell& wc, const Input& input,
 }
 
 int Run(const Options& options) {
-  const auto workcell =
-      std::make_shared<const Workcell>(LoadWorkcell(options.urdf, options.scene));
-  const std::unique_ptr<Checker> checker =
-      MakeChecker(options, workcell, LoadMonitorOptions(options.config));
+  // Start-up as in the node (MonitorNode's constructor): the monitor options first, for the
+  // default arm tolerance the workcell is loaded with; then the start-up findings.
+  const MonitorOptions monitor_options = LoadMonitorOptions(options.config);
+  const auto workcell = std::make_shared<const Workcell>(
+      LoadWorkcell(options.urdf, options.scene, monitor_options.tolerance_m));
+  for (const std::string& finding : workcell->warnings) {
+    std::fprintf(stderr, "replay: %s\n", finding.c_str());
+  }
+  const std::unique_ptr<Checker> checker = MakeChecker(options, workcell, monitor_options);
   const Input input = EndsWith(options.input, ".csv") ? ReadCsv(options.input, *workcell)
                                                       : ReadBag(options.input, *workcell);
   std::vector<CycleResult> cycles(input.q.size());
@@ -523,9 +535,12 @@ int main(int argc, char** argv) {
   Options options;
   std::string error;
   if (!ParseOptions(argc, argv, &options, &error)) {
-    if (!error.empty()) std::fprintf(stderr, "replay: %s\n", error.c_str());
-    std::fprintf(stderr, "%s", kUsage);
+    std::fprintf(stderr, "replay: %s\n%s", error.c_str(), kUsage);
     return 2;
+  }
+  if (options.help) {
+    std::printf("%s", kUsage);
+    return 0;
   }
   try {
     if (options.urdf.empty() || options.scene.empty() || options.config.empty()) {
