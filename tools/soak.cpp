@@ -198,15 +198,13 @@ bool SameReports(const CycleReport& a, const CycleReport& b, std::string* differ
   return true;
 }
 
-int RunSoak(const SoakOptions& soak) {
-  MonitorOptions options = LoadMonitorOptions(soak.config_path);
-  const auto workcell = std::make_shared<const Workcell>(
-      LoadWorkcell(soak.urdf_path, soak.scene_path, options.tolerance_m));
-  options.auto_broad_phase = false;
-  options.broad_phase.method = BroadPhaseMethod::kOctree;
-  Monitor monitor(workcell, options);
-  MotionGenerator motion(*workcell, options.cycle_period_s, soak.seed);
+// What the soak counts over the run.
+struct SoakCounts {
+  std::uint64_t divergences = 0, comparisons = 0, jumps = 0, warning_cycles = 0,
+                refused_cycles = 0, forced_wraps = 0, validations = 0;
+};
 
+void PrintStart(const SoakOptions& soak, const Monitor& monitor) {
   long hwm_start_kb = 0, rss_start_kb = 0;
   ReadMemory(&hwm_start_kb, &rss_start_kb);
   std::printf("soak: seed %llu, %llu cycles, %s broad phase, Update vs Check (brute force) "
@@ -217,61 +215,57 @@ int RunSoak(const SoakOptions& soak) {
               static_cast<unsigned long long>(kStampForceEveryCycles), monitor.primitive_count());
   std::printf("soak: start: VmHWM %ld kB, VmRSS %ld kB\n", hwm_start_kb, rss_start_kb);
   std::fflush(stdout);
+}
 
-  std::uint64_t divergences = 0, comparisons = 0, jumps = 0, warning_cycles = 0,
-                refused_cycles = 0, forced_wraps = 0, validations = 0;
-  // Cycles left in which every report is compared after a forced wrap (the wrap happens within
-  // them: at most kStampMaxStepsBeforeWrap stamps of each kind away).
-  std::uint64_t compare_all_until = 0;
-  const std::uint64_t progress_every = std::max<std::uint64_t>(soak.cycles / 10, 1);
-  const auto start = std::chrono::steady_clock::now();
-  for (std::uint64_t cycle = 1; cycle <= soak.cycles; ++cycle) {
-    bool jumped = false;
-    const Eigen::VectorXd& q = motion.Next(&jumped);
-    jumps += jumped;
-    if (cycle % kStampForceEveryCycles == 0) {
-      monitor.ForceIndexStampsNearWrap(
-          static_cast<std::uint32_t>(forced_wraps % kStampMaxStepsBeforeWrap));
-      ++forced_wraps;
-      compare_all_until = cycle + kValidateDelayCycles;
-    }
-    const bool is_compare_cycle =
-        cycle % soak.compare_every == 0 || jumped || cycle <= compare_all_until;
-    CycleReport expected;  // allocates only when filled
-    if (is_compare_cycle) expected = monitor.Check(q);  // before Update: the same model state
-    const CycleReport& report = monitor.Update(q);
-    warning_cycles += !report.warnings.empty();
-    refused_cycles += report.input != InputStatus::kOk;
-    if (is_compare_cycle) {
-      ++comparisons;
-      std::string difference;
-      bool same = SameReports(report, expected, &difference);
-      if (same && cycle == compare_all_until) {
-        ++validations;
-        if (!monitor.Validate(&difference)) {
-          same = false;
-          difference = "Monitor::Validate(): " + difference;
-        } else if (!monitor.ValidateIndex(&difference)) {
-          same = false;
-          difference = "Monitor::ValidateIndex(): " + difference;
-        }
-      }
-      if (!same && ++divergences <= 10) {
-        std::printf("soak: DIVERGENCE at cycle %llu: %s\n",
-                    static_cast<unsigned long long>(cycle), difference.c_str());
-      }
-    }
-    if (cycle % progress_every == 0) {
-      const double elapsed_s =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      std::printf("soak: %llu cycles, %.0f cycles/s, %llu divergences\n",
-                  static_cast<unsigned long long>(cycle), cycle / elapsed_s,
-                  static_cast<unsigned long long>(divergences));
-      std::fflush(stdout);
-    }
+// Monitor::Validate() and ValidateIndex(); false with the failure, named, otherwise.
+bool MonitorValid(const Monitor& monitor, std::string* difference) {
+  if (!monitor.Validate(difference)) {
+    *difference = "Monitor::Validate(): " + *difference;
+    return false;
   }
-  const double elapsed_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!monitor.ValidateIndex(difference)) {
+    *difference = "Monitor::ValidateIndex(): " + *difference;
+    return false;
+  }
+  return true;
+}
+
+// One soak cycle: the next q, a forced stamp wrap when due, Update, and on compare cycles the
+// comparison with Check (and Validate at the end of a forced wrap's window).
+void RunCycle(std::uint64_t cycle, const SoakOptions& soak, Monitor* monitor,
+              MotionGenerator* motion, std::uint64_t* compare_all_until, SoakCounts* counts) {
+  bool jumped = false;
+  const Eigen::VectorXd& q = motion->Next(&jumped);
+  counts->jumps += jumped;
+  if (cycle % kStampForceEveryCycles == 0) {
+    monitor->ForceIndexStampsNearWrap(
+        static_cast<std::uint32_t>(counts->forced_wraps % kStampMaxStepsBeforeWrap));
+    ++counts->forced_wraps;
+    *compare_all_until = cycle + kValidateDelayCycles;
+  }
+  const bool is_compare_cycle =
+      cycle % soak.compare_every == 0 || jumped || cycle <= *compare_all_until;
+  CycleReport expected;  // allocates only when filled
+  if (is_compare_cycle) expected = monitor->Check(q);  // before Update: the same model state
+  const CycleReport& report = monitor->Update(q);
+  counts->warning_cycles += !report.warnings.empty();
+  counts->refused_cycles += report.input != InputStatus::kOk;
+  if (!is_compare_cycle) return;
+  ++counts->comparisons;
+  std::string difference;
+  bool same = SameReports(report, expected, &difference);
+  if (same && cycle == *compare_all_until) {
+    ++counts->validations;
+    same = MonitorValid(*monitor, &difference);
+  }
+  if (!same && ++counts->divergences <= 10) {
+    std::printf("soak: DIVERGENCE at cycle %llu: %s\n", static_cast<unsigned long long>(cycle),
+                difference.c_str());
+  }
+}
+
+void PrintEnd(const SoakOptions& soak, const Monitor& monitor, const SoakCounts& counts,
+              double elapsed_s) {
   long hwm_end_kb = 0, rss_end_kb = 0;
   ReadMemory(&hwm_end_kb, &rss_end_kb);
   const BroadPhaseCounters& totals = monitor.total_counters();
@@ -279,18 +273,49 @@ int RunSoak(const SoakOptions& soak) {
   std::printf("soak: %llu cycles in %.1f s (%.0f cycles/s): %llu with warnings, %llu refused, "
               "%llu jumps, %llu re-insert fallbacks, %llu outside the world\n",
               static_cast<unsigned long long>(soak.cycles), elapsed_s, soak.cycles / elapsed_s,
-              static_cast<unsigned long long>(warning_cycles),
-              static_cast<unsigned long long>(refused_cycles),
-              static_cast<unsigned long long>(jumps),
+              static_cast<unsigned long long>(counts.warning_cycles),
+              static_cast<unsigned long long>(counts.refused_cycles),
+              static_cast<unsigned long long>(counts.jumps),
               static_cast<unsigned long long>(totals.reinsert_fallbacks),
               static_cast<unsigned long long>(totals.outside_world));
   std::printf("soak: %llu comparisons with Check (brute force), %llu forced stamp wraps, "
               "%llu Validate() calls, %llu divergences\n",
-              static_cast<unsigned long long>(comparisons),
-              static_cast<unsigned long long>(forced_wraps),
-              static_cast<unsigned long long>(validations),
-              static_cast<unsigned long long>(divergences));
-  return divergences == 0 ? 0 : 1;
+              static_cast<unsigned long long>(counts.comparisons),
+              static_cast<unsigned long long>(counts.forced_wraps),
+              static_cast<unsigned long long>(counts.validations),
+              static_cast<unsigned long long>(counts.divergences));
+}
+
+int RunSoak(const SoakOptions& soak) {
+  MonitorOptions options = LoadMonitorOptions(soak.config_path);
+  const auto workcell = std::make_shared<const Workcell>(
+      LoadWorkcell(soak.urdf_path, soak.scene_path, options.tolerance_m));
+  options.auto_broad_phase = false;
+  options.broad_phase.method = BroadPhaseMethod::kOctree;
+  Monitor monitor(workcell, options);
+  MotionGenerator motion(*workcell, options.cycle_period_s, soak.seed);
+  PrintStart(soak, monitor);
+
+  SoakCounts counts;
+  // The last cycle in which every report is compared after a forced wrap (the wrap happens
+  // before it: at most kStampMaxStepsBeforeWrap stamps of each kind away).
+  std::uint64_t compare_all_until = 0;
+  const std::uint64_t progress_every = std::max<std::uint64_t>(soak.cycles / 10, 1);
+  const auto start = std::chrono::steady_clock::now();
+  for (std::uint64_t cycle = 1; cycle <= soak.cycles; ++cycle) {
+    RunCycle(cycle, soak, &monitor, &motion, &compare_all_until, &counts);
+    if (cycle % progress_every == 0) {
+      const double elapsed_s =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      std::printf("soak: %llu cycles, %.0f cycles/s, %llu divergences\n",
+                  static_cast<unsigned long long>(cycle), cycle / elapsed_s,
+                  static_cast<unsigned long long>(counts.divergences));
+      std::fflush(stdout);
+    }
+  }
+  PrintEnd(soak, monitor, counts,
+           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  return counts.divergences == 0 ? 0 : 1;
 }
 
 }  // namespace

@@ -421,91 +421,97 @@ void CellBroadPhase::CollectPairs(const PrimitiveId* ids, std::size_t count,
   }
 }
 
-namespace {
-bool Fail(std::string* why, const std::string& message) {
-  if (why != nullptr) *why = message;
-  return false;
-}
-}  // namespace
-
 bool CellBroadPhase::Validate(std::string* why) const {
   if (!ValidateShared(why)) return false;
   if (needs_rebuild_) return true;  // rebuild strategy between Move and FindPairs: stale cells
   return ValidateCells(why);
 }
 
-bool CellBroadPhase::ValidateShared(std::string* why) const {
+bool CellBroadPhase::ValidateRecord(PrimitiveId id, ListCounts* counts, std::string* why) const {
   std::ostringstream msg;
-  std::size_t present = 0, moving = 0, outside = 0;
-  std::uint64_t prim_links = 0;
+  const Record& r = records_[id];
+  if (r.pair_stamp > scan_stamp_ || r.union_stamp > union_stamp_) {
+    msg << "primitive " << id << " has a stamp from the future";
+    return FailValidation(why, msg.str());
+  }
+  if (!r.present) {
+    if (r.link_count != 0 || r.first_link != kNone) {
+      msg << "absent primitive " << id << " still has links";
+      return FailValidation(why, msg.str());
+    }
+    return true;
+  }
+  ++counts->present;
+  if (present_ids_.size() <= r.present_slot || present_ids_[r.present_slot] != id) {
+    msg << "primitive " << id << " not at its slot of the present list";
+    return FailValidation(why, msg.str());
+  }
+  if (r.motion == Motion::kMoving) {
+    ++counts->moving;
+    if (moving_ids_.size() <= r.moving_slot || moving_ids_[r.moving_slot] != id) {
+      msg << "primitive " << id << " not at its slot of the moving list";
+      return FailValidation(why, msg.str());
+    }
+  }
+  if (r.outside) {
+    ++counts->outside;
+    if (outside_ids_.size() <= r.outside_slot || outside_ids_[r.outside_slot] != id) {
+      msg << "primitive " << id << " not at its slot of the outside list";
+      return FailValidation(why, msg.str());
+    }
+  }
+  if (!needs_rebuild_) {
+    if (r.outside == world_W_.Contains(r.box_W)) {
+      msg << "primitive " << id << " outside flag " << r.outside << " disagrees with its box";
+      return FailValidation(why, msg.str());
+    }
+    if (!world_W_.Overlaps(r.box_W) && r.link_count != 0) {
+      msg << "primitive " << id << " is wholly outside the world but has links";
+      return FailValidation(why, msg.str());
+    }
+  }
+  return true;
+}
+
+bool CellBroadPhase::ValidateRecords(std::uint64_t* prim_links, std::string* why) const {
+  std::ostringstream msg;
+  ListCounts counts;
+  *prim_links = 0;
   for (PrimitiveId id = 0; id < records_.size(); ++id) {
+    if (!ValidateRecord(id, &counts, why)) return false;
     const Record& r = records_[id];
-    if (r.pair_stamp > scan_stamp_ || r.union_stamp > union_stamp_) {
-      msg << "primitive " << id << " has a stamp from the future";
-      return Fail(why, msg.str());
-    }
-    if (!r.present) {
-      if (r.link_count != 0 || r.first_link != kNone) {
-        msg << "absent primitive " << id << " still has links";
-        return Fail(why, msg.str());
-      }
-      continue;
-    }
-    ++present;
-    if (present_ids_.size() <= r.present_slot || present_ids_[r.present_slot] != id) {
-      msg << "primitive " << id << " not at its slot of the present list";
-      return Fail(why, msg.str());
-    }
-    if (r.motion == Motion::kMoving) {
-      ++moving;
-      if (moving_ids_.size() <= r.moving_slot || moving_ids_[r.moving_slot] != id) {
-        msg << "primitive " << id << " not at its slot of the moving list";
-        return Fail(why, msg.str());
-      }
-    }
-    if (r.outside) {
-      ++outside;
-      if (outside_ids_.size() <= r.outside_slot || outside_ids_[r.outside_slot] != id) {
-        msg << "primitive " << id << " not at its slot of the outside list";
-        return Fail(why, msg.str());
-      }
-    }
-    if (!needs_rebuild_) {
-      if (r.outside == world_W_.Contains(r.box_W)) {
-        msg << "primitive " << id << " outside flag " << r.outside << " disagrees with its box";
-        return Fail(why, msg.str());
-      }
-      if (!world_W_.Overlaps(r.box_W) && r.link_count != 0) {
-        msg << "primitive " << id << " is wholly outside the world but has links";
-        return Fail(why, msg.str());
-      }
-    }
+    if (!r.present) continue;
     std::uint32_t count = 0;
     std::uint32_t prev = kNone;
     for (std::uint32_t l = r.first_link; l != kNone; l = links_[l].next_of_prim) {
       if (l >= links_.size() || links_[l].prim != id || links_[l].prev_of_prim != prev ||
           count > live_links_) {
         msg << "broken location list of primitive " << id;
-        return Fail(why, msg.str());
+        return FailValidation(why, msg.str());
       }
       prev = l;
       ++count;
     }
     if (count != r.link_count) {
       msg << "primitive " << id << " link count " << r.link_count << " but list has " << count;
-      return Fail(why, msg.str());
+      return FailValidation(why, msg.str());
     }
-    prim_links += count;
+    *prim_links += count;
   }
-  if (present != present_ids_.size() || moving != moving_ids_.size() ||
-      outside != outside_ids_.size()) {
-    return Fail(why, "present/moving/outside list sizes disagree with the records");
+  if (counts.present != present_ids_.size() || counts.moving != moving_ids_.size() ||
+      counts.outside != outside_ids_.size()) {
+    return FailValidation(why, "present/moving/outside list sizes disagree with the records");
   }
-  std::uint64_t cell_links = 0;
+  return true;
+}
+
+bool CellBroadPhase::ValidateCellLists(std::uint64_t* cell_links, std::string* why) const {
+  std::ostringstream msg;
+  *cell_links = 0;
   for (std::uint32_t c = 0; c < cell_head_.size(); ++c) {
     if (cell_visit_[c] > visit_stamp_) {
       msg << "cell " << c << " visit stamp " << cell_visit_[c] << " > current " << visit_stamp_;
-      return Fail(why, msg.str());
+      return FailValidation(why, msg.str());
     }
     std::uint32_t count = 0;
     std::uint32_t prev = kNone;
@@ -513,28 +519,35 @@ bool CellBroadPhase::ValidateShared(std::string* why) const {
       if (l >= links_.size() || links_[l].cell != c || links_[l].prev_in_cell != prev ||
           count > live_links_ || !records_[links_[l].prim].present) {
         msg << "broken member list of cell " << c;
-        return Fail(why, msg.str());
+        return FailValidation(why, msg.str());
       }
       prev = l;
       ++count;
     }
     if (count != cell_count_[c]) {
       msg << "cell " << c << " count " << cell_count_[c] << " but list has " << count;
-      return Fail(why, msg.str());
+      return FailValidation(why, msg.str());
     }
-    cell_links += count;
+    *cell_links += count;
   }
+  return true;
+}
+
+bool CellBroadPhase::ValidateShared(std::string* why) const {
+  std::uint64_t prim_links = 0, cell_links = 0;
+  if (!ValidateRecords(&prim_links, why) || !ValidateCellLists(&cell_links, why)) return false;
   if (cell_links != live_links_ || prim_links != live_links_) {
+    std::ostringstream msg;
     msg << "link totals disagree: cells " << cell_links << ", primitives " << prim_links
         << ", live " << live_links_;
-    return Fail(why, msg.str());
+    return FailValidation(why, msg.str());
   }
   std::uint64_t free_links = 0;
   for (std::uint32_t l = free_link_; l != kNone; l = links_[l].next_in_cell) {
-    if (++free_links > links_.size()) return Fail(why, "cycle in the free link list");
+    if (++free_links > links_.size()) return FailValidation(why, "cycle in the free link list");
   }
   if (free_links + live_links_ != links_.size()) {
-    return Fail(why, "free + live links != link pool size");
+    return FailValidation(why, "free + live links != link pool size");
   }
   return true;
 }

@@ -334,95 +334,117 @@ void OctreeBroadPhase::CollectOverlappedLeaves(const Aabb& box_W, std::uint32_t 
   }
 }
 
-bool OctreeBroadPhase::ValidateCells(std::string* why) const {
+bool OctreeBroadPhase::ValidateSplitNode(std::uint32_t n, std::vector<std::uint32_t>* region_stamp,
+                                         std::uint32_t region, std::string* why) const {
   std::ostringstream msg;
-  auto fail = [&](void) {
-    if (why != nullptr) *why = msg.str();
-    return false;
-  };
-  if (nodes_.empty() || nodes_[0].is_free || nodes_[0].parent != kNone || nodes_[0].level != 0 ||
-      (nodes_.size() - 1) % 8 != 0 || cell_head_.size() != nodes_.size()) {
-    msg << "bad root or node pool size " << nodes_.size();
-    return fail();
+  const Node& node = nodes_[n];
+  if (cell_head_[n] != kNone || cell_count_[n] != 0 || node.level >= max_depth_ ||
+      node.first_child == kNone || node.first_child + 8 > nodes_.size()) {
+    msg << "internal node " << n << " holds primitives, is too deep or has no children";
+    return FailValidation(why, msg.str());
   }
-  // Structure: reachable nodes, then the free blocks, must account for the whole pool.
-  std::vector<char> reached(nodes_.size(), 0);
+  const std::uint32_t half = SizeUnits(n) / 2;
+  for (std::uint32_t c = 0; c < 8; ++c) {
+    const Node& child = nodes_[node.first_child + c];
+    if (child.parent != n || child.level != node.level + 1 ||
+        child.x != node.x + ((c & 1u) ? half : 0u) ||
+        child.y != node.y + ((c & 2u) ? half : 0u) ||
+        child.z != node.z + ((c & 4u) ? half : 0u)) {
+      msg << "child " << c << " of node " << n << " has a wrong parent, level or corner";
+      return FailValidation(why, msg.str());
+    }
+  }
+  // Canonical shape: a split node holds more than N distinct primitives in its region, else
+  // its children should have merged (and it should never have split).
+  std::uint32_t distinct = 0;
+  ForEachNodeBelow(n, [&](std::uint32_t s) {
+    if (nodes_[s].is_split) return;
+    for (std::uint32_t l = cell_head_[s]; l != kNone; l = links_[l].next_in_cell) {
+      if ((*region_stamp)[links_[l].prim] != region) {
+        (*region_stamp)[links_[l].prim] = region;
+        ++distinct;
+      }
+    }
+  });
+  if (distinct <= max_objects_per_leaf_) {
+    msg << "split node " << n << " holds only " << distinct << " <= N distinct primitives";
+    return FailValidation(why, msg.str());
+  }
+  return true;
+}
+
+bool OctreeBroadPhase::ValidateReachableNodes(std::vector<char>* reached,
+                                              std::size_t* reached_count,
+                                              std::string* why) const {
+  std::ostringstream msg;
+  reached->assign(nodes_.size(), 0);
+  *reached_count = 0;
   std::vector<std::uint32_t> stack = {0};
   std::vector<std::uint32_t> region_stamp(records_.size(), 0);
   std::uint32_t region = 0;
-  std::size_t reached_count = 0;
   while (!stack.empty()) {
     const std::uint32_t n = stack.back();
     stack.pop_back();
     const Node& node = nodes_[n];
-    if (reached[n] || node.is_free) {
+    if ((*reached)[n] || node.is_free) {
       msg << "node " << n << " reached twice or free";
-      return fail();
+      return FailValidation(why, msg.str());
     }
-    reached[n] = 1;
-    ++reached_count;
+    (*reached)[n] = 1;
+    ++*reached_count;
     if (!node.is_split) {
       if (cell_count_[n] > max_objects_per_leaf_ && node.level != max_depth_) {
         msg << "leaf " << n << " at level " << int(node.level) << " holds " << cell_count_[n]
             << " > N = " << max_objects_per_leaf_ << " above the minimum size";
-        return fail();
+        return FailValidation(why, msg.str());
       }
       continue;
     }
-    if (cell_head_[n] != kNone || cell_count_[n] != 0 || node.level >= max_depth_ ||
-        node.first_child == kNone || node.first_child + 8 > nodes_.size()) {
-      msg << "internal node " << n << " holds primitives, is too deep or has no children";
-      return fail();
-    }
-    const std::uint32_t half = SizeUnits(n) / 2;
-    for (std::uint32_t c = 0; c < 8; ++c) {
-      const Node& child = nodes_[node.first_child + c];
-      if (child.parent != n || child.level != node.level + 1 ||
-          child.x != node.x + ((c & 1u) ? half : 0u) ||
-          child.y != node.y + ((c & 2u) ? half : 0u) ||
-          child.z != node.z + ((c & 4u) ? half : 0u)) {
-        msg << "child " << c << " of node " << n << " has a wrong parent, level or corner";
-        return fail();
-      }
-      stack.push_back(node.first_child + c);
-    }
-    // Canonical shape: a split node holds more than N distinct primitives in its region, else
-    // its children should have merged (and it should never have split).
-    ++region;
-    std::uint32_t distinct = 0;
-    ForEachNodeBelow(n, [&](std::uint32_t s) {
-      if (nodes_[s].is_split) return;
-      for (std::uint32_t l = cell_head_[s]; l != kNone; l = links_[l].next_in_cell) {
-        if (region_stamp[links_[l].prim] != region) {
-          region_stamp[links_[l].prim] = region;
-          ++distinct;
-        }
-      }
-    });
-    if (distinct <= max_objects_per_leaf_) {
-      msg << "split node " << n << " holds only " << distinct << " <= N distinct primitives";
-      return fail();
-    }
+    if (!ValidateSplitNode(n, &region_stamp, ++region, why)) return false;
+    for (std::uint32_t c = 0; c < 8; ++c) stack.push_back(node.first_child + c);
   }
+  return true;
+}
+
+bool OctreeBroadPhase::ValidateFreeBlocks(const std::vector<char>& reached,
+                                          std::size_t reached_count, std::string* why) const {
+  std::ostringstream msg;
   std::size_t free_count = 0;
   for (std::uint32_t b = free_block_; b != kNone; b = nodes_[b].next_free) {
     for (std::uint32_t c = 0; c < 8; ++c) {
       if (b + c >= nodes_.size() || !nodes_[b + c].is_free || reached[b + c] ||
           cell_count_[b + c] != 0) {
         msg << "free block " << b << " is in use or holds primitives";
-        return fail();
+        return FailValidation(why, msg.str());
       }
     }
     free_count += 8;
     if (free_count > nodes_.size()) {
       msg << "cycle in the free block list";
-      return fail();
+      return FailValidation(why, msg.str());
     }
   }
   if (reached_count + free_count != nodes_.size()) {
     msg << "node pool " << nodes_.size() << " != reachable " << reached_count << " + free "
         << free_count;
-    return fail();
+    return FailValidation(why, msg.str());
+  }
+  return true;
+}
+
+bool OctreeBroadPhase::ValidateCells(std::string* why) const {
+  if (nodes_.empty() || nodes_[0].is_free || nodes_[0].parent != kNone || nodes_[0].level != 0 ||
+      (nodes_.size() - 1) % 8 != 0 || cell_head_.size() != nodes_.size()) {
+    std::ostringstream msg;
+    msg << "bad root or node pool size " << nodes_.size();
+    return FailValidation(why, msg.str());
+  }
+  // Structure: reachable nodes, then the free blocks, must account for the whole pool.
+  std::vector<char> reached;
+  std::size_t reached_count = 0;
+  if (!ValidateReachableNodes(&reached, &reached_count, why) ||
+      !ValidateFreeBlocks(reached, reached_count, why)) {
+    return false;
   }
   // Location links: exactly the leaves each inflated box overlaps (closed boxes).
   std::vector<std::uint32_t> expected, actual;

@@ -160,6 +160,86 @@ void KinematicModel::ComputeMovingLinkPoses(const Eigen::Ref<const Eigen::Vector
   ComputePoses(q, /*moving_links_only=*/true, X_WL);
 }
 
+// ComputeBlockAngles and ComputeLinkPose are steps of ComputePoses, the hot path of every
+// cycle: forced inline there (an out-of-line call per link, through the shared library's PLT,
+// measured slower).
+EIGEN_ALWAYS_INLINE void KinematicModel::ComputeBlockAngles(
+    const Eigen::Ref<const Eigen::VectorXd>& q, int first, int end, FkBlockAngles* angles) const {
+  // The rotations' sines and cosines do not depend on each other, so they overlap in the
+  // pipeline instead of stalling the chain of pose products.
+  double theta[kFkBlockLinks];
+  int rotation_count = 0;
+  for (int link = first; link < end; ++link) {
+    const FkStep& step = fk_steps_[link];
+    if (step.motion == FkMotion::kRotateAboutCoordinateAxis ||
+        step.motion == FkMotion::kRotateAboutAxis) {
+      theta[rotation_count++] = JointPosition(step, q);
+    }
+  }
+  SinCos(theta, rotation_count, angles->sin_theta, angles->cos_theta);
+  angles->next = 0;
+}
+
+EIGEN_ALWAYS_INLINE void KinematicModel::ComputeLinkPose(
+    const FkStep& step, const Eigen::Ref<const Eigen::VectorXd>& q, FkBlockAngles* angles,
+    const Eigen::Matrix4d& T_WP, Eigen::Matrix4d* T_WL) {
+  const Eigen::Vector4d P0 = T_WP.col(0), P1 = T_WP.col(1), P2 = T_WP.col(2);
+  // Columns of X_WJ.
+  Eigen::Vector4d c0 = P0, c1 = P1, c2 = P2;
+  if (!step.is_R_PJ_identity) {
+    const Eigen::Matrix3d& R = step.R_PJ;
+    c0 = P0 * R(0, 0) + P1 * R(1, 0) + P2 * R(2, 0);
+    c1 = P0 * R(0, 1) + P1 * R(1, 1) + P2 * R(2, 1);
+    c2 = P0 * R(0, 2) + P1 * R(1, 2) + P2 * R(2, 2);
+  }
+  const Eigen::Vector3d& p = step.p_PJ;
+  Eigen::Vector4d c3 = P0 * p.x() + P1 * p.y() + P2 * p.z() + T_WP.col(3);
+  // Rotation by theta about a coordinate axis mixes the other two columns:
+  // (ca, cb) <- (c ca + s cb, c cb - s ca), for (a, b) the cyclic successors of the axis.
+  const int rotation = angles->next;
+  auto rotate = [&](Eigen::Vector4d* ca, Eigen::Vector4d* cb) {
+    const double s = angles->sin_theta[rotation], c = angles->cos_theta[rotation];
+    const Eigen::Vector4d a = *ca;
+    *ca = a * c + *cb * s;
+    *cb = *cb * c - a * s;
+  };
+  switch (step.motion) {
+    case FkMotion::kNone:
+      break;
+    case FkMotion::kTranslate: {
+      const Eigen::Vector3d& k = step.axis_J;
+      c3 += JointPosition(step, q) * (c0 * k.x() + c1 * k.y() + c2 * k.z());
+      break;
+    }
+    case FkMotion::kRotateAboutCoordinateAxis:
+      if (step.coordinate_axis == 0) {
+        rotate(&c1, &c2);
+      } else if (step.coordinate_axis == 1) {
+        rotate(&c2, &c0);
+      } else {
+        rotate(&c0, &c1);
+      }
+      ++angles->next;
+      break;
+    case FkMotion::kRotateAboutAxis: {
+      // Rodrigues' formula: R_JL = I + sin(theta) K + (1 - cos(theta)) K^2, K = [k]x.
+      const Eigen::Matrix3d R = Eigen::Matrix3d::Identity() +
+                                angles->sin_theta[rotation] * step.K +
+                                (1.0 - angles->cos_theta[rotation]) * step.K2;
+      ++angles->next;
+      const Eigen::Vector4d J0 = c0, J1 = c1, J2 = c2;
+      c0 = J0 * R(0, 0) + J1 * R(1, 0) + J2 * R(2, 0);
+      c1 = J0 * R(0, 1) + J1 * R(1, 1) + J2 * R(2, 1);
+      c2 = J0 * R(0, 2) + J1 * R(1, 2) + J2 * R(2, 2);
+      break;
+    }
+  }
+  T_WL->col(0) = c0;
+  T_WL->col(1) = c1;
+  T_WL->col(2) = c2;
+  T_WL->col(3) = c3;
+}
+
 void KinematicModel::ComputePoses(const Eigen::Ref<const Eigen::VectorXd>& q,
                                   bool moving_links_only,
                                   std::vector<Eigen::Isometry3d>* X_WL) const {
@@ -168,86 +248,17 @@ void KinematicModel::ComputePoses(const Eigen::Ref<const Eigen::VectorXd>& q,
     poses[0] = X_WRoot;
     poses[0].makeAffine();  // the 4-row column arithmetic below relies on the bottom row 0 0 0 1
   }
-  auto position_of = [&q](const FkStep& step) {
-    return step.multiplier * q[step.position_q_index] + step.offset;
-  };
   const int n = link_count();
   for (int first = 1; first < n; first += kFkBlockLinks) {
     const int end = std::min(n, first + kFkBlockLinks);
-    // Pass 1: sine and cosine of every rotating joint of the block. They do not depend on each
-    // other, so they overlap in the pipeline instead of stalling the chain of pose products.
-    double theta[kFkBlockLinks], sin_theta[kFkBlockLinks], cos_theta[kFkBlockLinks];
-    int rotation_count = 0;
-    for (int link = first; link < end; ++link) {
-      const FkStep& step = fk_steps_[link];
-      if (step.motion == FkMotion::kRotateAboutCoordinateAxis ||
-          step.motion == FkMotion::kRotateAboutAxis) {
-        theta[rotation_count++] = position_of(step);
-      }
-    }
-    SinCos(theta, rotation_count, sin_theta, cos_theta);
-    int rotation = 0;  // the next rotating joint's index into sin_theta and cos_theta
-    // Pass 2: X_WL = X_WP * X_PJ * (joint motion), on whole 4-row columns of the 4x4 matrices
-    // (aligned vector lanes; the bottom rows 0 0 0 1 come out right by themselves).
+    // Pass 1: sine and cosine of every rotating joint of the block.
+    FkBlockAngles angles;
+    ComputeBlockAngles(q, first, end, &angles);
+    // Pass 2: X_WL = X_WP * X_PJ * (joint motion), link by link.
     for (int link = first; link < end; ++link) {
       if (moving_links_only && !is_moving_[link]) continue;  // fixed to the root: unchanged
       const FkStep& step = fk_steps_[link];
-      const Eigen::Matrix4d& T_WP = poses[step.parent].matrix();
-      const Eigen::Vector4d P0 = T_WP.col(0), P1 = T_WP.col(1), P2 = T_WP.col(2);
-      // Columns of X_WJ.
-      Eigen::Vector4d c0 = P0, c1 = P1, c2 = P2;
-      if (!step.is_R_PJ_identity) {
-        const Eigen::Matrix3d& R = step.R_PJ;
-        c0 = P0 * R(0, 0) + P1 * R(1, 0) + P2 * R(2, 0);
-        c1 = P0 * R(0, 1) + P1 * R(1, 1) + P2 * R(2, 1);
-        c2 = P0 * R(0, 2) + P1 * R(1, 2) + P2 * R(2, 2);
-      }
-      const Eigen::Vector3d& p = step.p_PJ;
-      Eigen::Vector4d c3 = P0 * p.x() + P1 * p.y() + P2 * p.z() + T_WP.col(3);
-      // Rotation by theta about a coordinate axis mixes the other two columns:
-      // (ca, cb) <- (c ca + s cb, c cb - s ca), for (a, b) the cyclic successors of the axis.
-      auto rotate = [&](Eigen::Vector4d* ca, Eigen::Vector4d* cb) {
-        const double s = sin_theta[rotation], c = cos_theta[rotation];
-        const Eigen::Vector4d a = *ca;
-        *ca = a * c + *cb * s;
-        *cb = *cb * c - a * s;
-      };
-      switch (step.motion) {
-        case FkMotion::kNone:
-          break;
-        case FkMotion::kTranslate: {
-          const Eigen::Vector3d& k = step.axis_J;
-          c3 += position_of(step) * (c0 * k.x() + c1 * k.y() + c2 * k.z());
-          break;
-        }
-        case FkMotion::kRotateAboutCoordinateAxis:
-          if (step.coordinate_axis == 0) {
-            rotate(&c1, &c2);
-          } else if (step.coordinate_axis == 1) {
-            rotate(&c2, &c0);
-          } else {
-            rotate(&c0, &c1);
-          }
-          ++rotation;
-          break;
-        case FkMotion::kRotateAboutAxis: {
-          // Rodrigues' formula: R_JL = I + sin(theta) K + (1 - cos(theta)) K^2, K = [k]x.
-          const Eigen::Matrix3d R = Eigen::Matrix3d::Identity() +
-                                    sin_theta[rotation] * step.K +
-                                    (1.0 - cos_theta[rotation]) * step.K2;
-          ++rotation;
-          const Eigen::Vector4d J0 = c0, J1 = c1, J2 = c2;
-          c0 = J0 * R(0, 0) + J1 * R(1, 0) + J2 * R(2, 0);
-          c1 = J0 * R(0, 1) + J1 * R(1, 1) + J2 * R(2, 1);
-          c2 = J0 * R(0, 2) + J1 * R(1, 2) + J2 * R(2, 2);
-          break;
-        }
-      }
-      Eigen::Matrix4d& T_WL = poses[link].matrix();
-      T_WL.col(0) = c0;
-      T_WL.col(1) = c1;
-      T_WL.col(2) = c2;
-      T_WL.col(3) = c3;
+      ComputeLinkPose(step, q, &angles, poses[step.parent].matrix(), &poses[link].matrix());
     }
   }
 }
@@ -255,6 +266,90 @@ void KinematicModel::ComputePoses(const Eigen::Ref<const Eigen::VectorXd>& q,
 KinematicModel KinematicModel::FromUrdfFile(const std::string& urdf_path) {
   return FromUrdf(*ParseUrdfFile(urdf_path), urdf_path);
 }
+
+namespace {
+
+// The model's joint type for a URDF joint type; floating and planar joints are rejected.
+JointType JointTypeFromUrdf(int urdf_type, const std::string& where) {
+  switch (urdf_type) {
+    case urdf::Joint::FIXED:
+      return JointType::kFixed;
+    case urdf::Joint::REVOLUTE:
+      return JointType::kRevolute;
+    case urdf::Joint::CONTINUOUS:
+      return JointType::kContinuous;
+    case urdf::Joint::PRISMATIC:
+      return JointType::kPrismatic;
+    case urdf::Joint::FLOATING:
+    case urdf::Joint::PLANAR:
+      throw LoadError(where +
+                      ": floating and planar joints are not supported (expected revolute, "
+                      "continuous, prismatic or fixed)");
+    default:
+      throw LoadError(where +
+                      ": unknown joint type (expected revolute, continuous, "
+                      "prismatic or fixed)");
+  }
+}
+
+// The unit axis and the position and velocity limits of a non-fixed joint, validated.
+void ReadJointAxisAndLimits(const urdf::Joint& joint, const std::string& where, JointSpec* spec) {
+  const Eigen::Vector3d axis(joint.axis.x, joint.axis.y, joint.axis.z);
+  if (!axis.allFinite() || axis.norm() < kMinJointAxisNorm) {
+    throw LoadError(where + ": <axis> must be a finite non-zero vector");
+  }
+  spec->axis_J = axis.normalized();
+  if (spec->type == JointType::kContinuous) {
+    spec->lower = -std::numeric_limits<double>::infinity();
+    spec->upper = std::numeric_limits<double>::infinity();
+  } else if (joint.limits) {
+    spec->lower = joint.limits->lower;
+    spec->upper = joint.limits->upper;
+    if (!std::isfinite(spec->lower) || !std::isfinite(spec->upper) ||
+        spec->lower > spec->upper) {
+      throw LoadError(where + ": <limit> must have finite lower <= upper");
+    }
+  }
+  if (joint.limits) {
+    spec->max_velocity = joint.limits->velocity;
+    if (!std::isfinite(spec->max_velocity) || spec->max_velocity < 0.0) {
+      throw LoadError(where + ": <limit velocity> must be finite and >= 0");
+    }
+  }
+}
+
+// The joint spec of a URDF joint without its q or mimic indices (FromUrdf assigns those).
+JointSpec JointSpecFromUrdf(const urdf::Joint& joint, const std::string& urdf_path) {
+  const std::string where = urdf_path + ": joint '" + joint.name + "'";
+  JointSpec spec;
+  spec.name = joint.name;
+  spec.X_PJ = UrdfPoseToIsometry(joint.parent_to_joint_origin_transform);
+  if (!IsFinitePose(spec.X_PJ)) throw LoadError(where + ": <origin> must be finite");
+  spec.type = JointTypeFromUrdf(joint.type, where);
+  if (spec.type != JointType::kFixed) ReadJointAxisAndLimits(joint, where, &spec);
+  return spec;
+}
+
+// A link still to visit in FromUrdf's depth-first walk, with its parent's link index.
+struct PendingLink {
+  urdf::LinkConstSharedPtr link;
+  int parent;
+};
+
+// Pushes the children of `link` (index `index`) so that the child whose joint name sorts first
+// is popped (visited) first.
+void PushChildrenByJointName(const urdf::Link& link, int index, std::vector<PendingLink>* stack) {
+  std::vector<urdf::LinkConstSharedPtr> children(link.child_links.begin(),
+                                                 link.child_links.end());
+  std::sort(children.begin(), children.end(), [](const auto& a, const auto& b) {
+    return a->parent_joint->name < b->parent_joint->name;
+  });
+  for (auto it = children.rbegin(); it != children.rend(); ++it) {
+    stack->push_back({*it, index});
+  }
+}
+
+}  // namespace
 
 KinematicModel KinematicModel::FromUrdf(const urdf::ModelInterface& urdf_model,
                                         const std::string& urdf_path) {
@@ -264,73 +359,21 @@ KinematicModel KinematicModel::FromUrdf(const urdf::ModelInterface& urdf_model,
   KinematicModel model;
   // Depth-first preorder, children sorted by joint name: parents precede children, each arm's
   // joints are contiguous in q, and the order is reproducible.
-  struct Pending {
-    urdf::LinkConstSharedPtr link;
-    int parent;
-  };
-  std::vector<Pending> stack{{root, -1}};
+  std::vector<PendingLink> stack{{root, -1}};
   // Actuated joints get q indices in the order we meet them; mimic joints are resolved after.
   std::vector<std::pair<int, urdf::JointMimicSharedPtr>> mimics;
   while (!stack.empty()) {
-    const Pending current = stack.back();
+    const PendingLink current = stack.back();
     stack.pop_back();
     const int index = model.link_count();
-    const std::string& link_name = current.link->name;
-    model.link_names_.push_back(link_name);
+    model.link_names_.push_back(current.link->name);
     model.parent_link_.push_back(current.parent);
     JointSpec spec;
     bool is_moving = false;
     if (current.parent >= 0) {
       const urdf::JointConstSharedPtr joint = current.link->parent_joint;
-      const std::string where = urdf_path + ": joint '" + joint->name + "'";
-      spec.name = joint->name;
-      spec.X_PJ = UrdfPoseToIsometry(joint->parent_to_joint_origin_transform);
-      if (!IsFinitePose(spec.X_PJ)) throw LoadError(where + ": <origin> must be finite");
-      const Eigen::Vector3d axis(joint->axis.x, joint->axis.y, joint->axis.z);
-      switch (joint->type) {
-        case urdf::Joint::FIXED:
-          spec.type = JointType::kFixed;
-          break;
-        case urdf::Joint::REVOLUTE:
-          spec.type = JointType::kRevolute;
-          break;
-        case urdf::Joint::CONTINUOUS:
-          spec.type = JointType::kContinuous;
-          break;
-        case urdf::Joint::PRISMATIC:
-          spec.type = JointType::kPrismatic;
-          break;
-        case urdf::Joint::FLOATING:
-        case urdf::Joint::PLANAR:
-          throw LoadError(where +
-                          ": floating and planar joints are not supported (expected revolute, "
-                          "continuous, prismatic or fixed)");
-        default:
-          throw LoadError(where +
-                          ": unknown joint type (expected revolute, continuous, "
-                          "prismatic or fixed)");
-      }
+      spec = JointSpecFromUrdf(*joint, urdf_path);
       if (spec.type != JointType::kFixed) {
-        if (!axis.allFinite() || axis.norm() < kMinJointAxisNorm) {
-          throw LoadError(where + ": <axis> must be a finite non-zero vector");
-        }
-        spec.axis_J = axis.normalized();
-        if (spec.type == JointType::kContinuous) {
-          spec.lower = -std::numeric_limits<double>::infinity();
-          spec.upper = std::numeric_limits<double>::infinity();
-        } else if (joint->limits) {
-          spec.lower = joint->limits->lower;
-          spec.upper = joint->limits->upper;
-          if (!std::isfinite(spec.lower) || !std::isfinite(spec.upper) || spec.lower > spec.upper) {
-            throw LoadError(where + ": <limit> must have finite lower <= upper");
-          }
-        }
-        if (joint->limits) {
-          spec.max_velocity = joint->limits->velocity;
-          if (!std::isfinite(spec.max_velocity) || spec.max_velocity < 0.0) {
-            throw LoadError(where + ": <limit velocity> must be finite and >= 0");
-          }
-        }
         if (joint->mimic) {
           mimics.emplace_back(index, joint->mimic);
         } else {
@@ -338,42 +381,35 @@ KinematicModel KinematicModel::FromUrdf(const urdf::ModelInterface& urdf_model,
         }
         is_moving = true;
       }
+      if (model.is_moving_[current.parent]) is_moving = true;
     }
-    if (current.parent >= 0 && model.is_moving_[current.parent]) is_moving = true;
     model.joints_.push_back(spec);
     model.is_moving_.push_back(is_moving ? 1 : 0);
-
-    std::vector<urdf::LinkConstSharedPtr> children(current.link->child_links.begin(),
-                                                   current.link->child_links.end());
-    std::sort(children.begin(), children.end(), [](const auto& a, const auto& b) {
-      return a->parent_joint->name < b->parent_joint->name;
-    });
-    // Reverse so the alphabetically first child is popped (visited) first.
-    for (auto it = children.rbegin(); it != children.rend(); ++it) {
-      stack.push_back({*it, index});
-    }
+    PushChildrenByJointName(*current.link, index, &stack);
   }
-
-  for (const auto& [link, mimic] : mimics) {
-    JointSpec& spec = model.joints_[link];
-    const int target = model.FindJointChildLink(mimic->joint_name);
-    if (target < 0 || model.joints_[target].q_index < 0) {
-      throw LoadError(urdf_path + ": joint '" + spec.name + "': <mimic joint='" +
-                      mimic->joint_name + "'> must name an actuated, non-mimic joint");
-    }
-    spec.mimic_q_index = model.joints_[target].q_index;
-    spec.mimic_multiplier = mimic->multiplier;
-    spec.mimic_offset = mimic->offset;
-    if (!std::isfinite(spec.mimic_multiplier) || !std::isfinite(spec.mimic_offset)) {
-      throw LoadError(urdf_path + ": joint '" + spec.name +
-                      "': <mimic> multiplier and offset must be finite");
-    }
-  }
+  for (const auto& [link, mimic] : mimics) model.ResolveMimic(link, *mimic, urdf_path);
   model.fk_steps_.resize(model.link_count());
   for (int link = 1; link < model.link_count(); ++link) {
     model.fk_steps_[link] = MakeFkStep(model.joints_[link], model.parent_link_[link]);
   }
   return model;
+}
+
+void KinematicModel::ResolveMimic(int link, const urdf::JointMimic& mimic,
+                                  const std::string& urdf_path) {
+  JointSpec& spec = joints_[link];
+  const int target = FindJointChildLink(mimic.joint_name);
+  if (target < 0 || joints_[target].q_index < 0) {
+    throw LoadError(urdf_path + ": joint '" + spec.name + "': <mimic joint='" +
+                    mimic.joint_name + "'> must name an actuated, non-mimic joint");
+  }
+  spec.mimic_q_index = joints_[target].q_index;
+  spec.mimic_multiplier = mimic.multiplier;
+  spec.mimic_offset = mimic.offset;
+  if (!std::isfinite(spec.mimic_multiplier) || !std::isfinite(spec.mimic_offset)) {
+    throw LoadError(urdf_path + ": joint '" + spec.name +
+                    "': <mimic> multiplier and offset must be finite");
+  }
 }
 
 }  // namespace arm_collision_monitor

@@ -5,6 +5,8 @@
 //
 //   rosrun arm_collision_monitor replay [options] <file.bag | file.csv>
 //
+// Start-up is the node's (MonitorNode): the config's tolerance_m reaches LoadWorkcell and the
+// workcell's start-up findings are printed (on stderr) before the run.
 // A bag cycle is one sample of every arm: consecutive messages with the same header stamp are
 // merged, then the Monitor runs once (the node instead runs once per message; see README).
 #include <algorithm>
@@ -43,6 +45,7 @@ struct Options {
   bool json = false;
   std::vector<TaskGraspTarget> grasp_targets;
   std::string input;
+  bool help = false;  ///< -h or --help: print the usage on stdout and exit 0
 };
 
 const char* kUsage =
@@ -64,7 +67,10 @@ const char* kUsage =
     "  --grasp L:O    declare object O the grasp target of link L before the first cycle\n"
     "                 (repeatable)\n"
     "  --task N       the grasp targets of the seed's task N (task 3: right_link7:front_box)\n"
-    "  --json         machine-readable output\n";
+    "  --json         machine-readable output\n"
+    "  -h, --help     this text (on stdout)\n"
+    "The monitor options are loaded before the workcell and give it the default arm tolerance,\n"
+    "as in the node; the workcell's start-up findings are printed on stderr before the run.\n";
 
 bool ParseOptions(int argc, char** argv, Options* options, std::string* error) {
   for (int i = 1; i < argc; ++i) {
@@ -107,7 +113,8 @@ bool ParseOptions(int argc, char** argv, Options* options, std::string* error) {
         options->grasp_targets.push_back(t);
       }
     } else if (arg == "-h" || arg == "--help") {
-      return false;
+      options->help = true;
+      return true;
     } else if (!arg.empty() && arg[0] == '-') {
       *error = "unknown option " + arg;
       return false;
@@ -309,125 +316,125 @@ std::string PairSetKey(const std::vector<Warning>& warnings) {
   return key;
 }
 
-int Run(const Options& options) {
-  const auto workcell =
-      std::make_shared<const Workcell>(LoadWorkcell(options.urdf, options.scene));
-  MonitorOptions monitor_options = LoadMonitorOptions(options.config);
-  std::unique_ptr<Checker> checker;
+// The checker that --method names: the Monitor with that broad phase (overriding the config's),
+// or a peer.
+std::unique_ptr<Checker> MakeChecker(const Options& options,
+                                     const std::shared_ptr<const Workcell>& workcell,
+                                     MonitorOptions monitor_options) {
   BroadPhaseMethod method;
   if (ParseBroadPhaseMethod(options.method, &method)) {
     monitor_options.broad_phase.method = method;
     monitor_options.auto_broad_phase = false;
-    checker = std::make_unique<MonitorChecker>(workcell, monitor_options, options.grasp_targets);
-#ifdef ACM_HAVE_PEERS
-  } else if (options.method == "fcl" || options.method == "bullet") {
-    checker = std::make_unique<PeerCycleChecker>(workcell, options.method, options.grasp_targets);
-#endif
-  } else {
-    throw LoadError("--method: unknown method '" + options.method + "'");
+    return std::make_unique<MonitorChecker>(workcell, monitor_options, options.grasp_targets);
   }
-  const Input input = EndsWith(options.input, ".csv") ? ReadCsv(options.input, *workcell)
-                                                      : ReadBag(options.input, *workcell);
-  const Workcell& wc = *workcell;
-  std::vector<CycleResult> cycles(input.q.size());
-  for (std::size_t k = 0; k < input.q.size(); ++k) checker->Run(input.q[k], &cycles[k]);
+#ifdef ACM_HAVE_PEERS
+  if (options.method == "fcl" || options.method == "bullet") {
+    return std::make_unique<PeerCycleChecker>(workcell, options.method, options.grasp_targets);
+  }
+#endif
+  throw LoadError("--method: unknown method '" + options.method + "'");
+}
 
-  std::vector<double> times;
+// What both output formats report about the whole run.
+struct RunSummary {
   std::uint64_t warning_cycles = 0, refused_cycles = 0;
-  int first = -1;
+  int first = -1;  ///< the first cycle with a warning, -1 if none
+  TimingSummary time_s;
+  BroadPhaseCounters counters;
+  std::uint64_t refused_messages = 0;
+};
+
+RunSummary Summarize(const Input& input, const std::vector<CycleResult>& cycles,
+                     const Checker& checker) {
+  RunSummary summary;
+  std::vector<double> times;
   for (std::size_t k = 0; k < cycles.size(); ++k) {
     times.push_back(cycles[k].time_s);
-    refused_cycles += cycles[k].refused;
+    summary.refused_cycles += cycles[k].refused;
     if (!cycles[k].warnings.empty()) {
-      ++warning_cycles;
-      if (first < 0) first = static_cast<int>(k);
+      ++summary.warning_cycles;
+      if (summary.first < 0) summary.first = static_cast<int>(k);
     }
   }
-  const TimingSummary time_s = SummarizeTimings(std::move(times));
-  const double mean_s = time_s.mean, p50 = time_s.median, p99 = time_s.p99, max = time_s.max;
-  const BroadPhaseCounters counters = checker->counters();
-  std::uint64_t refused_messages = 0;
-  for (const auto& [status, count] : input.refused) refused_messages += count;
-  auto name = [&](PrimitiveId id) { return wc.primitives[id].name; };
+  summary.time_s = SummarizeTimings(std::move(times));
+  summary.counters = checker.counters();
+  for (const auto& [status, count] : input.refused) summary.refused_messages += count;
+  return summary;
+}
 
-  if (options.json) {
-    std::printf("{\n  \"input\": %s,\n  \"method\": %s,\n", JsonString(options.input).c_str(),
-                JsonString(options.method).c_str());
-    std::printf("  \"grasp_targets\": [");
-    for (std::size_t i = 0; i < options.grasp_targets.size(); ++i) {
-      std::printf("%s[%s, %s]", i ? ", " : "", JsonString(options.grasp_targets[i].link).c_str(),
-                  JsonString(options.grasp_targets[i].object).c_str());
-    }
-    std::printf("],\n  \"messages\": %llu,\n  \"refused_messages\": {",
-                static_cast<unsigned long long>(input.messages));
-    bool comma = false;
-    for (const auto& [status, count] : input.refused) {
-      std::printf("%s%s: %llu", comma ? ", " : "", JsonString(status).c_str(),
-                  static_cast<unsigned long long>(count));
-      comma = true;
-    }
-    std::printf("},\n  \"incomplete_cycles\": %llu,\n  \"cycles\": %zu,\n"
-                "  \"refused_cycles\": %llu,\n  \"warning_cycles\": %llu,\n",
-                static_cast<unsigned long long>(input.incomplete_cycles), cycles.size(),
-                static_cast<unsigned long long>(refused_cycles),
-                static_cast<unsigned long long>(warning_cycles));
-    if (first >= 0) {
-      const Warning& w = cycles[first].warnings.front();
-      std::printf("  \"first_warning\": {\"cycle\": %d, \"time_s\": %.3f, \"a\": %s, \"b\": %s, "
-                  "\"distance_m\": %.9g, \"threshold_m\": %.9g},\n",
-                  first, input.time_s[first], JsonString(name(w.a)).c_str(),
-                  JsonString(name(w.b)).c_str(), w.distance_m, w.threshold_m);
-    } else {
-      std::printf("  \"first_warning\": null,\n");
-    }
-    std::printf("  \"cycle_time_s\": {\"p50\": %.9g, \"p99\": %.9g, \"max\": %.9g, "
-                "\"mean\": %.9g},\n",
-                p50, p99, max, mean_s);
-    std::printf("  \"counters\": {\"object_node_tests\": %llu, \"object_object_tests\": %llu, "
-                "\"neighbours_visited\": %llu, \"splits\": %llu, \"merges\": %llu, "
-                "\"reinsert_fallbacks\": %llu, \"outside_world\": %llu},\n",
-                static_cast<unsigned long long>(counters.object_node_tests),
-                static_cast<unsigned long long>(counters.object_object_tests),
-                static_cast<unsigned long long>(counters.neighbours_visited),
-                static_cast<unsigned long long>(counters.splits),
-                static_cast<unsigned long long>(counters.merges),
-                static_cast<unsigned long long>(counters.reinsert_fallbacks),
-                static_cast<unsigned long long>(counters.outside_world));
-    // One entry per cycle: [[a, b, distance_m], ...] (empty when clear).
-    std::printf("  \"per_cycle\": [");
-    for (std::size_t k = 0; k < cycles.size(); ++k) {
-      std::printf("%s\n    {\"cycle\": %zu, \"time_s\": %.3f, \"refused\": %s, \"warnings\": [",
-                  k ? "," : "", k, input.time_s[k], cycles[k].refused ? "true" : "false");
-      for (std::size_t i = 0; i < cycles[k].warnings.size(); ++i) {
-        const Warning& w = cycles[k].warnings[i];
-        std::printf("%s[%s, %s, %.9g]", i ? ", " : "", JsonString(name(w.a)).c_str(),
-                    JsonString(name(w.b)).c_str(), w.distance_m);
-      }
-      std::printf("]}");
-    }
-    std::printf("\n  ]\n}\n");
-    return 0;
+// The JSON header: input, method, grasp targets, message and cycle counts.
+void PrintJsonCounts(const Options& options, const Input& input, std::size_t cycle_count,
+                     const RunSummary& summary) {
+  std::printf("{\n  \"input\": %s,\n  \"method\": %s,\n", JsonString(options.input).c_str(),
+              JsonString(options.method).c_str());
+  std::printf("  \"grasp_targets\": [");
+  for (std::size_t i = 0; i < options.grasp_targets.size(); ++i) {
+    std::printf("%s[%s, %s]", i ? ", " : "", JsonString(options.grasp_targets[i].link).c_str(),
+                JsonString(options.grasp_targets[i].object).c_str());
   }
-
-  std::printf("replay %s: method %s, %zu cycles from %llu messages", options.input.c_str(),
-              options.method.c_str(), cycles.size(),
+  std::printf("],\n  \"messages\": %llu,\n  \"refused_messages\": {",
               static_cast<unsigned long long>(input.messages));
-  for (const TaskGraspTarget& t : options.grasp_targets) {
-    std::printf(", grasp target %s:%s", t.link.c_str(), t.object.c_str());
+  bool comma = false;
+  for (const auto& [status, count] : input.refused) {
+    std::printf("%s%s: %llu", comma ? ", " : "", JsonString(status).c_str(),
+                static_cast<unsigned long long>(count));
+    comma = true;
   }
-  std::printf("\n");
-  if (refused_messages > 0 || input.incomplete_cycles > 0 || refused_cycles > 0) {
-    std::printf("input: %llu messages refused", static_cast<unsigned long long>(refused_messages));
-    for (const auto& [status, count] : input.refused) {
-      std::printf(" (%s: %llu)", status.c_str(), static_cast<unsigned long long>(count));
+  std::printf("},\n  \"incomplete_cycles\": %llu,\n  \"cycles\": %zu,\n"
+              "  \"refused_cycles\": %llu,\n  \"warning_cycles\": %llu,\n",
+              static_cast<unsigned long long>(input.incomplete_cycles), cycle_count,
+              static_cast<unsigned long long>(summary.refused_cycles),
+              static_cast<unsigned long long>(summary.warning_cycles));
+}
+
+void PrintJson(const Options& options, const Workcell& wc, const Input& input,
+               const std::vector<CycleResult>& cycles, const RunSummary& summary) {
+  auto name = [&](PrimitiveId id) { return JsonString(wc.primitives[id].name); };
+  PrintJsonCounts(options, input, cycles.size(), summary);
+  if (summary.first >= 0) {
+    const Warning& w = cycles[summary.first].warnings.front();
+    std::printf("  \"first_warning\": {\"cycle\": %d, \"time_s\": %.3f, \"a\": %s, \"b\": %s, "
+                "\"distance_m\": %.9g, \"threshold_m\": %.9g},\n",
+                summary.first, input.time_s[summary.first], name(w.a).c_str(),
+                name(w.b).c_str(), w.distance_m, w.threshold_m);
+  } else {
+    std::printf("  \"first_warning\": null,\n");
+  }
+  const TimingSummary& t = summary.time_s;
+  std::printf("  \"cycle_time_s\": {\"p50\": %.9g, \"p99\": %.9g, \"max\": %.9g, "
+              "\"mean\": %.9g},\n",
+              t.median, t.p99, t.max, t.mean);
+  const BroadPhaseCounters& c = summary.counters;
+  std::printf("  \"counters\": {\"object_node_tests\": %llu, \"object_object_tests\": %llu, "
+              "\"neighbours_visited\": %llu, \"splits\": %llu, \"merges\": %llu, "
+              "\"reinsert_fallbacks\": %llu, \"outside_world\": %llu},\n",
+              static_cast<unsigned long long>(c.object_node_tests),
+              static_cast<unsigned long long>(c.object_object_tests),
+              static_cast<unsigned long long>(c.neighbours_visited),
+              static_cast<unsigned long long>(c.splits),
+              static_cast<unsigned long long>(c.merges),
+              static_cast<unsigned long long>(c.reinsert_fallbacks),
+              static_cast<unsigned long long>(c.outside_world));
+  // One entry per cycle: [[a, b, distance_m], ...] (empty when clear).
+  std::printf("  \"per_cycle\": [");
+  for (std::size_t k = 0; k < cycles.size(); ++k) {
+    std::printf("%s\n    {\"cycle\": %zu, \"time_s\": %.3f, \"refused\": %s, \"warnings\": [",
+                k ? "," : "", k, input.time_s[k], cycles[k].refused ? "true" : "false");
+    for (std::size_t i = 0; i < cycles[k].warnings.size(); ++i) {
+      const Warning& w = cycles[k].warnings[i];
+      std::printf("%s[%s, %s, %.9g]", i ? ", " : "", name(w.a).c_str(), name(w.b).c_str(),
+                  w.distance_m);
     }
-    std::printf(", %llu cycles before every joint was received, %llu cycles refused by the "
-                "monitor\n",
-                static_cast<unsigned long long>(input.incomplete_cycles),
-                static_cast<unsigned long long>(refused_cycles));
+    std::printf("]}");
   }
-  // Runs of consecutive cycles with the same warning pairs, one line per pair, with the
-  // smallest distance over the run.
+  std::printf("\n  ]\n}\n");
+}
+
+// Runs of consecutive cycles with the same warning pairs, one line per pair, with the smallest
+// distance over the run.
+void PrintWarningRuns(const Workcell& wc, const Input& input,
+                      const std::vector<CycleResult>& cycles) {
+  auto name = [&](PrimitiveId id) { return wc.primitives[id].name; };
   std::size_t k = 0;
   while (k < cycles.size()) {
     if (cycles[k].warnings.empty()) {
@@ -450,25 +457,73 @@ int Run(const Options& options) {
     }
     k = end;
   }
-  if (first >= 0) {
-    const Warning& w = cycles[first].warnings.front();
+}
+
+void PrintText(const Options& options, const Workcell& wc, const Input& input,
+               const std::vector<CycleResult>& cycles, const RunSummary& summary) {
+  std::printf("replay %s: method %s, %zu cycles from %llu messages", options.input.c_str(),
+              options.method.c_str(), cycles.size(),
+              static_cast<unsigned long long>(input.messages));
+  for (const TaskGraspTarget& t : options.grasp_targets) {
+    std::printf(", grasp target %s:%s", t.link.c_str(), t.object.c_str());
+  }
+  std::printf("\n");
+  if (summary.refused_messages > 0 || input.incomplete_cycles > 0 || summary.refused_cycles > 0) {
+    std::printf("input: %llu messages refused",
+                static_cast<unsigned long long>(summary.refused_messages));
+    for (const auto& [status, count] : input.refused) {
+      std::printf(" (%s: %llu)", status.c_str(), static_cast<unsigned long long>(count));
+    }
+    std::printf(", %llu cycles before every joint was received, %llu cycles refused by the "
+                "monitor\n",
+                static_cast<unsigned long long>(input.incomplete_cycles),
+                static_cast<unsigned long long>(summary.refused_cycles));
+  }
+  PrintWarningRuns(wc, input, cycles);
+  if (summary.first >= 0) {
+    const Warning& w = cycles[summary.first].warnings.front();
     std::printf("summary: %llu of %zu cycles warn; first at cycle %d (%.2f s): %s -- %s at "
                 "%.4f m\n",
-                static_cast<unsigned long long>(warning_cycles), cycles.size(), first,
-                input.time_s[first], name(w.a).c_str(), name(w.b).c_str(), w.distance_m);
+                static_cast<unsigned long long>(summary.warning_cycles), cycles.size(),
+                summary.first, input.time_s[summary.first], wc.primitives[w.a].name.c_str(),
+                wc.primitives[w.b].name.c_str(), w.distance_m);
   } else {
     std::printf("summary: no warning in %zu cycles\n", cycles.size());
   }
-  std::printf("cycle time: p50 %.1f us, p99 %.1f us, max %.1f us, mean %.1f us\n", p50 * 1e6,
-              p99 * 1e6, max * 1e6, mean_s * 1e6);
+  const TimingSummary& t = summary.time_s;
+  std::printf("cycle time: p50 %.1f us, p99 %.1f us, max %.1f us, mean %.1f us\n",
+              t.median * 1e6, t.p99 * 1e6, t.max * 1e6, t.mean * 1e6);
+  const BroadPhaseCounters& c = summary.counters;
   std::printf("broad phase: %llu object-node tests, %llu object-object tests, %llu neighbours "
               "visited, %llu splits, %llu merges, %llu re-insert fallbacks\n",
-              static_cast<unsigned long long>(counters.object_node_tests),
-              static_cast<unsigned long long>(counters.object_object_tests),
-              static_cast<unsigned long long>(counters.neighbours_visited),
-              static_cast<unsigned long long>(counters.splits),
-              static_cast<unsigned long long>(counters.merges),
-              static_cast<unsigned long long>(counters.reinsert_fallbacks));
+              static_cast<unsigned long long>(c.object_node_tests),
+              static_cast<unsigned long long>(c.object_object_tests),
+              static_cast<unsigned long long>(c.neighbours_visited),
+              static_cast<unsigned long long>(c.splits),
+              static_cast<unsigned long long>(c.merges),
+              static_cast<unsigned long long>(c.reinsert_fallbacks));
+}
+
+int Run(const Options& options) {
+  // Start-up as in the node (MonitorNode's constructor): the monitor options first, for the
+  // default arm tolerance the workcell is loaded with; then the start-up findings.
+  const MonitorOptions monitor_options = LoadMonitorOptions(options.config);
+  const auto workcell = std::make_shared<const Workcell>(
+      LoadWorkcell(options.urdf, options.scene, monitor_options.tolerance_m));
+  for (const std::string& finding : workcell->warnings) {
+    std::fprintf(stderr, "replay: %s\n", finding.c_str());
+  }
+  const std::unique_ptr<Checker> checker = MakeChecker(options, workcell, monitor_options);
+  const Input input = EndsWith(options.input, ".csv") ? ReadCsv(options.input, *workcell)
+                                                      : ReadBag(options.input, *workcell);
+  std::vector<CycleResult> cycles(input.q.size());
+  for (std::size_t k = 0; k < input.q.size(); ++k) checker->Run(input.q[k], &cycles[k]);
+  const RunSummary summary = Summarize(input, cycles, *checker);
+  if (options.json) {
+    PrintJson(options, *workcell, input, cycles, summary);
+  } else {
+    PrintText(options, *workcell, input, cycles, summary);
+  }
   return 0;
 }
 
@@ -480,9 +535,12 @@ int main(int argc, char** argv) {
   Options options;
   std::string error;
   if (!ParseOptions(argc, argv, &options, &error)) {
-    if (!error.empty()) std::fprintf(stderr, "replay: %s\n", error.c_str());
-    std::fprintf(stderr, "%s", kUsage);
+    std::fprintf(stderr, "replay: %s\n%s", error.c_str(), kUsage);
     return 2;
+  }
+  if (options.help) {
+    std::printf("%s", kUsage);
+    return 0;
   }
   try {
     if (options.urdf.empty() || options.scene.empty() || options.config.empty()) {

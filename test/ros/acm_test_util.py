@@ -2,14 +2,18 @@
 
 Every wait has a timeout and polls topics (never a fixed sleep standing in for a condition).
 """
+import subprocess
 import threading
 import time
 
 import rospy
+from catkin.find_in_workspaces import find_in_workspaces
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Bool
 
 from arm_collision_monitor.msg import MonitorReport
+
+PKG = 'arm_collision_monitor'
 
 LEFT_JOINTS = ['left_joint%d' % i for i in range(1, 8)]
 RIGHT_JOINTS = ['right_joint%d' % i for i in range(1, 8)]
@@ -160,3 +164,14 @@ class MonitorClient(object):
         return self.publish_until(
             lambda: self.publish_pose(HOME, HOME),
             lambda r: r.input_status == MonitorReport.INPUT_OK and not r.stop, timeout_s)
+
+
+def rosrun(executable, *args, timeout_s=600):
+    """Runs one of the package's executables, found the way rosrun finds it (the workspace's
+    libexec directory) without rosrun's search of the whole package tree; returns the
+    subprocess.CompletedProcess with stdout and stderr as text."""
+    path = find_in_workspaces(search_dirs=['libexec'], project=PKG, path=executable,
+                              first_match_only=True)
+    assert path, 'no executable %s in the workspace' % executable
+    return subprocess.run([path[0]] + list(args), stdout=subprocess.PIPE,
+                          stderr=subprocess.PIPE, universal_newlines=True, timeout=timeout_s)

@@ -7,30 +7,19 @@ import filecmp
 import json
 import os
 import shutil
-import subprocess
 import tempfile
 import unittest
 
 import rospkg
 import rostest
-from catkin.find_in_workspaces import find_in_workspaces
+
+from acm_test_util import rosrun
 
 PKG = 'arm_collision_monitor'
 # Cycles per task (the seed's counts) and the grasp targets replay must declare.
 TASKS = {'task1': (1000, []), 'task2': (150, []), 'task3': (2000, ['--task', '3'])}
 METHODS = ['octree', 'naive', 'grid', 'rebuild', 'reinsert']
 OPTIONAL_METHODS = ['fcl', 'bullet']
-TIMEOUT_S = 600
-
-
-def rosrun(executable, *args):
-    """Runs one of the package's executables, found the way rosrun finds it (the workspace's
-    libexec directory) without rosrun's search of the whole package tree."""
-    path = find_in_workspaces(search_dirs=['libexec'], project=PKG, path=executable,
-                              first_match_only=True)
-    assert path, 'no executable %s in the workspace' % executable
-    return subprocess.run([path[0]] + list(args), stdout=subprocess.PIPE,
-                          stderr=subprocess.PIPE, universal_newlines=True, timeout=TIMEOUT_S)
 
 
 class TaskBagsTest(unittest.TestCase):

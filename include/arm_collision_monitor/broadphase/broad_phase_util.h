@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "arm_collision_monitor/broadphase/broad_phase.h"
@@ -28,6 +29,12 @@ inline void SwapRemove(std::vector<PrimitiveId>* list, std::vector<std::uint32_t
   (*list)[index] = last;
   (*slot)[last] = index;
   list->pop_back();
+}
+
+/// Validate()'s failure: sets *why (when given) to `message` and returns false.
+inline bool FailValidation(std::string* why, const std::string& message) {
+  if (why != nullptr) *why = message;
+  return false;
 }
 
 /// Edge (m) of the cube a broad phase spans: the largest edge of `world_W`, or 0 when that is

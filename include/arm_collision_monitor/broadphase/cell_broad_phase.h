@@ -203,6 +203,17 @@ class CellBroadPhase : public BroadPhase {
   /// distinct pairs that ScanPartners finds from each of ids[0..count).
   void CollectPairs(const PrimitiveId* ids, std::size_t count, bool from_smaller_only,
                     const CompatibilityMatrix& compatible, std::vector<CandidatePair>* pairs);
+  // The parts of ValidateShared: ValidateRecord checks one record against the id lists and
+  // its box (counting it in `counts`); ValidateRecords adds each record's location list (their
+  // links summed in prim_links) and the list sizes; ValidateCellLists checks the cells' member
+  // lists (their links summed in cell_links). ValidateShared then checks the totals and the
+  // free link list.
+  struct ListCounts {
+    std::size_t present = 0, moving = 0, outside = 0;
+  };
+  bool ValidateRecord(PrimitiveId id, ListCounts* counts, std::string* why) const;
+  bool ValidateRecords(std::uint64_t* prim_links, std::string* why) const;
+  bool ValidateCellLists(std::uint64_t* cell_links, std::string* why) const;
   bool ValidateShared(std::string* why) const;
 };
 

@@ -93,6 +93,17 @@ class OctreeBroadPhase final : public CellBroadPhase {
   }
   void CollectOverlappedLeaves(const Aabb& box_W, std::uint32_t node,
                                std::vector<std::uint32_t>* leaves) const;
+  // The parts of ValidateCells. ValidateSplitNode: the children's parent, level and corner,
+  // and the canonical shape (more than N distinct primitives below; `region_stamp` marks the
+  // primitives seen in `region`, a number new for each call). ValidateReachableNodes: every
+  // node reachable from the root once, leaves within N above the minimum size, split nodes
+  // valid. ValidateFreeBlocks: the free list, which with the reachable nodes makes the pool.
+  bool ValidateSplitNode(std::uint32_t n, std::vector<std::uint32_t>* region_stamp,
+                         std::uint32_t region, std::string* why) const;
+  bool ValidateReachableNodes(std::vector<char>* reached, std::size_t* reached_count,
+                              std::string* why) const;
+  bool ValidateFreeBlocks(const std::vector<char>& reached, std::size_t reached_count,
+                          std::string* why) const;
 
   std::vector<Node> nodes_;  // node 0 is the root; blocks of 8 from index 1
   std::uint32_t free_block_ = kNone;

@@ -7,10 +7,12 @@
 #include <string>
 #include <vector>
 
+#include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/core/load_error.h"
 
 namespace urdf {
 class ModelInterface;  // urdfdom's parsed URDF (urdf_model/model.h)
+class JointMimic;      // a joint's <mimic> element (urdf_model/joint.h)
 }  // namespace urdf
 
 namespace arm_collision_monitor {
@@ -120,11 +122,34 @@ class KinematicModel {
     Eigen::Matrix3d K2 = Eigen::Matrix3d::Zero();
   };
   static FkStep MakeFkStep(const JointSpec& joint, int parent);
+  // The joint position (rad or m) that q gives the joint of `step`.
+  static double JointPosition(const FkStep& step, const Eigen::Ref<const Eigen::VectorXd>& q) {
+    return step.multiplier * q[step.position_q_index] + step.offset;
+  }
+  // Sine and cosine of the rotating joints of a block of at most kFkBlockLinks links, in link
+  // order; `next` is the next rotating joint's index into them.
+  struct FkBlockAngles {
+    double sin_theta[kFkBlockLinks];
+    double cos_theta[kFkBlockLinks];
+    int next = 0;
+  };
+  // Pass 1 of ComputePoses: the angles of the rotating joints of links [first, end).
+  void ComputeBlockAngles(const Eigen::Ref<const Eigen::VectorXd>& q, int first, int end,
+                          FkBlockAngles* angles) const;
+  // Pass 2 of ComputePoses for one link: T_WL = T_WP * X_PJ * (joint motion), on whole 4-row
+  // columns of the 4x4 matrices (aligned vector lanes; the bottom rows 0 0 0 1 come out right
+  // by themselves). A rotating joint takes the next angle of `angles`.
+  static void ComputeLinkPose(const FkStep& step, const Eigen::Ref<const Eigen::VectorXd>& q,
+                              FkBlockAngles* angles, const Eigen::Matrix4d& T_WP,
+                              Eigen::Matrix4d* T_WL);
   // The one forward-kinematics loop behind ComputeLinkPoses and ComputeMovingLinkPoses.
   void ComputePoses(const Eigen::Ref<const Eigen::VectorXd>& q, bool moving_links_only,
                     std::vector<Eigen::Isometry3d>* X_WL) const;
   // Exact (bitwise) equality, for Validate.
   static bool FkStepsEqual(const FkStep& a, const FkStep& b);
+  // FromUrdf's last step for a <mimic> joint (child link `link`): its target's q index, its
+  // multiplier and offset, validated.
+  void ResolveMimic(int link, const urdf::JointMimic& mimic, const std::string& urdf_path);
 
   std::vector<std::string> link_names_;
   std::vector<int> parent_link_;

@@ -1,0 +1,99 @@
+#!/usr/bin/python3
+"""replay = node at start-up (test/ros/replay_config.test): replay loads the monitor config first
+and gives LoadWorkcell its tolerance_m, as the node does, so a config with a wider tolerance
+makes replay warn where the default config does not; it prints the workcell's start-up findings
+on stderr before the run; --help and -h print the usage on stdout and exit 0, while a usage error
+goes to stderr with exit 2."""
+import json
+import os
+import unittest
+
+import rospkg
+import rostest
+import yaml
+
+from acm_test_util import rosrun
+
+PKG = 'arm_collision_monitor'
+# The finding LoadWorkcell reports for test/data/replay_scene.yaml: cable_guide lies inside
+# right_link1 in every configuration.
+FINDING = ("'right_link1' and 'cable_guide' are within their tolerances in the home pose and "
+           "in all")
+
+
+class ReplayConfigTest(unittest.TestCase):
+
+    @classmethod
+    def setUpClass(cls):
+        package = rospkg.RosPack().get_path(PKG)
+        cls.bag = os.path.join(package, 'test', 'bags', 'task3.bag')
+        # The bundled scene but with no arm tolerance of its own: the config's applies.
+        cls.scene = os.path.join(package, 'test', 'data', 'replay_scene.yaml')
+        cls.default_config = os.path.join(package, 'config', 'monitor.yaml')
+        cls.wide_config = os.path.join(package, 'test', 'data', 'replay_wide_tolerance.yaml')
+
+    def replay(self, config):
+        result = rosrun('replay', '--task', '3', '--json', '--scene', self.scene,
+                        '--config', config, self.bag)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        return json.loads(result.stdout), result.stderr
+
+    @staticmethod
+    def config_tolerance_m(config):
+        with open(config) as f:
+            return yaml.safe_load(f)['tolerance_m']
+
+    @staticmethod
+    def warnings(report):
+        """The (cycle, a, b) of every warning of the run."""
+        return {(cycle['cycle'], w[0], w[1]) for cycle in report['per_cycle']
+                for w in cycle['warnings']}
+
+    def test_config_tolerance_applies_as_in_the_node(self):
+        default, default_findings = self.replay(self.default_config)
+        wide, wide_findings = self.replay(self.wide_config)
+        default_m = self.config_tolerance_m(self.default_config)
+        wide_m = self.config_tolerance_m(self.wide_config)
+        self.assertGreater(wide_m, default_m)
+        # The first warning (cycle 0) is right_link1 -- cable_guide, an arm capsule against an
+        # object of tolerance 0: its threshold is the arm's tolerance, i.e. the config's
+        # tolerance_m, which is what the node gives LoadWorkcell.
+        for report, tolerance_m in ((default, default_m), (wide, wide_m)):
+            first = report['first_warning']
+            self.assertEqual((first['cycle'], first['a'], first['b']),
+                             (0, 'right_link1', 'cable_guide'))
+            self.assertAlmostEqual(first['threshold_m'], tolerance_m, places=12)
+        # The wider zone keeps every warning of the default one and adds some.
+        self.assertLessEqual(self.warnings(default), self.warnings(wide))
+        self.assertTrue(self.warnings(wide) - self.warnings(default),
+                        'the wide config adds no warning')
+        # ... and start-up findings: pairs within the wider tolerances in every configuration.
+        self.assertTrue(set(wide_findings.splitlines()) - set(default_findings.splitlines()),
+                        wide_findings)
+
+    def test_startup_findings_are_printed(self):
+        report, stderr = self.replay(self.default_config)
+        lines = [line for line in stderr.splitlines() if FINDING in line]
+        self.assertEqual(len(lines), 1, stderr)
+        self.assertIn('would warn in every cycle', lines[0])
+        self.assertTrue(lines[0].startswith('replay: '), lines[0])
+        self.assertEqual(report['cycles'], 2000)  # stdout is still the report alone
+
+    def test_help_goes_to_stdout(self):
+        for flag in ('--help', '-h'):
+            result = rosrun('replay', flag)
+            self.assertEqual(result.returncode, 0, flag)
+            self.assertTrue(result.stdout.startswith('usage: replay'), result.stdout)
+            self.assertIn('--config F', result.stdout)
+            self.assertEqual(result.stderr, '', flag)
+
+    def test_usage_errors_go_to_stderr(self):
+        result = rosrun('replay', '--no-such-option', self.bag)
+        self.assertEqual(result.returncode, 2)
+        self.assertEqual(result.stdout, '')
+        self.assertIn('unknown option --no-such-option', result.stderr)
+        self.assertIn('usage: replay', result.stderr)
+
+
+if __name__ == '__main__':
+    rostest.rosrun(PKG, 'replay_config', ReplayConfigTest)
