@@ -27,6 +27,7 @@
 #include "arm_collision_monitor/core/timing_summary.h"
 #include "arm_collision_monitor/geometry/distance.h"
 #include "arm_collision_monitor/monitor/monitor.h"
+#include "arm_collision_monitor/monitor/monitor_startup.h"
 #include "arm_collision_monitor/ros/joint_state_input.h"
 #include "arm_collision_monitor/scene/workcell.h"
 #include "arm_collision_monitor/scene/workcell_shapes.h"
@@ -507,9 +508,9 @@ void PrintText(const Options& options, const Workcell& wc, const Input& input,
 int Run(const Options& options) {
   // Start-up as in the node (MonitorNode's constructor): the monitor options first, for the
   // default arm tolerance the workcell is loaded with; then the start-up findings.
-  const MonitorOptions monitor_options = LoadMonitorOptions(options.config);
-  const auto workcell = std::make_shared<const Workcell>(
-      LoadWorkcell(options.urdf, options.scene, monitor_options.tolerance_m));
+  const MonitorStartup startup = LoadMonitorStartup(options.urdf, options.scene, options.config);
+  const MonitorOptions& monitor_options = startup.options;
+  const std::shared_ptr<const Workcell>& workcell = startup.workcell;
   for (const std::string& finding : workcell->warnings) {
     std::fprintf(stderr, "replay: %s\n", finding.c_str());
   }
