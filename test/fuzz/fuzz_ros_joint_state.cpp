@@ -1,7 +1,7 @@
 // libFuzzer harness for the run-time tier: a stream of sensor_msgs/JointState messages, as any
 // publisher could send them (random name sets, duplicate and unknown names, mismatched array
 // lengths, NaN/inf/huge positions, stamps in any order, clock jumps), through the node's merge
-// (JointStateInput) and Monitor::Update on the bundled workcell; plus raw joint vectors of any
+// (ToNamedPositions, JointMerger) and Monitor::Update on the bundled workcell; plus raw joint vectors of any
 // size straight into Monitor::Update. Nothing may crash, throw or invoke undefined behaviour,
 // and every report must keep the CycleReport contract (checked below; a violation aborts).
 //
@@ -18,7 +18,7 @@
 #include <fuzzer/FuzzedDataProvider.h>
 
 #include "arm_collision_monitor/monitor/monitor.h"
-#include "arm_collision_monitor/ros/joint_state_input.h"
+#include "arm_collision_monitor/ros/conversions.h"
 #include "arm_collision_monitor/scene/workcell.h"
 
 namespace arm_collision_monitor {
@@ -119,7 +119,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 
   FuzzedDataProvider in(data, size);
   Monitor monitor(fixture.workcell, fixture.options);
-  JointStateInput input(names, kInputTimeout_s);
+  JointMerger input(names, kInputTimeout_s);
   std::uint64_t cycles = 0;
   ros::Time now(1000, 0);
   sensor_msgs::JointState msg;
@@ -186,12 +186,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (in.ConsumeIntegralInRange<int>(0, 15) == 0) {
       Eigen::VectorXd q_copy;
       const Eigen::VectorXd q_before = input.q();
-      input.MergeIntoCopy(msg, &q_copy);
+      input.MergeIntoCopy(ToNamedPositions(msg), &q_copy);
       Require(input.q() == q_before);  // the live state is not touched
       continue;
     }
-    const MergeStatus status = input.Merge(msg, now);
-    if (status != MergeStatus::kAccepted || !input.is_complete() || input.IsStale(now)) {
+    const MergeStatus status = input.Merge(ToNamedPositions(msg), now.toSec());
+    if (status != MergeStatus::kAccepted || !input.is_complete() || input.IsStale(now.toSec())) {
       continue;  // the node requests a stop without a cycle
     }
     // Accepted input is finite: the merge refuses non-finite positions of model joints.
