@@ -15,23 +15,7 @@ constexpr double kNoStamp_s = -std::numeric_limits<double>::infinity();
 }  // namespace
 
 const char* MergeStatusName(MergeStatus status) {
-  switch (status) {
-    case MergeStatus::kAccepted:
-      return "accepted";
-    case MergeStatus::kWrongSize:
-      return "wrong_size";
-    case MergeStatus::kNonFinite:
-      return "non_finite";
-    case MergeStatus::kStale:
-      return "stale";
-    case MergeStatus::kStampBackwards:
-      return "stamp_backwards";
-    case MergeStatus::kNoKnownJoints:
-      return "no_known_joints";
-    case MergeStatus::kFutureStamp:
-      return "future_stamp";
-  }
-  return "unknown";
+  return status == MergeStatus::kAccepted ? "accepted" : SafetyStatusName(ToSafetyStatus(status));
 }
 
 JointMerger::JointMerger(const std::vector<std::string>& joint_names, double input_timeout_s)

@@ -11,35 +11,6 @@ constexpr std::size_t kReasonCapacity = 256;
 
 }  // namespace
 
-const char* SafetyStatusName(SafetyStatus status) {
-  switch (status) {
-    case SafetyStatus::kOk:
-      return "ok";
-    case SafetyStatus::kWrongSize:
-      return "wrong_size";
-    case SafetyStatus::kNonFinite:
-      return "non_finite";
-    case SafetyStatus::kOutOfLimits:
-      return "out_of_limits";
-    case SafetyStatus::kIncomplete:
-      return "incomplete";
-    case SafetyStatus::kStale:
-      return "stale";
-    case SafetyStatus::kStampBackwards:
-      return "stamp_backwards";
-    case SafetyStatus::kNoKnownJoints:
-      return "no_known_joints";
-    case SafetyStatus::kFutureStamp:
-      return "future_stamp";
-  }
-  return "unknown";
-}
-
-SafetyStatus ToSafetyStatus(MergeStatus status) {
-  // Defined with equal values (joint_merger.h).
-  return static_cast<SafetyStatus>(status);
-}
-
 SafetyStatus ToSafetyStatus(InputStatus status) {
   switch (status) {
     case InputStatus::kOk:

@@ -12,21 +12,33 @@
 
 #include <Eigen/Core>
 
+#include "arm_collision_monitor/safety/safety_status.h"
+
 namespace arm_collision_monitor {
 
-/// Outcome of merging one message; the values equal MonitorReport's INPUT_* constants (and
-/// SafetyStatus's), so the node passes them through unchanged.
+/// Outcome of merging one message: a subset of SafetyStatus, with its values (so of
+/// MonitorReport's INPUT_* constants too).
 enum class MergeStatus : std::uint8_t {
-  kAccepted = 0,
-  kWrongSize = 1,       ///< name and position arrays of different lengths, or a name twice
-  kNonFinite = 2,       ///< a NaN or inf position of a model joint
-  kStale = 5,           ///< the message stamp is older than the input timeout
-  kStampBackwards = 6,  ///< older than the last accepted stamp of one of its joints
-  kNoKnownJoints = 7,   ///< names no joint of the model
-  kFutureStamp = 8,     ///< stamped further ahead of now than the input timeout
+  kAccepted = static_cast<std::uint8_t>(SafetyStatus::kOk),
+  /// name and position arrays of different lengths, or a name twice
+  kWrongSize = static_cast<std::uint8_t>(SafetyStatus::kWrongSize),
+  /// a NaN or inf position of a model joint
+  kNonFinite = static_cast<std::uint8_t>(SafetyStatus::kNonFinite),
+  /// the message stamp is older than the input timeout
+  kStale = static_cast<std::uint8_t>(SafetyStatus::kStale),
+  /// older than the last accepted stamp of one of its joints
+  kStampBackwards = static_cast<std::uint8_t>(SafetyStatus::kStampBackwards),
+  /// names no joint of the model
+  kNoKnownJoints = static_cast<std::uint8_t>(SafetyStatus::kNoKnownJoints),
+  /// stamped further ahead of now than the input timeout
+  kFutureStamp = static_cast<std::uint8_t>(SafetyStatus::kFutureStamp),
 };
 
-/// Short lower-case name of a status ("wrong_size", ...), for logs and diagnostics.
+inline SafetyStatus ToSafetyStatus(MergeStatus status) {
+  return static_cast<SafetyStatus>(status);
+}
+
+/// Short lower-case name of a status ("accepted", "wrong_size", ...), for logs and diagnostics.
 const char* MergeStatusName(MergeStatus status);
 
 /// One message's named positions, borrowed from the caller for the duration of a call.
@@ -97,7 +109,6 @@ class JointMerger {
     std::uint32_t unknown_count = 0;
     bool has_duplicate = false;
   };
-  static constexpr int kStatusCount = static_cast<int>(MergeStatus::kFutureStamp) + 1;
   const Layout& FindOrAddLayout(const std::vector<std::string>& names);
   Layout BuildLayout(const std::vector<std::string>& names) const;
   MergeStatus ValidatePositions(const Layout& layout, const NamedPositions& input) const;
@@ -119,7 +130,7 @@ class JointMerger {
   std::uint32_t last_unknown_joints_ = 0;
   std::uint64_t total_unknown_joints_ = 0;
   std::uint64_t refused_ = 0;
-  std::uint64_t refused_by_status_[kStatusCount] = {};
+  std::uint64_t refused_by_status_[kSafetyStatusCount] = {};
 };
 
 }  // namespace arm_collision_monitor

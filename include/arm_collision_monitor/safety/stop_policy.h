@@ -21,28 +21,11 @@
 
 #include "arm_collision_monitor/monitor/monitor.h"
 #include "arm_collision_monitor/safety/joint_merger.h"
+#include "arm_collision_monitor/safety/safety_status.h"
 #include "arm_collision_monitor/scene/workcell.h"
 
 namespace arm_collision_monitor {
 
-/// A cycle's input verdict; the values equal MonitorReport's INPUT_* constants (the node passes
-/// them through), and MergeStatus's where they overlap.
-enum class SafetyStatus : std::uint8_t {
-  kOk = 0,
-  kWrongSize = 1,
-  kNonFinite = 2,
-  kOutOfLimits = 3,
-  kIncomplete = 4,
-  kStale = 5,
-  kStampBackwards = 6,
-  kNoKnownJoints = 7,
-  kFutureStamp = 8,
-};
-constexpr int kSafetyStatusCount = static_cast<int>(SafetyStatus::kFutureStamp) + 1;
-
-/// Short lower-case name ("ok", "wrong_size", ...), for logs, reasons and diagnostics.
-const char* SafetyStatusName(SafetyStatus status);
-SafetyStatus ToSafetyStatus(MergeStatus status);
 SafetyStatus ToSafetyStatus(InputStatus status);
 
 /// What a staleness check found.
