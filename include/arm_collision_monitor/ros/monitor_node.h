@@ -1,6 +1,7 @@
 // The monitor's ROS node: parameters, JointState subscriptions, the per-message (or fixed-rate)
 // cycle, the report / stop / marker / diagnostics publishers and the services. It translates
-// only; everything computed lives in the ROS-free Monitor.
+// only; everything computed or decided lives in the ROS-free core (Monitor, JointMerger,
+// StopPolicy).
 //
 // The stop policy itself (README "Stop policy") is the ROS-free StopPolicy
 // (safety/stop_policy.h); joint merging by name is the ROS-free JointMerger
