@@ -163,7 +163,8 @@ Input ReadBag(const std::string& path, const Workcell& workcell) {
       group_stamp = msg->header.stamp;
       has_group = true;
     }
-    const MergeStatus status = input.Merge(ToNamedPositions(*msg), msg->header.stamp.toSec());
+    const MergeStatus status =
+        input.Merge(ToNamedPositions(*msg), msg->header.stamp.toSec());
     if (status != MergeStatus::kAccepted) ++result.refused[MergeStatusName(status)];
   }
   flush();

@@ -128,7 +128,8 @@ void MarkerBuilder::AddPrimitive(PrimitiveId id, const ros::Time& stamp) {
     const Eigen::Vector3d* ends_W[2] = {&capsule->p0_W, &capsule->p1_W};
     for (int e = 0; e < 2; ++e) {
       visualization_msgs::Marker& sphere =
-          NextMarker(MarkerLayout::kCapsules, base_id + 1 + e, visualization_msgs::Marker::SPHERE, stamp);
+          NextMarker(MarkerLayout::kCapsules, base_id + 1 + e,
+                     visualization_msgs::Marker::SPHERE, stamp);
       if (!is_active || capsule->radius_m <= 0.0) {
         sphere.action = visualization_msgs::Marker::DELETE;
         continue;

@@ -49,10 +49,14 @@ void StopPolicy::Raise(Rank rank, SafetyStatus status, const char* format, ...) 
 
 void StopPolicy::RaiseStale(const JointMerger& input, double now_s) {
   const int oldest = input.OldestJoint();
-  Raise(Rank::kStale, SafetyStatus::kStale,
-        input.IsAwaitingInput(oldest) ? "joint '%s' not received since the clock went back %.3f s ago"
-                                      : "joint '%s' not received for %.3f s",
-        input.joint_name(oldest).c_str(), input.JointAge(oldest, now_s));
+  if (input.IsAwaitingInput(oldest)) {
+    Raise(Rank::kStale, SafetyStatus::kStale,
+          "joint '%s' not received since the clock went back %.3f s ago",
+          input.joint_name(oldest).c_str(), input.JointAge(oldest, now_s));
+  } else {
+    Raise(Rank::kStale, SafetyStatus::kStale, "joint '%s' not received for %.3f s",
+          input.joint_name(oldest).c_str(), input.JointAge(oldest, now_s));
+  }
 }
 
 double StopPolicy::ObserveClock(double now_s) {

@@ -54,7 +54,8 @@ class StopPolicyTest : public ::testing::Test {
   }
   // One cycle the way the node runs it: fresh input at now_s, then `report` (if the input
   // allows running the Monitor).
-  void Cycle(double now_s, const CycleReport& report, MergeStatus pending = MergeStatus::kAccepted) {
+  void Cycle(double now_s, const CycleReport& report,
+             MergeStatus pending = MergeStatus::kAccepted) {
     policy_.ObserveClock(now_s);
     if (policy_.BeginCycle(pending, input_)) {
       policy_.OnCycleReport(report, primitives_, input_, now_s);
