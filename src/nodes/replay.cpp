@@ -1,5 +1,5 @@
 // replay: checks a recorded or planned trajectory offline, without ROS running. Reads a bag of
-// sensor_msgs/JointState (any topics, merged by joint name with the node's JointStateInput) or
+// sensor_msgs/JointState (any topics, merged by joint name with the node's JointMerger) or
 // a joint CSV file (tasks/joint_csv.h), runs the Monitor (or a peer checker) once per cycle and
 // prints the warnings, the cycle times and the broad-phase counters, as text or JSON.
 //
@@ -28,7 +28,7 @@
 #include "arm_collision_monitor/geometry/distance.h"
 #include "arm_collision_monitor/monitor/monitor.h"
 #include "arm_collision_monitor/monitor/monitor_startup.h"
-#include "arm_collision_monitor/ros/joint_state_input.h"
+#include "arm_collision_monitor/ros/conversions.h"
 #include "arm_collision_monitor/scene/workcell.h"
 #include "arm_collision_monitor/scene/workcell_shapes.h"
 #include "arm_collision_monitor/tasks/joint_csv.h"
@@ -149,7 +149,7 @@ Input ReadBag(const std::string& path, const Workcell& workcell) {
   if (view.size() == 0) throw LoadError(path + ": no sensor_msgs/JointState message");
   // The stamp checks compare each message with its own stamp as "now": offline, time is the
   // bag's. The timeout only bounds stamps going backwards, which is still refused.
-  JointStateInput input(workcell.joint_names, 1.0);
+  JointMerger input(workcell.joint_names, 1.0);
   Input result;
   ros::Time group_stamp, first_stamp;
   bool has_group = false;
@@ -172,7 +172,8 @@ Input ReadBag(const std::string& path, const Workcell& workcell) {
       group_stamp = msg->header.stamp;
       has_group = true;
     }
-    const MergeStatus status = input.Merge(*msg, msg->header.stamp);
+    const MergeStatus status =
+        input.Merge(ToNamedPositions(*msg), msg->header.stamp.toSec());
     if (status != MergeStatus::kAccepted) ++result.refused[MergeStatusName(status)];
   }
   flush();

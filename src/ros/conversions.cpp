@@ -34,48 +34,14 @@ void ToWarningMsg(const Workcell& workcell, const Warning& in, CollisionWarning*
   out->severity = WarningSeverity(in.distance_m, in.threshold_m);
 }
 
-std::uint8_t ToInputStatusMsg(InputStatus status) {
-  switch (status) {
-    case InputStatus::kOk:
-      return MonitorReport::INPUT_OK;
-    case InputStatus::kWrongSize:
-      return MonitorReport::INPUT_WRONG_SIZE;
-    case InputStatus::kNonFinite:
-      return MonitorReport::INPUT_NON_FINITE;
-    case InputStatus::kOutOfLimits:
-      return MonitorReport::INPUT_OUT_OF_LIMITS;
-  }
-  return MonitorReport::INPUT_WRONG_SIZE;
-}
-
-std::uint8_t ToInputStatusMsg(MergeStatus status) {
-  // MergeStatus values are defined equal to the message's constants.
+std::uint8_t ToInputStatusMsg(SafetyStatus status) {
+  using S = SafetyStatus;
+  static_assert(static_cast<int>(S::kOutOfLimits) == MonitorReport::INPUT_OUT_OF_LIMITS &&
+                    static_cast<int>(S::kIncomplete) == MonitorReport::INPUT_INCOMPLETE &&
+                    static_cast<int>(S::kStale) == MonitorReport::INPUT_STALE &&
+                    static_cast<int>(S::kFutureStamp) == MonitorReport::INPUT_FUTURE_STAMP,
+                "SafetyStatus mirrors MonitorReport::INPUT_*");
   return static_cast<std::uint8_t>(status);
-}
-
-const char* InputStatusMsgName(std::uint8_t input_status) {
-  switch (input_status) {
-    case MonitorReport::INPUT_OK:
-      return "ok";
-    case MonitorReport::INPUT_WRONG_SIZE:
-      return "wrong_size";
-    case MonitorReport::INPUT_NON_FINITE:
-      return "non_finite";
-    case MonitorReport::INPUT_OUT_OF_LIMITS:
-      return "out_of_limits";
-    case MonitorReport::INPUT_INCOMPLETE:
-      return "incomplete";
-    case MonitorReport::INPUT_STALE:
-      return "stale";
-    case MonitorReport::INPUT_STAMP_BACKWARDS:
-      return "stamp_backwards";
-    case MonitorReport::INPUT_NO_KNOWN_JOINTS:
-      return "no_known_joints";
-    case MonitorReport::INPUT_FUTURE_STAMP:
-      return "future_stamp";
-    default:
-      return "unknown";
-  }
 }
 
 }  // namespace arm_collision_monitor

@@ -18,9 +18,7 @@ constexpr double kTextHeight_m = 0.05;
 constexpr float kCapsuleAlpha = 1.0f;
 constexpr float kBoxAlpha = 0.5f;
 // Marker ids per primitive: a capsule is a cylinder plus two end spheres.
-constexpr int kMarkersPerPrimitive = 3;
-// Pairs drawn "near" when closer than this many times their warning threshold.
-constexpr double kNearFactor = 2.0;
+constexpr int kMarkersPerPrimitive = MarkerLayout::kMarkersPerPrimitive;
 
 std_msgs::ColorRGBA Rgba(const float rgb[3], float alpha) {
   std_msgs::ColorRGBA c;
@@ -53,22 +51,26 @@ void SetPose(const Eigen::Vector3d& p_W, const Eigen::Quaterniond& R_W,
 MarkerBuilder::MarkerBuilder(const Monitor& monitor, std::string frame_id)
     : monitor_(monitor), frame_id_(std::move(frame_id)) {}
 
-void MarkerBuilder::ComputeStates(const std::vector<CollisionWarning>& warnings) {
+void MarkerBuilder::ComputeStates(const CycleReport& report) {
   const Workcell& workcell = monitor_.workcell();
   const std::uint32_t n = monitor_.primitive_count();
   state_.assign(n, PrimitiveState::kClear);
-  // "Near" uses the start-up compatibility matrix: the Monitor exposes no run-time one, so an
-  // attached object or grasp target may show yellow against its link (never red: red comes
-  // from the Monitor's own warnings below).
-  for (std::uint32_t a = 0; a < n; ++a) {
-    if (!monitor_.is_active(a)) {
+  near_box_W_.resize(n);
+  for (PrimitiveId id = 0; id < n; ++id) {
+    if (monitor_.is_active(id)) {
+      near_box_W_[id] =
+          ComputeAabb(monitor_.shape_W(id)).Inflated(kNearFactor * monitor_.tolerance_m(id));
+    }
+  }
+  // Every pair the Monitor checks has a moving primitive: pair each moving one with every
+  // active primitive (a moving partner only once), boxes first.
+  for (PrimitiveId a = 0; a < n; ++a) {
+    if (!monitor_.is_active(a) || workcell.primitives[a].is_static) {
       continue;
     }
-    for (std::uint32_t b = a + 1; b < n; ++b) {
-      const PrimitiveSpec& spec_a = workcell.primitives[a];
-      const PrimitiveSpec& spec_b = workcell.primitives[b];
-      if (!monitor_.is_active(b) || (spec_a.is_static && spec_b.is_static) ||
-          workcell.compatible.AreCompatible(a, b)) {
+    for (PrimitiveId b = 0; b < n; ++b) {
+      if (b == a || !monitor_.is_active(b) || (!workcell.primitives[b].is_static && b < a) ||
+          !near_box_W_[a].Overlaps(near_box_W_[b]) || monitor_.AreCompatibleNow(a, b)) {
         continue;
       }
       const double near_m = kNearFactor * (monitor_.tolerance_m(a) + monitor_.tolerance_m(b));
@@ -78,11 +80,9 @@ void MarkerBuilder::ComputeStates(const std::vector<CollisionWarning>& warnings)
       }
     }
   }
-  for (const CollisionWarning& w : warnings) {
-    if (w.primitive_a < n && w.primitive_b < n) {
-      state_[w.primitive_a] = PrimitiveState::kWarning;
-      state_[w.primitive_b] = PrimitiveState::kWarning;
-    }
+  for (const Warning& w : report.warnings) {
+    state_[w.a] = PrimitiveState::kWarning;
+    state_[w.b] = PrimitiveState::kWarning;
   }
 }
 
@@ -114,7 +114,7 @@ void MarkerBuilder::AddPrimitive(PrimitiveId id, const ros::Time& stamp) {
     const Eigen::Vector3d axis_W = capsule->p1_W - capsule->p0_W;
     const double length_m = axis_W.norm();
     visualization_msgs::Marker& cylinder =
-        NextMarker("capsules", base_id, visualization_msgs::Marker::CYLINDER, stamp);
+        NextMarker(MarkerLayout::kCapsules, base_id, visualization_msgs::Marker::CYLINDER, stamp);
     if (!is_active || length_m <= 0.0) {
       // rviz rejects zero-size markers: a zero-length capsule is its sphere alone.
       cylinder.action = visualization_msgs::Marker::DELETE;
@@ -128,7 +128,8 @@ void MarkerBuilder::AddPrimitive(PrimitiveId id, const ros::Time& stamp) {
     const Eigen::Vector3d* ends_W[2] = {&capsule->p0_W, &capsule->p1_W};
     for (int e = 0; e < 2; ++e) {
       visualization_msgs::Marker& sphere =
-          NextMarker("capsules", base_id + 1 + e, visualization_msgs::Marker::SPHERE, stamp);
+          NextMarker(MarkerLayout::kCapsules, base_id + 1 + e,
+                     visualization_msgs::Marker::SPHERE, stamp);
       if (!is_active || capsule->radius_m <= 0.0) {
         sphere.action = visualization_msgs::Marker::DELETE;
         continue;
@@ -140,7 +141,7 @@ void MarkerBuilder::AddPrimitive(PrimitiveId id, const ros::Time& stamp) {
   } else {
     const Box& box = std::get<Box>(shape);
     visualization_msgs::Marker& cube =
-        NextMarker("boxes", base_id, visualization_msgs::Marker::CUBE, stamp);
+        NextMarker(MarkerLayout::kBoxes, base_id, visualization_msgs::Marker::CUBE, stamp);
     if (!is_active || (box.half_extents_m.array() <= 0.0).any()) {
       cube.action = visualization_msgs::Marker::DELETE;
       return;
@@ -153,28 +154,27 @@ void MarkerBuilder::AddPrimitive(PrimitiveId id, const ros::Time& stamp) {
   }
 }
 
-void MarkerBuilder::AddWarnings(const std::vector<CollisionWarning>& warnings,
-                                const ros::Time& stamp) {
+void MarkerBuilder::AddWarnings(const std::vector<Warning>& warnings, const ros::Time& stamp) {
   visualization_msgs::Marker& lines =
-      NextMarker("closest_points", 0, visualization_msgs::Marker::LINE_LIST, stamp);
+      NextMarker(MarkerLayout::kClosestPoints, 0, visualization_msgs::Marker::LINE_LIST, stamp);
   if (warnings.empty()) {
     lines.action = visualization_msgs::Marker::DELETE;
   } else {
     lines.scale.x = kLineWidth_m;
     lines.color = Rgba(MarkerPalette::kWarningRgb, 1.0f);
-    for (const CollisionWarning& w : warnings) {
-      lines.points.push_back(w.point_a);
-      lines.points.push_back(w.point_b);
+    for (const Warning& w : warnings) {
+      lines.points.push_back(ToPoint(w.p_WA));
+      lines.points.push_back(ToPoint(w.p_WB));
     }
   }
   char text[96];
   for (std::size_t i = 0; i < warnings.size(); ++i) {
-    const CollisionWarning& w = warnings[i];
-    visualization_msgs::Marker& label = NextMarker(
-        "distances", static_cast<int>(i), visualization_msgs::Marker::TEXT_VIEW_FACING, stamp);
-    label.pose.position.x = 0.5 * (w.point_a.x + w.point_b.x);
-    label.pose.position.y = 0.5 * (w.point_a.y + w.point_b.y);
-    label.pose.position.z = 0.5 * (w.point_a.z + w.point_b.z) + kTextHeight_m;
+    const Warning& w = warnings[i];
+    visualization_msgs::Marker& label =
+        NextMarker(MarkerLayout::kDistances, static_cast<int>(i),
+                   visualization_msgs::Marker::TEXT_VIEW_FACING, stamp);
+    label.pose.position =
+        ToPoint(0.5 * (w.p_WA + w.p_WB) + Eigen::Vector3d(0.0, 0.0, kTextHeight_m));
     label.scale.z = kTextHeight_m;
     const float white[3] = {1.0f, 1.0f, 1.0f};
     label.color = Rgba(white, 1.0f);
@@ -183,8 +183,8 @@ void MarkerBuilder::AddWarnings(const std::vector<CollisionWarning>& warnings,
     label.text = text;
   }
   for (std::size_t i = warnings.size(); i < previous_text_count_; ++i) {
-    NextMarker("distances", static_cast<int>(i), visualization_msgs::Marker::TEXT_VIEW_FACING,
-               stamp)
+    NextMarker(MarkerLayout::kDistances, static_cast<int>(i),
+               visualization_msgs::Marker::TEXT_VIEW_FACING, stamp)
         .action = visualization_msgs::Marker::DELETE;
   }
   previous_text_count_ = warnings.size();
@@ -194,13 +194,13 @@ void MarkerBuilder::AddIndexCells(const ros::Time& stamp) {
   monitor_.CollectIndexCells(&cells_);
   // Marker 0: occupied leaves holding only static primitives; marker 1: leaves holding moving
   // ones (where the per-cycle update works). Empty leaves are not drawn.
-  const float static_rgb[3] = {0.6f, 0.6f, 0.6f};
-  const float moving_rgb[3] = {0.1f, 0.6f, 1.0f};
-  for (int k = 0; k < 2; ++k) {
+  for (const int k : {MarkerLayout::kStaticCellsId, MarkerLayout::kMovingCellsId}) {
     visualization_msgs::Marker& wire =
-        NextMarker("index_cells", k, visualization_msgs::Marker::LINE_LIST, stamp);
+        NextMarker(MarkerLayout::kIndexCells, k, visualization_msgs::Marker::LINE_LIST, stamp);
     wire.scale.x = kCellLineWidth_m;
-    wire.color = Rgba(k == 0 ? static_rgb : moving_rgb, 0.8f);
+    wire.color = Rgba(k == MarkerLayout::kStaticCellsId ? MarkerPalette::kStaticCellRgb
+                                                        : MarkerPalette::kMovingCellRgb,
+                      0.8f);
   }
   // Taken after both were added: NextMarker() may reallocate the array.
   visualization_msgs::Marker* wires[2] = {&array_.markers[used_ - 2], &array_.markers[used_ - 1]};
@@ -232,14 +232,14 @@ void MarkerBuilder::AddIndexCells(const ros::Time& stamp) {
   }
 }
 
-const visualization_msgs::MarkerArray& MarkerBuilder::Build(
-    const std::vector<CollisionWarning>& warnings, const ros::Time& stamp) {
+const visualization_msgs::MarkerArray& MarkerBuilder::Build(const ros::Time& stamp) {
+  const CycleReport& report = monitor_.report();
   used_ = 0;
-  ComputeStates(warnings);
+  ComputeStates(report);
   for (PrimitiveId id = 0; id < monitor_.primitive_count(); ++id) {
     AddPrimitive(id, stamp);
   }
-  AddWarnings(warnings, stamp);
+  AddWarnings(report.warnings, stamp);
   AddIndexCells(stamp);
   array_.markers.resize(used_);
   return array_;

@@ -1,16 +1,14 @@
 #include "arm_collision_monitor/ros/monitor_node.h"
 
 #include <algorithm>
-#include <cstdarg>
-#include <cstdio>
-#include <numeric>
-#include <unordered_set>
 
 #include <std_msgs/Bool.h>
 #include <tf2_eigen/tf2_eigen.h>
 #include <visualization_msgs/MarkerArray.h>
 
 #include "arm_collision_monitor/core/load_error.h"
+#include "arm_collision_monitor/monitor/monitor_startup.h"
+#include "arm_collision_monitor/core/timing_summary.h"
 #include "arm_collision_monitor/ros/conversions.h"
 
 namespace arm_collision_monitor {
@@ -85,17 +83,18 @@ NodeOptions LoadNodeOptions(const ros::NodeHandle& private_nh) {
 
 MonitorNode::MonitorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
     : nh_(nh), private_nh_(private_nh), options_(LoadNodeOptions(private_nh)),
-      updater_(nh, private_nh) {
-  const MonitorOptions monitor_options = LoadMonitorOptions(options_.config_path);
-  workcell_ = std::make_shared<const Workcell>(
-      LoadWorkcell(options_.urdf_path, options_.scene_path, monitor_options.tolerance_m));
+      policy_(options_.stop_hold_s), updater_(nh, private_nh) {
+  const MonitorStartup startup =
+      LoadMonitorStartup(options_.urdf_path, options_.scene_path, options_.config_path);
+  const MonitorOptions& monitor_options = startup.options;
+  workcell_ = startup.workcell;
   for (const std::string& finding : workcell_->warnings) {
     ROS_WARN("arm_collision_monitor: %s", finding.c_str());
   }
   monitor_ = std::make_unique<Monitor>(workcell_, monitor_options);
   fixed_frame_ =
       options_.fixed_frame.empty() ? monitor_options.fixed_frame : options_.fixed_frame;
-  input_ = std::make_unique<JointStateInput>(workcell_->joint_names, options_.input_timeout_s);
+  input_ = std::make_unique<JointMerger>(workcell_->joint_names, options_.input_timeout_s);
   markers_ = std::make_unique<MarkerBuilder>(*monitor_, fixed_frame_);
   for (const ObjectSpec& object : workcell_->objects) {
     if (!object.frame.empty()) {
@@ -110,9 +109,6 @@ MonitorNode::MonitorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   cycle_times_s_.reserve(kCycleTimeWindow);
   joint_state_out_.name = workcell_->joint_names;
   joint_state_out_.position.resize(workcell_->joint_names.size());
-  condition_.reserve(256);
-  stop_reason_.reserve(256);
-  stop_reason_ = "waiting for joint states";
 
   report_pub_ = private_nh_.advertise<MonitorReport>("report", options_.queue_size);
   stop_pub_ = private_nh_.advertise<std_msgs::Bool>("stop", 1, /*latch=*/true);
@@ -156,31 +152,19 @@ MonitorNode::MonitorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
 
 MonitorNode::~MonitorNode() = default;
 
-void MonitorNode::SetCondition(const char* format, ...) {
-  char text[256];
-  va_list args;
-  va_start(args, format);
-  std::vsnprintf(text, sizeof(text), format, args);
-  va_end(args);
-  condition_.assign(text);
-}
-
 void MonitorNode::OnJointState(const sensor_msgs::JointState::ConstPtr& msg) {
   const auto start = std::chrono::steady_clock::now();
   const ros::Time now = ClockNow();
   ++messages_;
-  const MergeStatus status = input_->Merge(*msg, now);
+  const MergeStatus status = input_->Merge(ToNamedPositions(*msg), now.toSec());
   if (status == MergeStatus::kAccepted) {
     newest_input_stamp_ = msg->header.stamp.isZero() ? now : msg->header.stamp;
   } else {
-    const std::uint8_t code = ToInputStatusMsg(status);
-    ++refused_;
-    ++refused_by_status_[code];
-    if (pending_status_ == MonitorReport::INPUT_OK) {
-      pending_status_ = code;
+    if (pending_refusal_ == MergeStatus::kAccepted) {
+      pending_refusal_ = status;
     }
     ROS_WARN_THROTTLE(1.0, "arm_collision_monitor: refused a JointState (%s), %lu so far",
-                      MergeStatusName(status), static_cast<unsigned long>(refused_));
+                      MergeStatusName(status), static_cast<unsigned long>(RefusedInputs()));
   }
   report_.unknown_joints = input_->last_unknown_joints();
   has_pending_input_ = true;
@@ -191,21 +175,15 @@ void MonitorNode::OnJointState(const sensor_msgs::JointState::ConstPtr& msg) {
 
 ros::Time MonitorNode::ClockNow() {
   const ros::Time now = ros::Time::now();
-  if (now < last_now_) {
-    OnTimeWentBackwards(now);
+  const double back_s = policy_.ObserveClock(now.toSec());
+  if (back_s > 0.0) {
+    ROS_WARN("arm_collision_monitor: ROS time went back by %.3f s: stop until every joint is "
+             "received again", back_s);
+    input_->OnTimeWentBackwards(now.toSec());
+    // No input stamp until input of the new timeline is accepted.
+    newest_input_stamp_ = ros::Time();
   }
-  last_now_ = now;
   return now;
-}
-
-void MonitorNode::OnTimeWentBackwards(const ros::Time& now) {
-  ROS_WARN("arm_collision_monitor: ROS time went back by %.3f s: stop until every joint is "
-           "received again", last_now_.toSec() - now.toSec());
-  input_->OnTimeWentBackwards(now);
-  // A deadline or stamp from the old timeline would lie in the future: hold from the jump, and
-  // report no input stamp until input of the new timeline is accepted.
-  stop_hold_until_ = now;
-  newest_input_stamp_ = ros::Time();
 }
 
 void MonitorNode::OnCycleTimer(const ros::TimerEvent&) {
@@ -214,7 +192,7 @@ void MonitorNode::OnCycleTimer(const ros::TimerEvent&) {
   }
 }
 
-bool MonitorNode::UpdateBoundObjects() {
+void MonitorNode::UpdateBoundObjects() {
   for (BoundObject& bound : bound_objects_) {
     std::string error;
     try {
@@ -231,57 +209,38 @@ bool MonitorNode::UpdateBoundObjects() {
       error = e.what();
     }
     ++tf_failures_;
-    SetCondition("object '%s': pose from frame '%s' unavailable: %s", bound.object.c_str(),
-                 bound.frame.c_str(), error.c_str());
-    return false;
+    policy_.OnObjectPoseUnavailable(bound.object, bound.frame, error);
+    return;
   }
-  return true;
 }
 
 void MonitorNode::RunCycle(std::chrono::steady_clock::time_point start) {
   const ros::Time now = ClockNow();
+  const bool was_stop = policy_.stop();
   ++cycles_;
-  std::uint8_t status = pending_status_;
-  pending_status_ = MonitorReport::INPUT_OK;
+  const MergeStatus pending = pending_refusal_;
+  pending_refusal_ = MergeStatus::kAccepted;
   has_pending_input_ = false;
-  condition_.clear();
   report_.moved_primitives = 0;
   report_.reinsert_fallbacks = 0;
-  if (status != MonitorReport::INPUT_OK) {
-    SetCondition("input refused: %s", InputStatusMsgName(status));
-  } else if (!input_->is_complete()) {
-    status = MonitorReport::INPUT_INCOMPLETE;
-    SetCondition("joint '%s' never received",
-                 input_->joint_name(input_->FirstMissingJoint()).c_str());
-  } else {
-    const bool is_tf_ok = UpdateBoundObjects();
+  if (policy_.BeginCycle(pending, *input_)) {
+    UpdateBoundObjects();
     const CycleReport& cycle = monitor_->Update(input_->q());
-    if (cycle.input != InputStatus::kOk) {
-      status = ToInputStatusMsg(cycle.input);
-      ++refused_;
-      ++refused_by_status_[status];
-      SetCondition("input refused: %s", InputStatusMsgName(status));
-    } else {
+    if (cycle.input == InputStatus::kOk) {
       FillReportWarnings(cycle, &report_);
       report_.moved_primitives = cycle.moved_primitives;
       report_.reinsert_fallbacks = static_cast<std::uint32_t>(cycle.counters.reinsert_fallbacks);
       reinsert_fallbacks_ += cycle.counters.reinsert_fallbacks;
       outside_world_ += cycle.counters.outside_world;
-      if (input_->IsStale(now)) {
-        status = MonitorReport::INPUT_STALE;
-        SetStaleCondition(now);
-      } else if (is_tf_ok && !report_.warnings.empty()) {
-        const CollisionWarning& w = report_.warnings.front();
-        SetCondition("%zu warning(s), e.g. %s - %s at %.3f m", report_.warnings.size(),
-                     w.primitive_a_name.c_str(), w.primitive_b_name.c_str(), w.distance_m);
-      }
     }
+    policy_.OnCycleReport(cycle, workcell_->primitives, *input_, now.toSec());
   }
+  policy_.EndCycle(now.toSec());
   report_.header.stamp = newest_input_stamp_;
   report_.cycle = cycles_;
-  report_.input_status = status;
-  ApplyStopPolicy(now);
-  report_.refused_inputs = refused_;
+  report_.input_status = ToInputStatusMsg(policy_.status());
+  TakeStopDecision(was_stop);
+  report_.refused_inputs = RefusedInputs();
   const double cycle_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   report_.cycle_time_s = cycle_time_s;
@@ -296,62 +255,48 @@ void MonitorNode::RunCycle(std::chrono::steady_clock::time_point start) {
   PublishVisualisation();
 }
 
-void MonitorNode::ApplyStopPolicy(const ros::Time& now) {
-  const bool was_stop = stop_;
-  if (!condition_.empty()) {
-    stop_ = true;
-    stop_reason_.assign(condition_);
-    stop_hold_until_ = ros::Time(now.toSec() + options_.stop_hold_s);
-  } else if (stop_ && now >= stop_hold_until_) {
-    stop_ = false;
-    stop_reason_.clear();
-  }
-  report_.stop = stop_;
-  report_.stop_reason = stop_reason_;
-  if (stop_ != was_stop) {
-    if (stop_) {
-      ROS_WARN("arm_collision_monitor: stop requested: %s", stop_reason_.c_str());
+void MonitorNode::TakeStopDecision(bool was_stop) {
+  report_.stop = policy_.stop();
+  report_.stop_reason = policy_.reason();
+  if (policy_.stop() != was_stop) {
+    if (policy_.stop()) {
+      ROS_WARN("arm_collision_monitor: stop requested: %s", policy_.reason().c_str());
     } else {
       ROS_INFO("arm_collision_monitor: stop cleared");
     }
   }
 }
 
-void MonitorNode::SetStaleCondition(const ros::Time& now) {
-  const int oldest = input_->OldestJoint();
-  SetCondition(input_->IsAwaitingInput(oldest)
-                   ? "joint '%s' not received since the ROS clock went back %.3f s ago"
-                   : "joint '%s' not received for %.3f s",
-               input_->joint_name(oldest).c_str(), input_->JointAge(oldest, now));
+std::uint64_t MonitorNode::RefusedInputs() const {
+  return input_->refused() + monitor_->refused_inputs();
 }
 
 void MonitorNode::OnStalenessTimer(const ros::TimerEvent&) {
   const ros::Time now = ClockNow();
-  if (!input_->is_complete() || !input_->IsStale(now)) {
-    is_stale_reported_ = false;
+  const bool was_stop = policy_.stop();
+  const StaleCheck check = policy_.CheckStaleness(*input_, now.toSec());
+  if (!check.is_stale) {
     return;
   }
-  SetStaleCondition(now);
-  ApplyStopPolicy(now);
+  TakeStopDecision(was_stop);
   PublishStop(/*only_on_change=*/true);
-  if (!is_stale_reported_) {
+  if (check.is_new_episode) {
     // One report per stale episode (no cycle ran: the cycle number stays).
-    is_stale_reported_ = true;
     ++stale_episodes_;
-    report_.input_status = MonitorReport::INPUT_STALE;
+    report_.input_status = ToInputStatusMsg(policy_.status());
     report_.cycle_time_s = 0.0;
     report_pub_.publish(report_);
   }
 }
 
 void MonitorNode::PublishStop(bool only_on_change) {
-  if (only_on_change && stop_ == published_stop_) {
+  if (only_on_change && policy_.stop() == published_stop_) {
     return;
   }
   std_msgs::Bool msg;
-  msg.data = stop_;
+  msg.data = policy_.stop();
   stop_pub_.publish(msg);
-  published_stop_ = stop_;
+  published_stop_ = policy_.stop();
 }
 
 void MonitorNode::OnStopTimer(const ros::TimerEvent&) { PublishStop(/*only_on_change=*/false); }
@@ -365,7 +310,7 @@ void MonitorNode::PublishVisualisation() {
   if (markers_pub_.getNumSubscribers() > 0) {
     monitor_->SyncShapes();  // the markers read shape_W: at the last good q
     // Stamp 0: rviz draws with the latest transform of the fixed frame.
-    markers_pub_.publish(markers_->Build(report_.warnings, ros::Time(0)));
+    markers_pub_.publish(markers_->Build(ros::Time(0)));
     is_published = true;
   }
   if (joint_states_pub_.getNumSubscribers() > 0 && input_->is_complete()) {
@@ -390,31 +335,28 @@ void MonitorNode::FillReportWarnings(const CycleReport& report, MonitorReport* m
 
 bool MonitorNode::OnCheck(CheckJointState::Request& req, CheckJointState::Response& res) {
   Eigen::VectorXd q;
-  const MergeStatus status = input_->MergeIntoCopy(req.joint_state, &q);
+  const MergeStatus status = input_->MergeIntoCopy(ToNamedPositions(req.joint_state), &q);
   res.report.header.frame_id = fixed_frame_;
   res.report.header.stamp = req.joint_state.header.stamp;
   if (status != MergeStatus::kAccepted) {
     res.success = false;
-    res.report.input_status = ToInputStatusMsg(status);
+    res.report.input_status = ToInputStatusMsg(ToSafetyStatus(status));
     res.report.stop = true;
     res.message = std::string("joint state refused: ") + MergeStatusName(status);
     return true;
   }
-  const std::unordered_set<std::string> requested(req.joint_state.name.begin(),
-                                                  req.joint_state.name.end());
-  const ros::Time now = ClockNow();
-  for (int i = 0; i < input_->joint_count(); ++i) {
-    if (std::isinf(input_->JointAge(i, now)) && requested.count(input_->joint_name(i)) == 0) {
-      res.success = false;
-      res.report.input_status = MonitorReport::INPUT_INCOMPLETE;
-      res.report.stop = true;
-      res.message = "joint '" + input_->joint_name(i) +
-                    "' was never received and is not in the request";
-      return true;
-    }
+  const int missing = input_->FirstMissingJointNotIn(req.joint_state.name);
+  if (missing >= 0) {
+    res.success = false;
+    res.report.input_status = ToInputStatusMsg(SafetyStatus::kIncomplete);
+    res.report.stop = true;
+    res.message = "joint '" + input_->joint_name(missing) +
+                  "' was never received and is not in the request";
+    return true;
   }
   const CycleReport report = monitor_->Check(q);
-  res.report.input_status = ToInputStatusMsg(report.input);
+  const SafetyStatus input_status = ToSafetyStatus(report.input);
+  res.report.input_status = ToInputStatusMsg(input_status);
   res.report.stop = report.stop;
   res.report.moved_primitives = report.moved_primitives;
   res.report.reinsert_fallbacks = static_cast<std::uint32_t>(report.counters.reinsert_fallbacks);
@@ -422,7 +364,7 @@ bool MonitorNode::OnCheck(CheckJointState::Request& req, CheckJointState::Respon
   res.success = report.input == InputStatus::kOk;
   res.message = res.success ? std::to_string(report.warnings.size()) + " warning(s)"
                             : std::string("joint state refused: ") +
-                                  InputStatusMsgName(res.report.input_status);
+                                  SafetyStatusName(input_status);
   return true;
 }
 
@@ -458,17 +400,18 @@ void MonitorNode::DiagnoseInput(diagnostic_updater::DiagnosticStatusWrapper& sta
   const ros::WallTime wall_now = ros::WallTime::now();
   const double elapsed_s = (wall_now - diag_time_).toSec();
   const double rate_hz = elapsed_s > 0.0 ? (messages_ - diag_messages_) / elapsed_s : 0.0;
-  const std::uint64_t refused_recently = refused_ - diag_refused_;
+  const std::uint64_t refused = RefusedInputs();
+  const std::uint64_t refused_recently = refused - diag_refused_;
   diag_time_ = wall_now;
   diag_messages_ = messages_;
-  diag_refused_ = refused_;
-  const ros::Time now = ClockNow();
+  diag_refused_ = refused;
+  const double now_s = ClockNow().toSec();
   const int oldest = input_->OldestJoint();
-  const double oldest_age_s = oldest >= 0 ? input_->JointAge(oldest, now) : 0.0;
+  const double oldest_age_s = oldest >= 0 ? input_->JointAge(oldest, now_s) : 0.0;
   if (!input_->is_complete()) {
     status.summaryf(diagnostic_msgs::DiagnosticStatus::ERROR, "joint '%s' never received",
                     input_->joint_name(input_->FirstMissingJoint()).c_str());
-  } else if (input_->IsStale(now)) {
+  } else if (input_->IsStale(now_s)) {
     status.summaryf(diagnostic_msgs::DiagnosticStatus::ERROR, "stale: '%s' %.3f s old",
                     input_->joint_name(oldest).c_str(), oldest_age_s);
   } else if (refused_recently > 0) {
@@ -484,12 +427,15 @@ void MonitorNode::DiagnoseInput(diagnostic_updater::DiagnosticStatusWrapper& sta
   status.add("topics", topics);
   status.addf("message rate (Hz)", "%.1f", rate_hz);
   status.add("messages", messages_);
-  status.add("refused (total)", refused_);
-  for (std::uint8_t code = MonitorReport::INPUT_WRONG_SIZE;
-       code <= MonitorReport::INPUT_FUTURE_STAMP; ++code) {
-    if (code != MonitorReport::INPUT_INCOMPLETE && code != MonitorReport::INPUT_STALE) {
-      status.add(std::string("refused: ") + InputStatusMsgName(code), refused_by_status_[code]);
-    }
+  status.add("refused (total)", refused);
+  // Out of limits is the Monitor's refusal (it owns the limits); the others are the merger's.
+  for (const MergeStatus code : {MergeStatus::kWrongSize, MergeStatus::kNonFinite}) {
+    status.add(std::string("refused: ") + MergeStatusName(code), input_->refused_with(code));
+  }
+  status.add("refused: out_of_limits", monitor_->refused_inputs());
+  for (const MergeStatus code : {MergeStatus::kStampBackwards, MergeStatus::kNoKnownJoints,
+                                 MergeStatus::kFutureStamp}) {
+    status.add(std::string("refused: ") + MergeStatusName(code), input_->refused_with(code));
   }
   status.add("unknown joint names (total)", input_->total_unknown_joints());
   status.addf("oldest joint age (s)", "%.3f", oldest_age_s);
@@ -499,22 +445,14 @@ void MonitorNode::DiagnoseInput(diagnostic_updater::DiagnosticStatusWrapper& sta
 }
 
 void MonitorNode::DiagnoseCycle(diagnostic_updater::DiagnosticStatusWrapper& status) {
-  std::vector<double> times_s = cycle_times_s_;
-  double mean_s = 0.0, p99_s = 0.0, max_s = 0.0;
-  if (!times_s.empty()) {
-    mean_s = std::accumulate(times_s.begin(), times_s.end(), 0.0) / times_s.size();
-    max_s = *std::max_element(times_s.begin(), times_s.end());
-    const std::size_t k = (times_s.size() * 99) / 100;
-    std::nth_element(times_s.begin(), times_s.begin() + k, times_s.end());
-    p99_s = times_s[k];
-  }
+  const TimingSummary times_s = SummarizeTimings(cycle_times_s_);
   status.summaryf(diagnostic_msgs::DiagnosticStatus::OK, "%lu cycles, mean %.1f us",
-                  static_cast<unsigned long>(cycles_), 1e6 * mean_s);
+                  static_cast<unsigned long>(cycles_), 1e6 * times_s.mean);
   status.add("cycles", cycles_);
-  status.add("cycle time window (cycles)", times_s.size());
-  status.addf("cycle time mean (us)", "%.1f", 1e6 * mean_s);
-  status.addf("cycle time p99 (us)", "%.1f", 1e6 * p99_s);
-  status.addf("cycle time max (us)", "%.1f", 1e6 * max_s);
+  status.add("cycle time window (cycles)", times_s.count);
+  status.addf("cycle time mean (us)", "%.1f", 1e6 * times_s.mean);
+  status.addf("cycle time p99 (us)", "%.1f", 1e6 * times_s.p99);
+  status.addf("cycle time max (us)", "%.1f", 1e6 * times_s.max);
   status.add("broad phase", monitor_->broad_phase_name());
   status.add("re-insert fallbacks (total)", reinsert_fallbacks_);
   status.add("moves outside the world (total)", outside_world_);
@@ -522,13 +460,13 @@ void MonitorNode::DiagnoseCycle(diagnostic_updater::DiagnosticStatusWrapper& sta
 }
 
 void MonitorNode::DiagnoseSafety(diagnostic_updater::DiagnosticStatusWrapper& status) {
-  if (stop_) {
+  if (policy_.stop()) {
     status.summaryf(diagnostic_msgs::DiagnosticStatus::WARN, "stop requested: %s",
-                    stop_reason_.c_str());
+                    policy_.reason().c_str());
   } else {
     status.summary(diagnostic_msgs::DiagnosticStatus::OK, "clear");
   }
-  status.add("stop", stop_ ? "true" : "false");
+  status.add("stop", policy_.stop() ? "true" : "false");
   status.add("warnings", report_.warnings.size());
   status.add("fixed frame", fixed_frame_);
 }

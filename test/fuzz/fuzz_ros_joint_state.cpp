@@ -1,9 +1,11 @@
 // libFuzzer harness for the run-time tier: a stream of sensor_msgs/JointState messages, as any
 // publisher could send them (random name sets, duplicate and unknown names, mismatched array
-// lengths, NaN/inf/huge positions, stamps in any order, clock jumps), through the node's merge
-// (JointStateInput) and Monitor::Update on the bundled workcell; plus raw joint vectors of any
-// size straight into Monitor::Update. Nothing may crash, throw or invoke undefined behaviour,
-// and every report must keep the CycleReport contract (checked below; a violation aborts).
+// lengths, NaN/inf/huge positions, stamps in any order, clock jumps), through the node's path:
+// ToNamedPositions, JointMerger, Monitor::Update and the StopPolicy, on the bundled workcell;
+// plus raw joint vectors of any size straight into Monitor::Update. Nothing may crash, throw or
+// invoke undefined behaviour, every report must keep the CycleReport contract, and the policy
+// must request a stop whenever the input or the report calls for one (checked below; a
+// violation aborts).
 //
 // Seeds: test/fuzz/corpus/ros_joint_state/ (any bytes are a valid input).
 #include <algorithm>
@@ -18,7 +20,8 @@
 #include <fuzzer/FuzzedDataProvider.h>
 
 #include "arm_collision_monitor/monitor/monitor.h"
-#include "arm_collision_monitor/ros/joint_state_input.h"
+#include "arm_collision_monitor/ros/conversions.h"
+#include "arm_collision_monitor/safety/stop_policy.h"
 #include "arm_collision_monitor/scene/workcell.h"
 
 namespace arm_collision_monitor {
@@ -27,8 +30,9 @@ namespace {
 // Bounds that keep one input fast: messages per input, entries per message.
 constexpr int kMaxMessages = 64;
 constexpr int kMaxEntries = 24;
-// The node's default input timeout (config/monitor.yaml; only the order of magnitude matters).
+// The node's default input timeout and stop hold (only the order of magnitude matters).
 constexpr double kInputTimeout_s = 0.5;
+constexpr double kStopHold_s = 0.25;
 
 struct Fixture {
   std::shared_ptr<const Workcell> workcell;
@@ -119,7 +123,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 
   FuzzedDataProvider in(data, size);
   Monitor monitor(fixture.workcell, fixture.options);
-  JointStateInput input(names, kInputTimeout_s);
+  JointMerger input(names, kInputTimeout_s);
+  StopPolicy policy(kStopHold_s);
   std::uint64_t cycles = 0;
   ros::Time now(1000, 0);
   sensor_msgs::JointState msg;
@@ -131,6 +136,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                                               : 0.05);
     now_s = std::max(now_s, 1.0);
     now = ros::Time(now_s);
+    if (policy.ObserveClock(now.toSec()) > 0.0) {  // as the node's ClockNow()
+      input.OnTimeWentBackwards(now.toSec());
+      // Every joint received before the jump awaits input of the new timeline: stale.
+      if (input.OldestJoint() >= 0) Require(input.IsStale(now.toSec()));
+    }
 
     if (in.ConsumeIntegralInRange<int>(0, 9) == 0) {
       // A raw joint vector of any size straight into the Monitor (its own validation).
@@ -186,19 +196,25 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (in.ConsumeIntegralInRange<int>(0, 15) == 0) {
       Eigen::VectorXd q_copy;
       const Eigen::VectorXd q_before = input.q();
-      input.MergeIntoCopy(msg, &q_copy);
+      input.MergeIntoCopy(ToNamedPositions(msg), &q_copy);
       Require(input.q() == q_before);  // the live state is not touched
       continue;
     }
-    const MergeStatus status = input.Merge(msg, now);
-    if (status != MergeStatus::kAccepted || !input.is_complete() || input.IsStale(now)) {
-      continue;  // the node requests a stop without a cycle
+    const MergeStatus status = input.Merge(ToNamedPositions(msg), now.toSec());
+    if (!policy.BeginCycle(status, input)) {
+      // Refused or incomplete: the node requests a stop without running the Monitor.
+      policy.EndCycle(now.toSec());
+      Require(policy.stop() && policy.status() != SafetyStatus::kOk && !policy.reason().empty());
+      continue;
     }
     // Accepted input is finite: the merge refuses non-finite positions of model joints.
     Require(input.q().allFinite());
     const CycleReport& report = monitor.Update(input.q());
     CheckReport(report, ++cycles);
     Require(report.input != InputStatus::kNonFinite && report.input != InputStatus::kWrongSize);
+    policy.OnCycleReport(report, fixture.workcell->primitives, input, now.toSec());
+    policy.EndCycle(now.toSec());
+    if (report.stop || input.IsStale(now.toSec())) Require(policy.stop());
     if (!fixture.options.speed_scaled_tolerance && in.ConsumeIntegralInRange<int>(0, 7) == 0) {
       CheckAgainstCheck(monitor, input.q());
     }

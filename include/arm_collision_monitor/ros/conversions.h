@@ -1,11 +1,14 @@
-// Translation between the core's cycle results and the package's messages.
+// Translation between the package's messages and the core's plain types.
 #pragma once
 
 #include <cstdint>
 
+#include <sensor_msgs/JointState.h>
+
 #include "arm_collision_monitor/CollisionWarning.h"
 #include "arm_collision_monitor/monitor/monitor.h"
-#include "arm_collision_monitor/ros/joint_state_input.h"
+#include "arm_collision_monitor/safety/joint_merger.h"
+#include "arm_collision_monitor/safety/stop_policy.h"
 
 namespace arm_collision_monitor {
 
@@ -16,11 +19,13 @@ void ToWarningMsg(const Workcell& workcell, const Warning& in, CollisionWarning*
 /// Severity per CollisionWarning's SEVERITY_* constants.
 std::uint8_t WarningSeverity(double distance_m, double threshold_m);
 
-/// MonitorReport::INPUT_* for a status of the core or of the input merger.
-std::uint8_t ToInputStatusMsg(InputStatus status);
-std::uint8_t ToInputStatusMsg(MergeStatus status);
+/// MonitorReport::INPUT_* for a safety status (equal values).
+std::uint8_t ToInputStatusMsg(SafetyStatus status);
 
-/// Short lower-case name of a MonitorReport::INPUT_* value, for logs and diagnostics.
-const char* InputStatusMsgName(std::uint8_t input_status);
+/// The merger's view of `msg` (borrows its arrays: valid while `msg` lives); the stamp in
+/// seconds, 0 when unset.
+inline NamedPositions ToNamedPositions(const sensor_msgs::JointState& msg) {
+  return NamedPositions{msg.name, msg.position, msg.header.stamp.toSec()};
+}
 
 }  // namespace arm_collision_monitor

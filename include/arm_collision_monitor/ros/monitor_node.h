@@ -1,20 +1,11 @@
 // The monitor's ROS node: parameters, JointState subscriptions, the per-message (or fixed-rate)
 // cycle, the report / stop / marker / diagnostics publishers and the services. It translates
-// only; everything computed lives in the ROS-free Monitor.
+// only; everything computed or decided lives in the ROS-free core (Monitor, JointMerger,
+// StopPolicy).
 //
-// Stop policy (also in README): a stop is requested (~stop = true, report.stop = true) while any
-// of these holds, evaluated every cycle and by the staleness timer:
-//   - some model joint was never received (start-up: stop until the model is complete);
-//   - the last input message was refused (wrong size, non-finite, out of limits, stamp going
-//     backwards, stamped further than the input timeout from now, no model joint);
-//   - some joint's newest input was received longer ago than ~input_timeout_s;
-//   - the ROS clock went back (simulated time: a looping bag, a simulator reset) and some
-//     joint has not been received since (every time-derived state is re-based on the jump);
-//   - a frame-bound scene object's TF frame could not be looked up;
-//   - the last cycle reported a warning.
-// It is cleared by the first cycle on accepted, complete, fresh input with no warning that
-// comes at least ~stop_hold_s after the condition was last seen (hold: no chattering on a
-// pair hovering at its threshold).
+// The stop policy itself (README "Stop policy") is the ROS-free StopPolicy
+// (safety/stop_policy.h); joint merging by name is the ROS-free JointMerger
+// (safety/joint_merger.h). The node feeds them ROS time in seconds and publishes their decision.
 #pragma once
 
 #include <chrono>
@@ -35,8 +26,9 @@
 #include "arm_collision_monitor/MonitorReport.h"
 #include "arm_collision_monitor/SetGraspTarget.h"
 #include "arm_collision_monitor/monitor/monitor.h"
-#include "arm_collision_monitor/ros/joint_state_input.h"
 #include "arm_collision_monitor/ros/marker_builder.h"
+#include "arm_collision_monitor/safety/joint_merger.h"
+#include "arm_collision_monitor/safety/stop_policy.h"
 
 namespace arm_collision_monitor {
 
@@ -73,24 +65,18 @@ class MonitorNode {
   void OnStopTimer(const ros::TimerEvent& event);
   void OnDiagnosticsTimer(const ros::WallTimerEvent& event);
 
-  /// ros::Time::now(), after calling OnTimeWentBackwards() if it is earlier than the last
-  /// time read. Every time-derived state is compared with this, never with a raw now().
+  /// ros::Time::now(), after re-basing every time-derived state if it is earlier than the last
+  /// time read (only with simulated time: a looping bag, a simulator reset). Every time-derived
+  /// state is compared with this, never with a raw now().
   ros::Time ClockNow();
-  /// Re-bases all time-derived state on `now` at once after the ROS clock went back (only with
-  /// simulated time: it is monotonic under wall time): the hold deadline, the input stamps and
-  /// receipt times; a stop is requested until every joint is received again.
-  void OnTimeWentBackwards(const ros::Time& now);
   /// One monitor cycle on the merged input; `start` is when the triggering message was taken.
   void RunCycle(std::chrono::steady_clock::time_point start);
-  /// Moves frame-bound objects to their TF pose; false (and sets the stop reason) on failure.
-  bool UpdateBoundObjects();
-  /// Sets this cycle's stop condition (printf-style; no allocation once condition_ has grown).
-  void SetCondition(const char* format, ...) __attribute__((format(printf, 2, 3)));
-  /// Sets the stale-input condition, naming the joint silent longest (or since the jump back).
-  void SetStaleCondition(const ros::Time& now);
-  /// Applies the stop policy to this cycle's condition_ (empty: none) and fills the report's
-  /// stop fields.
-  void ApplyStopPolicy(const ros::Time& now);
+  /// Moves frame-bound objects to their TF pose; tells the stop policy of the first failure.
+  void UpdateBoundObjects();
+  /// Copies the policy's decision into the report and logs a change of the stop.
+  void TakeStopDecision(bool was_stop);
+  /// Messages refused so far: by the merger, and by the Monitor (out of limits).
+  std::uint64_t RefusedInputs() const;
   void PublishStop(bool only_on_change);
   void PublishVisualisation();
   void FillReportWarnings(const CycleReport& report, MonitorReport* msg) const;
@@ -109,7 +95,8 @@ class MonitorNode {
   NodeOptions options_;
   std::shared_ptr<const Workcell> workcell_;
   std::unique_ptr<Monitor> monitor_;
-  std::unique_ptr<JointStateInput> input_;
+  std::unique_ptr<JointMerger> input_;
+  StopPolicy policy_;
   std::unique_ptr<MarkerBuilder> markers_;
   std::string fixed_frame_;
 
@@ -134,23 +121,15 @@ class MonitorNode {
   // --- per-cycle state (preallocated) ------------------------------------------------------
   MonitorReport report_;               ///< reused every cycle
   sensor_msgs::JointState joint_state_out_;
-  std::uint8_t pending_status_ = MonitorReport::INPUT_OK;  ///< first refusal since last cycle
+  MergeStatus pending_refusal_ = MergeStatus::kAccepted;  ///< first refusal since last cycle
   ros::Time newest_input_stamp_;
-  ros::Time last_now_;                 ///< the latest ClockNow()
   bool has_pending_input_ = false;
-  std::string condition_;              ///< this cycle's stop condition ("" none)
-  bool stop_ = true;                   ///< requested; true until the model is complete
-  std::string stop_reason_;            ///< the condition that requested the current stop
   bool published_stop_ = true;
-  ros::Time stop_hold_until_;
-  bool is_stale_reported_ = false;
   ros::WallTime last_visualisation_;
 
   // --- statistics for diagnostics ------------------------------------------------------------
   std::uint64_t cycles_ = 0;
   std::uint64_t messages_ = 0;
-  std::uint64_t refused_ = 0;
-  std::uint64_t refused_by_status_[MonitorReport::INPUT_FUTURE_STAMP + 1] = {};
   std::uint64_t reinsert_fallbacks_ = 0;
   std::uint64_t outside_world_ = 0;
   std::uint64_t tf_failures_ = 0;
@@ -158,7 +137,7 @@ class MonitorNode {
   std::vector<double> cycle_times_s_;  ///< ring buffer of the latest cycle times
   std::size_t cycle_time_next_ = 0;
   std::uint64_t diag_messages_ = 0;    ///< messages_ at the previous diagnostics update
-  std::uint64_t diag_refused_ = 0;     ///< refused_ at the previous diagnostics update
+  std::uint64_t diag_refused_ = 0;     ///< RefusedInputs() at the previous diagnostics update
   ros::WallTime diag_time_;
 };
 

@@ -1,5 +1,6 @@
-#include "arm_collision_monitor/ros/joint_state_input.h"
+#include "arm_collision_monitor/safety/joint_merger.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -9,36 +10,20 @@ namespace {
 // Distinct name layouts kept (one per publisher in practice: two arms, maybe a combined
 // topic). Past this, the oldest entry is replaced, so memory stays bounded whatever arrives.
 constexpr std::size_t kMaxLayouts = 16;
+constexpr double kNoStamp_s = -std::numeric_limits<double>::infinity();
 
 }  // namespace
 
 const char* MergeStatusName(MergeStatus status) {
-  switch (status) {
-    case MergeStatus::kAccepted:
-      return "accepted";
-    case MergeStatus::kWrongSize:
-      return "wrong_size";
-    case MergeStatus::kNonFinite:
-      return "non_finite";
-    case MergeStatus::kStale:
-      return "stale";
-    case MergeStatus::kStampBackwards:
-      return "stamp_backwards";
-    case MergeStatus::kNoKnownJoints:
-      return "no_known_joints";
-    case MergeStatus::kFutureStamp:
-      return "future_stamp";
-  }
-  return "unknown";
+  return status == MergeStatus::kAccepted ? "accepted" : SafetyStatusName(ToSafetyStatus(status));
 }
 
-JointStateInput::JointStateInput(const std::vector<std::string>& joint_names,
-                                 double input_timeout_s)
+JointMerger::JointMerger(const std::vector<std::string>& joint_names, double input_timeout_s)
     : joint_names_(joint_names),
       input_timeout_s_(input_timeout_s),
       q_(Eigen::VectorXd::Zero(static_cast<Eigen::Index>(joint_names.size()))),
-      stamp_(joint_names.size()),
-      received_(joint_names.size()),
+      stamp_s_(joint_names.size(), kNoStamp_s),
+      received_s_(joint_names.size(), 0.0),
       is_received_(joint_names.size(), false),
       missing_count_(static_cast<int>(joint_names.size())),
       is_awaiting_(joint_names.size(), false) {
@@ -48,7 +33,7 @@ JointStateInput::JointStateInput(const std::vector<std::string>& joint_names,
   layouts_.reserve(kMaxLayouts);
 }
 
-JointStateInput::Layout JointStateInput::BuildLayout(const std::vector<std::string>& names) const {
+JointMerger::Layout JointMerger::BuildLayout(const std::vector<std::string>& names) const {
   Layout layout;
   layout.names = names;
   layout.q_index.assign(names.size(), -1);
@@ -68,8 +53,7 @@ JointStateInput::Layout JointStateInput::BuildLayout(const std::vector<std::stri
   return layout;
 }
 
-const JointStateInput::Layout& JointStateInput::FindOrAddLayout(
-    const std::vector<std::string>& names) {
+const JointMerger::Layout& JointMerger::FindOrAddLayout(const std::vector<std::string>& names) {
   // The steady state: the same publisher layouts over and over, compared without allocating.
   if (last_layout_ < layouts_.size() && layouts_[last_layout_].names == names) {
     return layouts_[last_layout_];
@@ -90,34 +74,25 @@ const JointStateInput::Layout& JointStateInput::FindOrAddLayout(
   return layouts_[last_layout_];
 }
 
-MergeStatus JointStateInput::ValidatePositions(const Layout& layout,
-                                               const sensor_msgs::JointState& msg) const {
-  if (msg.position.size() != msg.name.size() || layout.has_duplicate) {
+MergeStatus JointMerger::ValidatePositions(const Layout& layout,
+                                           const NamedPositions& input) const {
+  if (input.positions.size() != input.names.size() || layout.has_duplicate) {
     return MergeStatus::kWrongSize;
   }
   if (layout.unknown_count == layout.names.size()) {
     return MergeStatus::kNoKnownJoints;
   }
   for (std::size_t k = 0; k < layout.q_index.size(); ++k) {
-    if (layout.q_index[k] >= 0 && !std::isfinite(msg.position[k])) {
+    if (layout.q_index[k] >= 0 && !std::isfinite(input.positions[k])) {
       return MergeStatus::kNonFinite;
     }
   }
   return MergeStatus::kAccepted;
 }
 
-MergeStatus JointStateInput::Merge(const sensor_msgs::JointState& msg, const ros::Time& now) {
-  const Layout& layout = FindOrAddLayout(msg.name);
-  last_unknown_joints_ = layout.unknown_count;
-  total_unknown_joints_ += layout.unknown_count;
-  const MergeStatus status = ValidatePositions(layout, msg);
-  if (status != MergeStatus::kAccepted) {
-    return status;
-  }
-  const ros::Time stamp = msg.header.stamp.isZero() ? now : msg.header.stamp;
-  // Seconds as doubles: ros::Time arithmetic throws on out-of-range stamps, and a message's
-  // stamp is untrusted input.
-  const double age_s = now.toSec() - stamp.toSec();
+MergeStatus JointMerger::ValidateStamp(const Layout& layout, double stamp_s,
+                                       double now_s) const {
+  const double age_s = now_s - stamp_s;
   if (age_s > input_timeout_s_) {
     return MergeStatus::kStale;
   }
@@ -125,9 +100,30 @@ MergeStatus JointStateInput::Merge(const sensor_msgs::JointState& msg, const ros
     return MergeStatus::kFutureStamp;
   }
   for (const int i : layout.q_index) {
-    if (i >= 0 && stamp < stamp_[i]) {
+    if (i >= 0 && stamp_s < stamp_s_[i]) {
       return MergeStatus::kStampBackwards;
     }
+  }
+  return MergeStatus::kAccepted;
+}
+
+MergeStatus JointMerger::Refuse(MergeStatus status) {
+  ++refused_;
+  ++refused_by_status_[static_cast<int>(status)];
+  return status;
+}
+
+MergeStatus JointMerger::Merge(const NamedPositions& input, double now_s) {
+  const Layout& layout = FindOrAddLayout(input.names);
+  last_unknown_joints_ = layout.unknown_count;
+  total_unknown_joints_ += layout.unknown_count;
+  const double stamp_s = input.stamp_s == 0.0 ? now_s : input.stamp_s;
+  MergeStatus status = ValidatePositions(layout, input);
+  if (status == MergeStatus::kAccepted) {
+    status = ValidateStamp(layout, stamp_s, now_s);
+  }
+  if (status != MergeStatus::kAccepted) {
+    return Refuse(status);
   }
   for (std::size_t k = 0; k < layout.q_index.size(); ++k) {
     const int i = layout.q_index[k];
@@ -142,40 +138,39 @@ MergeStatus JointStateInput::Merge(const sensor_msgs::JointState& msg, const ros
       is_awaiting_[i] = false;
       --awaiting_count_;
     }
-    q_[i] = msg.position[k];
-    stamp_[i] = stamp;
-    received_[i] = now;
+    q_[i] = input.positions[k];
+    stamp_s_[i] = stamp_s;
+    received_s_[i] = now_s;
   }
   return MergeStatus::kAccepted;
 }
 
-MergeStatus JointStateInput::MergeIntoCopy(const sensor_msgs::JointState& msg,
-                                           Eigen::VectorXd* q) const {
-  const Layout layout = BuildLayout(msg.name);
-  const MergeStatus status = ValidatePositions(layout, msg);
+MergeStatus JointMerger::MergeIntoCopy(const NamedPositions& input, Eigen::VectorXd* q) const {
+  const Layout layout = BuildLayout(input.names);
+  const MergeStatus status = ValidatePositions(layout, input);
   if (status != MergeStatus::kAccepted) {
     return status;
   }
   *q = q_;
   for (std::size_t k = 0; k < layout.q_index.size(); ++k) {
     if (layout.q_index[k] >= 0) {
-      (*q)[layout.q_index[k]] = msg.position[k];
+      (*q)[layout.q_index[k]] = input.positions[k];
     }
   }
   return MergeStatus::kAccepted;
 }
 
-void JointStateInput::OnTimeWentBackwards(const ros::Time& now) {
+void JointMerger::OnTimeWentBackwards(double now_s) {
   awaiting_count_ = 0;
-  for (std::size_t i = 0; i < stamp_.size(); ++i) {
-    stamp_[i] = ros::Time();
-    received_[i] = now;
+  for (std::size_t i = 0; i < stamp_s_.size(); ++i) {
+    stamp_s_[i] = kNoStamp_s;
+    received_s_[i] = now_s;
     is_awaiting_[i] = is_received_[i];
     awaiting_count_ += is_received_[i] ? 1 : 0;
   }
 }
 
-int JointStateInput::FirstMissingJoint() const {
+int JointMerger::FirstMissingJoint() const {
   for (std::size_t i = 0; i < is_received_.size(); ++i) {
     if (!is_received_[i]) {
       return static_cast<int>(i);
@@ -184,32 +179,46 @@ int JointStateInput::FirstMissingJoint() const {
   return -1;
 }
 
-int JointStateInput::OldestJoint() const {
+int JointMerger::FirstMissingJointNotIn(const std::vector<std::string>& names) const {
+  for (std::size_t i = 0; i < is_received_.size(); ++i) {
+    if (!is_received_[i] &&
+        std::find(names.begin(), names.end(), joint_names_[i]) == names.end()) {
+      return static_cast<int>(i);
+    }
+  }
+  return -1;
+}
+
+int JointMerger::OldestJoint() const {
   int oldest = -1;
-  for (std::size_t i = 0; i < received_.size(); ++i) {
+  for (std::size_t i = 0; i < received_s_.size(); ++i) {
     if (awaiting_count_ > 0 && !is_awaiting_[i]) {
       continue;  // a joint silent since the clock went back is the one to name
     }
-    if (is_received_[i] && (oldest < 0 || received_[i] < received_[oldest])) {
+    if (is_received_[i] && (oldest < 0 || received_s_[i] < received_s_[oldest])) {
       oldest = static_cast<int>(i);
     }
   }
   return oldest;
 }
 
-double JointStateInput::JointAge(int index, const ros::Time& now) const {
+double JointMerger::JointAge(int index, double now_s) const {
   if (!is_received_[index]) {
     return std::numeric_limits<double>::infinity();
   }
-  return now.toSec() - received_[index].toSec();
+  return now_s - received_s_[index];
 }
 
-bool JointStateInput::IsStale(const ros::Time& now) const {
+bool JointMerger::IsStale(double now_s) const {
   if (awaiting_count_ > 0) {
     return true;
   }
   const int oldest = OldestJoint();
-  return oldest >= 0 && JointAge(oldest, now) > input_timeout_s_;
+  return oldest >= 0 && JointAge(oldest, now_s) > input_timeout_s_;
+}
+
+std::uint64_t JointMerger::refused_with(MergeStatus status) const {
+  return refused_by_status_[static_cast<int>(status)];
 }
 
 }  // namespace arm_collision_monitor

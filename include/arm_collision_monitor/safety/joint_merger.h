@@ -1,0 +1,136 @@
+// Merges named joint positions from any number of sources (one per arm, or one combined) into
+// the Monitor's joint vector q, ordered as Workcell::joint_names. ROS-free: the node translates
+// each sensor_msgs/JointState into a NamedPositions and the ROS time into seconds. Each message
+// is validated before q is touched, so a refused message leaves the merged state as it was.
+// Joint limits are not checked here: the Monitor owns them (with their margin) and refuses q.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "arm_collision_monitor/safety/safety_status.h"
+
+namespace arm_collision_monitor {
+
+/// Outcome of merging one message: a subset of SafetyStatus, with its values (so of
+/// MonitorReport's INPUT_* constants too).
+enum class MergeStatus : std::uint8_t {
+  kAccepted = static_cast<std::uint8_t>(SafetyStatus::kOk),
+  /// name and position arrays of different lengths, or a name twice
+  kWrongSize = static_cast<std::uint8_t>(SafetyStatus::kWrongSize),
+  /// a NaN or inf position of a model joint
+  kNonFinite = static_cast<std::uint8_t>(SafetyStatus::kNonFinite),
+  /// the message stamp is older than the input timeout
+  kStale = static_cast<std::uint8_t>(SafetyStatus::kStale),
+  /// older than the last accepted stamp of one of its joints
+  kStampBackwards = static_cast<std::uint8_t>(SafetyStatus::kStampBackwards),
+  /// names no joint of the model
+  kNoKnownJoints = static_cast<std::uint8_t>(SafetyStatus::kNoKnownJoints),
+  /// stamped further ahead of now than the input timeout
+  kFutureStamp = static_cast<std::uint8_t>(SafetyStatus::kFutureStamp),
+};
+
+inline SafetyStatus ToSafetyStatus(MergeStatus status) {
+  return static_cast<SafetyStatus>(status);
+}
+
+/// Short lower-case name of a status ("accepted", "wrong_size", ...), for logs and diagnostics.
+const char* MergeStatusName(MergeStatus status);
+
+/// One message's named positions, borrowed from the caller for the duration of a call.
+struct NamedPositions {
+  const std::vector<std::string>& names;
+  const std::vector<double>& positions;  ///< rad or m, one per name
+  double stamp_s = 0.0;                  ///< source time stamp, s; 0 = unknown (receipt time)
+};
+
+class JointMerger {
+ public:
+  /// `joint_names`: the model's joints in q order. `input_timeout_s` > 0: a joint whose newest
+  /// accepted message was received longer ago is stale; a message stamped longer ago is
+  /// refused as stale, one stamped further ahead as from the future (one such message would
+  /// otherwise make every later one look "backwards").
+  JointMerger(const std::vector<std::string>& joint_names, double input_timeout_s);
+
+  /// Validates `input` (received at `now_s`, the same clock as its stamps) and, if it is
+  /// acceptable, writes its model joints into q. Names that are not model joints are ignored and
+  /// counted. Allocates only when a new name layout is seen.
+  MergeStatus Merge(const NamedPositions& input, double now_s);
+
+  /// Merges `input` into a copy of the current q (for generate-and-test queries); the live state
+  /// is not touched. Same validation as Merge() except the stamp checks.
+  MergeStatus MergeIntoCopy(const NamedPositions& input, Eigen::VectorXd* q) const;
+
+  /// Re-bases every time-derived state on `now_s` after the clock jumped back (simulated time:
+  /// a looping bag, a simulator reset): the per-joint stamps are forgotten, each joint's receipt
+  /// time becomes `now_s` (so its age counts from the jump, never from a time now in the
+  /// future), and every received joint awaits a message accepted after the jump. A joint
+  /// awaiting input counts as stale (IsStale()) until then. Allocation-free.
+  void OnTimeWentBackwards(double now_s);
+
+  const Eigen::VectorXd& q() const { return q_; }
+  /// Every model joint has been received at least once.
+  bool is_complete() const { return missing_count_ == 0; }
+  /// Index of the first model joint never received, -1 when complete.
+  int FirstMissingJoint() const;
+  /// Index of the first model joint never received and not in `names`, -1 if none: a request
+  /// naming it could complete the model (the check service's rule).
+  int FirstMissingJointNotIn(const std::vector<std::string>& names) const;
+  /// Index of a joint awaiting input since the clock went back if any, else of the joint
+  /// received longest ago (largest age); -1 before any input.
+  int OldestJoint() const;
+  /// True when joint `index` has received nothing since the clock last went back.
+  bool IsAwaitingInput(int index) const { return is_awaiting_[index]; }
+  /// Seconds since joint `index` was last received at time `now_s` (inf if never).
+  double JointAge(int index, double now_s) const;
+  /// True when some joint is stale at time `now_s`, or awaits input since the clock went back
+  /// (never received does not count: see is_complete()).
+  bool IsStale(double now_s) const;
+  const std::string& joint_name(int index) const { return joint_names_[index]; }
+  int joint_count() const { return static_cast<int>(joint_names_.size()); }
+  double input_timeout_s() const { return input_timeout_s_; }
+
+  /// Unknown names in the last merged message, and in all messages so far.
+  std::uint32_t last_unknown_joints() const { return last_unknown_joints_; }
+  std::uint64_t total_unknown_joints() const { return total_unknown_joints_; }
+  /// Messages refused by Merge() so far, in all and per status (indexed by its value).
+  std::uint64_t refused() const { return refused_; }
+  std::uint64_t refused_with(MergeStatus status) const;
+
+ private:
+  /// A name layout seen on the input: the model index of each entry of names (-1 unknown).
+  struct Layout {
+    std::vector<std::string> names;
+    std::vector<int> q_index;
+    std::uint32_t unknown_count = 0;
+    bool has_duplicate = false;
+  };
+  const Layout& FindOrAddLayout(const std::vector<std::string>& names);
+  Layout BuildLayout(const std::vector<std::string>& names) const;
+  MergeStatus ValidatePositions(const Layout& layout, const NamedPositions& input) const;
+  MergeStatus ValidateStamp(const Layout& layout, double stamp_s, double now_s) const;
+  MergeStatus Refuse(MergeStatus status);
+
+  std::vector<std::string> joint_names_;
+  std::unordered_map<std::string, int> index_of_name_;
+  double input_timeout_s_;
+  Eigen::VectorXd q_;
+  std::vector<double> stamp_s_;     ///< newest accepted stamp per joint (-inf: none)
+  std::vector<double> received_s_;  ///< receipt time of that message per joint
+  std::vector<bool> is_received_;
+  int missing_count_;
+  std::vector<bool> is_awaiting_;   ///< received before the clock went back, not since
+  int awaiting_count_ = 0;
+  std::vector<Layout> layouts_;     ///< small: one per distinct publisher layout
+  std::size_t last_layout_ = 0;
+  std::uint32_t last_unknown_joints_ = 0;
+  std::uint64_t total_unknown_joints_ = 0;
+  std::uint64_t refused_ = 0;
+  std::uint64_t refused_by_status_[kSafetyStatusCount] = {};
+};
+
+}  // namespace arm_collision_monitor

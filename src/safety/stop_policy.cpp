@@ -1,0 +1,139 @@
+#include "arm_collision_monitor/safety/stop_policy.h"
+
+#include <cstdarg>
+#include <cstdio>
+
+namespace arm_collision_monitor {
+namespace {
+
+// Longest reason kept (characters): names of two primitives or a joint and a TF error fit.
+constexpr std::size_t kReasonCapacity = 256;
+
+}  // namespace
+
+SafetyStatus ToSafetyStatus(InputStatus status) {
+  switch (status) {
+    case InputStatus::kOk:
+      return SafetyStatus::kOk;
+    case InputStatus::kWrongSize:
+      return SafetyStatus::kWrongSize;
+    case InputStatus::kNonFinite:
+      return SafetyStatus::kNonFinite;
+    case InputStatus::kOutOfLimits:
+      return SafetyStatus::kOutOfLimits;
+  }
+  return SafetyStatus::kWrongSize;
+}
+
+StopPolicy::StopPolicy(double stop_hold_s) : stop_hold_s_(stop_hold_s) {
+  reason_.reserve(kReasonCapacity);
+  condition_.reserve(kReasonCapacity);
+  reason_ = "waiting for joint states";
+}
+
+void StopPolicy::Raise(Rank rank, SafetyStatus status, const char* format, ...) {
+  if (rank <= rank_) {
+    return;
+  }
+  char text[kReasonCapacity];
+  va_list args;
+  va_start(args, format);
+  std::vsnprintf(text, sizeof(text), format, args);
+  va_end(args);
+  condition_.assign(text);
+  rank_ = rank;
+  if (status != SafetyStatus::kOk) {
+    status_ = status;
+  }
+}
+
+void StopPolicy::RaiseStale(const JointMerger& input, double now_s) {
+  const int oldest = input.OldestJoint();
+  if (input.IsAwaitingInput(oldest)) {
+    Raise(Rank::kStale, SafetyStatus::kStale,
+          "joint '%s' not received since the clock went back %.3f s ago",
+          input.joint_name(oldest).c_str(), input.JointAge(oldest, now_s));
+  } else {
+    Raise(Rank::kStale, SafetyStatus::kStale, "joint '%s' not received for %.3f s",
+          input.joint_name(oldest).c_str(), input.JointAge(oldest, now_s));
+  }
+}
+
+double StopPolicy::ObserveClock(double now_s) {
+  const double back_s = now_s < last_now_s_ ? last_now_s_ - now_s : 0.0;
+  if (back_s > 0.0) {
+    hold_until_s_ = now_s;
+  }
+  last_now_s_ = now_s;
+  return back_s;
+}
+
+bool StopPolicy::BeginCycle(MergeStatus pending, const JointMerger& input) {
+  condition_.clear();
+  rank_ = Rank::kNone;
+  status_ = SafetyStatus::kOk;
+  if (pending != MergeStatus::kAccepted) {
+    Raise(Rank::kRefused, ToSafetyStatus(pending), "input refused: %s", MergeStatusName(pending));
+    return false;
+  }
+  if (!input.is_complete()) {
+    Raise(Rank::kRefused, SafetyStatus::kIncomplete, "joint '%s' never received",
+          input.joint_name(input.FirstMissingJoint()).c_str());
+    return false;
+  }
+  return true;
+}
+
+void StopPolicy::OnObjectPoseUnavailable(const std::string& object, const std::string& frame,
+                                         const std::string& error) {
+  Raise(Rank::kObjectPose, SafetyStatus::kOk, "object '%s': pose from frame '%s' unavailable: %s",
+        object.c_str(), frame.c_str(), error.c_str());
+}
+
+void StopPolicy::OnCycleReport(const CycleReport& report,
+                               const std::vector<PrimitiveSpec>& primitives,
+                               const JointMerger& input, double now_s) {
+  if (report.input != InputStatus::kOk) {
+    const SafetyStatus status = ToSafetyStatus(report.input);
+    Raise(Rank::kRefused, status, "input refused: %s", SafetyStatusName(status));
+    return;
+  }
+  if (input.IsStale(now_s)) {
+    RaiseStale(input, now_s);
+  } else if (!report.warnings.empty()) {
+    const Warning& w = report.warnings.front();
+    Raise(Rank::kWarning, SafetyStatus::kOk, "%zu warning(s), e.g. %s - %s at %.3f m",
+          report.warnings.size(), primitives[w.a].name.c_str(), primitives[w.b].name.c_str(),
+          w.distance_m);
+  }
+}
+
+void StopPolicy::EndCycle(double now_s) {
+  if (rank_ != Rank::kNone) {
+    stop_ = true;
+    reason_.assign(condition_);
+    hold_until_s_ = now_s + stop_hold_s_;
+  } else if (stop_ && now_s >= hold_until_s_) {
+    stop_ = false;
+    reason_.clear();
+  }
+}
+
+StaleCheck StopPolicy::CheckStaleness(const JointMerger& input, double now_s) {
+  StaleCheck check;
+  if (!input.is_complete() || !input.IsStale(now_s)) {
+    is_stale_episode_ = false;
+    return check;
+  }
+  condition_.clear();
+  rank_ = Rank::kNone;
+  status_ = SafetyStatus::kOk;
+  RaiseStale(input, now_s);
+  EndCycle(now_s);
+  check.is_stale = true;
+  check.is_new_episode = !is_stale_episode_;
+  is_stale_episode_ = true;
+  return check;
+}
+
+}  // namespace arm_collision_monitor

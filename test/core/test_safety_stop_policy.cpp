@@ -1,0 +1,226 @@
+// StopPolicy with plain numbers: every stop reason (start-up, refused input, incomplete model,
+// monitor refusal, stale joints, clock going back, object pose, warnings), their ranking within
+// a cycle, and each one's clearing only after the hold.
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "arm_collision_monitor/safety/stop_policy.h"
+
+namespace arm_collision_monitor {
+namespace {
+
+constexpr double kHold_s = 0.25;
+constexpr double kTimeout_s = 0.5;
+constexpr double kStep_s = 0.0625;
+const std::vector<std::string> kJoints = {"a1", "b1"};
+
+std::vector<PrimitiveSpec> Primitives() {
+  std::vector<PrimitiveSpec> primitives(2);
+  primitives[0].name = "left_link3";
+  primitives[1].name = "right_link4";
+  return primitives;
+}
+
+CycleReport CleanReport() {
+  CycleReport report;
+  report.stop = false;
+  return report;
+}
+
+CycleReport WarningReport() {
+  CycleReport report;
+  Warning w;
+  w.a = 0;
+  w.b = 1;
+  w.distance_m = 0.012;
+  w.threshold_m = 0.061;
+  report.warnings.push_back(w);
+  report.stop = true;
+  return report;
+}
+
+class StopPolicyTest : public ::testing::Test {
+ protected:
+  // Both joints received at now_s.
+  void Feed(double now_s) {
+    for (const std::string& name : kJoints) {
+      const std::vector<std::string> names = {name};
+      const std::vector<double> positions = {0.0};
+      ASSERT_EQ(input_.Merge(NamedPositions{names, positions, now_s}, now_s),
+                MergeStatus::kAccepted);
+    }
+  }
+  // One cycle the way the node runs it: fresh input at now_s, then `report` (if the input
+  // allows running the Monitor).
+  void Cycle(double now_s, const CycleReport& report,
+             MergeStatus pending = MergeStatus::kAccepted) {
+    policy_.ObserveClock(now_s);
+    if (policy_.BeginCycle(pending, input_)) {
+      policy_.OnCycleReport(report, primitives_, input_, now_s);
+    }
+    policy_.EndCycle(now_s);
+  }
+  // Clean cycles every kStep_s from t0_s: the time of the first one that clears the stop.
+  // Times in the tests are multiples of kStep_s, exact in binary, so that "at least the hold
+  // after" is tested at its boundary without rounding.
+  double ClearedAt(double t0_s) {
+    for (double t = t0_s; t < t0_s + 10.0 * kHold_s; t += kStep_s) {
+      Feed(t);
+      Cycle(t, CleanReport());
+      if (!policy_.stop()) return t;
+    }
+    return -1.0;
+  }
+
+  JointMerger input_{kJoints, kTimeout_s};
+  StopPolicy policy_{kHold_s};
+  std::vector<PrimitiveSpec> primitives_ = Primitives();
+};
+
+TEST_F(StopPolicyTest, StartsStoppedUntilTheModelIsComplete) {
+  EXPECT_TRUE(policy_.stop());
+  EXPECT_EQ(policy_.reason(), "waiting for joint states");
+  const std::vector<std::string> names = {"a1"};
+  const std::vector<double> positions = {0.0};
+  ASSERT_EQ(input_.Merge(NamedPositions{names, positions, 1.0}, 1.0), MergeStatus::kAccepted);
+  Cycle(1.0, CleanReport());
+  EXPECT_TRUE(policy_.stop());
+  EXPECT_EQ(policy_.status(), SafetyStatus::kIncomplete);
+  EXPECT_EQ(policy_.reason(), "joint 'b1' never received");
+  // Complete: cleared only after the hold from the last incomplete cycle.
+  EXPECT_EQ(ClearedAt(1.0 + kStep_s), 1.0 + kHold_s);
+  EXPECT_EQ(policy_.status(), SafetyStatus::kOk);
+  EXPECT_EQ(policy_.reason(), "");
+}
+
+TEST_F(StopPolicyTest, CleanStartClearsAtOnce) {
+  EXPECT_EQ(ClearedAt(1.0), 1.0);  // no condition was ever seen: no hold pending
+}
+
+TEST_F(StopPolicyTest, RefusedInputStopsAndHolds) {
+  ASSERT_GE(ClearedAt(1.0), 0.0);
+  for (const MergeStatus refused :
+       {MergeStatus::kWrongSize, MergeStatus::kNonFinite, MergeStatus::kStale,
+        MergeStatus::kStampBackwards, MergeStatus::kNoKnownJoints, MergeStatus::kFutureStamp}) {
+    const double t = 10.0 * static_cast<double>(refused);
+    Feed(t);
+    Cycle(t, CleanReport(), refused);
+    EXPECT_TRUE(policy_.stop());
+    EXPECT_EQ(static_cast<int>(policy_.status()), static_cast<int>(refused));
+    EXPECT_EQ(policy_.reason(), std::string("input refused: ") + MergeStatusName(refused));
+    EXPECT_DOUBLE_EQ(policy_.hold_until_s(), t + kHold_s);
+    // Still stopped just before the hold ends, cleared by the first clean cycle after it.
+    Feed(t + kHold_s - kStep_s);
+    Cycle(t + kHold_s - kStep_s, CleanReport());
+    EXPECT_TRUE(policy_.stop());
+    EXPECT_EQ(policy_.status(), SafetyStatus::kOk);
+    Feed(t + kHold_s);
+    Cycle(t + kHold_s, CleanReport());
+    EXPECT_FALSE(policy_.stop());
+  }
+}
+
+TEST_F(StopPolicyTest, MonitorRefusalStops) {
+  ASSERT_GE(ClearedAt(1.0), 0.0);
+  Feed(2.0);
+  CycleReport refused = CleanReport();
+  refused.input = InputStatus::kOutOfLimits;
+  Cycle(2.0, refused);
+  EXPECT_TRUE(policy_.stop());
+  EXPECT_EQ(policy_.status(), SafetyStatus::kOutOfLimits);
+  EXPECT_EQ(policy_.reason(), "input refused: out_of_limits");
+  EXPECT_EQ(ClearedAt(2.0 + kStep_s), 2.0 + kHold_s);
+}
+
+TEST_F(StopPolicyTest, WarningStopsAndClearsAfterTheHold) {
+  ASSERT_GE(ClearedAt(1.0), 0.0);
+  Feed(2.0);
+  Cycle(2.0, WarningReport());
+  EXPECT_TRUE(policy_.stop());
+  EXPECT_EQ(policy_.status(), SafetyStatus::kOk);
+  EXPECT_EQ(policy_.reason(), "1 warning(s), e.g. left_link3 - right_link4 at 0.012 m");
+  // A warning seen again renews the hold.
+  Feed(2.125);
+  Cycle(2.125, WarningReport());
+  EXPECT_TRUE(policy_.stop());
+  EXPECT_EQ(ClearedAt(2.125 + kStep_s), 2.125 + kHold_s);
+}
+
+TEST_F(StopPolicyTest, ObjectPoseFailureStops) {
+  ASSERT_GE(ClearedAt(1.0), 0.0);
+  Feed(2.0);
+  policy_.ObserveClock(2.0);
+  ASSERT_TRUE(policy_.BeginCycle(MergeStatus::kAccepted, input_));
+  policy_.OnObjectPoseUnavailable("camera", "camera_link", "no transform");
+  // Outranks a warning of the same cycle.
+  policy_.OnCycleReport(WarningReport(), primitives_, input_, 2.0);
+  policy_.EndCycle(2.0);
+  EXPECT_TRUE(policy_.stop());
+  EXPECT_EQ(policy_.reason(),
+            "object 'camera': pose from frame 'camera_link' unavailable: no transform");
+  EXPECT_EQ(ClearedAt(2.0 + kStep_s), 2.0 + kHold_s);
+}
+
+TEST_F(StopPolicyTest, StaleJointStopsInCycleAndOnTheTimer) {
+  ASSERT_GE(ClearedAt(1.0), 0.0);  // both joints received at 1.0
+  // Only a1 keeps coming: b1 is stale past 1.0 + timeout; a cycle then stops, and the stale
+  // condition outranks a warning.
+  const std::vector<std::string> names = {"a1"};
+  const std::vector<double> positions = {0.0};
+  const double t = 1.0 + kTimeout_s + kStep_s;
+  ASSERT_EQ(input_.Merge(NamedPositions{names, positions, t}, t), MergeStatus::kAccepted);
+  Cycle(t, WarningReport());
+  EXPECT_TRUE(policy_.stop());
+  EXPECT_EQ(policy_.status(), SafetyStatus::kStale);
+  EXPECT_EQ(policy_.reason().rfind("joint 'b1' not received for 0.56", 0), 0u)
+      << policy_.reason();
+  // The timer: a new episode once, then the same episode.
+  const StaleCheck first = policy_.CheckStaleness(input_, t + 2 * kStep_s);
+  EXPECT_TRUE(first.is_stale);
+  EXPECT_TRUE(first.is_new_episode);
+  const StaleCheck second = policy_.CheckStaleness(input_, t + 3 * kStep_s);
+  EXPECT_TRUE(second.is_stale);
+  EXPECT_FALSE(second.is_new_episode);
+  EXPECT_EQ(policy_.hold_until_s(), t + 3 * kStep_s + kHold_s);
+  // Fresh again: the timer sees no staleness and ends the episode; clears after the hold.
+  Feed(t + 4 * kStep_s);
+  EXPECT_FALSE(policy_.CheckStaleness(input_, t + 4 * kStep_s).is_stale);
+  EXPECT_EQ(ClearedAt(t + 4 * kStep_s), t + 3 * kStep_s + kHold_s);
+  Feed(t + 2.0);
+  EXPECT_FALSE(policy_.CheckStaleness(input_, t + 2.0).is_stale);
+  // Silence without cycles: only the timer notices, and a new episode starts.
+  const StaleCheck again = policy_.CheckStaleness(input_, t + 2.0 + kTimeout_s + kStep_s);
+  EXPECT_TRUE(again.is_stale);
+  EXPECT_TRUE(again.is_new_episode);
+  EXPECT_TRUE(policy_.stop());
+}
+
+TEST_F(StopPolicyTest, IncompleteModelIsNotStaleOnTheTimer) {
+  EXPECT_FALSE(policy_.CheckStaleness(input_, 100.0).is_stale);
+  EXPECT_TRUE(policy_.stop());  // still the start-up stop
+}
+
+TEST_F(StopPolicyTest, ClockGoingBackStopsUntilEveryJointIsReceivedAgain) {
+  ASSERT_GE(ClearedAt(100.0), 0.0);
+  EXPECT_EQ(policy_.ObserveClock(100.0 + kStep_s), 0.0);
+  // A looping bag: time back to 5 s.
+  const double back_s = policy_.ObserveClock(5.0);
+  EXPECT_EQ(back_s, 100.0 + kStep_s - 5.0);
+  input_.OnTimeWentBackwards(5.0);
+  EXPECT_EQ(policy_.hold_until_s(), 5.0);  // no deadline of the old timeline
+  // a1 comes back, b1 not yet: stale, naming b1 as silent since the jump.
+  const std::vector<std::string> names = {"a1"};
+  const std::vector<double> positions = {0.0};
+  ASSERT_EQ(input_.Merge(NamedPositions{names, positions, 5.125}, 5.125), MergeStatus::kAccepted);
+  Cycle(5.125, CleanReport());
+  EXPECT_TRUE(policy_.stop());
+  EXPECT_EQ(policy_.status(), SafetyStatus::kStale);
+  EXPECT_EQ(policy_.reason(), "joint 'b1' not received since the clock went back 0.125 s ago");
+  // Every joint received again: clears after the hold from that last stale cycle.
+  EXPECT_EQ(ClearedAt(5.125 + kStep_s), 5.125 + kHold_s);
+}
+
+}  // namespace
+}  // namespace arm_collision_monitor
