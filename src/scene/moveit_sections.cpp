@@ -221,9 +221,11 @@ PlanningSceneInput ReadPlanningScene(const YAML::Node& scene, const std::string&
   for (const std::string& notice : input.file.notices) {
     workcell->warnings.push_back(input.path + ": " + notice);
   }
-  for (const SceneCollisionObject& object : input.file.objects) {
-    AddCollisionObject(object, input.path, options, tolerance_m, names, workcell);
-  }
+  ReadNamedFile(where, [&] {
+    for (const SceneCollisionObject& object : input.file.objects) {
+      AddCollisionObject(object, input.path, options, tolerance_m, names, workcell);
+    }
+  });
   return input;
 }
 

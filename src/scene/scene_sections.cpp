@@ -107,7 +107,7 @@ Shape ReadObjectShape(const YAML::Node& entry, const Where& item, const Eigen::I
   const auto it = std::find_if(types.begin(), types.end(),
                                [&](const ObjectType& t) { return type == t.name; });
   if (it == types.end()) {
-    item.Fail(entry["type"], "unknown type" + Quoted(type) +
+    item.Child("type").Fail(entry["type"], "unknown type" + Quoted(type) +
                                  " (expected box, sphere, cylinder or capsule)");
   }
   for (const char* key : {"size_m", "radius_m", "length_m"}) {
@@ -116,7 +116,7 @@ Shape ReadObjectShape(const YAML::Node& entry, const Where& item, const Eigen::I
                            }) != it->size_keys.end();
     if (is_needed && !entry[key]) item.Fail(entry, "a " + type + " needs " + key);
     if (!is_needed && entry[key]) {
-      item.Fail(entry[key], std::string(key) + " is not a size of a " + type);
+      item.Child(key).Fail(entry[key], std::string(key) + " is not a size of a " + type);
     }
   }
   if (type == "box") {
