@@ -18,14 +18,12 @@
 #include "arm_collision_monitor/geometry/distance.h"
 #include "arm_collision_monitor/scene/workcell.h"
 #include "load_error_expect.h"
+#include "test_scene_util.h"
 
 namespace arm_collision_monitor {
 namespace {
 
-const std::string kSource = ACM_SOURCE_DIR;
-const std::string kUrdf = kSource + "/urdf/workcell.urdf";
-const std::string kScene = kSource + "/config/scene.yaml";
-const std::string kMoveit = kSource + "/test/data/moveit/";
+const std::string kMoveit = kData + "moveit/";
 const std::string kSrdf = kMoveit + "workcell.srdf";
 const std::string kPlanningScene = kMoveit + "workcell_scene.yaml";
 
@@ -61,14 +59,6 @@ PairSet Difference(const PairSet& more, const PairSet& fewer) {
   std::set_difference(more.begin(), more.end(), fewer.begin(), fewer.end(),
                       std::inserter(diff, diff.end()));
   return diff;
-}
-
-bool Compatible(const Workcell& w, const std::string& a, const std::string& b) {
-  const int ia = w.FindPrimitive(a);
-  const int ib = w.FindPrimitive(b);
-  EXPECT_GE(ia, 0) << a;
-  EXPECT_GE(ib, 0) << b;
-  return ia >= 0 && ib >= 0 && w.compatible.AreCompatible(ia, ib);
 }
 
 // The warning containing `part`, "" if none.
