@@ -1,6 +1,7 @@
 #include "scene_sections.h"
 
 #include <algorithm>
+#include <cctype>
 
 #include "urdf_collision.h"
 
