@@ -101,7 +101,9 @@ struct Workcell {
 /// Loads a URDF and a scene YAML file into a workcell (format: comment block at the top of
 /// config/scene.yaml), parsing the URDF once for its kinematics and its collision geometry.
 /// `default_arm_tolerance_m` (MonitorOptions::tolerance_m) applies to arms whose scene entry
-/// gives no tolerance_m. Throws LoadError naming the file, the element and what was expected.
+/// gives no tolerance_m. The files the scene names (srdf:, planning_scene:) are read too, their
+/// relative paths resolved against the scene file's folder. Throws LoadError naming the file,
+/// the element and what was expected.
 Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_path,
                       double default_arm_tolerance_m = kDefaultArmTolerance_m);
 
