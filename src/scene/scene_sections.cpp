@@ -1,5 +1,8 @@
 #include "scene_sections.h"
 
+#include <algorithm>
+#include <cctype>
+
 #include "urdf_collision.h"
 
 namespace arm_collision_monitor {
@@ -83,19 +86,72 @@ Eigen::Isometry3d ReadObjectPose(const YAML::Node& entry, const Where& item) {
   return PoseFromXyzRpy(xyz_m, rpy);
 }
 
-// One objects: entry: the object and its box primitive, appended to `workcell`.
-void ReadObject(const YAML::Node& entry, Where item, NameRegistry* names, Workcell* workcell) {
+// The keys each objects: type takes for its size, the first the type's default.
+struct ObjectType {
+  const char* name;
+  std::vector<const char*> size_keys;
+};
+const std::vector<ObjectType>& ObjectTypes() {
+  static const std::vector<ObjectType> types = {{"box", {"size_m"}},
+                                                {"sphere", {"radius_m"}},
+                                                {"cylinder", {"radius_m", "length_m"}},
+                                                {"capsule", {"radius_m", "length_m"}}};
+  return types;
+}
+
+// The solid of an objects: entry (type: box unless given), in its frame O at X_WO, in W.
+Shape ReadObjectShape(const YAML::Node& entry, const Where& item, const Eigen::Isometry3d& X_WO,
+                      CylinderModel cylinder_model) {
+  std::string type = "box";
+  yaml_fields::ReadIfPresent(entry, "type", item, yaml_fields::ReadName, &type);
+  const auto& types = ObjectTypes();
+  const auto it = std::find_if(types.begin(), types.end(),
+                               [&](const ObjectType& t) { return type == t.name; });
+  if (it == types.end()) {
+    item.Child("type").Fail(entry["type"], "unknown type" + Quoted(type) +
+                                 " (expected box, sphere, cylinder or capsule)");
+  }
+  for (const char* key : {"size_m", "radius_m", "length_m"}) {
+    const bool is_needed = std::find_if(it->size_keys.begin(), it->size_keys.end(), [&](auto k) {
+                             return std::string(k) == key;
+                           }) != it->size_keys.end();
+    if (is_needed && !entry[key]) item.Fail(entry, "a " + type + " needs " + key);
+    if (!is_needed && entry[key]) {
+      item.Child(key).Fail(entry[key], std::string(key) + " is not a size of a " + type);
+    }
+  }
+  if (type == "box") {
+    const Eigen::Vector3d size_m = yaml_fields::ReadVector3(entry["size_m"], item.Child("size_m"));
+    if ((size_m.array() <= 0.0).any()) {
+      item.Fail(entry["size_m"], "size_m must be 3 numbers > 0 (full edge lengths, metres)");
+    }
+    return Box{X_WO, 0.5 * size_m};
+  }
+  const double radius_m =
+      yaml_fields::ReadPositiveDouble(entry["radius_m"], item.Child("radius_m"));
+  if (type == "sphere") return SphereShape_L(X_WO, radius_m);
+  if (type == "cylinder") {
+    const double length_m =
+        yaml_fields::ReadPositiveDouble(entry["length_m"], item.Child("length_m"));
+    return CylinderShape_L(X_WO, radius_m, length_m, cylinder_model);
+  }
+  return CapsuleShape_L(X_WO, radius_m,
+                        yaml_fields::ReadNonNegativeDouble(entry["length_m"],
+                                                           item.Child("length_m")));
+}
+
+// One objects: entry: the object and its primitive, appended to `workcell`.
+void ReadObject(const YAML::Node& entry, Where item, const ShapeOptions& options,
+                NameRegistry* names, Workcell* workcell) {
   yaml_fields::RequireMap(entry, item);
-  yaml_fields::CheckKeys(entry, {"name", "size_m", "pose", "tolerance_m", "attachable", "frame"},
+  yaml_fields::CheckKeys(entry,
+                         {"name", "type", "size_m", "radius_m", "length_m", "pose", "tolerance_m",
+                          "attachable", "frame"},
                          item);
   ObjectSpec object;
   object.name = yaml_fields::ReadName(entry["name"], item.Child("name"));
   item.element += Quoted(object.name);
   names->Claim(object.name, item.file + ": " + item.element);
-  const Eigen::Vector3d size_m = yaml_fields::ReadVector3(entry["size_m"], item.Child("size_m"));
-  if ((size_m.array() <= 0.0).any()) {
-    item.Fail(entry["size_m"], "size_m must be 3 numbers > 0 (full edge lengths, metres)");
-  }
   object.X_WO_start = ReadObjectPose(entry, item);
   yaml_fields::ReadIfPresent(entry, "attachable", item, yaml_fields::ReadBool,
                              &object.is_attachable);
@@ -103,13 +159,13 @@ void ReadObject(const YAML::Node& entry, Where item, NameRegistry* names, Workce
   PrimitiveSpec p;
   p.name = object.name;
   p.owner = object.name;
-  p.shape_L = Box{object.X_WO_start, 0.5 * size_m};
+  p.shape_L = ReadObjectShape(entry, item, object.X_WO_start, options.cylinder_model);
   yaml_fields::ReadIfPresent(entry, "tolerance_m", item, yaml_fields::ReadNonNegativeDouble,
                              &p.tolerance_m);
   p.is_static = !object.is_attachable && object.frame.empty();
   p.object_index = static_cast<int>(workcell->objects.size());
   if (!workcell->world_W.Contains(ComputeAabb(p.shape_L))) {
-    item.Fail(entry, "the box is not inside the world cube (expected it within world:)");
+    item.Fail(entry, "the object is not inside the world cube (expected it within world:)");
   }
   object.primitive = static_cast<PrimitiveId>(workcell->primitives.size());
   workcell->primitives.push_back(p);
@@ -162,7 +218,16 @@ void ReadVariant(const YAML::Node& entry, Where item, const LinkSettings& links,
   workcell->variants.push_back(variant);
 }
 
-// The primitives a compatible: name stands for: a link's, an object's or the primitive itself.
+}  // namespace
+
+void NameRegistry::Claim(const std::string& name, const std::string& origin) {
+  const auto [it, inserted] = origin_of_name_.emplace(name, origin);
+  if (!inserted) {
+    throw LoadError(origin + ": duplicate name" + Quoted(name) + " (already used by " + it->second +
+                    "; expected unique link, object and primitive names)");
+  }
+}
+
 std::vector<PrimitiveId> ResolveNames(const Workcell& w, const std::string& name) {
   std::vector<PrimitiveId> ids;
   const int link = w.kinematics.FindLink(name);
@@ -175,21 +240,46 @@ std::vector<PrimitiveId> ResolveNames(const Workcell& w, const std::string& name
   return ids;
 }
 
-}  // namespace
-
-void NameRegistry::Claim(const std::string& name, const std::string& origin) {
-  const auto [it, inserted] = origin_of_name_.emplace(name, origin);
-  if (!inserted) {
-    throw LoadError(origin + ": duplicate name" + Quoted(name) + " (already used by " + it->second +
-                    "; expected unique link, object and primitive names)");
-  }
-}
-
 void CheckSectionNames(const YAML::Node& scene, const std::string& scene_path) {
   yaml_fields::CheckKeys(scene,
                          {"world", "arms", "links", "joint_limits", "objects", "compatible",
-                          "grasp_targets", "variants"},
+                          "grasp_targets", "variants", "cylinder_model", "mesh_fit", "srdf",
+                          "planning_scene", "planning_scene_acm", "planning_scene_tolerance_m"},
                          Where{scene_path, ""});
+}
+
+ShapeOptions ReadShapeOptions(const YAML::Node& scene, const std::string& scene_path) {
+  ShapeOptions options;
+  std::string cylinder = "capsule";
+  yaml_fields::ReadIfPresent(scene, "cylinder_model", Where{scene_path, ""}, yaml_fields::ReadName,
+                             &cylinder);
+  if (cylinder == "box") {
+    options.cylinder_model = CylinderModel::kBox;
+  } else if (cylinder != "capsule") {
+    Where{scene_path, "cylinder_model"}.Fail(scene["cylinder_model"],
+                                             "expected capsule or box, got" + Quoted(cylinder));
+  }
+  std::string fit = "capsule";
+  const Where fit_where{scene_path, "mesh_fit"};
+  yaml_fields::ReadIfPresent(scene, "mesh_fit", Where{scene_path, ""}, yaml_fields::ReadName, &fit);
+  const std::string chain = "capsules:";
+  if (fit == "box") {
+    options.mesh_fit.kind = MeshFitKind::kOrientedBox;
+  } else if (fit.compare(0, chain.size(), chain) == 0) {
+    options.mesh_fit.kind = MeshFitKind::kCapsuleChain;
+    const std::string count = fit.substr(chain.size());
+    const bool is_digits = !count.empty() && count.size() <= 3 &&
+                           std::all_of(count.begin(), count.end(), ::isdigit);
+    options.mesh_fit.capsule_count = is_digits ? std::stoi(count) : 0;
+    if (options.mesh_fit.capsule_count < 1 || options.mesh_fit.capsule_count > kMeshFitMaxCapsules) {
+      fit_where.Fail(scene["mesh_fit"], "capsules:K needs K in [1, " +
+                                            std::to_string(kMeshFitMaxCapsules) + "], got" +
+                                            Quoted(fit));
+    }
+  } else if (fit != "capsule") {
+    fit_where.Fail(scene["mesh_fit"], "expected capsule, capsules:K or box, got" + Quoted(fit));
+  }
+  return options;
 }
 
 Aabb ReadWorld(const YAML::Node& node, const Where& where) {
@@ -331,12 +421,13 @@ std::vector<PrimitiveSpec> MakeLinkPrimitives(const urdf::ModelInterface& urdf_m
   return primitives;
 }
 
-void ReadObjects(const YAML::Node& node, const Where& where, NameRegistry* names,
-                 Workcell* workcell) {
+void ReadObjects(const YAML::Node& node, const Where& where, const ShapeOptions& options,
+                 NameRegistry* names, Workcell* workcell) {
   if (!node.IsDefined()) return;
   yaml_fields::RequireSequence(node, where);
-  for (std::size_t i = 0; i < node.size(); ++i)
-    ReadObject(node[i], where.Entry(i), names, workcell);
+  for (std::size_t i = 0; i < node.size(); ++i) {
+    ReadObject(node[i], where.Entry(i), options, names, workcell);
+  }
 }
 
 void ReadVariants(const YAML::Node& node, const Where& where, const LinkSettings& links,

@@ -12,8 +12,10 @@
 #include <utility>
 #include <vector>
 
+#include "arm_collision_monitor/geometry/mesh_fit.h"
 #include "arm_collision_monitor/scene/workcell.h"
 #include "arm_collision_monitor/scene/yaml_fields.h"
+#include "solid_shapes.h"
 
 namespace arm_collision_monitor {
 namespace scene_sections {
@@ -51,8 +53,19 @@ struct LinkSettings {
   double default_tolerance_m = 0.0;
 };
 
+/// How the solids of objects: and of the planning scene become primitives (top-level keys
+/// cylinder_model and mesh_fit).
+struct ShapeOptions {
+  CylinderModel cylinder_model = CylinderModel::kCapsule;
+  MeshFitOptions mesh_fit;  ///< default: one capsule
+};
+
 /// The top level: only the known section names.
 void CheckSectionNames(const YAML::Node& scene, const std::string& scene_path);
+
+/// cylinder_model: capsule | box, and mesh_fit: capsule | capsules:K | box (K in
+/// [1, kMeshFitMaxCapsules]); both optional.
+ShapeOptions ReadShapeOptions(const YAML::Node& scene, const std::string& scene_path);
 
 /// world: the cube the spatial index covers, in the fixed frame.
 Aabb ReadWorld(const YAML::Node& node, const Where& where);
@@ -77,15 +90,20 @@ std::vector<PrimitiveSpec> MakeLinkPrimitives(const urdf::ModelInterface& urdf_m
                                               const Workcell& workcell, const LinkSettings& links,
                                               NameRegistry* names);
 
-/// objects: appends each object and its box primitive to `workcell` (whose world_W must be
-/// read: every box must lie inside it).
-void ReadObjects(const YAML::Node& node, const Where& where, NameRegistry* names,
-                 Workcell* workcell);
+/// objects: appends each object and its primitive (box, sphere, cylinder per
+/// `options.cylinder_model`, or capsule) to `workcell` (whose world_W must be read: every
+/// primitive must lie inside it).
+void ReadObjects(const YAML::Node& node, const Where& where, const ShapeOptions& options,
+                 NameRegistry* names, Workcell* workcell);
 
 /// variants: appends each model variant and its capsules (after all primitives so far) to
 /// `workcell`.
 void ReadVariants(const YAML::Node& node, const Where& where, const LinkSettings& links,
                   NameRegistry* names, Workcell* workcell);
+
+/// The primitives a name stands for in `workcell`: all of a link's (every variant), an
+/// object's, or the primitive of that name; empty if none.
+std::vector<PrimitiveId> ResolveNames(const Workcell& workcell, const std::string& name);
 
 /// compatible: the listed pairs of primitives, each name resolved to the primitives of that
 /// link, object or primitive of `workcell`.

@@ -5,6 +5,7 @@
 #include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/core/load_error.h"
 #include "arm_collision_monitor/kinematics/urdf_conversions.h"
+#include "solid_shapes.h"
 
 namespace arm_collision_monitor {
 namespace {
@@ -21,15 +22,10 @@ struct CollisionElement {
   bool is_absorbed = false;  // a sphere that is an end cap of a capsule-idiom cylinder
 };
 
-// Cylinder axis endpoints in L (the URDF cylinder axis is z of its origin frame).
-std::pair<Eigen::Vector3d, Eigen::Vector3d> CylinderEnds_L(const CollisionElement& c) {
-  const Eigen::Vector3d half_axis_C(0.0, 0.0, 0.5 * c.length_m);
-  return {c.X_LC * (-half_axis_C), c.X_LC * half_axis_C};
-}
-
 // Marks the two spheres (radius r, centred on the cylinder's end faces) of the capsule idiom.
 void AbsorbEndSpheres(const CollisionElement& cylinder, std::vector<CollisionElement>* all) {
-  const auto [end0_L, end1_L] = CylinderEnds_L(cylinder);
+  // The URDF cylinder axis is z of its origin frame.
+  const auto [end0_L, end1_L] = CylinderAxisEnds_L(cylinder.X_LC, cylinder.length_m);
   const double tolerance_m = kCapsuleIdiomMatchRel * (cylinder.length_m + cylinder.radius_m);
   auto find_cap = [&](const Eigen::Vector3d& end_L, int skip) {
     for (int i = 0; i < static_cast<int>(all->size()); ++i) {
@@ -117,14 +113,12 @@ UrdfLinkGeometry ReadUrdfLinkGeometry(const urdf::Link& link, const std::string&
     if (e.is_absorbed) continue;
     switch (e.type) {
       case urdf::Geometry::SPHERE:
+        geometry.shapes_L.emplace_back(e.name, SphereShape_L(e.X_LC, e.radius_m));
+        break;
+      case urdf::Geometry::CYLINDER:
         geometry.shapes_L.emplace_back(
-            e.name, Capsule{e.X_LC.translation(), e.X_LC.translation(), e.radius_m});
+            e.name, CylinderShape_L(e.X_LC, e.radius_m, e.length_m, CylinderModel::kCapsule));
         break;
-      case urdf::Geometry::CYLINDER: {
-        const auto [end0_L, end1_L] = CylinderEnds_L(e);
-        geometry.shapes_L.emplace_back(e.name, Capsule{end0_L, end1_L, e.radius_m});
-        break;
-      }
       case urdf::Geometry::BOX:
         geometry.shapes_L.emplace_back(e.name, Box{e.X_LC, 0.5 * e.size_m});
         break;

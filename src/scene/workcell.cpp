@@ -31,7 +31,9 @@ bool Workcell::Validate(std::string* why) const {
     const std::string& owner_name =
         p.link_index >= 0 ? kinematics.link_name(p.link_index) : objects[p.object_index].name;
     if (p.owner != owner_name) return fail(where + "owner name does not match its index");
-    if (p.object_index >= 0 && objects[p.object_index].primitive != i) {
+    const ObjectSpec* object = p.object_index >= 0 ? &objects[p.object_index] : nullptr;
+    if (object && (i < object->primitive || object->primitive_count < 1 ||
+                   i - object->primitive >= static_cast<std::size_t>(object->primitive_count))) {
       return fail(where + "its object does not point back at it");
     }
     if (const auto* capsule = std::get_if<Capsule>(&p.shape_L)) {

@@ -13,6 +13,7 @@
 #include "arm_collision_monitor/kinematics/urdf_conversions.h"
 #include "arm_collision_monitor/scene/workcell.h"
 #include "arm_collision_monitor/scene/workcell_shapes.h"
+#include "moveit_sections.h"
 #include "scene_sections.h"
 
 namespace arm_collision_monitor {
@@ -137,6 +138,8 @@ Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_pat
 
   const YAML::Node scene = yaml_fields::LoadMapFile(scene_path);
   scene_sections::CheckSectionNames(scene, scene_path);
+  const scene_sections::ShapeOptions shape_options =
+      scene_sections::ReadShapeOptions(scene, scene_path);
   scene_sections::ReadJointLimits(scene["joint_limits"], Where{scene_path, "joint_limits"},
                                   &w.kinematics);
   w.world_W = scene_sections::ReadWorld(scene["world"], Where{scene_path, "world"});
@@ -147,21 +150,32 @@ Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_pat
   links.overrides =
       scene_sections::ReadLinkOverrides(scene["links"], Where{scene_path, "links"}, w.kinematics);
 
-  // Primitives: the links' default models, the objects, then the model variants.
+  w.fixed_frame = w.kinematics.link_name(0);
+
+  // Primitives: the links' default models, the objects, the planning scene's objects, then the
+  // model variants.
   scene_sections::NameRegistry names;
   w.primitives = scene_sections::MakeLinkPrimitives(*urdf_model, w, links, &names);
-  scene_sections::ReadObjects(scene["objects"], Where{scene_path, "objects"}, &names, &w);
+  scene_sections::ReadObjects(scene["objects"], Where{scene_path, "objects"}, shape_options,
+                              &names, &w);
+  const scene_sections::PlanningSceneInput planning_scene =
+      scene_sections::ReadPlanningScene(scene, scene_path, shape_options, &names, &w);
   scene_sections::ReadVariants(scene["variants"], Where{scene_path, "variants"}, links, &names, &w);
-  const auto compatible_pairs =
+  auto compatible_pairs =
       scene_sections::ReadCompatiblePairs(scene["compatible"], Where{scene_path, "compatible"}, w);
+  for (const auto& more :
+       {scene_sections::ReadSrdfPairs(scene, scene_path, urdf_model->getName(), &w),
+        scene_sections::PlanningSceneAcmPairs(planning_scene, &w)}) {
+    compatible_pairs.insert(compatible_pairs.end(), more.begin(), more.end());
+  }
   w.grasp_targets = scene_sections::ReadGraspTargets(scene["grasp_targets"],
                                                      Where{scene_path, "grasp_targets"}, w);
 
   // Derived values.
   w.joint_names = w.kinematics.ActuatedJointNames();
-  w.fixed_frame = w.kinematics.link_name(0);
   w.compatible = ComputeCompatibility(w, compatible_pairs);
-  w.warnings = SampledConfigurationWarnings(w);
+  const std::vector<std::string> sampled = SampledConfigurationWarnings(w);
+  w.warnings.insert(w.warnings.end(), sampled.begin(), sampled.end());
   return w;
 }
 

@@ -8,14 +8,11 @@
 
 #include "arm_collision_monitor/scene/workcell.h"
 #include "load_error_expect.h"
+#include "test_scene_util.h"
 
 namespace arm_collision_monitor {
 namespace {
 
-const std::string kSource = ACM_SOURCE_DIR;
-const std::string kUrdf = kSource + "/urdf/workcell.urdf";
-const std::string kScene = kSource + "/config/scene.yaml";
-const std::string kData = kSource + "/test/data/";
 const std::string kArmUrdf = kData + "three_link_arm.urdf";
 const std::string kArmMeshUrdf = kData + "three_link_arm_mesh.urdf";
 
@@ -55,14 +52,6 @@ bool IsDefaultBox(const PrimitiveSpec& p) {
   return p.variant.empty() && std::holds_alternative<Box>(p.shape_L);
 }
 bool IsVariant(const PrimitiveSpec& p) { return !p.variant.empty(); }
-
-bool Compatible(const Workcell& w, const std::string& a, const std::string& b) {
-  const int ia = w.FindPrimitive(a);
-  const int ib = w.FindPrimitive(b);
-  EXPECT_GE(ia, 0) << a;
-  EXPECT_GE(ib, 0) << b;
-  return ia >= 0 && ib >= 0 && w.compatible.AreCompatible(ia, ib);
-}
 
 // ------------------------------------------------------------------ the bundled workcell ---
 

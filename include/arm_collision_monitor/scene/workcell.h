@@ -36,11 +36,14 @@ struct ArmSpec {
   double tolerance_m = kDefaultArmTolerance_m;
 };
 
-/// An environment object of the scene file: one box, whose frame O is the box frame (centre,
-/// edges along O's axes). Its primitive's shape_L is the box at X_WO_start in W.
+/// An environment object: one entry of the scene file's objects: (a box, sphere, cylinder or
+/// capsule; frame O is the solid's frame: centre, axis along O's z) or one collision object of
+/// the planning scene (frame O = the fixed frame; its shapes in order). Its primitives are
+/// primitive .. primitive + primitive_count - 1, their shape_L already at X_WO_start in W.
 struct ObjectSpec {
   std::string name;
-  PrimitiveId primitive = 0;
+  PrimitiveId primitive = 0;  ///< its first primitive
+  int primitive_count = 1;    ///< >= 1; consecutive ids
   Eigen::Isometry3d X_WO_start = Eigen::Isometry3d::Identity();
   bool is_attachable = false;  ///< a link may pick it up at run time (Monitor::Attach)
   std::string frame;           ///< TF frame its pose follows at run time; "" if none
@@ -79,7 +82,9 @@ struct Workcell {
   std::vector<GraspTargetSpec> grasp_targets;
   std::vector<ModelVariantSpec> variants;
   /// Start-up findings that do not stop loading but must be shown to the user, e.g. pairs that
-  /// are within their tolerances in every sampled configuration (they would warn every cycle).
+  /// are within their tolerances in every sampled configuration (they would warn every cycle),
+  /// SRDF or allowed-collision-matrix names that have no primitive (skipped), planning-scene
+  /// content that was dropped.
   std::vector<std::string> warnings;
 
   /// Checks the invariants: the kinematics' own, one compatibility row per primitive, unique
@@ -96,7 +101,9 @@ struct Workcell {
 /// Loads a URDF and a scene YAML file into a workcell (format: comment block at the top of
 /// config/scene.yaml), parsing the URDF once for its kinematics and its collision geometry.
 /// `default_arm_tolerance_m` (MonitorOptions::tolerance_m) applies to arms whose scene entry
-/// gives no tolerance_m. Throws LoadError naming the file, the element and what was expected.
+/// gives no tolerance_m. The files the scene names (srdf:, planning_scene:) are read too, their
+/// relative paths resolved against the scene file's folder. Throws LoadError naming the file,
+/// the element and what was expected.
 Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_path,
                       double default_arm_tolerance_m = kDefaultArmTolerance_m);
 

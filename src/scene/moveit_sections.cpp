@@ -1,0 +1,242 @@
+#include "moveit_sections.h"
+
+#include <algorithm>
+#include <filesystem>
+
+#include "arm_collision_monitor/scene/srdf_reader.h"
+
+namespace arm_collision_monitor {
+namespace scene_sections {
+namespace {
+
+std::string Quoted(const std::string& name) { return " '" + name + "'"; }
+
+bool StartsWith(const std::string& text, const std::string& prefix) {
+  return text.compare(0, prefix.size(), prefix) == 0;
+}
+
+// Runs `read`, prefixing any LoadError with the scene file's key that named the file.
+template <typename Read>
+auto ReadNamedFile(const Where& where, Read read) {
+  try {
+    return read();
+  } catch (const LoadError& e) {
+    throw LoadError(where.file + ": " + where.element + ": " + e.what());
+  }
+}
+
+// The pose in W of a planning-scene object's header frame: the fixed frame ("" means it) or a
+// URDF link fixed to it (its pose does not depend on q).
+Eigen::Isometry3d HeaderFramePose(const SceneCollisionObject& object, const Workcell& workcell,
+                                  const std::string& path) {
+  const std::string& frame = object.frame_id.empty() ? workcell.fixed_frame : object.frame_id;
+  const int link = workcell.kinematics.FindLink(frame);
+  const std::string where = path + ":" + std::to_string(object.line) + ": " + object.element +
+                            ": header.frame_id" + Quoted(frame);
+  if (link < 0) {
+    throw LoadError(where + " is not a URDF link (expected the fixed frame" +
+                    Quoted(workcell.fixed_frame) + " or a link fixed to it)");
+  }
+  if (workcell.kinematics.is_moving(link)) {
+    throw LoadError(where + " is a moving link (expected the fixed frame" +
+                    Quoted(workcell.fixed_frame) +
+                    " or a link fixed to it: planning-scene objects are static)");
+  }
+  std::vector<Eigen::Isometry3d> X_WL(workcell.kinematics.link_count());
+  workcell.kinematics.ComputeLinkPoses(Eigen::VectorXd::Zero(workcell.kinematics.q_size()),
+                                       &X_WL);
+  return X_WL[link];
+}
+
+// The shapes of one shape_msgs/SolidPrimitive at X_WP.
+Shape ScenePrimitiveShape_W(const ScenePrimitive& primitive, const Eigen::Isometry3d& X_WP,
+                            CylinderModel cylinder_model) {
+  const std::vector<double>& d = primitive.dimensions_m;
+  switch (primitive.type) {
+    case SolidPrimitiveType::kBox:
+      return Box{X_WP, 0.5 * Eigen::Vector3d(d[0], d[1], d[2])};
+    case SolidPrimitiveType::kSphere:
+      return SphereShape_L(X_WP, d[0]);
+    default:  // cylinder, or a cone as its bounding cylinder: [height, radius], centred on P
+      return CylinderShape_L(X_WP, d[1], d[0], cylinder_model);
+  }
+}
+
+// Every shape of `object` in W: its primitives, then each mesh's fitted primitives.
+std::vector<Shape> CollisionObjectShapes_W(const SceneCollisionObject& object,
+                                           const Eigen::Isometry3d& X_WF,
+                                           const ShapeOptions& options, const std::string& path) {
+  std::vector<Shape> shapes_W;
+  for (const ScenePrimitive& primitive : object.primitives) {
+    shapes_W.push_back(
+        ScenePrimitiveShape_W(primitive, X_WF * primitive.X_FP, options.cylinder_model));
+  }
+  for (std::size_t m = 0; m < object.meshes.size(); ++m) {
+    const SceneMesh& mesh = object.meshes[m];
+    const MeshFit fit = FitMesh(TriangleMesh{mesh.vertices_M, mesh.triangles}, options.mesh_fit);
+    if (fit.check.status != MeshStatus::kOk) {
+      throw LoadError(path + ":" + std::to_string(object.line) + ": " + object.element +
+                      ".meshes[" + std::to_string(m) + "]: " + MeshStatusName(fit.check.status) +
+                      ": " + fit.check.message);
+    }
+    for (const Shape& shape_M : fit.shapes_L) {
+      shapes_W.push_back(TransformShape(X_WF * mesh.X_FM, shape_M));
+    }
+  }
+  return shapes_W;
+}
+
+// One collision object: the object and its primitives, appended to `workcell`.
+void AddCollisionObject(const SceneCollisionObject& object, const std::string& path,
+                        const ShapeOptions& options, double tolerance_m, NameRegistry* names,
+                        Workcell* workcell) {
+  const std::string origin = path + ":" + std::to_string(object.line) + ": " + object.element;
+  names->Claim(object.id, origin);
+  const std::vector<Shape> shapes_W =
+      CollisionObjectShapes_W(object, HeaderFramePose(object, *workcell, path), options, path);
+  ObjectSpec spec;
+  spec.name = object.id;
+  spec.primitive = static_cast<PrimitiveId>(workcell->primitives.size());
+  spec.primitive_count = static_cast<int>(shapes_W.size());
+  for (std::size_t k = 0; k < shapes_W.size(); ++k) {
+    PrimitiveSpec p;
+    p.name = shapes_W.size() == 1 ? object.id : object.id + "/" + std::to_string(k);
+    if (p.name != object.id) names->Claim(p.name, origin);
+    p.owner = object.id;
+    p.shape_L = shapes_W[k];
+    p.tolerance_m = tolerance_m;
+    p.object_index = static_cast<int>(workcell->objects.size());
+    if (!workcell->world_W.Contains(ComputeAabb(p.shape_L))) {
+      throw LoadError(origin + ": shape " + std::to_string(k) +
+                      " is not inside the world cube (expected it within world:)");
+    }
+    workcell->primitives.push_back(p);
+  }
+  workcell->objects.push_back(spec);
+}
+
+}  // namespace
+
+std::string ResolveInputPath(const YAML::Node& node, const Where& where) {
+  std::string path = yaml_fields::ReadName(node, where);
+  if (StartsWith(path, "package://")) {
+    where.Fail(node, Quoted(path).substr(1) +
+                         ": package:// URLs need ROS (rospack) to resolve; give a file path "
+                         "(absolute, or relative to the scene file's folder) or a file:// URL");
+  }
+  if (StartsWith(path, "file://")) path = path.substr(std::string("file://").size());
+  const std::filesystem::path file(path);
+  if (file.is_absolute()) return path;
+  return (std::filesystem::path(where.file).parent_path() / file).string();
+}
+
+std::vector<std::pair<PrimitiveId, PrimitiveId>> ResolveCollisionRules(
+    const NamedCollisionRules& rules, const std::string& source, Workcell* workcell) {
+  std::vector<std::string> skipped;
+  auto resolve = [&](const std::string& name) {
+    std::vector<PrimitiveId> ids = ResolveNames(*workcell, name);
+    if (ids.empty() && std::find(skipped.begin(), skipped.end(), name) == skipped.end()) {
+      skipped.push_back(name);
+    }
+    return ids;
+  };
+  std::vector<std::pair<PrimitiveId, PrimitiveId>> pairs;
+  for (const auto& [name1, name2] : rules.allowed_pairs) {
+    const std::vector<PrimitiveId> side2 = resolve(name2);
+    for (const PrimitiveId a : resolve(name1)) {
+      for (const PrimitiveId b : side2) {
+        if (a != b) pairs.emplace_back(a, b);
+      }
+    }
+  }
+  const auto n = static_cast<PrimitiveId>(workcell->primitives.size());
+  for (const std::string& name : rules.default_allowed) {
+    std::vector<bool> is_denied(n, false);
+    for (const auto& [name1, name2] : rules.denied_pairs) {
+      if (name1 != name && name2 != name) continue;
+      for (const PrimitiveId id : resolve(name1 == name ? name2 : name1)) is_denied[id] = true;
+    }
+    for (const PrimitiveId a : resolve(name)) {
+      for (PrimitiveId b = 0; b < n; ++b) {
+        if (a != b && !is_denied[b]) pairs.emplace_back(a, b);
+      }
+    }
+  }
+  if (!skipped.empty()) {
+    std::string list;
+    for (const std::string& name : skipped) list += (list.empty() ? "'" : ", '") + name + "'";
+    workcell->warnings.push_back(
+        source + ": skipped " + std::to_string(skipped.size()) +
+        " name(s) that have no primitive in the workcell (links without collision geometry or "
+        "ignored under links:, or unknown names): " + list);
+  }
+  return pairs;
+}
+
+std::vector<std::pair<PrimitiveId, PrimitiveId>> ReadSrdfPairs(const YAML::Node& scene,
+                                                               const std::string& scene_path,
+                                                               const std::string& urdf_robot_name,
+                                                               Workcell* workcell) {
+  if (!scene["srdf"]) return {};
+  const Where where{scene_path, "srdf"};
+  const std::string path = ResolveInputPath(scene["srdf"], where);
+  const SrdfCollisionRules srdf = ReadNamedFile(where, [&] { return ReadSrdfCollisionRules(path); });
+  if (!srdf.robot_name.empty() && srdf.robot_name != urdf_robot_name) {
+    workcell->warnings.push_back(path + ": <robot name='" + srdf.robot_name +
+                                 "'> differs from the URDF's robot '" + urdf_robot_name +
+                                 "' (is it the SRDF of this robot?)");
+  }
+  NamedCollisionRules rules;
+  for (const SrdfLinkPair& pair : srdf.disabled_pairs) {
+    rules.allowed_pairs.emplace_back(pair.link1, pair.link2);
+  }
+  for (const SrdfLinkPair& pair : srdf.enabled_pairs) {
+    rules.denied_pairs.emplace_back(pair.link1, pair.link2);
+  }
+  for (const SrdfLink& link : srdf.default_disabled_links) {
+    rules.default_allowed.push_back(link.link);
+  }
+  return ResolveCollisionRules(rules, path + ": collision rules", workcell);
+}
+
+PlanningSceneInput ReadPlanningScene(const YAML::Node& scene, const std::string& scene_path,
+                                     const ShapeOptions& options, NameRegistry* names,
+                                     Workcell* workcell) {
+  PlanningSceneInput input;
+  const Where top{scene_path, ""};
+  double tolerance_m = 0.0;
+  yaml_fields::ReadIfPresent(scene, "planning_scene_acm", top, yaml_fields::ReadBool,
+                             &input.is_acm_imported);
+  yaml_fields::ReadIfPresent(scene, "planning_scene_tolerance_m", top,
+                             yaml_fields::ReadNonNegativeDouble, &tolerance_m);
+  if (!scene["planning_scene"]) {
+    for (const char* key : {"planning_scene_acm", "planning_scene_tolerance_m"}) {
+      if (scene[key]) top.Child(key).Fail(scene[key], "given without planning_scene:");
+    }
+    return input;
+  }
+  const Where where{scene_path, "planning_scene"};
+  input.path = ResolveInputPath(scene["planning_scene"], where);
+  input.file = ReadNamedFile(where, [&] { return ReadPlanningSceneFile(input.path); });
+  for (const std::string& notice : input.file.notices) {
+    workcell->warnings.push_back(input.path + ": " + notice);
+  }
+  ReadNamedFile(where, [&] {
+    for (const SceneCollisionObject& object : input.file.objects) {
+      AddCollisionObject(object, input.path, options, tolerance_m, names, workcell);
+    }
+  });
+  return input;
+}
+
+std::vector<std::pair<PrimitiveId, PrimitiveId>> PlanningSceneAcmPairs(
+    const PlanningSceneInput& input, Workcell* workcell) {
+  if (input.path.empty() || !input.is_acm_imported) return {};
+  const SceneAllowedCollisions& acm = input.file.allowed_collisions;
+  const NamedCollisionRules rules{acm.allowed_pairs, acm.disallowed_pairs,
+                                  acm.default_allowed_names};
+  return ResolveCollisionRules(rules, input.path + ": allowed_collision_matrix", workcell);
+}
+
+}  // namespace scene_sections
+}  // namespace arm_collision_monitor

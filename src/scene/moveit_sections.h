@@ -1,0 +1,70 @@
+// The scene file's MoveIt inputs (format: the comment block at the top of config/scene.yaml):
+// srdf: (its collision rules as compatible pairs) and planning_scene: (its world collision
+// objects as static objects, optionally its allowed collision matrix as compatible pairs).
+// The files are read by srdf_reader.h and planning_scene_reader.h; this maps their names and
+// frames onto the workcell. Every failure is a LoadError naming the file and the element.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "arm_collision_monitor/scene/planning_scene_reader.h"
+#include "scene_sections.h"
+
+namespace arm_collision_monitor {
+namespace scene_sections {
+
+/// The file a srdf: or planning_scene: value names: a plain path (relative to the scene file's
+/// folder unless absolute) or a file:// URL. package:// URLs are rejected (resolving them needs
+/// rospack, i.e. ROS, which the core does not use).
+std::string ResolveInputPath(const YAML::Node& node, const Where& where);
+
+/// Collision rules by name, MoveIt's way: a pair is compatible when it is in allowed_pairs, or
+/// when either name is in default_allowed and the pair is not in denied_pairs (denied pairs only
+/// limit the defaults: they never remove compatibility given by any other rule).
+struct NamedCollisionRules {
+  std::vector<std::pair<std::string, std::string>> allowed_pairs;
+  std::vector<std::pair<std::string, std::string>> denied_pairs;
+  std::vector<std::string> default_allowed;
+};
+
+/// The primitive pairs of `rules` in `workcell` (a name stands for what ResolveNames gives).
+/// Names with no primitive are skipped; if there are any, one notice listing them, prefixed
+/// with `source` ("file: element"), is appended to workcell->warnings.
+std::vector<std::pair<PrimitiveId, PrimitiveId>> ResolveCollisionRules(
+    const NamedCollisionRules& rules, const std::string& source, Workcell* workcell);
+
+/// srdf: (optional): the SRDF's <disable_collisions> as allowed pairs, <enable_collisions> as
+/// denied pairs, <disable_default_collisions> as default-allowed links, resolved in `workcell`
+/// (after every primitive is known). A notice is added when the SRDF names another robot than
+/// `urdf_robot_name`.
+std::vector<std::pair<PrimitiveId, PrimitiveId>> ReadSrdfPairs(const YAML::Node& scene,
+                                                               const std::string& scene_path,
+                                                               const std::string& urdf_robot_name,
+                                                               Workcell* workcell);
+
+/// What planning_scene: loaded, kept for its allowed collision matrix.
+struct PlanningSceneInput {
+  std::string path;  ///< "" when the scene file has no planning_scene:
+  bool is_acm_imported = false;
+  PlanningSceneFile file;
+};
+
+/// planning_scene: (optional), planning_scene_acm and planning_scene_tolerance_m: appends each
+/// world collision object of the file as a static object of `workcell` (whose world_W and
+/// kinematics must be read). Its frame must be the fixed frame ("" means it) or a URDF link
+/// fixed to it. Box -> Box; sphere -> zero-length capsule; cylinder, and a cone's bounding
+/// cylinder -> per options.cylinder_model; inline mesh -> FitMesh(options.mesh_fit). The file's
+/// notices are added to workcell->warnings.
+PlanningSceneInput ReadPlanningScene(const YAML::Node& scene, const std::string& scene_path,
+                                     const ShapeOptions& options, NameRegistry* names,
+                                     Workcell* workcell);
+
+/// The allowed collision matrix of `input` as compatible pairs when planning_scene_acm: true
+/// (none otherwise), resolved in `workcell` after every primitive is known.
+std::vector<std::pair<PrimitiveId, PrimitiveId>> PlanningSceneAcmPairs(
+    const PlanningSceneInput& input, Workcell* workcell);
+
+}  // namespace scene_sections
+}  // namespace arm_collision_monitor

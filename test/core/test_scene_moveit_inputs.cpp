@@ -1,0 +1,437 @@
+// LoadWorkcell with MoveIt inputs: srdf: (collision rules as compatible pairs), planning_scene:
+// (world collision objects as static objects, its allowed collision matrix with
+// planning_scene_acm), the shape options (cylinder_model, mesh_fit) and typed objects:. The
+// shapes must enclose the solids they model: sampled points of each exact solid are checked
+// with geometry/distance.h.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <iterator>
+#include <random>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "arm_collision_monitor/geometry/distance.h"
+#include "arm_collision_monitor/scene/workcell.h"
+#include "load_error_expect.h"
+#include "test_scene_util.h"
+
+namespace arm_collision_monitor {
+namespace {
+
+const std::string kMoveit = kData + "moveit/";
+const std::string kSrdf = kMoveit + "workcell.srdf";
+const std::string kPlanningScene = kMoveit + "workcell_scene.yaml";
+
+// Rounding allowed for a point on the surface of a solid and its enclosing shape, m.
+constexpr double kSurfaceRounding_m = 1e-12;
+
+std::string ReadText(const std::string& path) {
+  std::ifstream in(path);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+// The bundled scene file with `extra` top-level lines appended, written to a temporary file.
+std::string BundledSceneWith(const std::string& name, const std::string& extra) {
+  return WriteTempFile(name, ReadText(kScene) + "\n" + extra);
+}
+
+using PairSet = std::set<std::pair<std::string, std::string>>;
+
+// Every compatible pair of `w` by primitive names (each pair ordered by name).
+PairSet CompatibleNames(const Workcell& w) {
+  PairSet pairs;
+  for (PrimitiveId a = 0; a < w.primitives.size(); ++a) {
+    for (PrimitiveId b = a + 1; b < w.primitives.size(); ++b) {
+      if (!w.compatible.AreCompatible(a, b)) continue;
+      pairs.insert(std::minmax(w.primitives[a].name, w.primitives[b].name));
+    }
+  }
+  return pairs;
+}
+
+PairSet Difference(const PairSet& more, const PairSet& fewer) {
+  PairSet diff;
+  std::set_difference(more.begin(), more.end(), fewer.begin(), fewer.end(),
+                      std::inserter(diff, diff.end()));
+  return diff;
+}
+
+// The warning containing `part`, "" if none.
+std::string FindWarning(const Workcell& w, const std::string& part) {
+  for (const std::string& warning : w.warnings) {
+    if (warning.find(part) != std::string::npos) return warning;
+  }
+  return "";
+}
+
+const Shape& ShapeOf(const Workcell& w, const std::string& name) {
+  const int id = w.FindPrimitive(name);
+  EXPECT_GE(id, 0) << name;
+  return w.primitives.at(std::max(id, 0)).shape_L;
+}
+
+// Expects the point to be inside (or on, within rounding) `shape`.
+void ExpectInside(const Eigen::Vector3d& p_W, const Shape& shape, const std::string& what) {
+  const double d_m = ShapeDistance(Capsule{p_W, p_W, 0.0}, shape).distance_m;
+  EXPECT_LE(d_m, kSurfaceRounding_m) << what << " point " << p_W.transpose();
+}
+
+// Seeded points of the solid cylinder (radius r, length h, axis along X_WC's z, centred on its
+// origin), its rims included; for a cone (tip towards +z) when `is_cone`.
+std::vector<Eigen::Vector3d> SolidPoints_W(const Eigen::Isometry3d& X_WC, double r_m, double h_m,
+                                           bool is_cone, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<Eigen::Vector3d> points;
+  for (int i = 0; i < 2000; ++i) {
+    const double z = (i < 4 ? (i % 2) : unit(rng)) - 0.5;  // the first points on the end faces
+    const double max_r = is_cone ? r_m * (0.5 - z) : r_m;
+    const double rho = (i % 3 == 0) ? max_r : max_r * std::sqrt(unit(rng));  // a third on the rim
+    const double phi = 2.0 * M_PI * unit(rng);
+    points.push_back(X_WC * Eigen::Vector3d(rho * std::cos(phi), rho * std::sin(phi), z * h_m));
+  }
+  return points;
+}
+
+void ExpectCapsule(const Shape& shape, const Eigen::Vector3d& end0, const Eigen::Vector3d& end1,
+                   double radius_m, const std::string& what) {
+  ASSERT_TRUE(std::holds_alternative<Capsule>(shape)) << what;
+  const Capsule& c = std::get<Capsule>(shape);
+  const bool same = (c.p0_W - end0).norm() < 1e-12 && (c.p1_W - end1).norm() < 1e-12;
+  const bool swapped = (c.p0_W - end1).norm() < 1e-12 && (c.p1_W - end0).norm() < 1e-12;
+  EXPECT_TRUE(same || swapped) << what << ": " << c.p0_W.transpose() << " -- "
+                               << c.p1_W.transpose();
+  EXPECT_DOUBLE_EQ(c.radius_m, radius_m) << what;
+}
+
+void ExpectValid(const Workcell& w) {
+  std::string why;
+  EXPECT_TRUE(w.Validate(&why)) << why;
+}
+
+// ---------------------------------------------------------------------------------------------
+// srdf:
+
+TEST(SceneMoveitInputs, SrdfDisabledPairsBecomeCompatible) {
+  const Workcell base = LoadWorkcell(kUrdf, kScene);
+  const Workcell w = LoadWorkcell(kUrdf, BundledSceneWith("srdf.yaml", "srdf: " + kSrdf + "\n"));
+  ExpectValid(w);
+  ASSERT_EQ(w.primitives.size(), base.primitives.size());
+  // The SRDF's pairs not already automatic (adjacent links are): the rest are links without
+  // primitives (base links are ignored, tools and world have no geometry).
+  const PairSet expected = {{"left_link1", "left_link3"}, {"left_pedestal", "right_pedestal"}};
+  EXPECT_EQ(Difference(CompatibleNames(w), CompatibleNames(base)), expected);
+  EXPECT_TRUE(Difference(CompatibleNames(base), CompatibleNames(w)).empty());
+  EXPECT_TRUE(Compatible(w, "left_link1", "left_link3"));
+  EXPECT_FALSE(Compatible(w, "right_link1", "right_link3"));
+  EXPECT_FALSE(Compatible(w, "left_link7", "right_link7"));
+  EXPECT_FALSE(Compatible(w, "left_link2", "left_link4"));
+
+  const std::string notice = FindWarning(w, "skipped 5 name(s)");
+  ASSERT_FALSE(notice.empty());
+  EXPECT_NE(notice.find(kSrdf), std::string::npos) << notice;
+  for (const char* name : {"'left_base_link'", "'right_base_link'", "'left_tool'",
+                           "'right_tool'", "'world'"}) {
+    EXPECT_NE(notice.find(name), std::string::npos) << name << " not in " << notice;
+  }
+  // srdfdom's warning too: this SRDF names robot 'workcell', the URDF 'dual_arm_workcell'.
+  EXPECT_FALSE(FindWarning(w, "<robot name='workcell'> differs").empty());
+  EXPECT_EQ(w.warnings.size(), base.warnings.size() + 2);
+}
+
+TEST(SceneMoveitInputs, SrdfPathsResolveRelativeToTheSceneAndAsFileUrls) {
+  const Workcell base = LoadWorkcell(kUrdf, BundledSceneWith("srdf_abs.yaml", "srdf: " + kSrdf));
+  WriteTempFile("copy.srdf", ReadText(kSrdf));  // beside the scene files written below
+  for (const std::string& value : {std::string("acm_test_copy.srdf"), "file://" + kSrdf}) {
+    const Workcell w = LoadWorkcell(kUrdf, BundledSceneWith("srdf_rel.yaml", "srdf: " + value));
+    EXPECT_EQ(CompatibleNames(w), CompatibleNames(base)) << value;
+  }
+}
+
+TEST(SceneMoveitInputs, SrdfDefaultDisabledLinkIsCompatibleWithAllButItsEnabledPairs) {
+  const std::string srdf = WriteTempFile(
+      "default.srdf",
+      "<robot name='workcell'>\n"
+      "  <disable_default_collisions link='left_link7'/>\n"
+      "  <enable_collisions link1='front_box' link2='left_link7'/>\n"
+      "  <enable_collisions link1='left_link7' link2='floor'/>\n"
+      "  <disable_collisions link1='left_link7' link2='floor'/>\n"
+      "  <disable_collisions link1='right_link7' link2='no_such_link'/>\n"
+      "</robot>\n");
+  const Workcell w = LoadWorkcell(kUrdf, BundledSceneWith("default.yaml", "srdf: " + srdf));
+  ExpectValid(w);
+  EXPECT_TRUE(Compatible(w, "left_link7", "right_link7"));
+  EXPECT_TRUE(Compatible(w, "left_link7", "camera"));
+  EXPECT_TRUE(Compatible(w, "left_link7/finger1", "right_link2"));  // a variant of the link
+  EXPECT_FALSE(Compatible(w, "left_link7", "front_box"));           // enabled again
+  EXPECT_FALSE(Compatible(w, "left_link7/palm", "front_box"));
+  EXPECT_TRUE(Compatible(w, "left_link7", "floor"));  // disabled wins over enabled
+  EXPECT_FALSE(Compatible(w, "right_link7", "left_link6"));
+  EXPECT_NE(FindWarning(w, "skipped 1 name(s)").find("'no_such_link'"), std::string::npos);
+}
+
+TEST(SceneMoveitInputs, SrdfOfAnotherRobotIsNoticed) {
+  const std::string srdf = WriteTempFile("other.srdf", "<robot name='panda'/>\n");
+  const Workcell w = LoadWorkcell(kUrdf, BundledSceneWith("other.yaml", "srdf: " + srdf));
+  EXPECT_FALSE(FindWarning(w, "'panda'").empty());
+}
+
+// ---------------------------------------------------------------------------------------------
+// planning_scene:
+
+TEST(SceneMoveitInputs, PlanningSceneObjectsBecomeStaticObjects) {
+  const Workcell base = LoadWorkcell(kUrdf, kScene);
+  const Workcell w =
+      LoadWorkcell(kUrdf, BundledSceneWith("ps.yaml", "planning_scene: " + kPlanningScene));
+  ExpectValid(w);
+  // shelf: 5 boxes; three cans, ball, funnel, wedge (one capsule), tray: 2.
+  EXPECT_EQ(w.primitives.size(), base.primitives.size() + 5 + 3 + 1 + 1 + 1 + 2);
+  EXPECT_EQ(w.objects.size(), base.objects.size() + 8);
+  for (const char* id : {"shelf", "can_1", "can_2", "can_3", "ball", "funnel", "wedge", "tray"}) {
+    const int o = w.FindObject(id);
+    ASSERT_GE(o, 0) << id;
+    EXPECT_FALSE(w.objects[o].is_attachable);
+    EXPECT_TRUE(w.objects[o].frame.empty());
+    for (int k = 0; k < w.objects[o].primitive_count; ++k) {
+      const PrimitiveSpec& p = w.primitives[w.objects[o].primitive + k];
+      EXPECT_EQ(p.owner, id);
+      EXPECT_EQ(p.object_index, o);
+      EXPECT_TRUE(p.is_static);
+      EXPECT_EQ(p.tolerance_m, 0.0);
+      EXPECT_EQ(p.name, w.objects[o].primitive_count == 1 ? id : id + ("/" + std::to_string(k)));
+    }
+  }
+  EXPECT_EQ(w.objects[w.FindObject("shelf")].primitive_count, 5);
+  EXPECT_EQ(w.objects[w.FindObject("tray")].primitive_count, 2);
+
+  ASSERT_TRUE(std::holds_alternative<Box>(ShapeOf(w, "shelf/3")));
+  const Box& side = std::get<Box>(ShapeOf(w, "shelf/3"));
+  EXPECT_TRUE(side.X_WB.isApprox(Eigen::Isometry3d(Eigen::Translation3d(1.0, -0.39, 0.5)), 1e-15));
+  EXPECT_TRUE(side.half_extents_m.isApprox(Eigen::Vector3d(0.15, 0.01, 0.5), 1e-15));
+
+  ExpectCapsule(ShapeOf(w, "ball"), {0.9, 0.25, 1.05}, {0.9, 0.25, 1.05}, 0.05, "ball");
+  ExpectCapsule(ShapeOf(w, "can_1"), {1.0, -0.2, 0.51}, {1.0, -0.2, 0.63}, 0.033, "can_1");
+  const Eigen::Isometry3d X_WCan(Eigen::Translation3d(1.0, -0.2, 0.57));
+  for (const Eigen::Vector3d& p_W : SolidPoints_W(X_WCan, 0.033, 0.12, false, 1)) {
+    ExpectInside(p_W, ShapeOf(w, "can_1"), "can_1 (seed 1)");
+  }
+  const Eigen::Isometry3d X_WFunnel(Eigen::Translation3d(1.05, -0.25, 1.05));
+  for (const Eigen::Vector3d& p_W : SolidPoints_W(X_WFunnel, 0.04, 0.1, true, 2)) {
+    ExpectInside(p_W, ShapeOf(w, "funnel"), "funnel (seed 2)");
+  }
+  const Eigen::Vector3d p_WWedge(1.0, 0.1, 0.51);
+  for (const Eigen::Vector3d& v : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0.1, 0, 0),
+                                   Eigen::Vector3d(0, 0.1, 0), Eigen::Vector3d(0, 0, 0.05)}) {
+    ExpectInside(p_WWedge + v, ShapeOf(w, "wedge"), "wedge vertex");
+  }
+  EXPECT_TRUE(std::holds_alternative<Capsule>(ShapeOf(w, "wedge")));
+
+  // tray: in left_base_link (0, 0.55, 0.8 in W), at (0.4, 0.2, 0.8) turned 90 deg about z.
+  ASSERT_TRUE(std::holds_alternative<Box>(ShapeOf(w, "tray/0")));
+  const Box& tray = std::get<Box>(ShapeOf(w, "tray/0"));
+  EXPECT_TRUE(tray.X_WB.translation().isApprox(Eigen::Vector3d(0.4, 0.85, 1.62), 1e-12))
+      << tray.X_WB.translation().transpose();
+  // Box x along W y; box y (turned about x by 90 deg) along W z.
+  EXPECT_TRUE(tray.X_WB.linear().col(0).isApprox(Eigen::Vector3d::UnitY(), 1e-12));
+  EXPECT_TRUE(tray.X_WB.linear().col(1).isApprox(Eigen::Vector3d::UnitZ(), 1e-12));
+  ExpectCapsule(ShapeOf(w, "tray/1"), {0.4, 0.725, 1.6}, {0.4, 0.775, 1.6}, 0.02, "tray/1");
+}
+
+TEST(SceneMoveitInputs, ShapeOptionsAndTolerance) {
+  const Workcell boxes = LoadWorkcell(
+      kUrdf, BundledSceneWith("ps_box.yaml", "planning_scene: " + kPlanningScene +
+                                                 "\ncylinder_model: box\nmesh_fit: box\n"
+                                                 "planning_scene_tolerance_m: 0.01\n"));
+  ExpectValid(boxes);
+  ASSERT_TRUE(std::holds_alternative<Box>(ShapeOf(boxes, "can_1")));
+  EXPECT_TRUE(std::get<Box>(ShapeOf(boxes, "can_1"))
+                  .half_extents_m.isApprox(Eigen::Vector3d(0.033, 0.033, 0.06), 1e-15));
+  const Eigen::Isometry3d X_WFunnel(Eigen::Translation3d(1.05, -0.25, 1.05));
+  for (const Eigen::Vector3d& p_W : SolidPoints_W(X_WFunnel, 0.04, 0.1, true, 3)) {
+    ExpectInside(p_W, ShapeOf(boxes, "funnel"), "funnel box (seed 3)");
+  }
+  EXPECT_TRUE(std::holds_alternative<Box>(ShapeOf(boxes, "wedge")));
+  EXPECT_EQ(boxes.primitives[boxes.FindPrimitive("wedge")].tolerance_m, 0.01);
+  EXPECT_EQ(boxes.primitives[boxes.FindPrimitive("floor")].tolerance_m, 0.0);
+
+  const Workcell chain = LoadWorkcell(
+      kUrdf, BundledSceneWith("ps_chain.yaml",
+                              "planning_scene: " + kPlanningScene + "\nmesh_fit: capsules:2\n"));
+  ExpectValid(chain);
+  const ObjectSpec& wedge = chain.objects[chain.FindObject("wedge")];
+  EXPECT_EQ(wedge.primitive_count, 2);
+  const Eigen::Vector3d p_WWedge(1.0, 0.1, 0.51);
+  for (const Eigen::Vector3d& v : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0.1, 0, 0),
+                                   Eigen::Vector3d(0, 0.1, 0), Eigen::Vector3d(0, 0, 0.05)}) {
+    double d_m = 1.0;
+    for (int k = 0; k < wedge.primitive_count; ++k) {
+      const Eigen::Vector3d p_W = p_WWedge + v;
+      d_m = std::min(d_m, ShapeDistance(Capsule{p_W, p_W, 0.0},
+                                        chain.primitives[wedge.primitive + k].shape_L)
+                              .distance_m);
+    }
+    EXPECT_LE(d_m, kSurfaceRounding_m) << v.transpose();
+  }
+}
+
+const char* const kAcmScene =
+    "world:\n"
+    "  collision_objects:\n"
+    "    - id: crate\n"
+    "      primitives: [{type: box, dimensions: [0.2, 0.2, 0.2]}]\n"
+    "      primitive_poses: [{position: [0.5, 0, 1.5]}]\n"
+    "allowed_collision_matrix:\n"
+    "  entry_names: [left_link7, crate, right_link7, left_tool]\n"
+    "  entry_values:\n"
+    "    - [false, true, false, true]\n"
+    "    - [true, false, false, false]\n"
+    "    - [false, false, false, false]\n"
+    "    - [true, false, false, false]\n"
+    "  default_entry_names: [right_link6, ghost]\n"
+    "  default_entry_values: [true, true]\n";
+
+TEST(SceneMoveitInputs, PlanningSceneAcmIsImportedOnRequest) {
+  const std::string ps = WriteTempFile("acm_ps.yaml", kAcmScene);
+  const Workcell plain = LoadWorkcell(kUrdf, BundledSceneWith("acm0.yaml", "planning_scene: " + ps));
+  const Workcell w = LoadWorkcell(
+      kUrdf, BundledSceneWith("acm1.yaml", "planning_scene: " + ps + "\nplanning_scene_acm: true"));
+  ExpectValid(w);
+  EXPECT_FALSE(Compatible(plain, "left_link7", "crate"));
+  EXPECT_TRUE(Compatible(w, "left_link7", "crate"));
+  EXPECT_TRUE(Compatible(w, "left_link7/palm", "crate"));
+  EXPECT_FALSE(Compatible(w, "right_link7", "crate"));
+  EXPECT_TRUE(Compatible(w, "right_link6", "crate"));  // a default entry
+  EXPECT_TRUE(Compatible(w, "right_link6", "left_link2"));
+  EXPECT_FALSE(Compatible(w, "left_link2", "left_link5"));
+  const std::string notice = FindWarning(w, "allowed_collision_matrix: skipped 2 name(s)");
+  EXPECT_NE(notice.find("'left_tool'"), std::string::npos) << notice;
+  EXPECT_NE(notice.find("'ghost'"), std::string::npos) << notice;
+  EXPECT_TRUE(FindWarning(plain, "allowed_collision_matrix").empty());
+}
+
+// ---------------------------------------------------------------------------------------------
+// Typed objects:
+
+TEST(SceneMoveitInputs, TypedObjectsLoadWithTheirShapes) {
+  const std::string objects =
+      "objects:\n"
+      "  - {name: ball, type: sphere, radius_m: 0.1, pose: {xyz_m: [1, 1, 1]}}\n"
+      "  - {name: can, type: cylinder, radius_m: 0.05, length_m: 0.2, pose: {xyz_m: [1, -1, 1]},"
+      " tolerance_m: 0.02}\n"
+      "  - {name: rod, type: capsule, radius_m: 0.03, length_m: 0.4,"
+      " pose: {xyz_m: [-1, 1, 1], rpy: [1.5707963267948966, 0, 0]}, attachable: true}\n"
+      "  - {name: crate, type: box, size_m: [0.2, 0.4, 0.6], pose: {xyz_m: [-1, -1, 1]}}\n";
+  const std::string world = "world: {center_m: [0, 0, 1], edge_m: 4}\n";
+  for (const std::string model : {"capsule", "box"}) {
+    const Workcell w = LoadWorkcell(
+        kUrdf, WriteTempFile("typed.yaml", world + "cylinder_model: " + model + "\n" + objects));
+    ExpectValid(w);
+    ExpectCapsule(ShapeOf(w, "ball"), {1, 1, 1}, {1, 1, 1}, 0.1, "ball");
+    ExpectCapsule(ShapeOf(w, "rod"), {-1, 1.2, 1}, {-1, 0.8, 1}, 0.03, "rod");
+    EXPECT_FALSE(w.primitives[w.FindPrimitive("rod")].is_static);
+    EXPECT_EQ(w.primitives[w.FindPrimitive("can")].tolerance_m, 0.02);
+    ASSERT_TRUE(std::holds_alternative<Box>(ShapeOf(w, "crate")));
+    EXPECT_EQ(std::get<Box>(ShapeOf(w, "crate")).half_extents_m, Eigen::Vector3d(0.1, 0.2, 0.3));
+    if (model == "capsule") {
+      ExpectCapsule(ShapeOf(w, "can"), {1, -1, 0.9}, {1, -1, 1.1}, 0.05, "can");
+    } else {
+      ASSERT_TRUE(std::holds_alternative<Box>(ShapeOf(w, "can")));
+      EXPECT_EQ(std::get<Box>(ShapeOf(w, "can")).half_extents_m, Eigen::Vector3d(0.05, 0.05, 0.1));
+    }
+    const Eigen::Isometry3d X_WCan(Eigen::Translation3d(1, -1, 1));
+    for (const Eigen::Vector3d& p_W : SolidPoints_W(X_WCan, 0.05, 0.2, false, 4)) {
+      ExpectInside(p_W, ShapeOf(w, "can"), "can " + model + " (seed 4)");
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Errors: each names the file and the element.
+
+void ExpectBundledSceneError(const std::string& extra, std::vector<std::string> parts) {
+  const std::string scene = BundledSceneWith("bad.yaml", extra);
+  parts.push_back(scene);
+  ExpectLoadError([&] { LoadWorkcell(kUrdf, scene); }, parts);
+}
+
+TEST(SceneMoveitInputs, BadSceneKeysAreRejected) {
+  ExpectBundledSceneError("srdf: package://workcell_moveit/config/workcell.srdf",
+                          {"srdf", "package://", "give a file path"});
+  ExpectBundledSceneError("planning_scene: package://x/scene.yaml",
+                          {"planning_scene", "package://"});
+  ExpectBundledSceneError("srdf: no_such_file.srdf", {"srdf", "no_such_file.srdf"});
+  ExpectBundledSceneError("planning_scene_acm: true", {"planning_scene_acm", "without"});
+  ExpectBundledSceneError("planning_scene_tolerance_m: 0.1",
+                          {"planning_scene_tolerance_m", "without"});
+  ExpectBundledSceneError("cylinder_model: cone", {"cylinder_model", "'cone'", "capsule or box"});
+  ExpectBundledSceneError("mesh_fit: capsules:0", {"mesh_fit", "capsules:K", "'capsules:0'"});
+  ExpectBundledSceneError("mesh_fit: capsules:x", {"mesh_fit", "capsules:K"});
+  ExpectBundledSceneError("mesh_fit: hull", {"mesh_fit", "'hull'"});
+}
+
+std::string PlanningSceneWithObject(const std::string& name, const std::string& object) {
+  return WriteTempFile(name, "world:\n  collision_objects:\n" + object);
+}
+
+TEST(SceneMoveitInputs, BadPlanningSceneObjectsAreRejected) {
+  const std::string box = "      primitives: [{type: box, dimensions: [0.1, 0.1, 0.1]}]\n"
+                          "      primitive_poses: [{position: [0.5, 0, 1]}]\n";
+  struct Case {
+    std::string object;
+    std::vector<std::string> parts;
+  };
+  const std::vector<Case> cases = {
+      {"    - id: lid\n      header: {frame_id: left_link3}\n" + box,
+       {"'lid'", "frame_id 'left_link3'", "moving link"}},
+      {"    - id: lid\n      header: {frame_id: base_link}\n" + box,
+       {"'lid'", "frame_id 'base_link'", "not a URDF link"}},
+      {"    - id: floor\n" + box, {"duplicate name 'floor'"}},
+      {"    - id: far\n      primitives: [{type: sphere, dimensions: [0.1]}]\n"
+       "      primitive_poses: [{position: [9, 0, 1]}]\n",
+       {"'far'", "world cube"}},
+      {"    - id: sheet\n      meshes:\n"
+       "        - triangles: [[0, 1, 2], [0, 2, 3]]\n"
+       "          vertices: [[0, 0, 0], [0.1, 0, 0], [0.1, 0.1, 0], [0, 0.1, 0]]\n"
+       "      mesh_poses: [{position: [0.5, 0, 1]}]\n",
+       {"'sheet'", "meshes[0]", "no volume"}},
+  };
+  for (const Case& c : cases) {
+    const std::string ps = PlanningSceneWithObject("bad_ps.yaml", c.object);
+    std::vector<std::string> parts = c.parts;
+    parts.push_back(ps);
+    ExpectBundledSceneError("planning_scene: " + ps, parts);
+  }
+}
+
+TEST(SceneMoveitInputs, BadTypedObjectsAreRejected) {
+  const std::string world = "world: {center_m: [0, 0, 1], edge_m: 4}\nobjects:\n";
+  const std::string pose = "pose: {xyz_m: [1, 1, 1]}";
+  const std::vector<BadInputFile> cases = {
+      {world + "  - {name: ball, type: sphere, " + pose + "}\n",
+       {"objects[0] 'ball'", "a sphere needs radius_m"}},
+      {world + "  - {name: ball, type: sphere, radius_m: 0.1, size_m: [1, 1, 1], " + pose + "}\n",
+       {"objects[0] 'ball'.size_m", "not a size of a sphere"}},
+      {world + "  - {name: can, type: cylinder, radius_m: 0.1, " + pose + "}\n",
+       {"objects[0] 'can'", "a cylinder needs length_m"}},
+      {world + "  - {name: can, type: cylinder, radius_m: 0, length_m: 1, " + pose + "}\n",
+       {"objects[0] 'can'.radius_m"}},
+      {world + "  - {name: rod, type: capsule, radius_m: 0.1, length_m: -1, " + pose + "}\n",
+       {"objects[0] 'rod'.length_m"}},
+      {world + "  - {name: crate, radius_m: 0.1, " + pose + "}\n",
+       {"objects[0] 'crate'", "a box needs size_m"}},
+      {world + "  - {name: cone, type: cone, radius_m: 0.1, " + pose + "}\n",
+       {"objects[0] 'cone'.type", "unknown type 'cone'"}},
+      {world + "  - {name: big, type: sphere, radius_m: 5, " + pose + "}\n",
+       {"objects[0] 'big'", "world cube"}},
+  };
+  ExpectBadInputFilesRejected("typed_bad.yaml", cases,
+                              [](const std::string& path) { LoadWorkcell(kUrdf, path); });
+}
+
+}  // namespace
+}  // namespace arm_collision_monitor
