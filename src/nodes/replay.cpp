@@ -248,9 +248,11 @@ class PeerCycleChecker : public Checker {
       if (link < 0 || object < 0) {
         throw LoadError("--grasp " + t.link + ":" + t.object + ": unknown link or object");
       }
+      const ObjectSpec& target = wc.objects[object];
       for (std::size_t i = 0; i < wc.primitives.size(); ++i) {
-        if (wc.primitives[i].link_index == link) {
-          compatible.Set(static_cast<PrimitiveId>(i), wc.objects[object].primitive, true);
+        if (wc.primitives[i].link_index != link) continue;
+        for (int k = 0; k < target.primitive_count; ++k) {
+          compatible.Set(static_cast<PrimitiveId>(i), target.primitive + k, true);
         }
       }
     }
