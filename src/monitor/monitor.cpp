@@ -262,6 +262,7 @@ void Monitor::Impl::InitData() {
   shape_prev_W = model.shape_W_start;
   moved.assign(n, 0);
   tol_now = tol_base;
+  InitLiveObjects();
 }
 
 void Monitor::Impl::BuildBroadPhase() {
@@ -282,6 +283,7 @@ void Monitor::Impl::BuildBroadPhase() {
 // --- read access ----------------------------------------------------------------------------
 
 const Workcell& Monitor::workcell() const { return *impl_->model.workcell; }
+const PrimitiveSpec& Monitor::primitive(PrimitiveId id) const { return impl_->Spec(id); }
 const MonitorOptions& Monitor::options() const { return impl_->model.options; }
 const CycleReport& Monitor::report() const { return impl_->report; }
 std::uint32_t Monitor::primitive_count() const { return impl_->model.primitive_count; }

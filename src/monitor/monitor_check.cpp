@@ -60,6 +60,7 @@ bool Monitor::Validate(std::string* error) const {
   if (msg.tellp() == 0) m.ValidateCompatibility(&msg);
   std::string why;
   if (msg.tellp() == 0 && !m.motion.Validate(&why)) msg << "motion bounds: " << why;
+  if (msg.tellp() == 0) m.ValidateLiveObjects(&msg);
   if (msg.tellp() == 0) m.ValidateSlack(&msg);
   if (msg.tellp() == 0 && m.kinematics_behind) m.ValidateBoundedCycle(&msg);
   const auto& w = m.report.warnings;

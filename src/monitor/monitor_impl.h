@@ -34,6 +34,17 @@ struct Monitor::Impl {
   std::vector<std::uint8_t> is_moving;  // per primitive: Motion it is indexed with
   std::vector<std::uint8_t> is_reachable;  // false: a static no moving primitive can reach
   MotionBounds motion;                  // levers per primitive for its current carrier
+  std::vector<std::uint8_t> is_present;    // per primitive: 0 for a free live slot
+
+  // --- live objects (monitor_live_objects.cpp), per slot s of MonitorModel::WithLiveSlots ---
+  struct LiveObjects {
+    std::vector<std::string> name;               // per slot; "" when free
+    std::vector<std::uint8_t> is_attachable;     // per slot
+    std::vector<int> shape_count;                // per slot: primitives in use (the first ones)
+    std::vector<PrimitiveSpec> spec;             // per slot primitive: what primitive() shows
+    std::vector<Shape> shape_O;                  // per slot primitive: in the object's frame
+    std::uint32_t count = 0;                     // slots in use
+  } live;
 
   // --- per-cycle state -------------------------------------------------------------------
   std::unique_ptr<BroadPhase> broad_phase;
@@ -114,7 +125,7 @@ struct Monitor::Impl {
     return link < 0 || model.variant_index[id] == active_variant[link];
   }
   bool ShouldBeInBroadPhase(PrimitiveId id) const {
-    return IsActiveVariant(id) && (is_moving[id] || is_reachable[id]);
+    return is_present[id] && IsActiveVariant(id) && (is_moving[id] || is_reachable[id]);
   }
   // What the index grows a primitive's box by: its largest tolerance, plus the slack when it
   // moves.
@@ -139,6 +150,28 @@ struct Monitor::Impl {
            holder[object] == link;
   }
   void RefreshCompatibility(int link, int object);
+
+  // --- live objects (monitor_live_objects.cpp) --------------------------------------------
+  // The live data's start state: every slot free (before BuildBroadPhase).
+  void InitLiveObjects();
+  // Object `name` among the scene file's objects and the live ones in use; -1 if none.
+  int FindObject(const std::string& name) const;
+  // What primitive() shows: the workcell's spec, or the live object's for a slot.
+  const PrimitiveSpec& Spec(PrimitiveId id) const {
+    return model.is_live(id) ? live.spec[id - model.first_live_primitive]
+                             : model.workcell->primitives[id];
+  }
+  bool IsAttachable(int object) const {
+    const int slot = model.LiveSlot(object);
+    return slot >= 0 ? live.is_attachable[slot] != 0 : model.objects[object].is_attachable;
+  }
+  // Every static becomes reachable for good (indexed): a held live object was not part of the
+  // start-up reach envelope (MonitorModel::ComputeReachSpheres).
+  void MarkAllStaticsReachable();
+  // Whether `name` names a link, an object or a primitive (scene file or live) already.
+  bool IsNameTaken(const std::string& name) const;
+  // Slot use, presence flags and the objects' own compatible pairs agree.
+  void ValidateLiveObjects(std::ostringstream* msg) const;
 
   // --- validation (monitor_check.cpp) ---------------------------------------------------------
   // Shapes follow their carriers, index membership, tolerances, holders.

@@ -16,10 +16,13 @@
 namespace arm_collision_monitor {
 
 MonitorModel::MonitorModel(std::shared_ptr<const Workcell> wc, const MonitorOptions& opts)
-    : workcell(std::move(wc)), options(opts) {
+    : workcell(WithLiveSlots(std::move(wc), opts.live_objects)), options(opts) {
   if (!workcell) throw LoadError("monitor: no workcell given");
   kinematics = &workcell->kinematics;
   primitive_count = static_cast<std::uint32_t>(workcell->primitives.size());
+  const LiveObjectOptions& live = options.live_objects;
+  first_live_primitive = primitive_count - live.capacity * live.max_primitives_per_object;
+  first_live_object = static_cast<int>(workcell->objects.size() - live.capacity);
   options.broad_phase.world_W = workcell->world_W;
   options.broad_phase.min_cell_size_m = MinCellSize_m(options);
   options.broad_phase.reserve_primitives =
@@ -264,7 +267,7 @@ void MonitorModel::ComputeReachability() {
 void MonitorModel::ChooseBroadPhase() {
   if (!options.auto_broad_phase) return;
   std::uint32_t active = 0;
-  for (PrimitiveId id = 0; id < primitive_count; ++id) {
+  for (PrimitiveId id = 0; id < first_live_primitive; ++id) {
     // The default variants; moving or reachable.
     const bool is_active =
         variant_index[id] == 0 && (is_moving_start[id] || is_reachable_start[id]);

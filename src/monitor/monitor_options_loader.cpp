@@ -1,5 +1,9 @@
 // LoadMonitorOptions: config/monitor.yaml, validated once at start-up.
 #include "arm_collision_monitor/monitor/monitor_options.h"
+
+#include <cmath>
+#include <string>
+
 #include "arm_collision_monitor/scene/yaml_fields.h"
 
 namespace arm_collision_monitor {
@@ -12,7 +16,7 @@ MonitorOptions LoadMonitorOptions(const std::string& path) {
       root,
       {"broad_phase", "auto_broad_phase", "max_objects_per_leaf", "grid_cells_per_axis",
        "techniques", "tolerance_m", "max_speed_mps", "cycle_period_s", "speed_scaled_tolerance",
-       "reaction_time_s", "stopping_time_s", "index_slack_m", "fixed_frame"},
+       "reaction_time_s", "stopping_time_s", "index_slack_m", "fixed_frame", "live_objects"},
       top);
   MonitorOptions options;
   if (root["broad_phase"]) {
@@ -62,6 +66,33 @@ MonitorOptions LoadMonitorOptions(const std::string& path) {
   ReadIfPresent(root, "index_slack_m", top, yaml_fields::ReadNonNegativeDouble,
                 &options.index_slack_m);
   ReadIfPresent(root, "fixed_frame", top, yaml_fields::ReadName, &options.fixed_frame);
+  if (root["live_objects"]) {
+    const YAML::Node live = root["live_objects"];
+    const Where where = top.Child("live_objects");
+    yaml_fields::RequireMap(live, where);
+    yaml_fields::CheckKeys(live, {"capacity", "max_primitives_per_object"}, where);
+    if (live["capacity"]) {
+      // 0 is allowed (no live objects): read as a non-negative whole number.
+      const double capacity =
+          yaml_fields::ReadNonNegativeDouble(live["capacity"], where.Child("capacity"));
+      if (capacity != std::floor(capacity) || capacity > kLiveObjectMaxCapacity) {
+        where.Child("capacity").Fail(live["capacity"],
+                                     "expected a whole number in [0, " +
+                                         std::to_string(kLiveObjectMaxCapacity) + "]");
+      }
+      options.live_objects.capacity = static_cast<std::uint32_t>(capacity);
+    }
+    if (live["max_primitives_per_object"]) {
+      const int k = yaml_fields::ReadPositiveInt(live["max_primitives_per_object"],
+                                                 where.Child("max_primitives_per_object"));
+      if (static_cast<std::uint32_t>(k) > kLiveObjectMaxPrimitives) {
+        where.Child("max_primitives_per_object")
+            .Fail(live["max_primitives_per_object"],
+                  "expected at most " + std::to_string(kLiveObjectMaxPrimitives));
+      }
+      options.live_objects.max_primitives_per_object = static_cast<std::uint32_t>(k);
+    }
+  }
   return options;
 }
 

@@ -55,7 +55,7 @@ void Monitor::Impl::RefreshCompatibility(int link, int object) {
 bool Monitor::Attach(const std::string& object, const std::string& link, std::string* error) {
   Impl& m = *impl_;
   m.SyncKinematics();  // the object is re-expressed in the link frame at the link's pose now
-  const int o = m.model.workcell->FindObject(object);
+  const int o = m.FindObject(object);
   if (o < 0) {
     SetError(error, "Attach: unknown object '" + object + "'");
     return false;
@@ -69,7 +69,7 @@ bool Monitor::Attach(const std::string& object, const std::string& link, std::st
     SetError(error, "Attach: no joint state yet, the link's pose is unknown");
     return false;
   }
-  if (!m.model.objects[o].is_attachable) {
+  if (!m.IsAttachable(o)) {
     SetError(error, "Attach: object '" + object + "' is not attachable in " +
                         m.model.workcell->scene_path);
     return false;
@@ -80,9 +80,12 @@ bool Monitor::Attach(const std::string& object, const std::string& link, std::st
   }
   const Eigen::Isometry3d X_LW = m.X_WL[l].inverse(Eigen::Isometry);
   const Eigen::Vector3d p_WLo = m.X_WL[l].translation();
+  // A live object was not in the start-up reach envelope, whose hold radius it need not keep:
+  // every static comes back into the check instead (MarkAllStaticsReachable).
+  const bool is_live = m.model.LiveSlot(o) >= 0;
   for (const PrimitiveId id : m.model.objects[o].prims) {
     const double reach_m = MaxDistanceFromPoint_m(m.shape_W[id], p_WLo);
-    if (reach_m > m.model.hold_radius_m[l]) {
+    if (!is_live && reach_m > m.model.hold_radius_m[l]) {
       std::ostringstream msg;
       msg << "Attach: object '" << object << "' reaches " << reach_m << " m from link '" << link
           << "', more than the " << m.model.hold_radius_m[l]
@@ -97,11 +100,12 @@ bool Monitor::Attach(const std::string& object, const std::string& link, std::st
   for (const PrimitiveId id : m.model.link_prims[l]) {
     holder_tol_m = std::max(holder_tol_m, m.tol_base[id]);
   }
+  if (is_live) m.MarkAllStaticsReachable();
   const int previous = m.holder[o];
   for (const PrimitiveId id : m.model.objects[o].prims) {
     m.shape_C[id] = TransformShape(X_LW, m.shape_W[id]);
     m.carrier[id] = l;
-    m.tol_base[id] = std::max(m.model.workcell->primitives[id].tolerance_m, holder_tol_m);
+    m.tol_base[id] = std::max(m.Spec(id).tolerance_m, holder_tol_m);
     m.tol_now[id] = m.tol_base[id];
     m.Reindex(id, true);
     m.SetCarrierBounds(id);
@@ -116,7 +120,7 @@ bool Monitor::Attach(const std::string& object, const std::string& link, std::st
 bool Monitor::Detach(const std::string& object, std::string* error) {
   Impl& m = *impl_;
   m.SyncKinematics();  // the object stays where it is let go: at the last good q
-  const int o = m.model.workcell->FindObject(object);
+  const int o = m.FindObject(object);
   if (o < 0) {
     SetError(error, "Detach: unknown object '" + object + "'");
     return false;
@@ -131,7 +135,7 @@ bool Monitor::Detach(const std::string& object, std::string* error) {
   for (const PrimitiveId id : m.model.objects[o].prims) {
     m.carrier[id] = -1;
     m.is_reachable[id] = 1;  // it was let go within its holder's reach
-    m.tol_base[id] = m.model.workcell->primitives[id].tolerance_m;
+    m.tol_base[id] = m.Spec(id).tolerance_m;
     m.tol_now[id] = m.tol_base[id];
     m.Reindex(id, stays_moving);
     m.SetCarrierBounds(id);
@@ -151,7 +155,7 @@ bool Monitor::SetGraspTarget(const std::string& link, const std::string& object,
     SetError(error, "SetGraspTarget: unknown link '" + link + "'");
     return false;
   }
-  const int o = m.model.workcell->FindObject(object);
+  const int o = m.FindObject(object);
   if (o < 0) {
     SetError(error, "SetGraspTarget: unknown object '" + object + "'");
     return false;
@@ -205,7 +209,7 @@ bool Monitor::SetObjectPose(const std::string& object, const Eigen::Isometry3d& 
                             std::string* error) {
   Impl& m = *impl_;
   // No sync: a free object's shape does not depend on q.
-  const int o = m.model.workcell->FindObject(object);
+  const int o = m.FindObject(object);
   if (o < 0) {
     SetError(error, "SetObjectPose: unknown object '" + object + "'");
     return false;

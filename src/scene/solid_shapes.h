@@ -6,13 +6,9 @@
 #include <utility>
 
 #include "arm_collision_monitor/geometry/primitives.h"
+#include "arm_collision_monitor/scene/solid_spec.h"  // CylinderModel
 
 namespace arm_collision_monitor {
-
-/// How a cylinder (and a cone, through its bounding cylinder) becomes a primitive. Both enclose
-/// it: the capsule adds two hemispherical caps of the cylinder's radius on its end faces; the box
-/// is the cylinder's tight bounding box (it adds the four edges' corners).
-enum class CylinderModel { kCapsule, kBox };
 
 /// The ends of the axis of the cylinder of length `length_m` centred on the origin of frame C
 /// along C's z, in frame L (X_LC: the pose of C in L).

@@ -140,6 +140,7 @@ Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_pat
   scene_sections::CheckSectionNames(scene, scene_path);
   const scene_sections::ShapeOptions shape_options =
       scene_sections::ReadShapeOptions(scene, scene_path);
+  w.solid_options = SolidShapeOptions{shape_options.cylinder_model, shape_options.mesh_fit};
   scene_sections::ReadJointLimits(scene["joint_limits"], Where{scene_path, "joint_limits"},
                                   &w.kinematics);
   w.world_W = scene_sections::ReadWorld(scene["world"], Where{scene_path, "world"});

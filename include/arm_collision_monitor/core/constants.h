@@ -139,6 +139,16 @@ inline constexpr std::uint32_t kAutoOctreeMinPrimitives = 480;
 /// grasped object touches the gripper; 10 cm absorbs perception error.
 inline constexpr double kAttachMaxGap_m = 0.10;
 
+/// Live objects (MonitorOptions::live_objects): the largest capacity and primitives per object
+/// the options accept (their product of slots is preallocated: 4096 x 64 would already be 2^18
+/// primitives, far beyond what the per-pair storage can hold).
+inline constexpr std::uint32_t kLiveObjectMaxCapacity = 4096;
+inline constexpr std::uint32_t kLiveObjectMaxPrimitives = 64;
+/// Monitor::AddObject / MoveObject: a pose's rotation is accepted when |R^T R - I| (max entry)
+/// is below this (dimensionless). Typical 1e-6: a unit quaternion turned into a matrix is
+/// orthonormal to ~1e-15; a float32 round trip to ~1e-7.
+inline constexpr double kLiveObjectRotationTolerance = 1e-6;
+
 /// Default index slack, m (MonitorOptions::index_slack_m): a moving primitive is re-indexed
 /// once a point of it has moved this far since it was last indexed. Larger means fewer index
 /// updates but more candidate pairs; 0.10 m is about three cycles at the 0.61 m/s speed bound

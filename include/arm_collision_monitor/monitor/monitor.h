@@ -93,6 +93,8 @@ class Monitor {
   Monitor(const Monitor&) = delete;
   Monitor& operator=(const Monitor&) = delete;
 
+  /// The loaded workcell plus the live objects' slots (placeholder primitives and objects,
+  /// appended after the loaded ones; see AddObject).
   const Workcell& workcell() const;
   const MonitorOptions& options() const;
 
@@ -123,6 +125,39 @@ class Monitor {
   /// Moves a free object (for one bound to a TF frame) to pose X_WO.
   bool SetObjectPose(const std::string& object, const Eigen::Isometry3d& X_WO,
                      std::string* error);
+
+  // --- live objects: added, moved and removed at run time ----------------------------------
+  // Room for them is preallocated at start-up (MonitorOptions::live_objects: capacity objects of
+  // up to max_primitives_per_object primitives each), so the cycle never allocates for them.
+  // Each is checked from the next Update like a resting scene object: against the arms, held
+  // and frame-bound objects (never against other statics), excused with nothing; an
+  // attachable one may be held (Attach, Detach) like any attachable object. Every call below
+  // changes nothing when it fails (false, with `error`). Objects of the scene file cannot be
+  // moved or removed here (frame-bound ones follow SetObjectPose).
+
+  /// Adds object `name` made of `shapes_O` (its primitives in its frame O; see
+  /// scene/solid_spec.h for solids and meshes) at pose X_WO, with tolerance `tolerance_m` (m,
+  /// >= 0) on each primitive. Its primitives are named `name` (one) or `name`/k (k = 0, 1, ...)
+  /// in primitive(). Refused: no free slot, more shapes than max_primitives_per_object, an
+  /// empty name or one (or a primitive name) already used by a link, object or primitive, a
+  /// non-finite or non-rigid pose, a shape not finite or of a non-positive size, a shape
+  /// outside the world cube, a negative or non-finite tolerance. May allocate (the names),
+  /// never in Update afterwards.
+  bool AddObject(const std::string& name, const std::vector<Shape>& shapes_O,
+                 const Eigen::Isometry3d& X_WO, double tolerance_m, bool is_attachable,
+                 std::string* error);
+  /// Moves live object `name` to pose X_WO. Refused: unknown or scene-file object, held by a
+  /// link, non-finite or non-rigid pose, a primitive leaving the world cube.
+  bool MoveObject(const std::string& name, const Eigen::Isometry3d& X_WO, std::string* error);
+  /// Removes live object `name` (a held one is let go first); its slot is free again.
+  /// Refused: unknown or scene-file object.
+  bool RemoveObject(const std::string& name, std::string* error);
+  /// Live objects present now.
+  std::uint32_t live_object_count() const;
+  /// The description of primitive `id`: the workcell's, or for the slot of a live object the
+  /// live object's (name, owner, tolerance_m, is_static = not attachable). workcell() holds the
+  /// slots too, under placeholder names, so that ids index it; translate ids to names here.
+  const PrimitiveSpec& primitive(PrimitiveId id) const;
 
   // --- read access for visualisation and diagnostics ---------------------------------------
   std::uint32_t primitive_count() const;

@@ -38,6 +38,17 @@ struct MonitorModel {
   double BroadTolerance_m(double tol_m, bool is_moving) const {
     return tol_m + (is_moving ? options.max_speed_mps * speed_tol_gain_s : 0.0);
   }
+  /// `workcell` with the live objects' slots appended (none when live.capacity is 0): per slot
+  /// an object named "~live<s>" of live.max_primitives_per_object placeholder primitives
+  /// ("~live<s>/<k>", a point at the world's centre, static), excused with nothing. Throws
+  /// LoadError when the options are out of range.
+  static std::shared_ptr<const Workcell> WithLiveSlots(std::shared_ptr<const Workcell> workcell,
+                                                       const LiveObjectOptions& live);
+  /// Whether `id` is the slot of a live object (MonitorModel::WithLiveSlots).
+  bool is_live(PrimitiveId id) const { return id >= first_live_primitive; }
+  /// The live slot of object `o`, -1 for an object of the scene file.
+  int LiveSlot(int o) const { return o >= first_live_object ? o - first_live_object : -1; }
+
   /// Whether a moving primitive (`mover_W`, tolerance `mover_tol_m`) reaches a static one
   /// (`static_W`, `static_tol_m`): their distance is within the sum of their broad-phase
   /// tolerances (<=, as the broad phase's closed boxes: touching counts).
@@ -49,7 +60,9 @@ struct MonitorModel {
   /// auto_broad_phase, the chosen method filled in.
   MonitorOptions options;
   const KinematicModel* kinematics = nullptr;  ///< workcell->kinematics
-  std::uint32_t primitive_count = 0;
+  std::uint32_t primitive_count = 0;  ///< the live slots' included
+  PrimitiveId first_live_primitive = 0;  ///< slots: first_live_primitive .. primitive_count - 1
+  int first_live_object = 0;             ///< their objects: first_live_object .. (one per slot)
   double world_edge_m = 0.0;      ///< the world box's longest edge
   double speed_tol_gain_s = 0.0;  ///< reaction + stopping time when speed-scaled, else 0
   Eigen::VectorXd q_lower, q_upper;  ///< joint limits by q index, kJointLimitMargin included

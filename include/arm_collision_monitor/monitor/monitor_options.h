@@ -1,12 +1,22 @@
 // The Monitor's options (format: config/monitor.yaml) and the values derived from them.
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 #include "arm_collision_monitor/broadphase/broad_phase_factory.h"
 #include "arm_collision_monitor/core/constants.h"
 
 namespace arm_collision_monitor {
+
+/// Room for objects added at run time (Monitor::AddObject): capacity x max_primitives_per_object
+/// primitive slots, preallocated at start-up with everything they need (index entries,
+/// compatibility rows, kept pairs, report), so that adding, moving and removing never makes the
+/// cycle allocate.
+struct LiveObjectOptions {
+  std::uint32_t capacity = 16;                 ///< live objects at once; 0: none
+  std::uint32_t max_primitives_per_object = 8;  ///< e.g. a mesh's capsules:K fit needs K
+};
 
 /// The Monitor's options (LoadMonitorOptions; format: config/monitor.yaml).
 struct MonitorOptions {
@@ -32,6 +42,7 @@ struct MonitorOptions {
   double tolerance_m = kDefaultArmTolerance_m;
   /// The frame reports are expressed in (the URDF root link).
   std::string fixed_frame = "world";
+  LiveObjectOptions live_objects;
 };
 
 /// The octree's and the grid's smallest cell (m): the farthest an indexed box moves in one

@@ -11,6 +11,7 @@
 #include "arm_collision_monitor/core/load_error.h"
 #include "arm_collision_monitor/geometry/primitives.h"
 #include "arm_collision_monitor/kinematics/kinematic_model.h"
+#include "arm_collision_monitor/scene/solid_spec.h"
 
 namespace arm_collision_monitor {
 
@@ -81,6 +82,9 @@ struct Workcell {
   std::vector<ObjectSpec> objects;
   std::vector<GraspTargetSpec> grasp_targets;
   std::vector<ModelVariantSpec> variants;
+  /// The scene file's cylinder_model and mesh_fit, for the objects added at run time
+  /// (Monitor::AddObject).
+  SolidShapeOptions solid_options;
   /// Start-up findings that do not stop loading but must be shown to the user, e.g. pairs that
   /// are within their tolerances in every sampled configuration (they would warn every cycle),
   /// SRDF or allowed-collision-matrix names that have no primitive (skipped), planning-scene
