@@ -14,9 +14,10 @@ std::uint8_t WarningSeverity(double distance_m, double threshold_m) {
   return CollisionWarning::SEVERITY_WARNING;
 }
 
-void ToWarningMsg(const Workcell& workcell, const Warning& in, CollisionWarning* out) {
-  const PrimitiveSpec& a = workcell.primitives[in.a];
-  const PrimitiveSpec& b = workcell.primitives[in.b];
+void ToWarningMsg(const std::vector<PrimitiveSpec>& primitives, const Warning& in,
+                  CollisionWarning* out) {
+  const PrimitiveSpec& a = primitives[in.a];
+  const PrimitiveSpec& b = primitives[in.b];
   out->primitive_a = in.a;
   out->primitive_a_name = a.name;
   out->owner_a = a.owner;

@@ -52,7 +52,6 @@ MarkerBuilder::MarkerBuilder(const Monitor& monitor, std::string frame_id)
     : monitor_(monitor), frame_id_(std::move(frame_id)) {}
 
 void MarkerBuilder::ComputeStates(const CycleReport& report) {
-  const Workcell& workcell = monitor_.workcell();
   const std::uint32_t n = monitor_.primitive_count();
   state_.assign(n, PrimitiveState::kClear);
   near_box_W_.resize(n);
@@ -65,11 +64,11 @@ void MarkerBuilder::ComputeStates(const CycleReport& report) {
   // Every pair the Monitor checks has a moving primitive: pair each moving one with every
   // active primitive (a moving partner only once), boxes first.
   for (PrimitiveId a = 0; a < n; ++a) {
-    if (!monitor_.is_active(a) || workcell.primitives[a].is_static) {
+    if (!monitor_.is_active(a) || monitor_.primitive(a).is_static) {
       continue;
     }
     for (PrimitiveId b = 0; b < n; ++b) {
-      if (b == a || !monitor_.is_active(b) || (!workcell.primitives[b].is_static && b < a) ||
+      if (b == a || !monitor_.is_active(b) || (!monitor_.primitive(b).is_static && b < a) ||
           !near_box_W_[a].Overlaps(near_box_W_[b]) || monitor_.AreCompatibleNow(a, b)) {
         continue;
       }

@@ -92,6 +92,7 @@ MonitorNode::MonitorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
     ROS_WARN("arm_collision_monitor: %s", finding.c_str());
   }
   monitor_ = std::make_unique<Monitor>(workcell_, monitor_options);
+  primitives_ = monitor_->workcell().primitives;
   fixed_frame_ =
       options_.fixed_frame.empty() ? monitor_options.fixed_frame : options_.fixed_frame;
   input_ = std::make_unique<JointMerger>(workcell_->joint_names, options_.input_timeout_s);
@@ -101,7 +102,8 @@ MonitorNode::MonitorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
       bound_objects_.push_back(BoundObject{object.name, object.frame});
     }
   }
-  if (!bound_objects_.empty()) {
+  // Live objects given in a frame other than the fixed one are looked up in TF too.
+  if (!bound_objects_.empty() || monitor_options.live_objects.capacity > 0) {
     tf_listener_ = std::make_unique<tf2_ros::TransformListener>(tf_buffer_, nh_);
   }
 
@@ -119,6 +121,12 @@ MonitorNode::MonitorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   services_.push_back(private_nh_.advertiseService("detach", &MonitorNode::OnDetach, this));
   services_.push_back(
       private_nh_.advertiseService("set_grasp_target", &MonitorNode::OnSetGraspTarget, this));
+  services_.push_back(
+      private_nh_.advertiseService("add_object", &MonitorNode::OnAddObject, this));
+  services_.push_back(
+      private_nh_.advertiseService("move_object", &MonitorNode::OnMoveObject, this));
+  services_.push_back(
+      private_nh_.advertiseService("remove_object", &MonitorNode::OnRemoveObject, this));
 
   updater_.setHardwareID("arm_collision_monitor");
   updater_.add("Input", this, &MonitorNode::DiagnoseInput);
@@ -233,7 +241,7 @@ void MonitorNode::RunCycle(std::chrono::steady_clock::time_point start) {
       reinsert_fallbacks_ += cycle.counters.reinsert_fallbacks;
       outside_world_ += cycle.counters.outside_world;
     }
-    policy_.OnCycleReport(cycle, workcell_->primitives, *input_, now.toSec());
+    policy_.OnCycleReport(cycle, primitives_, *input_, now.toSec());
   }
   policy_.EndCycle(now.toSec());
   report_.header.stamp = newest_input_stamp_;
@@ -329,7 +337,7 @@ void MonitorNode::PublishVisualisation() {
 void MonitorNode::FillReportWarnings(const CycleReport& report, MonitorReport* msg) const {
   msg->warnings.resize(report.warnings.size());
   for (std::size_t i = 0; i < report.warnings.size(); ++i) {
-    ToWarningMsg(*workcell_, report.warnings[i], &msg->warnings[i]);
+    ToWarningMsg(primitives_, report.warnings[i], &msg->warnings[i]);
   }
 }
 

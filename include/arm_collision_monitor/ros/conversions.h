@@ -12,9 +12,11 @@
 
 namespace arm_collision_monitor {
 
-/// Fills `out` from core warning `in`; names come from `workcell` (which primitive ids index).
-/// Reuses `out`'s string capacity.
-void ToWarningMsg(const Workcell& workcell, const Warning& in, CollisionWarning* out);
+/// Fills `out` from core warning `in`; names come from `primitives` (indexed by primitive id:
+/// the Monitor's, live objects included, see Monitor::primitive). Reuses `out`'s string
+/// capacity.
+void ToWarningMsg(const std::vector<PrimitiveSpec>& primitives, const Warning& in,
+                  CollisionWarning* out);
 
 /// Severity per CollisionWarning's SEVERITY_* constants.
 std::uint8_t WarningSeverity(double distance_m, double threshold_m);

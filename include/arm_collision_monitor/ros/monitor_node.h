@@ -20,10 +20,13 @@
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_listener.h>
 
+#include "arm_collision_monitor/AddObject.h"
 #include "arm_collision_monitor/AttachObject.h"
 #include "arm_collision_monitor/CheckJointState.h"
 #include "arm_collision_monitor/DetachObject.h"
 #include "arm_collision_monitor/MonitorReport.h"
+#include "arm_collision_monitor/MoveObject.h"
+#include "arm_collision_monitor/RemoveObject.h"
 #include "arm_collision_monitor/SetGraspTarget.h"
 #include "arm_collision_monitor/monitor/monitor.h"
 #include "arm_collision_monitor/ros/marker_builder.h"
@@ -85,6 +88,15 @@ class MonitorNode {
   bool OnAttach(AttachObject::Request& req, AttachObject::Response& res);
   bool OnDetach(DetachObject::Request& req, DetachObject::Response& res);
   bool OnSetGraspTarget(SetGraspTarget::Request& req, SetGraspTarget::Response& res);
+  // Live objects (monitor_node_live_objects.cpp).
+  bool OnAddObject(AddObject::Request& req, AddObject::Response& res);
+  bool OnMoveObject(MoveObject::Request& req, MoveObject::Response& res);
+  bool OnRemoveObject(RemoveObject::Request& req, RemoveObject::Response& res);
+  // primitives_ from Monitor::primitive after a live object came or went.
+  void RefreshPrimitives();
+  // X_WO from a pose in `frame` ("" or the fixed frame: as is; else through TF now).
+  bool ResolvePose(const geometry_msgs::Pose& pose, const std::string& frame,
+                   Eigen::Isometry3d* X_WO, std::string* error);
 
   void DiagnoseInput(diagnostic_updater::DiagnosticStatusWrapper& status);
   void DiagnoseCycle(diagnostic_updater::DiagnosticStatusWrapper& status);
@@ -95,6 +107,9 @@ class MonitorNode {
   NodeOptions options_;
   std::shared_ptr<const Workcell> workcell_;
   std::unique_ptr<Monitor> monitor_;
+  /// Monitor::primitive of every id (live objects' names included), for the reports and the
+  /// stop reason; refreshed by the live-object services.
+  std::vector<PrimitiveSpec> primitives_;
   std::unique_ptr<JointMerger> input_;
   StopPolicy policy_;
   std::unique_ptr<MarkerBuilder> markers_;
