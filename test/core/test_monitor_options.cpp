@@ -28,13 +28,18 @@ TEST(MonitorOptions, BundledMonitorOptions) {
   EXPECT_FALSE(o.auto_broad_phase);
   EXPECT_EQ(o.index_slack_m, kDefaultIndexSlack_m);
   EXPECT_EQ(o.fixed_frame, "world");
+  EXPECT_EQ(o.live_objects.capacity, 16u);
+  EXPECT_EQ(o.live_objects.max_primitives_per_object, 8u);
 }
 
 TEST(MonitorOptions, MonitorOptionsOverridesAndErrors) {
   const MonitorOptions o = LoadMonitorOptions(
       WriteTempFile("monitor.yaml",
                 "broad_phase: grid\ngrid_cells_per_axis: 8\nmax_speed_mps: 1.0\n"
-                "cycle_period_s: 0.01\ntechniques: {inside_node_exit: false}\nindex_slack_m: 0\n"));
+                "cycle_period_s: 0.01\ntechniques: {inside_node_exit: false}\nindex_slack_m: 0\n"
+                "live_objects: {capacity: 0, max_primitives_per_object: 3}\n"));
+  EXPECT_EQ(o.live_objects.capacity, 0u);
+  EXPECT_EQ(o.live_objects.max_primitives_per_object, 3u);
   EXPECT_EQ(o.index_slack_m, 0.0);
   EXPECT_EQ(o.broad_phase.method, BroadPhaseMethod::kGrid);
   EXPECT_EQ(o.broad_phase.grid_cells_per_axis, 8);
@@ -54,6 +59,14 @@ TEST(MonitorOptions, MonitorOptionsOverridesAndErrors) {
       {"tolerence_m: 0.03\n", {"unknown key 'tolerence_m'"}},
       {"speed_scaled_tolerance: maybe\n", {"speed_scaled_tolerance", "true or false"}},
       {"max_speed_mps: [1, 2\n", {"malformed YAML"}},
+      {"live_objects: {capacity: 2.5}\n", {"live_objects.capacity", "whole number"}},
+      {"live_objects: {capacity: 100000}\n", {"live_objects.capacity", "4096"}},
+      {"live_objects: {max_primitives_per_object: 0}\n",
+       {"live_objects.max_primitives_per_object", "positive integer"}},
+      {"live_objects: {max_primitives_per_object: 65}\n",
+       {"live_objects.max_primitives_per_object", "at most 64"}},
+      {"live_objects: {capacty: 3}\n", {"live_objects", "unknown key 'capacty'"}},
+      {"live_objects: 3\n", {"live_objects"}},
   };
   for (const auto& b : bad) {
     const std::string path = WriteTempFile("monitor_bad.yaml", b.text);

@@ -10,7 +10,11 @@ own monitor node so that no test leans on another's leftovers:
 - ~check: asked about the left arm in the front table while the live arms are home, it answers
   with the table warnings, and a live report triggered by the right arm alone (the left arm
   keeps its live value) is still clear: had ~check written its joints into the live model,
-  that report would carry the table warnings."""
+  that report would carry the table warnings;
+- ~add_object, ~move_object, ~remove_object: a mesh crate added into the left arm's column
+  warns against the left arm on the next report, moved away it clears, removed it is gone (a
+  second removal is refused); bad requests (unknown type, taken name, unknown TF frame) are
+  refused with a message naming the fault and change nothing."""
 import sys
 import unittest
 
@@ -18,7 +22,9 @@ import rospy
 import rostest
 
 from arm_collision_monitor.msg import MonitorReport
-from arm_collision_monitor.srv import AttachObject, CheckJointState, SetGraspTarget
+from arm_collision_monitor.srv import (AddObject, AttachObject, CheckJointState, MoveObject,
+                                       RemoveObject, SetGraspTarget)
+from geometry_msgs.msg import Point, Pose
 
 from acm_test_util import (HOME, LEFT_AT_FRONT_BOX, LEFT_JOINTS, RIGHT_AT_FRONT_BOX,
                            RIGHT_JOINTS, MonitorClient, describe_warnings, joint_state,
@@ -36,6 +42,27 @@ GRASPED_PAIR = ('front_box', 'left_link7')
 # on the attached box must be from it once swung (the box's half diagonal is 0.23 m).
 FRONT_BOX_ON_TABLE_XY_M = (0.95, 0.0)
 MIN_SWING_M = 0.5
+# The live crate: a 0.2 m cube mesh, first in the left arm's column (base at y = 0.55, links
+# straight up at home), then far from both arms (inside the world cube).
+CRATE_IN_LEFT_ARM_M = (0.0, 0.55, 1.5)
+CRATE_AWAY_M = (-2.0, 0.0, 1.0)
+
+
+def cube_mesh(edge_m):
+    """A closed cube mesh centred on its origin: 8 vertices, 12 triangles (flattened)."""
+    h = 0.5 * edge_m
+    vertices = [Point((i & 1 and h) or -h, (i & 2 and h) or -h, (i & 4 and h) or -h)
+                for i in range(8)]
+    triangles = [0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4,
+                 2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5]
+    return vertices, triangles
+
+
+def pose_at(xyz):
+    p = Pose()
+    p.position.x, p.position.y, p.position.z = xyz
+    p.orientation.w = 1.0
+    return p
 
 
 def service(node, name, kind):
@@ -147,6 +174,53 @@ class ServiceEffectsTest(unittest.TestCase):
         self.assertFalse(report.warnings,
                          'check changed the live model: %s' % describe_warnings(report))
         self.assertFalse(report.stop, report.stop_reason)
+
+
+    def test_live_object_add_move_remove(self):
+        node = '/live_monitor'
+        c = self.client('live')
+        add = service(node, 'add_object', AddObject)
+        vertices, triangles = cube_mesh(0.2)
+        res = add(name='crate', type='mesh', mesh_vertices=vertices, mesh_triangles=triangles,
+                  pose=pose_at(CRATE_IN_LEFT_ARM_M), tolerance_m=0.01)
+        self.assertTrue(res.success, res.message)
+        report = self.hold(c, HOME, HOME, 'the crate in the left arm')
+        crate_pairs = [p for p in warning_pairs(report) if 'crate' in p]
+        self.assertTrue(crate_pairs and all(a.startswith('left_') or b.startswith('left_')
+                                            for a, b in crate_pairs),
+                        'no crate - left arm warning (and only those); warnings: %s'
+                        % describe_warnings(report))
+
+        # Refusals change nothing: the crate still warns afterwards.
+        for kwargs, needle in [
+                (dict(name='drum', type='cone', dimensions_m=[0.1]), 'unknown type'),
+                (dict(name='crate', type='sphere', dimensions_m=[0.1]), 'already used'),
+                (dict(name='drum', type='sphere', dimensions_m=[0.1], frame='no_such_frame'),
+                 'no transform'),
+                (dict(name='drum', type='box', dimensions_m=[0.1, 0.1]), 'dimensions')]:
+            kwargs.setdefault('pose', pose_at(CRATE_AWAY_M))
+            res = add(**kwargs)
+            self.assertFalse(res.success, kwargs)
+            self.assertIn(needle, res.message)
+        report = self.hold(c, HOME, HOME, 'after the refusals')
+        self.assertEqual([p for p in warning_pairs(report) if 'crate' in p], crate_pairs)
+
+        res = service(node, 'move_object', MoveObject)(name='crate', pose=pose_at(CRATE_AWAY_M))
+        self.assertTrue(res.success, res.message)
+        report = self.hold(c, HOME, HOME, 'the crate moved away')
+        self.assertFalse(report.warnings, 'moved away, still: %s' % describe_warnings(report))
+
+        remove = service(node, 'remove_object', RemoveObject)
+        res = remove(name='crate')
+        self.assertTrue(res.success, res.message)
+        res = remove(name='crate')
+        self.assertFalse(res.success)
+        self.assertIn('unknown object', res.message)
+        res = service(node, 'move_object', MoveObject)(name='crate',
+                                                       pose=pose_at(CRATE_IN_LEFT_ARM_M))
+        self.assertFalse(res.success, 'moved a removed object')
+        report = self.hold(c, HOME, HOME, 'the crate removed')
+        self.assertFalse(report.warnings, describe_warnings(report))
 
 
 if __name__ == '__main__':
