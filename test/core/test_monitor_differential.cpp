@@ -218,7 +218,8 @@ TEST(MonitorReach, UnreachableStaticsAreLeftOut) {
   const auto wc = LoadBundledWorkcell();
   Monitor monitor(wc, MonitorOptions{});
   int left_out = 0;
-  for (PrimitiveId id = 0; id < monitor.primitive_count(); ++id) {
+  // The loaded primitives (the live objects' free slots after them are inactive too).
+  for (PrimitiveId id = 0; id < wc->primitives.size(); ++id) {
     const PrimitiveSpec& p = wc->primitives[id];
     const bool is_default_model = p.link_index < 0 || p.variant.empty();
     if (!monitor.is_active(id)) {
