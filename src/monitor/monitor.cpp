@@ -84,7 +84,7 @@ bool Monitor::Impl::IsProvablyClear(const Eigen::Ref<const Eigen::VectorXd>& q) 
   }
   motion.SetJointMotion(q, q_kinematics);
   const double slack_m = model.options.index_slack_m;
-  for (PrimitiveId id = 0; id < model.primitive_count; ++id) {
+  for (PrimitiveId id = 0; id < live_end; ++id) {
     if (motion.lever_count(id) == 0) continue;
     const double bound_m = motion.ComputeBound_m(id);
     // Motion since indexed <= motion until the kinematics + motion since; NaN fails.
@@ -112,7 +112,7 @@ std::uint32_t Monitor::Impl::FollowKinematics(const Eigen::Ref<const Eigen::Vect
   // Fixed tolerances: tol_now already equals tol_base (Attach / Detach keep both).
   const bool is_speed_scaled = model.speed_tol_gain_s != 0.0;
   if (is_speed_scaled) ComputeTolerances(shape_W, moved, &tol_now);
-  for (PrimitiveId id = 0; id < model.primitive_count; ++id) {
+  for (PrimitiveId id = 0; id < live_end; ++id) {
     if (moved[id]) {
       if (is_speed_scaled) shape_prev_W[id] = shape_W[id];  // only speed estimates read it
       moved[id] = 0;
@@ -128,7 +128,7 @@ void Monitor::Impl::MoveCarried(const std::vector<Eigen::Isometry3d>& X_WL_new,
   for (std::size_t link = 0; link < X_WL_new.size(); ++link) {
     (*changed)[link] = IsSamePose(X_WL_new[link], X_WL[link]) ? 0 : 1;
   }
-  for (PrimitiveId id = 0; id < model.primitive_count; ++id) {
+  for (PrimitiveId id = 0; id < live_end; ++id) {
     const int link = carrier[id];
     if (link < 0 || !(*changed)[link]) continue;
     (*shapes)[id] = TransformShape(X_WL_new[link], shape_C[id]);
@@ -139,7 +139,7 @@ void Monitor::Impl::MoveCarried(const std::vector<Eigen::Isometry3d>& X_WL_new,
 std::uint32_t Monitor::Impl::ReindexMoved() {
   std::uint32_t moved_count = 0;
   cache.BeginReindex();
-  for (PrimitiveId id = 0; id < model.primitive_count; ++id) {
+  for (PrimitiveId id = 0; id < live_end; ++id) {
     if (!moved[id] || !in_broad_phase[id]) continue;
     ++moved_count;
     if (cache.FollowMoved(id, shape_W[id])) broad_phase->Move(id, ComputeAabb(shape_W[id]));
@@ -158,7 +158,7 @@ void Monitor::Impl::ComputeTolerances(const std::vector<Shape>& shapes,
   // Speeds are clamped to max_speed_mps so the broad phase, inflated for that speed, stays
   // conservative; before the first good cycle the speed is unknown and taken as the maximum.
   const MonitorOptions& options = model.options;
-  for (PrimitiveId id = 0; id < model.primitive_count; ++id) {
+  for (PrimitiveId id = 0; id < live_end; ++id) {
     double speed_mps = 0.0;
     if (!is_moving[id]) {
       speed_mps = 0.0;

@@ -35,6 +35,9 @@ struct Monitor::Impl {
   std::vector<std::uint8_t> is_reachable;  // false: a static no moving primitive can reach
   MotionBounds motion;                  // levers per primitive for its current carrier
   std::vector<std::uint8_t> is_present;    // per primitive: 0 for a free live slot
+  // The primitives from here on are free live slots (none carried, indexed or moved): the
+  // cycle's per-primitive loops stop here, so free slots cost the cycle nothing.
+  PrimitiveId live_end = 0;
 
   // --- live objects (monitor_live_objects.cpp), per slot s of MonitorModel::WithLiveSlots ---
   struct LiveObjects {

@@ -99,6 +99,7 @@ void Monitor::Impl::InitLiveObjects() {
   live.spec.assign(model.workcell->primitives.begin() + first, model.workcell->primitives.end());
   live.shape_O.assign(n - first, Shape{});
   live.count = 0;
+  live_end = first;
 }
 
 int Monitor::Impl::FindObject(const std::string& name) const {
@@ -152,6 +153,11 @@ void Monitor::Impl::ValidateLiveObjects(std::ostringstream* msg) const {
     }
   }
   if (used != live.count) *msg << "live objects: " << used << " slots used, count " << live.count;
+  for (PrimitiveId id = live_end; id < model.primitive_count && msg->tellp() == 0; ++id) {
+    if (is_present[id] || carrier[id] >= 0 || moved[id]) {
+      *msg << "live slot primitive " << id << " in use past live_end " << live_end;
+    }
+  }
 }
 
 // --- the calls -------------------------------------------------------------------------------
@@ -229,6 +235,7 @@ bool Monitor::AddObject(const std::string& name, const std::vector<Shape>& shape
     for (PrimitiveId other = first; other < id; ++other) m.compatible.Set(other, id, true);
   }
   ++m.live.count;
+  m.live_end = std::max(m.live_end, first + k_max);
   m.scene_changed = true;
   return true;
 }
@@ -291,6 +298,7 @@ bool Monitor::RemoveObject(const std::string& name, std::string* error) {
     const PrimitiveId id = m.model.first_live_primitive + s;
     if (m.in_broad_phase[id]) m.RemoveFromBroadPhase(id);
     m.is_present[id] = 0;
+    m.moved[id] = 0;
     for (int j = 0; j < k; ++j) m.compatible.Set(id - k + j, id, false);
     m.live.spec[s] = m.model.workcell->primitives[id];  // the placeholder again
   }
@@ -298,6 +306,10 @@ bool Monitor::RemoveObject(const std::string& name, std::string* error) {
   m.live.shape_count[slot] = 0;
   m.live.is_attachable[slot] = 0;
   --m.live.count;
+  while (m.live_end > m.model.first_live_primitive &&
+         m.live.name[(m.live_end - 1 - m.model.first_live_primitive) / k_max].empty()) {
+    m.live_end -= k_max;
+  }
   m.cache.MarkStale();
   m.scene_changed = true;
   return true;
