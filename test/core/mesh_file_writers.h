@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -66,6 +67,54 @@ inline TriangleMesh LShapeMesh(double a_m, double h_m) {
   return ExtrudedPolygon(
       {{0, 0}, {2 * a_m, 0}, {2 * a_m, a_m}, {a_m, a_m}, {a_m, 2 * a_m}, {0, 2 * a_m}}, 3, 0.0,
       h_m);
+}
+
+/// A tessellated capsule along z (segment length `length_m`, radius `radius_m`): `segments`
+/// around, `rings` latitude rings per hemisphere, each vertex's distance from the axis segment
+/// scaled by 1 + noise * u (u uniform in [-1, 1] from `rng`). Closed and outward-oriented;
+/// 2 * segments * (2 * rings - 1) triangles.
+template <typename Rng>
+TriangleMesh TessellatedCapsuleMesh(double radius_m, double length_m, int segments, int rings,
+                                    double noise, Rng* rng) {
+  TriangleMesh mesh;
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  auto add = [&](const Eigen::Vector3d& centre, const Eigen::Vector3d& direction) {
+    const Eigen::Vector3d p = centre + radius_m * (1.0 + noise * u(*rng)) * direction;
+    mesh.vertices_L.emplace_back(ToFloat(p.x()), ToFloat(p.y()), ToFloat(p.z()));
+    return static_cast<std::uint32_t>(mesh.vertices_L.size() - 1);
+  };
+  const Eigen::Vector3d bottom(0, 0, -0.5 * length_m), top(0, 0, 0.5 * length_m);
+  const std::uint32_t south = add(bottom, -Eigen::Vector3d::UnitZ());
+  std::vector<std::uint32_t> previous;
+  for (int ring = 1; ring <= 2 * rings; ++ring) {
+    // Rings 1..rings: the bottom hemisphere up to its equator; rings+1..2 rings: the top one
+    // from its equator.
+    const int latitude = ring <= rings ? ring : ring - 1;
+    const double theta = M_PI * latitude / (2 * rings);  // from the south pole
+    const Eigen::Vector3d& centre = ring <= rings ? bottom : top;
+    std::vector<std::uint32_t> current;
+    for (int j = 0; j < segments; ++j) {
+      const double phi = 2.0 * M_PI * j / segments;
+      current.push_back(add(centre, Eigen::Vector3d(std::sin(theta) * std::cos(phi),
+                                                    std::sin(theta) * std::sin(phi),
+                                                    -std::cos(theta))));
+    }
+    for (int j = 0; j < segments; ++j) {
+      const int k = (j + 1) % segments;
+      if (previous.empty()) {
+        mesh.triangles.push_back({south, current[k], current[j]});
+      } else {
+        mesh.triangles.push_back({previous[j], previous[k], current[k]});
+        mesh.triangles.push_back({previous[j], current[k], current[j]});
+      }
+    }
+    previous = current;
+  }
+  const std::uint32_t north = add(top, Eigen::Vector3d::UnitZ());
+  for (int j = 0; j < segments; ++j) {
+    mesh.triangles.push_back({north, previous[j], previous[(j + 1) % segments]});
+  }
+  return mesh;
 }
 
 inline std::string Number(double x) {
