@@ -62,8 +62,7 @@ void AppendNode(const aiScene& scene, const aiNode& node, const Eigen::Affine3d&
     }
   }
   for (unsigned int c = 0; c < node.mNumChildren; ++c) {
-    AppendNode(scene, *node.mChildren[c], X_MN * ToEigen(node.mChildren[c]->mTransformation),
-               mesh);
+    AppendNode(scene, *node.mChildren[c], X_MN * ToEigen(node.mChildren[c]->mTransformation), mesh);
   }
 }
 
@@ -106,11 +105,11 @@ TriangleMesh ReadMeshFileBytes(const std::string& bytes, const std::string& name
   if (bytes.empty()) throw LoadError("the file is empty (expected a mesh: STL, DAE, OBJ, ...)");
   Assimp::Importer importer;
   const std::string hint = ExtensionHint(name);
-  const aiScene* scene = importer.ReadFileFromMemory(
-      bytes.data(), bytes.size(),
-      aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType |
-          aiProcess_ValidateDataStructure,
-      hint.c_str());
+  const aiScene* scene =
+      importer.ReadFileFromMemory(bytes.data(), bytes.size(),
+                                  aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                                      aiProcess_SortByPType | aiProcess_ValidateDataStructure,
+                                  hint.c_str());
   if (scene == nullptr || scene->mRootNode == nullptr) {
     throw LoadError(std::string("cannot read the mesh: ") + importer.GetErrorString() +
                     " (expected a mesh file: STL, DAE, OBJ, ...)");

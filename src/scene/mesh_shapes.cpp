@@ -38,8 +38,7 @@ std::string ReportLine(const std::string& where, const MeshFitOptions& options,
 
 }  // namespace
 
-MeshFitter::MeshFitter(ResourceFetcher fetch, std::string cache_dir,
-                       const MeshFitOptions& options)
+MeshFitter::MeshFitter(ResourceFetcher fetch, std::string cache_dir, const MeshFitOptions& options)
     : fetch_(std::move(fetch)), cache_(std::move(cache_dir)), options_(options) {}
 
 std::vector<Shape> MeshFitter::FitFile(const std::string& name, const std::string& base_dir,

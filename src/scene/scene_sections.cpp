@@ -48,7 +48,8 @@ std::vector<std::pair<std::string, Shape>> LinkShapes(const urdf::Link& link, co
                       ": radius_m is required with p0_m/p1_m (the URDF link has no single "
                       "capsule to take it from)");
     }
-    return {{"0", Capsule{*o.p0_L, *o.p1_L, std::get<Capsule>(geometry.shapes_L[0].second).radius_m}}};
+    const double radius_m = std::get<Capsule>(geometry.shapes_L[0].second).radius_m;
+    return {{"0", Capsule{*o.p0_L, *o.p1_L, radius_m}}};
   }
   auto shapes = geometry.shapes_L;
   if (o.radius_m) {

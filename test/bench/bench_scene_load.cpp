@@ -62,10 +62,15 @@ const MeshRobot& GeneratedMeshRobot() {
       r.triangles += static_cast<int>(mesh.triangles.size());
       WriteBytes(r.dir + std::to_string(k) + ".stl", BinaryStl(mesh));
       const std::string link = "link" + std::to_string(k);
-      urdf += "<link name=\"" + link + "\"><collision><origin xyz=\"0 0 0.2\"/><geometry><mesh "
-              "filename=\"" + std::to_string(k) + ".stl\"/></geometry></collision></link>\n"
-              "<joint name=\"j" + std::to_string(k) + "\" type=\"revolute\"><parent link=\"" +
-              parent + "\"/><child link=\"" + link + "\"/><origin xyz=\"0 0 0.4\"/><axis xyz=\"0 "
+      urdf += "<link name=\"" + link +
+              "\"><collision><origin xyz=\"0 0 0.2\"/><geometry><mesh "
+              "filename=\"" +
+              std::to_string(k) +
+              ".stl\"/></geometry></collision></link>\n"
+              "<joint name=\"j" +
+              std::to_string(k) + "\" type=\"revolute\"><parent link=\"" + parent +
+              "\"/><child link=\"" + link +
+              "\"/><origin xyz=\"0 0 0.4\"/><axis xyz=\"0 "
               "1 0\"/><limit lower=\"-0.5\" upper=\"0.5\" effort=\"1\" velocity=\"1\"/></joint>\n";
       parent = link;
     }

@@ -4,6 +4,7 @@
 // has exactly the vertices written.
 #pragma once
 
+#include <Eigen/Core>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -12,8 +13,6 @@
 #include <random>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "arm_collision_monitor/geometry/mesh_fit.h"
 
@@ -95,9 +94,9 @@ TriangleMesh TessellatedCapsuleMesh(double radius_m, double length_m, int segmen
     std::vector<std::uint32_t> current;
     for (int j = 0; j < segments; ++j) {
       const double phi = 2.0 * M_PI * j / segments;
-      current.push_back(add(centre, Eigen::Vector3d(std::sin(theta) * std::cos(phi),
-                                                    std::sin(theta) * std::sin(phi),
-                                                    -std::cos(theta))));
+      current.push_back(
+          add(centre, Eigen::Vector3d(std::sin(theta) * std::cos(phi),
+                                      std::sin(theta) * std::sin(phi), -std::cos(theta))));
     }
     for (int j = 0; j < segments; ++j) {
       const int k = (j + 1) % segments;
@@ -185,7 +184,8 @@ inline std::string Dae(const TriangleMesh& mesh, const std::string& unit_meter =
   const std::string n = std::to_string(mesh.vertices_L.size());
   return "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n"
          "<COLLADA xmlns=\"http://www.collada.org/2005/11/COLLADASchema\" version=\"1.4.1\">\n"
-         "<asset><unit name=\"u\" meter=\"" + unit_meter + "\"/><up_axis>" + up_axis +
+         "<asset><unit name=\"u\" meter=\"" +
+         unit_meter + "\"/><up_axis>" + up_axis +
          "</up_axis></asset>\n"
          "<library_geometries><geometry id=\"g\"><mesh>\n"
          "<source id=\"p\"><float_array id=\"pa\" count=\"" +
@@ -194,7 +194,8 @@ inline std::string Dae(const TriangleMesh& mesh, const std::string& unit_meter =
          "\" stride=\"3\"><param name=\"X\" type=\"float\"/><param name=\"Y\" type=\"float\"/>"
          "<param name=\"Z\" type=\"float\"/></accessor></technique_common></source>\n"
          "<vertices id=\"v\"><input semantic=\"POSITION\" source=\"#p\"/></vertices>\n"
-         "<triangles count=\"" + std::to_string(mesh.triangles.size()) +
+         "<triangles count=\"" +
+         std::to_string(mesh.triangles.size()) +
          "\"><input semantic=\"VERTEX\" source=\"#v\" offset=\"0\"/><p>" + indices +
          "</p></triangles>\n</mesh></geometry></library_geometries>\n"
          "<library_visual_scenes><visual_scene id=\"s\"><node id=\"n\">"

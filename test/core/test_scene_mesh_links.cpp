@@ -170,7 +170,7 @@ TEST(SceneMeshLinks, MeshFitKindsEncloseTheNonConvexShape) {
   const std::string dir = FreshDir("kinds");
   const TriangleMesh l_shape = LShapeMesh(0.1, 0.05);
   WriteBytes(dir + "l.obj", Obj(l_shape));
-  for (const std::string kind : std::vector<std::string>{"box", "capsules:3"}) {
+  for (const std::string& kind : std::vector<std::string>{"box", "capsules:3"}) {
     const Files files = WriteRobot(dir, {MeshCollision("l.obj", kOrigin)}, "mesh_fit: " + kind);
     const Workcell w = LoadWorkcell(files.urdf, files.scene, CacheIn(dir));
     ExpectEncloses(w, "link0", l_shape, kX_LC);
@@ -197,8 +197,9 @@ TEST(SceneMeshLinks, ReportHasOneLinePerMeshWithTheExcessVolume) {
   const Files files = WriteRobot(dir, {MeshCollision("closed.stl"), MeshCollision("open.obj")});
   const Workcell w = LoadWorkcell(files.urdf, files.scene, CacheIn(dir));
   ASSERT_EQ(w.notices.size(), 2u);
-  for (const std::string part : std::vector<std::string>{files.urdf, "link 'link0'", "closed.stl", "mesh fit: 1 capsule",
-                                  "fitted/mesh volume "}) {
+  for (const std::string& part :
+       std::vector<std::string>{files.urdf, "link 'link0'", "closed.stl", "mesh fit: 1 capsule",
+                                "fitted/mesh volume "}) {
     EXPECT_NE(w.notices[0].find(part), std::string::npos) << part << " not in " << w.notices[0];
   }
   // The capsule around a 0.2 x 0.1 x 0.1 box: its ratio, from the fitted shape.
@@ -219,7 +220,8 @@ TEST(SceneMeshLinks, OverridesWinAndSeveralCollisionsKeepTheirNames) {
   WriteBytes(dir + "l.stl", BinaryStl(LShapeMesh(0.1, 0.05)));
   const std::string box = "<collision><geometry><box size=\"0.1 0.1 0.1\"/></geometry></collision>";
   const Files files = WriteRobot(
-      dir, {MeshCollision("missing.stl"), MeshCollision("missing.stl"), box + MeshCollision("l.stl")},
+      dir,
+      {MeshCollision("missing.stl"), MeshCollision("missing.stl"), box + MeshCollision("l.stl")},
       "links:\n  link0: {p0_m: [0, 0, 0], p1_m: [0.3, 0, 0], radius_m: 0.05}\n"
       "  link1: {ignore: true}\nmesh_fit: capsules:2\n");
   const Workcell w = LoadWorkcell(files.urdf, files.scene, CacheIn(dir));
@@ -228,7 +230,7 @@ TEST(SceneMeshLinks, OverridesWinAndSeveralCollisionsKeepTheirNames) {
   EXPECT_EQ(c.radius_m, 0.05);
   EXPECT_TRUE(ShapesOf(w, "link1").empty());
   // link2: the box is element 0, the mesh element 1 fitted with two capsules.
-  for (const std::string name : std::vector<std::string>{"link2/0", "link2/1/0", "link2/1/1"}) {
+  for (const std::string& name : std::vector<std::string>{"link2/0", "link2/1/0", "link2/1/1"}) {
     EXPECT_GE(w.FindPrimitive(name), 0) << name;
   }
   EXPECT_EQ(w.mesh_fits.computed, 1);
@@ -277,9 +279,8 @@ TEST(SceneMeshLinks, CorruptOrWrongCacheEntriesAreRefitted) {
   std::string shrunk = good;
   ASSERT_NE(shrunk.find(radius), std::string::npos);
   shrunk.replace(shrunk.find(radius), std::string(radius).size(), smaller);
-  for (const std::string& bad :
-       {std::string("\x01\x02garbage"), good.substr(0, good.size() / 2), shrunk,
-        good + "capsule 0 0 0 0 0 0 1\n", std::string("")}) {
+  for (const std::string& bad : {std::string("\x01\x02garbage"), good.substr(0, good.size() / 2),
+                                 shrunk, good + "capsule 0 0 0 0 0 0 1\n", std::string("")}) {
     WriteBytes(entries[0].string(), bad);
     const Workcell w = LoadWorkcell(files.urdf, files.scene, CacheIn(dir));
     EXPECT_EQ(w.mesh_fits.computed, 1) << bad;
@@ -310,7 +311,7 @@ TEST(SceneMeshLinks, ColladaUnitIsAppliedAndItsUpAxisIgnored) {
   const std::string dir = FreshDir("collada");
   // A 40 x 10 x 200 mm box: long along the file's z.
   const TriangleMesh box_mm = BoxMesh(Eigen::Vector3d(40, 10, 200));
-  for (const std::string up : std::vector<std::string>{"Z_UP", "Y_UP"}) {
+  for (const std::string& up : std::vector<std::string>{"Z_UP", "Y_UP"}) {
     WriteBytes(dir + "box.dae", Dae(box_mm, "0.001", up));
     const Files files = WriteRobot(dir, {MeshCollision("box.dae")});
     const Workcell w = LoadWorkcell(files.urdf, files.scene, CacheIn(dir));
@@ -333,13 +334,15 @@ TEST(SceneMeshLinks, ObjectsOfTypeMesh) {
       "mesh_fit: capsules:2\nobjects:\n"
       "  - {name: bracket, type: mesh, mesh: meshes/l.obj, scale: [2, 1, 1], attachable: true,\n"
       "     tolerance_m: 0.01, pose: {xyz_m: [0.5, 0.2, 0.8], rpy: [0, 0, 0.5]}}\n"
-      "  - {name: plate, type: mesh, mesh: 'file://" + dir + "meshes/l.obj', pose: {xyz_m: [-0.5, 0, 0.5]}}\n");
+      "  - {name: plate, type: mesh, mesh: 'file://" +
+          dir + "meshes/l.obj', pose: {xyz_m: [-0.5, 0, 0.5]}}\n");
   const Workcell w = LoadWorkcell(files.urdf, files.scene, CacheIn(dir));
   const int bracket = w.FindObject("bracket");
   ASSERT_GE(bracket, 0);
   EXPECT_EQ(w.objects[bracket].primitive_count, 2);
   EXPECT_TRUE(w.objects[bracket].is_attachable);
-  for (const std::string name : std::vector<std::string>{"bracket/0", "bracket/1", "plate/0", "plate/1"}) {
+  for (const std::string& name :
+       std::vector<std::string>{"bracket/0", "bracket/1", "plate/0", "plate/1"}) {
     const int id = w.FindPrimitive(name);
     ASSERT_GE(id, 0) << name;
     EXPECT_EQ(w.primitives[id].tolerance_m, name[0] == 'b' ? 0.01 : 0.0);
@@ -369,7 +372,8 @@ TEST(SceneMeshLinks, BadMeshFilesAreRejectedNamingUrdfLinkAndFile) {
   ExpectBadLinkMesh(dir, "missing.stl", "", {"cannot open the file"});
   std::string garbage;
   for (int i = 0; i < 3000; ++i) garbage += static_cast<char>((i * 7919 + 13) % 251);
-  for (const std::string name : std::vector<std::string>{"garbage.stl", "garbage.dae", "garbage.obj"}) {
+  for (const std::string& name :
+       std::vector<std::string>{"garbage.stl", "garbage.dae", "garbage.obj"}) {
     ExpectBadLinkMesh(dir, name, garbage, {});
   }
   const std::string stl = BinaryStl(LShapeMesh(0.1, 0.05));
@@ -392,7 +396,7 @@ TEST(SceneMeshLinks, MeshesWithoutVolumeAreRejected) {
 TEST(SceneMeshLinks, AbsurdScalesAreRejected) {
   const std::string dir = FreshDir("scales");
   const std::string stl = BinaryStl(LShapeMesh(0.1, 0.05));
-  for (const std::string scale : std::vector<std::string>{"0 1 1", "1 -1 1", "1 1 0"}) {
+  for (const std::string& scale : std::vector<std::string>{"0 1 1", "1 -1 1", "1 1 0"}) {
     ExpectBadLinkMesh(dir, "l.stl", stl, {"scale", "finite numbers > 0"}, scale);
   }
   ExpectBadLinkMesh(dir, "l.stl", stl, {"too large"}, "1e6 1e6 1e6");
@@ -420,7 +424,8 @@ TEST(SceneMeshLinks, BadMeshObjectsAreRejectedNamingSceneObjectAndFile) {
       {"{name: a, type: mesh, mesh: flat.obj" + pose, {"objects[0] 'a'", "flat.obj", "no volume"}},
       {"{name: a, type: mesh, mesh: l.obj, scale: [1, 0, 1]" + pose,
        {"objects[0] 'a'", "l.obj", "scale"}},
-      {"{name: a, type: mesh, mesh: l.obj, scale: [1, .nan, 1]" + pose, {"objects[0] 'a'", "scale"}},
+      {"{name: a, type: mesh, mesh: l.obj, scale: [1, .nan, 1]" + pose,
+       {"objects[0] 'a'", "scale"}},
       {"{name: a, type: box, size_m: [1, 1, 1], mesh: l.obj" + pose,
        {"objects[0] 'a'", "mesh is not a key of a box"}},
       {"{name: a, type: mesh, mesh: package://nowhere/l.obj" + pose,
