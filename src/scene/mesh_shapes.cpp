@@ -57,14 +57,10 @@ std::vector<Shape> MeshFitter::FitFile(const std::string& name, const std::strin
   } catch (const LoadError& e) {
     throw LoadError(element + ": " + e.what());
   }
-  return Fit(mesh, element);
+  return FitInline(mesh, element);
 }
 
 std::vector<Shape> MeshFitter::FitInline(const TriangleMesh& mesh, const std::string& where) {
-  return Fit(mesh, where);
-}
-
-std::vector<Shape> MeshFitter::Fit(const TriangleMesh& mesh, const std::string& where) {
   const MeshCheck check = CheckMesh(mesh);
   if (check.status != MeshStatus::kOk) {
     throw LoadError(where + ": " + MeshStatusName(check.status) + ": " + check.message);

@@ -27,15 +27,14 @@ class MeshFitter {
   std::vector<Shape> FitFile(const std::string& name, const std::string& base_dir,
                              const Eigen::Vector3d& scale, const std::string& where);
 
-  /// The same for a mesh given inline (a planning scene's shape_msgs/Mesh), in its frame M.
+  /// The same for a mesh given inline (a planning scene's shape_msgs/Mesh, or a file's once
+  /// read), in its frame M.
   std::vector<Shape> FitInline(const TriangleMesh& mesh, const std::string& where);
 
   /// Adds the report lines, the cache's trouble (if any) and the fit counts to `workcell`.
   void ReportTo(Workcell* workcell) const;
 
  private:
-  std::vector<Shape> Fit(const TriangleMesh& mesh, const std::string& where);
-
   ResourceFetcher fetch_;
   MeshFitCache cache_;
   MeshFitOptions options_;
