@@ -183,7 +183,7 @@ TEST(SceneLoader, MovingLinksOutsideEveryArmKeepTheDefaultTolerance) {
 // The plain loader resolves no package:// URL (the ROS programs' fetcher does: test/node).
 TEST(SceneLoader, PackageMeshWithoutRosFetcherFailsNamingLinkAndFile) {
   ExpectLoadError([&] { LoadWorkcell(kArmMeshUrdf, kData + "three_link_scene.yaml"); },
-                  {kArmMeshUrdf, "link 'forearm'", "package://third_party_arm/meshes/forearm.stl",
+                  {kArmMeshUrdf, "link 'forearm'", "package://arm_collision_monitor/test/data/meshes/forearm.stl",
                    "package:// URLs are not resolved", "give a file path"});
 }
 

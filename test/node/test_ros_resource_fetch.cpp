@@ -24,6 +24,26 @@ void AddThisPackageToRosPackagePath() {
   setenv("ROS_PACKAGE_PATH", path.c_str(), 1);
 }
 
+// True iff p_L lies in the closed capsule c.
+bool InCapsule(const Capsule& c, const Eigen::Vector3d& p_L) {
+  const Eigen::Vector3d d = c.p1_W - c.p0_W;
+  const double s = std::clamp((p_L - c.p0_W).dot(d) / d.squaredNorm(), 0.0, 1.0);
+  return (p_L - c.p0_W - s * d).norm() <= c.radius_m;
+}
+
+// The corners of test/data/meshes/forearm.stl (|x|, |y| <= 0.045, |z| <= 0.175) placed by X_LC.
+void ExpectForearmEnclosed(const Capsule& c, const Eigen::Isometry3d& X_LC) {
+  for (const double x : {-0.045, 0.045}) {
+    for (const double y : {-0.045, 0.045}) {
+      for (const double z : {-0.175, 0.175}) {
+        const Eigen::Vector3d p_L = X_LC * Eigen::Vector3d(x, y, z);
+        EXPECT_TRUE(InCapsule(c, p_L)) << p_L.transpose();
+      }
+    }
+  }
+  EXPECT_NEAR((c.p1_W - c.p0_W).norm(), 0.35, 1e-6);
+}
+
 TEST(RosResourceFetch, PackageUrlsOfUrdfMeshesAndSrdfResolve) {
   AddThisPackageToRosPackagePath();
   const std::string dir = ::testing::TempDir() + "acm_ros_fetch/";
@@ -46,19 +66,9 @@ TEST(RosResourceFetch, PackageUrlsOfUrdfMeshesAndSrdfResolve) {
   const Workcell w = LoadWorkcell(urdf, scene, options);
   const int forearm = w.FindPrimitive("forearm");
   ASSERT_GE(forearm, 0);
-  // The file's box (x in [0, 0.35], |y|, |z| <= 0.045), raised by the origin: every corner in.
-  const Capsule c = std::get<Capsule>(w.primitives[forearm].shape_L);
-  for (const double x : {0.0, 0.35}) {
-    for (const double y : {-0.045, 0.045}) {
-      for (const double z : {0.055, 0.145}) {
-        const Eigen::Vector3d p(x, y, z);
-        const Eigen::Vector3d d = c.p1_W - c.p0_W;
-        const double s = std::clamp((p - c.p0_W).dot(d) / d.squaredNorm(), 0.0, 1.0);
-        EXPECT_LE((p - c.p0_W - s * d).norm(), c.radius_m) << p.transpose();
-      }
-    }
-  }
-  EXPECT_NEAR((c.p1_W - c.p0_W).norm(), 0.35, 1e-6);
+  Eigen::Isometry3d X_LC = Eigen::Isometry3d::Identity();
+  X_LC.translation().z() = 0.1;
+  ExpectForearmEnclosed(std::get<Capsule>(w.primitives[forearm].shape_L), X_LC);
   EXPECT_EQ(w.mesh_fits.computed, 1);
   // The SRDF was read: its links are not this robot's, so it leaves a notice naming them.
   bool has_srdf_notice = false;
@@ -66,6 +76,24 @@ TEST(RosResourceFetch, PackageUrlsOfUrdfMeshesAndSrdfResolve) {
     has_srdf_notice |= warning.find("workcell.srdf: collision rules: skipped") != std::string::npos;
   }
   EXPECT_TRUE(has_srdf_notice);
+}
+
+// The bundled third-party-style arm loads with no override through the ROS fetcher.
+TEST(RosResourceFetch, ThreeLinkArmWithPackageMeshLoadsWithoutOverride) {
+  AddThisPackageToRosPackagePath();
+  WorkcellLoadOptions options;
+  options.fetch = FetchRosResource;
+  options.mesh_fit_cache_dir = "";
+  const std::string data = std::string(ACM_SOURCE_DIR) + "/test/data/";
+  const Workcell w =
+      LoadWorkcell(data + "three_link_arm_mesh.urdf", data + "three_link_scene.yaml", options);
+  const int forearm = w.FindPrimitive("forearm");
+  ASSERT_GE(forearm, 0);
+  ExpectForearmEnclosed(
+      std::get<Capsule>(w.primitives[forearm].shape_L),
+      PoseFromXyzRpy(Eigen::Vector3d(0.175, 0, 0), Eigen::Vector3d(0, M_PI / 2, 0)));
+  ASSERT_EQ(w.notices.size(), 1u);
+  EXPECT_NE(w.notices[0].find("link 'forearm'"), std::string::npos) << w.notices[0];
 }
 
 TEST(RosResourceFetch, UnknownPackageIsALoadError) {
