@@ -296,7 +296,7 @@ WRITERS = {'stl': write_stl, 'obj': write_obj, 'dae': write_dae}
 # ----------------------------------------------------------------------------------------------
 # The URDF: a pedestal, a torso with a camera head, two 7-DOF arms on mounting plates on the
 # torso's sides (their base z axis pointing outward, left +y, right -y), each with a parallel
-# gripper (one actuated finger, the other its mimic). Collision geometry only, all meshes; the
+# gripper (one actuated finger, the other its mimic). Geometry all meshes (visual = collision); the
 # frames a real robot's URDF has without geometry (world, base_footprint, mounting plates, camera
 # frames, flanges, tool0) are there too.
 # ----------------------------------------------------------------------------------------------
@@ -318,9 +318,10 @@ def urdf_text():
             return
         origin = '' if rpy is None else '\n      <origin xyz="0 0 0" rpy="%s"/>' % rpy
         scale = '' if scale is None else ' scale="%s"' % scale
-        out.append('  <link name="%s">\n    <collision>%s\n      <geometry>\n        <mesh '
-                   'filename="%s%s"%s/>\n      </geometry>\n    </collision>\n  </link>'
-                   % (name, origin, PACKAGE_URL, mesh, scale))
+        body = ('%s\n      <geometry>\n        <mesh filename="%s%s"%s/>\n      </geometry>'
+                % (origin, PACKAGE_URL, mesh, scale))
+        out.append('  <link name="%s">\n    <visual>%s\n    </visual>\n    <collision>%s\n'
+                   '    </collision>\n  </link>' % (name, body, body))
 
     def joint(name, kind, parent, child, xyz, rpy='0 0 0', axis=None, limit=None, mimic=None):
         text = ('  <joint name="%s" type="%s">\n    <parent link="%s"/>\n    <child link="%s"/>\n'
@@ -336,8 +337,8 @@ def urdf_text():
 
     half_pi = number(0.5 * math.pi)
     out.append('<?xml version="1.0"?>\n<!-- A dual-arm robot (the bundled example dual_arm_shelf), '
-               'written by scripts/make_example.py:\n     do not edit, regenerate. Collision '
-               'geometry only (meshes); no visuals, no inertias. -->\n'
+               'written by scripts/make_example.py:\n     do not edit, regenerate. Visual and '
+               'collision geometry: the same meshes; no inertias. -->\n'
                '<robot name="dual_arm_shelf">')
     link('world')
     joint('world_joint', 'fixed', 'world', 'base_footprint', '0 0 0')
