@@ -3,11 +3,13 @@
 namespace arm_collision_monitor {
 
 MonitorStartup LoadMonitorStartup(const std::string& urdf_path, const std::string& scene_path,
-                                  const std::string& config_path) {
+                                  const std::string& config_path, const ResourceFetcher& fetch) {
   MonitorStartup startup;
   startup.options = LoadMonitorOptions(config_path);
-  startup.workcell = std::make_shared<const Workcell>(
-      LoadWorkcell(urdf_path, scene_path, startup.options.tolerance_m));
+  WorkcellLoadOptions load;
+  load.default_arm_tolerance_m = startup.options.tolerance_m;
+  load.fetch = fetch;
+  startup.workcell = std::make_shared<const Workcell>(LoadWorkcell(urdf_path, scene_path, load));
   return startup;
 }
 

@@ -29,6 +29,7 @@
 #include "arm_collision_monitor/monitor/monitor.h"
 #include "arm_collision_monitor/monitor/monitor_startup.h"
 #include "arm_collision_monitor/ros/conversions.h"
+#include "arm_collision_monitor/ros/resource_fetch_ros.h"
 #include "arm_collision_monitor/scene/workcell.h"
 #include "arm_collision_monitor/scene/workcell_shapes.h"
 #include "arm_collision_monitor/tasks/joint_csv.h"
@@ -511,11 +512,15 @@ void PrintText(const Options& options, const Workcell& wc, const Input& input,
 int Run(const Options& options) {
   // Start-up as in the node (MonitorNode's constructor): the monitor options first, for the
   // default arm tolerance the workcell is loaded with; then the start-up findings.
-  const MonitorStartup startup = LoadMonitorStartup(options.urdf, options.scene, options.config);
+  const MonitorStartup startup =
+      LoadMonitorStartup(options.urdf, options.scene, options.config, FetchRosResource);
   const MonitorOptions& monitor_options = startup.options;
   const std::shared_ptr<const Workcell>& workcell = startup.workcell;
   for (const std::string& finding : workcell->warnings) {
     std::fprintf(stderr, "replay: %s\n", finding.c_str());
+  }
+  for (const std::string& notice : workcell->notices) {
+    std::fprintf(stderr, "replay: %s\n", notice.c_str());
   }
   const std::unique_ptr<Checker> checker = MakeChecker(options, workcell, monitor_options);
   const Input input = EndsWith(options.input, ".csv") ? ReadCsv(options.input, *workcell)

@@ -10,6 +10,7 @@
 #include "arm_collision_monitor/monitor/monitor_startup.h"
 #include "arm_collision_monitor/core/timing_summary.h"
 #include "arm_collision_monitor/ros/conversions.h"
+#include "arm_collision_monitor/ros/resource_fetch_ros.h"
 
 namespace arm_collision_monitor {
 namespace {
@@ -85,11 +86,15 @@ MonitorNode::MonitorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
     : nh_(nh), private_nh_(private_nh), options_(LoadNodeOptions(private_nh)),
       policy_(options_.stop_hold_s), updater_(nh, private_nh) {
   const MonitorStartup startup =
-      LoadMonitorStartup(options_.urdf_path, options_.scene_path, options_.config_path);
+      LoadMonitorStartup(options_.urdf_path, options_.scene_path, options_.config_path,
+                         FetchRosResource);
   const MonitorOptions& monitor_options = startup.options;
   workcell_ = startup.workcell;
   for (const std::string& finding : workcell_->warnings) {
     ROS_WARN("arm_collision_monitor: %s", finding.c_str());
+  }
+  for (const std::string& notice : workcell_->notices) {
+    ROS_INFO("arm_collision_monitor: %s", notice.c_str());
   }
   monitor_ = std::make_unique<Monitor>(workcell_, monitor_options);
   fixed_frame_ =

@@ -11,10 +11,6 @@ namespace {
 
 std::string Quoted(const std::string& name) { return " '" + name + "'"; }
 
-bool StartsWith(const std::string& text, const std::string& prefix) {
-  return text.compare(0, prefix.size(), prefix) == 0;
-}
-
 // Runs `read`, prefixing any LoadError with the scene file's key that named the file.
 template <typename Read>
 auto ReadNamedFile(const Where& where, Read read) {
@@ -65,7 +61,8 @@ Shape ScenePrimitiveShape_W(const ScenePrimitive& primitive, const Eigen::Isomet
 // Every shape of `object` in W: its primitives, then each mesh's fitted primitives.
 std::vector<Shape> CollisionObjectShapes_W(const SceneCollisionObject& object,
                                            const Eigen::Isometry3d& X_WF,
-                                           const ShapeOptions& options, const std::string& path) {
+                                           const ShapeOptions& options, const std::string& path,
+                                           MeshFitter* meshes) {
   std::vector<Shape> shapes_W;
   for (const ScenePrimitive& primitive : object.primitives) {
     shapes_W.push_back(
@@ -73,13 +70,11 @@ std::vector<Shape> CollisionObjectShapes_W(const SceneCollisionObject& object,
   }
   for (std::size_t m = 0; m < object.meshes.size(); ++m) {
     const SceneMesh& mesh = object.meshes[m];
-    const MeshFit fit = FitMesh(TriangleMesh{mesh.vertices_M, mesh.triangles}, options.mesh_fit);
-    if (fit.check.status != MeshStatus::kOk) {
-      throw LoadError(path + ":" + std::to_string(object.line) + ": " + object.element +
-                      ".meshes[" + std::to_string(m) + "]: " + MeshStatusName(fit.check.status) +
-                      ": " + fit.check.message);
-    }
-    for (const Shape& shape_M : fit.shapes_L) {
+    const std::vector<Shape> shapes_M = meshes->FitInline(
+        TriangleMesh{mesh.vertices_M, mesh.triangles},
+        path + ":" + std::to_string(object.line) + ": " + object.element + ".meshes[" +
+            std::to_string(m) + "]");
+    for (const Shape& shape_M : shapes_M) {
       shapes_W.push_back(TransformShape(X_WF * mesh.X_FM, shape_M));
     }
   }
@@ -88,12 +83,13 @@ std::vector<Shape> CollisionObjectShapes_W(const SceneCollisionObject& object,
 
 // One collision object: the object and its primitives, appended to `workcell`.
 void AddCollisionObject(const SceneCollisionObject& object, const std::string& path,
-                        const ShapeOptions& options, double tolerance_m, NameRegistry* names,
-                        Workcell* workcell) {
+                        const ShapeOptions& options, double tolerance_m, MeshFitter* meshes,
+                        NameRegistry* names, Workcell* workcell) {
   const std::string origin = path + ":" + std::to_string(object.line) + ": " + object.element;
   names->Claim(object.id, origin);
   const std::vector<Shape> shapes_W =
-      CollisionObjectShapes_W(object, HeaderFramePose(object, *workcell, path), options, path);
+      CollisionObjectShapes_W(object, HeaderFramePose(object, *workcell, path), options, path,
+                              meshes);
   ObjectSpec spec;
   spec.name = object.id;
   spec.primitive = static_cast<PrimitiveId>(workcell->primitives.size());
@@ -117,17 +113,13 @@ void AddCollisionObject(const SceneCollisionObject& object, const std::string& p
 
 }  // namespace
 
-std::string ResolveInputPath(const YAML::Node& node, const Where& where) {
-  std::string path = yaml_fields::ReadName(node, where);
-  if (StartsWith(path, "package://")) {
-    where.Fail(node, Quoted(path).substr(1) +
-                         ": package:// URLs need ROS (rospack) to resolve; give a file path "
-                         "(absolute, or relative to the scene file's folder) or a file:// URL");
-  }
-  if (StartsWith(path, "file://")) path = path.substr(std::string("file://").size());
-  const std::filesystem::path file(path);
-  if (file.is_absolute()) return path;
-  return (std::filesystem::path(where.file).parent_path() / file).string();
+NamedFile FetchNamedFile(const YAML::Node& node, const Where& where,
+                         const ResourceFetcher& fetch) {
+  NamedFile file;
+  file.url = ResolveResourceName(yaml_fields::ReadName(node, where),
+                                 std::filesystem::path(where.file).parent_path().string());
+  file.text = ReadNamedFile(where, [&] { return fetch(file.url); });
+  return file;
 }
 
 std::vector<std::pair<PrimitiveId, PrimitiveId>> ResolveCollisionRules(
@@ -176,11 +168,14 @@ std::vector<std::pair<PrimitiveId, PrimitiveId>> ResolveCollisionRules(
 std::vector<std::pair<PrimitiveId, PrimitiveId>> ReadSrdfPairs(const YAML::Node& scene,
                                                                const std::string& scene_path,
                                                                const std::string& urdf_robot_name,
+                                                               const ResourceFetcher& fetch,
                                                                Workcell* workcell) {
   if (!scene["srdf"]) return {};
   const Where where{scene_path, "srdf"};
-  const std::string path = ResolveInputPath(scene["srdf"], where);
-  const SrdfCollisionRules srdf = ReadNamedFile(where, [&] { return ReadSrdfCollisionRules(path); });
+  const NamedFile file = FetchNamedFile(scene["srdf"], where, fetch);
+  const std::string& path = file.url;
+  const SrdfCollisionRules srdf =
+      ReadNamedFile(where, [&] { return ReadSrdfCollisionRulesText(file.text, path); });
   if (!srdf.robot_name.empty() && srdf.robot_name != urdf_robot_name) {
     workcell->warnings.push_back(path + ": <robot name='" + srdf.robot_name +
                                  "'> differs from the URDF's robot '" + urdf_robot_name +
@@ -200,7 +195,8 @@ std::vector<std::pair<PrimitiveId, PrimitiveId>> ReadSrdfPairs(const YAML::Node&
 }
 
 PlanningSceneInput ReadPlanningScene(const YAML::Node& scene, const std::string& scene_path,
-                                     const ShapeOptions& options, NameRegistry* names,
+                                     const ShapeOptions& options, const ResourceFetcher& fetch,
+                                     MeshFitter* meshes, NameRegistry* names,
                                      Workcell* workcell) {
   PlanningSceneInput input;
   const Where top{scene_path, ""};
@@ -216,14 +212,15 @@ PlanningSceneInput ReadPlanningScene(const YAML::Node& scene, const std::string&
     return input;
   }
   const Where where{scene_path, "planning_scene"};
-  input.path = ResolveInputPath(scene["planning_scene"], where);
-  input.file = ReadNamedFile(where, [&] { return ReadPlanningSceneFile(input.path); });
+  const NamedFile named = FetchNamedFile(scene["planning_scene"], where, fetch);
+  input.path = named.url;
+  input.file = ReadNamedFile(where, [&] { return ReadPlanningSceneText(named.text, input.path); });
   for (const std::string& notice : input.file.notices) {
     workcell->warnings.push_back(input.path + ": " + notice);
   }
   ReadNamedFile(where, [&] {
     for (const SceneCollisionObject& object : input.file.objects) {
-      AddCollisionObject(object, input.path, options, tolerance_m, names, workcell);
+      AddCollisionObject(object, input.path, options, tolerance_m, meshes, names, workcell);
     }
   });
   return input;

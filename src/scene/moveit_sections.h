@@ -15,10 +15,15 @@
 namespace arm_collision_monitor {
 namespace scene_sections {
 
-/// The file a srdf: or planning_scene: value names: a plain path (relative to the scene file's
-/// folder unless absolute) or a file:// URL. package:// URLs are rejected (resolving them needs
-/// rospack, i.e. ROS, which the core does not use).
-std::string ResolveInputPath(const YAML::Node& node, const Where& where);
+/// A file a srdf: or planning_scene: value names: its URL and its text.
+struct NamedFile {
+  std::string url;  ///< the name, made absolute against the scene file's folder if a relative path
+  std::string text;
+};
+
+/// Fetches the file `node` names (a path relative to the scene file's folder unless absolute,
+/// or a URL: file://, and package:// when `fetch` resolves it). A LoadError names `where`.
+NamedFile FetchNamedFile(const YAML::Node& node, const Where& where, const ResourceFetcher& fetch);
 
 /// Collision rules by name, MoveIt's way: a pair is compatible when it is in allowed_pairs, or
 /// when either name is in default_allowed and the pair is not in denied_pairs (denied pairs only
@@ -42,6 +47,7 @@ std::vector<std::pair<PrimitiveId, PrimitiveId>> ResolveCollisionRules(
 std::vector<std::pair<PrimitiveId, PrimitiveId>> ReadSrdfPairs(const YAML::Node& scene,
                                                                const std::string& scene_path,
                                                                const std::string& urdf_robot_name,
+                                                               const ResourceFetcher& fetch,
                                                                Workcell* workcell);
 
 /// What planning_scene: loaded, kept for its allowed collision matrix.
@@ -55,10 +61,11 @@ struct PlanningSceneInput {
 /// world collision object of the file as a static object of `workcell` (whose world_W and
 /// kinematics must be read). Its frame must be the fixed frame ("" means it) or a URDF link
 /// fixed to it. Box -> Box; sphere -> zero-length capsule; cylinder, and a cone's bounding
-/// cylinder -> per options.cylinder_model; inline mesh -> FitMesh(options.mesh_fit). The file's
-/// notices are added to workcell->warnings.
+/// cylinder -> per options.cylinder_model; inline mesh -> the primitives `meshes` fits to it.
+/// The file is read through `fetch`; its notices are added to workcell->warnings.
 PlanningSceneInput ReadPlanningScene(const YAML::Node& scene, const std::string& scene_path,
-                                     const ShapeOptions& options, NameRegistry* names,
+                                     const ShapeOptions& options, const ResourceFetcher& fetch,
+                                     MeshFitter* meshes, NameRegistry* names,
                                      Workcell* workcell);
 
 /// The allowed collision matrix of `input` as compatible pairs when planning_scene_acm: true

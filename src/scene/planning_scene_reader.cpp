@@ -9,6 +9,7 @@
 #include <set>
 
 #include "arm_collision_monitor/core/constants.h"
+#include "arm_collision_monitor/scene/resource_fetch.h"
 #include "arm_collision_monitor/scene/yaml_fields.h"
 
 namespace arm_collision_monitor {
@@ -378,7 +379,11 @@ void AddNotices(const YAML::Node& root, PlanningSceneFile* scene) {
 }  // namespace
 
 PlanningSceneFile ReadPlanningSceneFile(const std::string& path) {
-  const YAML::Node root = yaml_fields::LoadMapFile(path);
+  return ReadPlanningSceneText(ReadWholeFile(path, "a readable YAML file"), path);
+}
+
+PlanningSceneFile ReadPlanningSceneText(const std::string& text, const std::string& path) {
+  const YAML::Node root = yaml_fields::LoadMapText(text, path);
   const Where top{path, ""};
   yaml_fields::CheckKeys(root,
                          {"name", "robot_state", "robot_model_name", "fixed_frame_transforms",

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <filesystem>
 
 #include "urdf_collision.h"
 
@@ -32,33 +33,22 @@ PrimitiveSpec NewLinkPrimitive(int link, const Workcell& workcell, const LinkSet
   return p;
 }
 
-// The link's primitives in L after the scene's override.
+// The link's primitives in L after the scene's override (an override with its radius reads no
+// URDF geometry: explicit overrides win, even over a mesh that could not be read).
 std::vector<std::pair<std::string, Shape>> LinkShapes(const urdf::Link& link, const LinkOverride& o,
                                                       const std::string& urdf_path,
-                                                      const std::string& scene_path) {
+                                                      const std::string& scene_path,
+                                                      MeshFitter* meshes) {
   if (o.ignore) return {};
-  const UrdfLinkGeometry geometry = ReadUrdfLinkGeometry(link, urdf_path);
-  const std::string override_hint =
-      scene_path + " links:" + Quoted(link.name) + " {p0_m, p1_m, radius_m} or {ignore: true}";
+  if (o.p0_L && o.radius_m) return {{"0", Capsule{*o.p0_L, *o.p1_L, *o.radius_m}}};
+  const UrdfLinkGeometry geometry = ReadUrdfLinkGeometry(link, urdf_path, meshes);
   if (o.p0_L) {
-    double radius_m = 0.0;
-    if (o.radius_m) {
-      radius_m = *o.radius_m;
-    } else if (geometry.capsule_count() == 1 && geometry.shapes_L.size() == 1 &&
-               geometry.mesh_filename.empty()) {
-      radius_m = std::get<Capsule>(geometry.shapes_L[0].second).radius_m;
-    } else {
+    if (geometry.capsule_count() != 1 || geometry.shapes_L.size() != 1) {
       throw LoadError(scene_path + ": links." + link.name +
                       ": radius_m is required with p0_m/p1_m (the URDF link has no single "
                       "capsule to take it from)");
     }
-    return {{"0", Capsule{*o.p0_L, *o.p1_L, radius_m}}};
-  }
-  if (!geometry.mesh_filename.empty()) {
-    throw LoadError(urdf_path + ": link" + Quoted(link.name) + ": <collision> <mesh filename='" +
-                    geometry.mesh_filename +
-                    "'> has no primitive (expected box, cylinder or sphere); model the link in " +
-                    override_hint);
+    return {{"0", Capsule{*o.p0_L, *o.p1_L, std::get<Capsule>(geometry.shapes_L[0].second).radius_m}}};
   }
   auto shapes = geometry.shapes_L;
   if (o.radius_m) {
@@ -95,13 +85,16 @@ const std::vector<ObjectType>& ObjectTypes() {
   static const std::vector<ObjectType> types = {{"box", {"size_m"}},
                                                 {"sphere", {"radius_m"}},
                                                 {"cylinder", {"radius_m", "length_m"}},
-                                                {"capsule", {"radius_m", "length_m"}}};
+                                                {"capsule", {"radius_m", "length_m"}},
+                                                {"mesh", {"mesh", "scale"}}};
   return types;
 }
 
-// The solid of an objects: entry (type: box unless given), in its frame O at X_WO, in W.
-Shape ReadObjectShape(const YAML::Node& entry, const Where& item, const Eigen::Isometry3d& X_WO,
-                      CylinderModel cylinder_model) {
+// The solid of an objects: entry (type: box unless given), in its frame O at X_WO, in W: one
+// primitive, or those fitted to a mesh.
+std::vector<Shape> ReadObjectShapes(const YAML::Node& entry, const Where& item,
+                                    const Eigen::Isometry3d& X_WO, const ShapeOptions& options,
+                                    MeshFitter* meshes) {
   std::string type = "box";
   yaml_fields::ReadIfPresent(entry, "type", item, yaml_fields::ReadName, &type);
   const auto& types = ObjectTypes();
@@ -109,66 +102,88 @@ Shape ReadObjectShape(const YAML::Node& entry, const Where& item, const Eigen::I
                                [&](const ObjectType& t) { return type == t.name; });
   if (it == types.end()) {
     item.Child("type").Fail(entry["type"], "unknown type" + Quoted(type) +
-                                 " (expected box, sphere, cylinder or capsule)");
+                                 " (expected box, sphere, cylinder, capsule or mesh)");
   }
-  for (const char* key : {"size_m", "radius_m", "length_m"}) {
-    const bool is_needed = std::find_if(it->size_keys.begin(), it->size_keys.end(), [&](auto k) {
-                             return std::string(k) == key;
-                           }) != it->size_keys.end();
-    if (is_needed && !entry[key]) item.Fail(entry, "a " + type + " needs " + key);
-    if (!is_needed && entry[key]) {
-      item.Child(key).Fail(entry[key], std::string(key) + " is not a size of a " + type);
+  for (const char* key : {"size_m", "radius_m", "length_m", "mesh", "scale"}) {
+    const bool is_taken = std::find_if(it->size_keys.begin(), it->size_keys.end(), [&](auto k) {
+                            return std::string(k) == key;
+                          }) != it->size_keys.end();
+    const bool is_optional = std::string(key) == "scale";
+    if (is_taken && !is_optional && !entry[key]) item.Fail(entry, "a " + type + " needs " + key);
+    if (!is_taken && entry[key]) {
+      item.Child(key).Fail(entry[key], std::string(key) + " is not a key of a " + type);
     }
+  }
+  if (type == "mesh") {
+    const std::string name = yaml_fields::ReadName(entry["mesh"], item.Child("mesh"));
+    Eigen::Vector3d scale = Eigen::Vector3d::Ones();
+    yaml_fields::ReadIfPresent(entry, "scale", item, yaml_fields::ReadVector3, &scale);
+    const std::string folder = std::filesystem::path(item.file).parent_path().string();
+    std::vector<Shape> shapes_W;
+    for (const Shape& shape_O :
+         meshes->FitFile(name, folder, scale, item.file + ": " + item.element)) {
+      shapes_W.push_back(TransformShape(X_WO, shape_O));
+    }
+    return shapes_W;
   }
   if (type == "box") {
     const Eigen::Vector3d size_m = yaml_fields::ReadVector3(entry["size_m"], item.Child("size_m"));
     if ((size_m.array() <= 0.0).any()) {
       item.Fail(entry["size_m"], "size_m must be 3 numbers > 0 (full edge lengths, metres)");
     }
-    return Box{X_WO, 0.5 * size_m};
+    return {Box{X_WO, 0.5 * size_m}};
   }
   const double radius_m =
       yaml_fields::ReadPositiveDouble(entry["radius_m"], item.Child("radius_m"));
-  if (type == "sphere") return SphereShape_L(X_WO, radius_m);
+  if (type == "sphere") return {SphereShape_L(X_WO, radius_m)};
   if (type == "cylinder") {
     const double length_m =
         yaml_fields::ReadPositiveDouble(entry["length_m"], item.Child("length_m"));
-    return CylinderShape_L(X_WO, radius_m, length_m, cylinder_model);
+    return {CylinderShape_L(X_WO, radius_m, length_m, options.cylinder_model)};
   }
-  return CapsuleShape_L(X_WO, radius_m,
-                        yaml_fields::ReadNonNegativeDouble(entry["length_m"],
-                                                           item.Child("length_m")));
+  return {CapsuleShape_L(X_WO, radius_m,
+                         yaml_fields::ReadNonNegativeDouble(entry["length_m"],
+                                                            item.Child("length_m")))};
 }
 
-// One objects: entry: the object and its primitive, appended to `workcell`.
+// One objects: entry: the object and its primitives, appended to `workcell`.
 void ReadObject(const YAML::Node& entry, Where item, const ShapeOptions& options,
-                NameRegistry* names, Workcell* workcell) {
+                MeshFitter* meshes, NameRegistry* names, Workcell* workcell) {
   yaml_fields::RequireMap(entry, item);
   yaml_fields::CheckKeys(entry,
-                         {"name", "type", "size_m", "radius_m", "length_m", "pose", "tolerance_m",
-                          "attachable", "frame"},
+                         {"name", "type", "size_m", "radius_m", "length_m", "mesh", "scale",
+                          "pose", "tolerance_m", "attachable", "frame"},
                          item);
   ObjectSpec object;
   object.name = yaml_fields::ReadName(entry["name"], item.Child("name"));
   item.element += Quoted(object.name);
-  names->Claim(object.name, item.file + ": " + item.element);
+  const std::string origin = item.file + ": " + item.element;
+  names->Claim(object.name, origin);
   object.X_WO_start = ReadObjectPose(entry, item);
   yaml_fields::ReadIfPresent(entry, "attachable", item, yaml_fields::ReadBool,
                              &object.is_attachable);
   yaml_fields::ReadIfPresent(entry, "frame", item, yaml_fields::ReadName, &object.frame);
-  PrimitiveSpec p;
-  p.name = object.name;
-  p.owner = object.name;
-  p.shape_L = ReadObjectShape(entry, item, object.X_WO_start, options.cylinder_model);
+  double tolerance_m = 0.0;
   yaml_fields::ReadIfPresent(entry, "tolerance_m", item, yaml_fields::ReadNonNegativeDouble,
-                             &p.tolerance_m);
-  p.is_static = !object.is_attachable && object.frame.empty();
-  p.object_index = static_cast<int>(workcell->objects.size());
-  if (!workcell->world_W.Contains(ComputeAabb(p.shape_L))) {
-    item.Fail(entry, "the object is not inside the world cube (expected it within world:)");
-  }
+                             &tolerance_m);
+  const std::vector<Shape> shapes_W =
+      ReadObjectShapes(entry, item, object.X_WO_start, options, meshes);
   object.primitive = static_cast<PrimitiveId>(workcell->primitives.size());
-  workcell->primitives.push_back(p);
+  object.primitive_count = static_cast<int>(shapes_W.size());
+  for (std::size_t k = 0; k < shapes_W.size(); ++k) {
+    PrimitiveSpec p;
+    p.name = shapes_W.size() == 1 ? object.name : object.name + "/" + std::to_string(k);
+    if (p.name != object.name) names->Claim(p.name, origin);
+    p.owner = object.name;
+    p.shape_L = shapes_W[k];
+    p.tolerance_m = tolerance_m;
+    p.is_static = !object.is_attachable && object.frame.empty();
+    p.object_index = static_cast<int>(workcell->objects.size());
+    if (!workcell->world_W.Contains(ComputeAabb(p.shape_L))) {
+      item.Fail(entry, "the object is not inside the world cube (expected it within world:)");
+    }
+    workcell->primitives.push_back(p);
+  }
   workcell->objects.push_back(object);
 }
 
@@ -397,7 +412,7 @@ std::vector<LinkOverride> ReadLinkOverrides(const YAML::Node& node, const Where&
 
 std::vector<PrimitiveSpec> MakeLinkPrimitives(const urdf::ModelInterface& urdf_model,
                                               const Workcell& workcell, const LinkSettings& links,
-                                              NameRegistry* names) {
+                                              MeshFitter* meshes, NameRegistry* names) {
   const KinematicModel& model = workcell.kinematics;
   for (int link = 0; link < model.link_count(); ++link) {
     names->Claim(model.link_name(link),
@@ -408,7 +423,8 @@ std::vector<PrimitiveSpec> MakeLinkPrimitives(const urdf::ModelInterface& urdf_m
     const std::string& link_name = model.link_name(link);
     const urdf::LinkConstSharedPtr urdf_link = urdf_model.getLink(link_name);
     const auto shapes =
-        LinkShapes(*urdf_link, links.overrides[link], workcell.urdf_path, workcell.scene_path);
+        LinkShapes(*urdf_link, links.overrides[link], workcell.urdf_path, workcell.scene_path,
+                   meshes);
     for (const auto& [suffix, shape_L] : shapes) {
       PrimitiveSpec p = NewLinkPrimitive(link, workcell, links);
       p.name = shapes.size() == 1 ? link_name : link_name + "/" + suffix;
@@ -422,11 +438,11 @@ std::vector<PrimitiveSpec> MakeLinkPrimitives(const urdf::ModelInterface& urdf_m
 }
 
 void ReadObjects(const YAML::Node& node, const Where& where, const ShapeOptions& options,
-                 NameRegistry* names, Workcell* workcell) {
+                 MeshFitter* meshes, NameRegistry* names, Workcell* workcell) {
   if (!node.IsDefined()) return;
   yaml_fields::RequireSequence(node, where);
   for (std::size_t i = 0; i < node.size(); ++i) {
-    ReadObject(node[i], where.Entry(i), options, names, workcell);
+    ReadObject(node[i], where.Entry(i), options, meshes, names, workcell);
   }
 }
 

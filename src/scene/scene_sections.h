@@ -15,6 +15,7 @@
 #include "arm_collision_monitor/geometry/mesh_fit.h"
 #include "arm_collision_monitor/scene/workcell.h"
 #include "arm_collision_monitor/scene/yaml_fields.h"
+#include "mesh_shapes.h"
 #include "solid_shapes.h"
 
 namespace arm_collision_monitor {
@@ -84,17 +85,18 @@ std::vector<LinkOverride> ReadLinkOverrides(const YAML::Node& node, const Where&
                                             const KinematicModel& model);
 
 /// The default model of every link, in link order: the URDF's collision geometry
-/// (ReadUrdfLinkGeometry) after the links: overrides. Claims every link name, then the
-/// primitives' names. `workcell` supplies the kinematics and the arms.
+/// (ReadUrdfLinkGeometry, meshes fitted by `meshes`) after the links: overrides. Claims every
+/// link name, then the primitives' names. `workcell` supplies the kinematics and the arms.
 std::vector<PrimitiveSpec> MakeLinkPrimitives(const urdf::ModelInterface& urdf_model,
                                               const Workcell& workcell, const LinkSettings& links,
-                                              NameRegistry* names);
+                                              MeshFitter* meshes, NameRegistry* names);
 
-/// objects: appends each object and its primitive (box, sphere, cylinder per
-/// `options.cylinder_model`, or capsule) to `workcell` (whose world_W must be read: every
-/// primitive must lie inside it).
+/// objects: appends each object and its primitives (box, sphere, cylinder per
+/// `options.cylinder_model`, capsule, or the primitives `meshes` fits to a mesh file: one
+/// primitive named after the object, or several named object/0, object/1, ...) to `workcell`
+/// (whose world_W must be read: every primitive must lie inside it).
 void ReadObjects(const YAML::Node& node, const Where& where, const ShapeOptions& options,
-                 NameRegistry* names, Workcell* workcell);
+                 MeshFitter* meshes, NameRegistry* names, Workcell* workcell);
 
 /// variants: appends each model variant and its capsules (after all primitives so far) to
 /// `workcell`.

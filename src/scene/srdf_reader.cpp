@@ -4,12 +4,10 @@
 #include <tinyxml2.h>
 
 #include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <map>
-#include <sstream>
 
 #include "arm_collision_monitor/core/load_error.h"
+#include "arm_collision_monitor/scene/resource_fetch.h"
 
 namespace arm_collision_monitor {
 namespace {
@@ -71,22 +69,13 @@ SrdfLinkPair ReadLinkPair(const tinyxml2::XMLElement& xml, const std::string& pa
   return pair;
 }
 
-std::string ReadWholeFile(const std::string& path) {
-  std::error_code error;
-  std::ifstream in;
-  if (std::filesystem::is_regular_file(path, error)) in.open(path);
-  if (!in.is_open()) {
-    throw LoadError(path + ": cannot open the file (expected a readable SRDF file)");
-  }
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 }  // namespace
 
 SrdfCollisionRules ReadSrdfCollisionRules(const std::string& path) {
-  const std::string text = ReadWholeFile(path);
+  return ReadSrdfCollisionRulesText(ReadWholeFile(path, "a readable SRDF file"), path);
+}
+
+SrdfCollisionRules ReadSrdfCollisionRulesText(const std::string& text, const std::string& path) {
   tinyxml2::XMLDocument doc;
   if (doc.Parse(text.c_str(), text.size()) != tinyxml2::XML_SUCCESS) {
     Fail(path, doc.ErrorLineNum(), "(document)",

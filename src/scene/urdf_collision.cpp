@@ -1,6 +1,8 @@
 #include "urdf_collision.h"
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 
 #include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/core/load_error.h"
@@ -13,12 +15,14 @@ namespace {
 // One <collision> element before the capsule idiom is recognised.
 struct CollisionElement {
   std::string name;
+  std::string where;  // "urdf: link 'x' <collision> i"
   decltype(urdf::Geometry::type) type = urdf::Geometry::SPHERE;
   Eigen::Isometry3d X_LC = Eigen::Isometry3d::Identity();  // collision origin C in link L
   double radius_m = 0.0;
   double length_m = 0.0;
   Eigen::Vector3d size_m = Eigen::Vector3d::Zero();
   std::string mesh_filename;
+  Eigen::Vector3d mesh_scale = Eigen::Vector3d::Ones();
   bool is_absorbed = false;  // a sphere that is an end cap of a capsule-idiom cylinder
 };
 
@@ -54,17 +58,18 @@ int UrdfLinkGeometry::capsule_count() const {
   return count;
 }
 
-UrdfLinkGeometry ReadUrdfLinkGeometry(const urdf::Link& link, const std::string& urdf_path) {
+UrdfLinkGeometry ReadUrdfLinkGeometry(const urdf::Link& link, const std::string& urdf_path,
+                                      MeshFitter* meshes) {
   std::vector<urdf::CollisionSharedPtr> collisions = link.collision_array;
   if (collisions.empty() && link.collision) collisions.push_back(link.collision);
 
   std::vector<CollisionElement> elements;
   for (std::size_t i = 0; i < collisions.size(); ++i) {
     const urdf::Collision& collision = *collisions[i];
-    const std::string where =
-        urdf_path + ": link '" + link.name + "' <collision> " + std::to_string(i) + ": ";
-    if (!collision.geometry) throw LoadError(where + "expected a <geometry>");
     CollisionElement e;
+    e.where = urdf_path + ": link '" + link.name + "' <collision> " + std::to_string(i);
+    const std::string where = e.where + ": ";
+    if (!collision.geometry) throw LoadError(where + "expected a <geometry>");
     e.name = collision.name.empty() ? std::to_string(i) : collision.name;
     e.type = collision.geometry->type;
     e.X_LC = UrdfPoseToIsometry(collision.origin);
@@ -95,9 +100,12 @@ UrdfLinkGeometry ReadUrdfLinkGeometry(const urdf::Link& link, const std::string&
         }
         break;
       }
-      case urdf::Geometry::MESH:
-        e.mesh_filename = static_cast<const urdf::Mesh&>(*collision.geometry).filename;
+      case urdf::Geometry::MESH: {
+        const auto& mesh = static_cast<const urdf::Mesh&>(*collision.geometry);
+        e.mesh_filename = mesh.filename;
+        e.mesh_scale = Eigen::Vector3d(mesh.scale.x, mesh.scale.y, mesh.scale.z);
         break;
+      }
       default:
         throw LoadError(where + "unknown geometry (expected box, cylinder, sphere or mesh)");
     }
@@ -108,6 +116,9 @@ UrdfLinkGeometry ReadUrdfLinkGeometry(const urdf::Link& link, const std::string&
     if (e.type == urdf::Geometry::CYLINDER) AbsorbEndSpheres(e, &elements);
   }
 
+  const int element_count = static_cast<int>(std::count_if(
+      elements.begin(), elements.end(), [](const CollisionElement& e) { return !e.is_absorbed; }));
+  const std::string urdf_dir = std::filesystem::path(urdf_path).parent_path().string();
   UrdfLinkGeometry geometry;
   for (const CollisionElement& e : elements) {
     if (e.is_absorbed) continue;
@@ -122,9 +133,17 @@ UrdfLinkGeometry ReadUrdfLinkGeometry(const urdf::Link& link, const std::string&
       case urdf::Geometry::BOX:
         geometry.shapes_L.emplace_back(e.name, Box{e.X_LC, 0.5 * e.size_m});
         break;
-      default:  // MESH
-        if (geometry.mesh_filename.empty()) geometry.mesh_filename = e.mesh_filename;
+      default: {  // MESH
+        const std::vector<Shape> shapes_C =
+            meshes->FitFile(e.mesh_filename, urdf_dir, e.mesh_scale, e.where);
+        for (std::size_t k = 0; k < shapes_C.size(); ++k) {
+          const std::string name = shapes_C.size() == 1 ? e.name
+                                   : element_count == 1 ? std::to_string(k)
+                                                        : e.name + "/" + std::to_string(k);
+          geometry.shapes_L.emplace_back(name, TransformShape(e.X_LC, shapes_C[k]));
+        }
         break;
+      }
     }
   }
   return geometry;

@@ -8,16 +8,16 @@
 #include <vector>
 
 #include "arm_collision_monitor/geometry/primitives.h"
+#include "mesh_shapes.h"
 
 namespace arm_collision_monitor {
 
-/// The primitives of one link, in the link frame L, and any geometry that has none.
+/// The primitives of one link, in the link frame L.
 struct UrdfLinkGeometry {
-  /// (name, shape): the name is the <collision name=...> or its index in the link.
+  /// (name, shape): the name is the <collision name=...> or its index in the link; a mesh
+  /// fitted with several primitives gives "name/k" (k = 0, 1, ...), or just "k" when it is the
+  /// link's only collision element.
   std::vector<std::pair<std::string, Shape>> shapes_L;
-  /// Filename of the first <mesh> collision geometry, "" if none: a mesh has no primitive, the
-  /// scene file must replace or ignore the link.
-  std::string mesh_filename;
 
   int capsule_count() const;
 };
@@ -27,9 +27,12 @@ struct UrdfLinkGeometry {
 ///    L) with radius r: it encloses the cylinder (it adds two hemispherical caps of radius r);
 ///  - sphere -> a zero-length capsule;  box -> a Box;
 ///  - a cylinder plus two spheres of its radius centred on its end faces (the usual way of
-///    writing a capsule in URDF) -> that one capsule.
+///    writing a capsule in URDF) -> that one capsule;
+///  - mesh (filename relative to the URDF's folder unless absolute or a URL, scale) -> the
+///    primitives `meshes` fits to it, posed by the element's <origin>.
 /// Throws LoadError naming `urdf_path` and the link for a negative, zero-size or non-finite
-/// dimension.
-UrdfLinkGeometry ReadUrdfLinkGeometry(const urdf::Link& link, const std::string& urdf_path);
+/// dimension, and (MeshFitter::FitFile) for a mesh that cannot be read or fitted.
+UrdfLinkGeometry ReadUrdfLinkGeometry(const urdf::Link& link, const std::string& urdf_path,
+                                      MeshFitter* meshes);
 
 }  // namespace arm_collision_monitor

@@ -129,7 +129,15 @@ std::vector<std::string> SampledConfigurationWarnings(const Workcell& w) {
 
 Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_path,
                       double default_arm_tolerance_m) {
+  WorkcellLoadOptions options;
+  options.default_arm_tolerance_m = default_arm_tolerance_m;
+  return LoadWorkcell(urdf_path, scene_path, options);
+}
+
+Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_path,
+                      const WorkcellLoadOptions& options) {
   using scene_sections::Where;
+  const double default_arm_tolerance_m = options.default_arm_tolerance_m;
   const urdf::ModelInterfaceSharedPtr urdf_model = ParseUrdfFile(urdf_path);  // parsed once
   Workcell w;
   w.urdf_path = urdf_path;
@@ -155,16 +163,19 @@ Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_pat
   // Primitives: the links' default models, the objects, the planning scene's objects, then the
   // model variants.
   scene_sections::NameRegistry names;
-  w.primitives = scene_sections::MakeLinkPrimitives(*urdf_model, w, links, &names);
+  MeshFitter meshes(options.fetch, options.mesh_fit_cache_dir, shape_options.mesh_fit);
+  w.primitives = scene_sections::MakeLinkPrimitives(*urdf_model, w, links, &meshes, &names);
   scene_sections::ReadObjects(scene["objects"], Where{scene_path, "objects"}, shape_options,
-                              &names, &w);
-  const scene_sections::PlanningSceneInput planning_scene =
-      scene_sections::ReadPlanningScene(scene, scene_path, shape_options, &names, &w);
+                              &meshes, &names, &w);
+  const scene_sections::PlanningSceneInput planning_scene = scene_sections::ReadPlanningScene(
+      scene, scene_path, shape_options, options.fetch, &meshes, &names, &w);
+  meshes.ReportTo(&w);
   scene_sections::ReadVariants(scene["variants"], Where{scene_path, "variants"}, links, &names, &w);
   auto compatible_pairs =
       scene_sections::ReadCompatiblePairs(scene["compatible"], Where{scene_path, "compatible"}, w);
   for (const auto& more :
-       {scene_sections::ReadSrdfPairs(scene, scene_path, urdf_model->getName(), &w),
+       {scene_sections::ReadSrdfPairs(scene, scene_path, urdf_model->getName(), options.fetch,
+                                      &w),
         scene_sections::PlanningSceneAcmPairs(planning_scene, &w)}) {
     compatible_pairs.insert(compatible_pairs.end(), more.begin(), more.end());
   }

@@ -1,10 +1,10 @@
 #include "arm_collision_monitor/scene/yaml_fields.h"
 
 #include <cmath>
-#include <fstream>
 #include <set>
 
 #include "arm_collision_monitor/core/load_error.h"
+#include "arm_collision_monitor/scene/resource_fetch.h"
 
 namespace arm_collision_monitor {
 namespace yaml_fields {
@@ -27,12 +27,13 @@ void Where::Fail(const YAML::Node& node, const std::string& what) const {
 }
 
 YAML::Node LoadMapFile(const std::string& path) {
-  if (!std::ifstream(path)) {
-    throw LoadError(path + ": cannot open the file (expected a readable YAML file)");
-  }
+  return LoadMapText(ReadWholeFile(path, "a readable YAML file"), path);
+}
+
+YAML::Node LoadMapText(const std::string& text, const std::string& path) {
   YAML::Node root;
   try {
-    root = YAML::LoadFile(path);
+    root = YAML::Load(text);
   } catch (const YAML::ParserException& e) {
     throw LoadError(path + ":" + std::to_string(e.mark.line + 1) + ": malformed YAML: " + e.msg);
   } catch (const YAML::Exception& e) {

@@ -180,10 +180,11 @@ TEST(SceneLoader, MovingLinksOutsideEveryArmKeepTheDefaultTolerance) {
   EXPECT_EQ(w.primitives[w.FindPrimitive("upper_arm")].group, "");
 }
 
-TEST(SceneLoader, MeshWithoutOverrideFailsNamingLinkAndFile) {
+// The plain loader resolves no package:// URL (the ROS programs' fetcher does: test/node).
+TEST(SceneLoader, PackageMeshWithoutRosFetcherFailsNamingLinkAndFile) {
   ExpectLoadError([&] { LoadWorkcell(kArmMeshUrdf, kData + "three_link_scene.yaml"); },
                   {kArmMeshUrdf, "link 'forearm'", "package://third_party_arm/meshes/forearm.stl",
-                   "links: 'forearm'"});
+                   "package:// URLs are not resolved", "give a file path"});
 }
 
 TEST(SceneLoader, MeshWorksThroughAnOverride) {

@@ -415,7 +415,7 @@ TEST(SceneMoveitInputs, BadTypedObjectsAreRejected) {
       {world + "  - {name: ball, type: sphere, " + pose + "}\n",
        {"objects[0] 'ball'", "a sphere needs radius_m"}},
       {world + "  - {name: ball, type: sphere, radius_m: 0.1, size_m: [1, 1, 1], " + pose + "}\n",
-       {"objects[0] 'ball'.size_m", "not a size of a sphere"}},
+       {"objects[0] 'ball'.size_m", "not a key of a sphere"}},
       {world + "  - {name: can, type: cylinder, radius_m: 0.1, " + pose + "}\n",
        {"objects[0] 'can'", "a cylinder needs length_m"}},
       {world + "  - {name: can, type: cylinder, radius_m: 0, length_m: 1, " + pose + "}\n",

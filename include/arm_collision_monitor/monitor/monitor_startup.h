@@ -17,10 +17,11 @@ struct MonitorStartup {
 };
 
 /// Loads the Monitor options (`config_path`), then the workcell from `urdf_path` and
-/// `scene_path` with the options' tolerance_m as the default arm tolerance. The workcell's
-/// start-up findings (Workcell::warnings) are the caller's to show. Throws LoadError naming the
-/// file and the element.
+/// `scene_path` with the options' tolerance_m as the default arm tolerance, the files they name
+/// read through `fetch` (the ROS programs pass FetchRosResource, for package:// URLs). The
+/// workcell's start-up findings (Workcell::warnings, Workcell::notices) are the caller's to
+/// show. Throws LoadError naming the file and the element.
 MonitorStartup LoadMonitorStartup(const std::string& urdf_path, const std::string& scene_path,
-                                  const std::string& config_path);
+                                  const std::string& config_path, const ResourceFetcher& fetch);
 
 }  // namespace arm_collision_monitor

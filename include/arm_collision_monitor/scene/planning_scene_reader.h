@@ -95,4 +95,8 @@ struct PlanningSceneFile {
 /// named by unique names.
 PlanningSceneFile ReadPlanningSceneFile(const std::string& path);
 
+/// The same from the file's text (fetched by the caller, e.g. through a ResourceFetcher);
+/// `path` names it in the messages.
+PlanningSceneFile ReadPlanningSceneText(const std::string& text, const std::string& path);
+
 }  // namespace arm_collision_monitor

@@ -50,4 +50,8 @@ struct SrdfCollisionRules {
 /// element is unknown, or a rule lacks a link attribute (or has an empty one).
 SrdfCollisionRules ReadSrdfCollisionRules(const std::string& path);
 
+/// The same from the SRDF's text (fetched by the caller, e.g. through a ResourceFetcher);
+/// `path` names it in the messages.
+SrdfCollisionRules ReadSrdfCollisionRulesText(const std::string& text, const std::string& path);
+
 }  // namespace arm_collision_monitor

@@ -11,6 +11,8 @@
 #include "arm_collision_monitor/core/load_error.h"
 #include "arm_collision_monitor/geometry/primitives.h"
 #include "arm_collision_monitor/kinematics/kinematic_model.h"
+#include "arm_collision_monitor/scene/mesh_fit_cache.h"
+#include "arm_collision_monitor/scene/resource_fetch.h"
 
 namespace arm_collision_monitor {
 
@@ -36,8 +38,9 @@ struct ArmSpec {
   double tolerance_m = kDefaultArmTolerance_m;
 };
 
-/// An environment object: one entry of the scene file's objects: (a box, sphere, cylinder or
-/// capsule; frame O is the solid's frame: centre, axis along O's z) or one collision object of
+/// An environment object: one entry of the scene file's objects: (a box, sphere, cylinder,
+/// capsule or mesh; frame O is the solid's frame: centre, axis along O's z; a mesh's own frame;
+/// a mesh has one primitive per fitted shape) or one collision object of
 /// the planning scene (frame O = the fixed frame; its shapes in order). Its primitives are
 /// primitive .. primitive + primitive_count - 1, their shape_L already at X_WO_start in W.
 struct ObjectSpec {
@@ -67,6 +70,12 @@ struct ModelVariantSpec {
   std::vector<PrimitiveId> primitives;
 };
 
+/// How many mesh fits a load computed and how many it took from the fit cache.
+struct MeshFitCounts {
+  int computed = 0;
+  int from_cache = 0;
+};
+
 /// Everything loaded at start-up (LoadWorkcell); the Monitor only reads it.
 struct Workcell {
   std::string urdf_path;
@@ -86,6 +95,12 @@ struct Workcell {
   /// SRDF or allowed-collision-matrix names that have no primitive (skipped), planning-scene
   /// content that was dropped.
   std::vector<std::string> warnings;
+  /// Start-up report that needs no action (the node logs it at INFO level, replay prints it):
+  /// one line per fitted mesh (the fit, its primitive count, fitted/mesh volume or "open mesh"),
+  /// and a line when the fit cache could not be written. Kept apart from warnings because a
+  /// robot of 20 mesh links would otherwise start with 20 warnings about nothing wrong.
+  std::vector<std::string> notices;
+  MeshFitCounts mesh_fits;
 
   /// Checks the invariants: the kinematics' own, one compatibility row per primitive, unique
   /// primitive names, owners and indices that point at each other, finite non-negative sizes
@@ -98,12 +113,28 @@ struct Workcell {
   int FindVariant(const std::string& link, const std::string& variant) const;
 };
 
+/// What LoadWorkcell needs besides the two files.
+struct WorkcellLoadOptions {
+  /// Applies to arms whose scene entry gives no tolerance_m (MonitorOptions::tolerance_m).
+  double default_arm_tolerance_m = kDefaultArmTolerance_m;
+  /// Reads the files the inputs name: URDF meshes, srdf:, planning_scene:, mesh objects. The
+  /// default reads local paths and file:// URLs; the ROS programs pass FetchRosResource
+  /// (package:// too).
+  ResourceFetcher fetch = FetchLocalResource;
+  /// Folder of the mesh-fit cache; "" disables it.
+  std::string mesh_fit_cache_dir = DefaultMeshFitCacheDir();
+};
+
 /// Loads a URDF and a scene YAML file into a workcell (format: comment block at the top of
 /// config/scene.yaml), parsing the URDF once for its kinematics and its collision geometry.
-/// `default_arm_tolerance_m` (MonitorOptions::tolerance_m) applies to arms whose scene entry
-/// gives no tolerance_m. The files the scene names (srdf:, planning_scene:) are read too, their
-/// relative paths resolved against the scene file's folder. Throws LoadError naming the file,
-/// the element and what was expected.
+/// The files they name are read through `options.fetch`: URDF <mesh> filenames relative to the
+/// URDF's folder, the scene's srdf:, planning_scene: and mesh objects relative to the scene
+/// file's folder (unless absolute or URLs). Meshes are fitted per the scene's mesh_fit, through
+/// the fit cache. Throws LoadError naming the file, the element and what was expected.
+Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_path,
+                      const WorkcellLoadOptions& options);
+
+/// LoadWorkcell with the default options but the arms' default tolerance.
 Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_path,
                       double default_arm_tolerance_m = kDefaultArmTolerance_m);
 

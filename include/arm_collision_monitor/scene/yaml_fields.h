@@ -26,6 +26,8 @@ struct Where {
 
 /// Loads a YAML file whose top level must be a map (an empty file is an empty map).
 YAML::Node LoadMapFile(const std::string& path);
+/// The same from the file's text (fetched by the caller); `path` names it in the messages.
+YAML::Node LoadMapText(const std::string& text, const std::string& path);
 
 void RequireMap(const YAML::Node& node, const Where& where);
 void RequireSequence(const YAML::Node& node, const Where& where);

@@ -1,0 +1,21 @@
+#include "arm_collision_monitor/ros/resource_fetch_ros.h"
+
+#include <resource_retriever/retriever.h>
+
+#include "arm_collision_monitor/core/load_error.h"
+
+namespace arm_collision_monitor {
+
+std::string FetchRosResource(const std::string& url) {
+  resource_retriever::Retriever retriever;
+  resource_retriever::MemoryResource resource;
+  try {
+    resource = retriever.get(url);
+  } catch (const resource_retriever::Exception& e) {
+    throw LoadError(std::string("cannot read it: ") + e.what());
+  }
+  if (resource.size == 0) return "";
+  return std::string(reinterpret_cast<const char*>(resource.data.get()), resource.size);
+}
+
+}  // namespace arm_collision_monitor

@@ -1,0 +1,135 @@
+#include "mesh_file.h"
+
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <assimp/Importer.hpp>
+#include <cctype>
+#include <numeric>
+#include <tuple>
+
+#include "arm_collision_monitor/core/load_error.h"
+
+namespace arm_collision_monitor {
+namespace {
+
+// The extension of `name` in lower case ("" if none), assimp's format hint.
+std::string ExtensionHint(const std::string& name) {
+  const std::size_t dot = name.find_last_of('.');
+  const std::size_t slash = name.find_last_of('/');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+  std::string hint = name.substr(dot + 1);
+  std::transform(hint.begin(), hint.end(), hint.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return hint;
+}
+
+Eigen::Affine3d ToEigen(const aiMatrix4x4& m) {
+  Eigen::Matrix4d matrix;
+  matrix << m.a1, m.a2, m.a3, m.a4, m.b1, m.b2, m.b3, m.b4, m.c1, m.c2, m.c3, m.c4, m.d1, m.d2,
+      m.d3, m.d4;
+  return Eigen::Affine3d(matrix);
+}
+
+// The root node's transformation without its rotation (see ReadMeshFileBytes).
+Eigen::Affine3d RootWithoutRotation(const aiMatrix4x4& root) {
+  aiVector3D scaling, position;
+  aiQuaternion rotation;
+  root.Decompose(scaling, rotation, position);
+  Eigen::Affine3d X = Eigen::Affine3d::Identity();
+  X.translation() = Eigen::Vector3d(position.x, position.y, position.z);
+  X.linear() = Eigen::Vector3d(scaling.x, scaling.y, scaling.z).asDiagonal();
+  return X;
+}
+
+// Appends the triangles of `node` and its children, each vertex through the node's transform.
+void AppendNode(const aiScene& scene, const aiNode& node, const Eigen::Affine3d& X_MN,
+                TriangleMesh* mesh) {
+  for (unsigned int j = 0; j < node.mNumMeshes; ++j) {
+    const aiMesh& part = *scene.mMeshes[node.mMeshes[j]];
+    const auto offset = static_cast<std::uint32_t>(mesh->vertices_L.size());
+    for (unsigned int i = 0; i < part.mNumVertices; ++i) {
+      const aiVector3D& v = part.mVertices[i];
+      mesh->vertices_L.push_back(X_MN * Eigen::Vector3d(v.x, v.y, v.z));
+    }
+    for (unsigned int f = 0; f < part.mNumFaces; ++f) {
+      const aiFace& face = part.mFaces[f];
+      if (face.mNumIndices != 3) continue;  // points and lines bound nothing
+      mesh->triangles.push_back(
+          {offset + face.mIndices[0], offset + face.mIndices[1], offset + face.mIndices[2]});
+    }
+  }
+  for (unsigned int c = 0; c < node.mNumChildren; ++c) {
+    AppendNode(scene, *node.mChildren[c], X_MN * ToEigen(node.mChildren[c]->mTransformation),
+               mesh);
+  }
+}
+
+// Merges vertices at identical positions and drops the unreferenced ones.
+void MergeIdenticalVertices(TriangleMesh* mesh) {
+  const std::vector<Eigen::Vector3d>& v = mesh->vertices_L;
+  std::vector<std::uint32_t> order(v.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return std::tie(v[a].x(), v[a].y(), v[a].z()) < std::tie(v[b].x(), v[b].y(), v[b].z());
+  });
+  std::vector<std::uint32_t> new_index(v.size());
+  std::vector<Eigen::Vector3d> merged;
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    if (k == 0 || v[order[k]] != merged.back()) merged.push_back(v[order[k]]);
+    new_index[order[k]] = static_cast<std::uint32_t>(merged.size() - 1);
+  }
+  std::vector<bool> is_used(merged.size(), false);
+  for (auto& triangle : mesh->triangles) {
+    for (std::uint32_t& index : triangle) {
+      index = new_index[index];
+      is_used[index] = true;
+    }
+  }
+  std::vector<std::uint32_t> compact(merged.size());
+  mesh->vertices_L.clear();
+  for (std::size_t i = 0; i < merged.size(); ++i) {
+    compact[i] = static_cast<std::uint32_t>(mesh->vertices_L.size());
+    if (is_used[i]) mesh->vertices_L.push_back(merged[i]);
+  }
+  for (auto& triangle : mesh->triangles) {
+    for (std::uint32_t& index : triangle) index = compact[index];
+  }
+}
+
+}  // namespace
+
+TriangleMesh ReadMeshFileBytes(const std::string& bytes, const std::string& name,
+                               const Eigen::Vector3d& scale) {
+  if (bytes.empty()) throw LoadError("the file is empty (expected a mesh: STL, DAE, OBJ, ...)");
+  Assimp::Importer importer;
+  const std::string hint = ExtensionHint(name);
+  const aiScene* scene = importer.ReadFileFromMemory(
+      bytes.data(), bytes.size(),
+      aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType |
+          aiProcess_ValidateDataStructure,
+      hint.c_str());
+  if (scene == nullptr || scene->mRootNode == nullptr) {
+    throw LoadError(std::string("cannot read the mesh: ") + importer.GetErrorString() +
+                    " (expected a mesh file: STL, DAE, OBJ, ...)");
+  }
+  TriangleMesh mesh;
+  const Eigen::Affine3d X_scale(Eigen::Scaling(scale));
+  AppendNode(*scene, *scene->mRootNode,
+             X_scale * RootWithoutRotation(scene->mRootNode->mTransformation), &mesh);
+  if (mesh.triangles.empty()) {
+    throw LoadError("the mesh file holds no triangle (" + std::to_string(scene->mNumMeshes) +
+                    " meshes; expected a surface of triangles or polygons)");
+  }
+  for (std::size_t i = 0; i < mesh.vertices_L.size(); ++i) {
+    if (!mesh.vertices_L[i].allFinite()) {  // merging sorts positions: NaN has no order
+      throw LoadError("vertex " + std::to_string(i) + " is not finite (after scale)");
+    }
+  }
+  MergeIdenticalVertices(&mesh);
+  return mesh;
+}
+
+}  // namespace arm_collision_monitor

@@ -1,0 +1,102 @@
+#include "mesh_shapes.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "arm_collision_monitor/core/load_error.h"
+#include "mesh_file.h"
+
+namespace arm_collision_monitor {
+namespace {
+
+// "1 capsule", "3 capsules (capsules:3)", "1 box".
+std::string FitText(const MeshFitOptions& options, std::size_t count) {
+  const bool is_box = options.kind == MeshFitKind::kOrientedBox;
+  std::string text = std::to_string(count) + (is_box ? " box" : " capsule");
+  if (count != 1) text += is_box ? "es" : "s";
+  if (options.kind == MeshFitKind::kCapsuleChain) {
+    text += " (capsules:" + std::to_string(options.capsule_count) + ")";
+  }
+  return text;
+}
+
+// One report line: "<where>: mesh fit: 1 capsule, 1204 vertices, fitted/mesh volume 1.37 (cached)".
+std::string ReportLine(const std::string& where, const MeshFitOptions& options,
+                       const TriangleMesh& mesh, const MeshFit& fit, bool is_cached) {
+  std::ostringstream line;
+  line << where << ": mesh fit: " << FitText(options, fit.shapes_L.size()) << ", "
+       << mesh.vertices_L.size() << " vertices, " << mesh.triangles.size() << " triangles, ";
+  if (fit.is_mesh_closed) {
+    line.precision(3);
+    line << "fitted/mesh volume " << fit.excess_ratio;
+  } else {
+    line << "open mesh: volume undefined";
+  }
+  if (is_cached) line << " (cached)";
+  return line.str();
+}
+
+}  // namespace
+
+MeshFitter::MeshFitter(ResourceFetcher fetch, std::string cache_dir,
+                       const MeshFitOptions& options)
+    : fetch_(std::move(fetch)), cache_(std::move(cache_dir)), options_(options) {}
+
+std::vector<Shape> MeshFitter::FitFile(const std::string& name, const std::string& base_dir,
+                                       const Eigen::Vector3d& scale, const std::string& where) {
+  const std::string element = where + " mesh '" + name + "'";
+  if (!scale.allFinite() || (scale.array() <= 0.0).any()) {
+    std::ostringstream text;
+    text << element << ": scale (" << scale.x() << ", " << scale.y() << ", " << scale.z()
+         << ") must be 3 finite numbers > 0";
+    throw LoadError(text.str());
+  }
+  TriangleMesh mesh;
+  try {
+    const std::string url = ResolveResourceName(name, base_dir);
+    mesh = ReadMeshFileBytes(fetch_(url), url, scale);
+  } catch (const LoadError& e) {
+    throw LoadError(element + ": " + e.what());
+  }
+  return Fit(mesh, element);
+}
+
+std::vector<Shape> MeshFitter::FitInline(const TriangleMesh& mesh, const std::string& where) {
+  return Fit(mesh, where);
+}
+
+std::vector<Shape> MeshFitter::Fit(const TriangleMesh& mesh, const std::string& where) {
+  const MeshCheck check = CheckMesh(mesh);
+  if (check.status != MeshStatus::kOk) {
+    throw LoadError(where + ": " + MeshStatusName(check.status) + ": " + check.message);
+  }
+  const std::uint64_t key = MeshFitHash(mesh, options_);
+  if (const std::optional<MeshFit> cached = cache_.Find(key, mesh)) {
+    ++counts_.from_cache;
+    notices_.push_back(ReportLine(where, options_, mesh, *cached, true));
+    return cached->shapes_L;
+  }
+  const MeshFit fit = FitMesh(mesh, options_);
+  if (fit.check.status != MeshStatus::kOk) {  // the options (checked when read) or the mesh
+    throw LoadError(where + ": " + MeshStatusName(fit.check.status) + ": " + fit.check.message);
+  }
+  ++counts_.computed;
+  const std::string trouble = cache_.Store(key, fit);
+  if (!trouble.empty() && cache_trouble_.empty()) cache_trouble_ = trouble;
+  notices_.push_back(ReportLine(where, options_, mesh, fit, false));
+  return fit.shapes_L;
+}
+
+void MeshFitter::ReportTo(Workcell* workcell) const {
+  workcell->notices.insert(workcell->notices.end(), notices_.begin(), notices_.end());
+  if (!cache_trouble_.empty()) {
+    workcell->notices.push_back("mesh fit cache " + cache_.dir() + " not written (" +
+                                cache_trouble_ +
+                                "): the fits are recomputed at every start-up; set "
+                                "ACM_MESH_FIT_CACHE to a writable folder");
+  }
+  workcell->mesh_fits.computed += counts_.computed;
+  workcell->mesh_fits.from_cache += counts_.from_cache;
+}
+
+}  // namespace arm_collision_monitor
