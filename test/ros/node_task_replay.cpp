@@ -29,6 +29,7 @@
 
 #include "arm_collision_monitor/MonitorReport.h"
 #include "arm_collision_monitor/SetGraspTarget.h"
+#include "arm_collision_monitor/ros/resource_fetch_ros.h"
 
 // test_monitor_util.h's LoadBundledWorkcell() uses ACM_SOURCE_DIR, which CMake defines for the
 // core tests only; this checker does not call it (it loads the workcell the .test file names).
@@ -99,7 +100,11 @@ TEST(TaskReplay, EveryReportMatchesTheBruteForceAndTheTaskOutcome) {
   double report_timeout_s = 10.0;
   pnh.param("report_timeout_s", report_timeout_s, 10.0);
 
-  const auto workcell = std::make_shared<const Workcell>(LoadWorkcell(urdf, scene));
+  // The node resolves package:// mesh URLs (the example's URDF) through resource_retriever:
+  // so does the checker.
+  WorkcellLoadOptions load_options;
+  load_options.fetch = FetchRosResource;
+  const auto workcell = std::make_shared<const Workcell>(LoadWorkcell(urdf, scene, load_options));
   const Workcell& wc = *workcell;
   test::ReferenceScene reference_scene;
 
