@@ -5,9 +5,10 @@
   urdf/dual_arm_shelf.urdf                   the robot (its collision geometry: those meshes)
   test/bags/dual_arm_shelf.bag               a short trajectory of both arms (see WAYPOINTS)
 
-The SRDF, planning scene and scene file (config/dual_arm_shelf/) are written by hand. Regenerating must give byte-identical files
-(test/ros/example_files.test checks it), so every number written is rounded first (vertices to
-1e-6 of their unit, joint positions to 1e-9 rad) and the bag's stamps are fixed.
+The SRDF, planning scene and scene file (config/dual_arm_shelf/) are written by hand.
+Regenerating must give byte-identical files (test/ros/example_files.test checks it), so every
+number written is rounded first (vertices to 1e-6 of their unit, joint positions to 1e-9 rad)
+and the bag's stamps are fixed.
 
   scripts/make_example.py [--out ROOT]     (default ROOT: the repository; files go under it)
 """
@@ -41,8 +42,8 @@ class Mesh(object):
         return Mesh(np.vstack([self.vertices, other.vertices]),
                     np.vstack([self.triangles, other.triangles + len(self.vertices)]))
 
-    def transformed(self, rotation=np.eye(3), translation=(0.0, 0.0, 0.0), scale=1.0):
-        return Mesh(scale * (self.vertices @ np.asarray(rotation).T + translation), self.triangles)
+    def transformed(self, rotation=np.eye(3), translation=(0.0, 0.0, 0.0)):
+        return Mesh(self.vertices @ np.asarray(rotation).T + translation, self.triangles)
 
 
 def rot_x(angle):

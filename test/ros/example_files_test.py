@@ -54,7 +54,8 @@ def read_dae(path):
     root = ElementTree.parse(path).getroot()
     numbers = [float(x) for x in root.find('.//%sfloat_array' % COLLADA_NS).text.split()]
     vertices = [tuple(numbers[i:i + 3]) for i in range(0, len(numbers), 3)]
-    indices = [int(x) for x in root.find('.//%striangles/%sp' % (COLLADA_NS, COLLADA_NS)).text.split()]
+    indices = [int(x) for x in
+               root.find('.//%striangles/%sp' % (COLLADA_NS, COLLADA_NS)).text.split()]
     return [tuple(vertices[i] for i in indices[k:k + 3]) for k in range(0, len(indices), 3)]
 
 
