@@ -1,5 +1,7 @@
 #include "urdf_collision.h"
 
+#include <tinyxml2.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -147,6 +149,33 @@ UrdfLinkGeometry ReadUrdfLinkGeometry(const urdf::Link& link, const std::string&
     }
   }
   return geometry;
+}
+
+void CheckEveryCollisionRead(const std::string& urdf_xml, const urdf::ModelInterface& model,
+                             const std::string& urdf_path) {
+  tinyxml2::XMLDocument doc;
+  if (doc.Parse(urdf_xml.c_str(), urdf_xml.size()) != tinyxml2::XML_SUCCESS) return;  // urdfdom's
+  const tinyxml2::XMLElement* robot = doc.RootElement();
+  if (robot == nullptr) return;
+  for (const tinyxml2::XMLElement* xml = robot->FirstChildElement("link"); xml != nullptr;
+       xml = xml->NextSiblingElement("link")) {
+    const char* name = xml->Attribute("name");
+    const urdf::LinkConstSharedPtr link = name == nullptr ? nullptr : model.getLink(name);
+    if (link == nullptr) continue;
+    std::size_t written = 0;
+    for (const tinyxml2::XMLElement* c = xml->FirstChildElement("collision"); c != nullptr;
+         c = c->NextSiblingElement("collision")) {
+      ++written;
+    }
+    const std::size_t read =
+        link->collision_array.empty() ? (link->collision ? 1 : 0) : link->collision_array.size();
+    if (read != written) {
+      throw LoadError(urdf_path + ": link '" + link->name + "' has " + std::to_string(written) +
+                      " <collision> elements but urdfdom read " + std::to_string(read) +
+                      " (it drops one it cannot parse; its console message says why, e.g. a "
+                      "mesh scale that is not 3 numbers); expected every element well formed");
+    }
+  }
 }
 
 }  // namespace arm_collision_monitor

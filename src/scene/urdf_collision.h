@@ -35,4 +35,11 @@ struct UrdfLinkGeometry {
 UrdfLinkGeometry ReadUrdfLinkGeometry(const urdf::Link& link, const std::string& urdf_path,
                                       MeshFitter* meshes);
 
+/// Fails unless urdfdom kept every <collision> of every link of the URDF text `urdf_xml`:
+/// urdfdom drops an element it cannot parse (a mesh scale that is not 3 numbers, say) with
+/// only a console message, which would leave a link silently unchecked. Throws LoadError naming
+/// `urdf_path`, the link and the counts.
+void CheckEveryCollisionRead(const std::string& urdf_xml, const urdf::ModelInterface& model,
+                             const std::string& urdf_path);
+
 }  // namespace arm_collision_monitor

@@ -15,6 +15,7 @@
 #include "arm_collision_monitor/scene/workcell_shapes.h"
 #include "moveit_sections.h"
 #include "scene_sections.h"
+#include "urdf_collision.h"
 
 namespace arm_collision_monitor {
 namespace {
@@ -143,6 +144,8 @@ Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_pat
   w.urdf_path = urdf_path;
   w.scene_path = scene_path;
   w.kinematics = KinematicModel::FromUrdf(*urdf_model, urdf_path);
+  CheckEveryCollisionRead(ReadWholeFile(urdf_path, "a readable URDF file"), *urdf_model,
+                          urdf_path);
 
   const YAML::Node scene = yaml_fields::LoadMapFile(scene_path);
   scene_sections::CheckSectionNames(scene, scene_path);

@@ -1,0 +1,438 @@
+// LoadWorkcell with mesh collision geometry: URDF <mesh> links and objects: of type mesh, read
+// from files the tests write (binary and ASCII STL, OBJ, COLLADA), fitted per mesh_fit, cached
+// by content; bad mesh input rejected naming the file, the link or object and the mesh.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "arm_collision_monitor/scene/workcell.h"
+#include "load_error_expect.h"
+#include "mesh_file_writers.h"
+
+namespace arm_collision_monitor {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kWorld = "world: {center_m: [0.0, 0.0, 1.0], edge_m: 8.0}\n";
+
+// An empty folder of the test's own (a fresh one per call).
+std::string FreshDir(const std::string& name) {
+  const fs::path dir = fs::path(::testing::TempDir()) / ("acm_mesh_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir.string() + "/";
+}
+
+// A URDF: base_link (a box) and a chain of revolute links link0, link1, ..., link k holding the
+// raw <collision> elements collisions[k].
+std::string ChainUrdf(const std::vector<std::string>& collisions) {
+  std::string urdf =
+      "<robot name=\"mesh_robot\">\n<link name=\"base_link\"><collision><geometry><box size=\"0.2 "
+      "0.2 0.2\"/></geometry></collision></link>\n";
+  std::string parent = "base_link";
+  for (std::size_t k = 0; k < collisions.size(); ++k) {
+    const std::string link = "link" + std::to_string(k);
+    urdf += "<link name=\"" + link + "\">" + collisions[k] + "</link>\n<joint name=\"joint" +
+            std::to_string(k) + "\" type=\"revolute\"><parent link=\"" + parent +
+            "\"/><child link=\"" + link +
+            "\"/><origin xyz=\"0 0 0.5\"/><axis xyz=\"0 1 0\"/><limit lower=\"-1\" upper=\"1\" "
+            "effort=\"1\" velocity=\"1\"/></joint>\n";
+    parent = link;
+  }
+  return urdf + "</robot>\n";
+}
+
+std::string MeshCollision(const std::string& filename, const std::string& origin = "",
+                          const std::string& scale = "") {
+  return "<collision>" + origin + "<geometry><mesh filename=\"" + filename + "\"" +
+         (scale.empty() ? "" : " scale=\"" + scale + "\"") + "/></geometry></collision>";
+}
+
+struct Files {
+  std::string urdf;
+  std::string scene;
+};
+
+Files WriteRobot(const std::string& dir, const std::vector<std::string>& collisions,
+                 const std::string& scene_extra = "") {
+  Files files{dir + "robot.urdf", dir + "scene.yaml"};
+  WriteBytes(files.urdf, ChainUrdf(collisions));
+  WriteBytes(files.scene, kWorld + scene_extra);
+  return files;
+}
+
+WorkcellLoadOptions CacheIn(const std::string& dir) {
+  WorkcellLoadOptions options;
+  options.mesh_fit_cache_dir = dir + "cache";
+  return options;
+}
+
+// Independent of the loader's check: p lies in the closed capsule or box (exact double tests).
+bool InShape(const Shape& shape, const Eigen::Vector3d& p) {
+  if (const auto* c = std::get_if<Capsule>(&shape)) {
+    const Eigen::Vector3d d = c->p1_W - c->p0_W;
+    double s = d.squaredNorm() > 0.0 ? (p - c->p0_W).dot(d) / d.squaredNorm() : 0.0;
+    s = std::min(1.0, std::max(0.0, s));
+    return (p - c->p0_W - s * d).norm() <= c->radius_m;
+  }
+  const Box& b = std::get<Box>(shape);
+  const Eigen::Vector3d q = b.X_WB.inverse() * p;
+  return (q.cwiseAbs().array() <= b.half_extents_m.array()).all();
+}
+
+std::vector<Shape> ShapesOf(const Workcell& w, const std::string& owner) {
+  std::vector<Shape> shapes;
+  for (const PrimitiveSpec& p : w.primitives) {
+    if (p.owner == owner) shapes.push_back(p.shape_L);
+  }
+  return shapes;
+}
+
+// Every vertex of `mesh`, placed by X_LC, lies in one of `owner`'s primitives.
+void ExpectEncloses(const Workcell& w, const std::string& owner, const TriangleMesh& mesh,
+                    const Eigen::Isometry3d& X_LC) {
+  const std::vector<Shape> shapes = ShapesOf(w, owner);
+  ASSERT_FALSE(shapes.empty()) << owner;
+  for (const Eigen::Vector3d& v : mesh.vertices_L) {
+    const Eigen::Vector3d p = X_LC * v;
+    bool inside = false;
+    for (const Shape& s : shapes) inside = inside || InShape(s, p);
+    ASSERT_TRUE(inside) << owner << ": vertex " << p.transpose() << " outside the fit";
+  }
+}
+
+TriangleMesh Scaled(TriangleMesh mesh, const Eigen::Vector3d& scale) {
+  for (Eigen::Vector3d& v : mesh.vertices_L) v = v.cwiseProduct(scale);
+  return mesh;
+}
+
+bool SameShape(const Shape& a, const Shape& b) {
+  if (a.index() != b.index()) return false;
+  if (const auto* ca = std::get_if<Capsule>(&a)) {
+    const Capsule& cb = std::get<Capsule>(b);
+    return ca->p0_W == cb.p0_W && ca->p1_W == cb.p1_W && ca->radius_m == cb.radius_m;
+  }
+  const Box& ba = std::get<Box>(a);
+  const Box& bb = std::get<Box>(b);
+  return ba.X_WB.matrix() == bb.X_WB.matrix() && ba.half_extents_m == bb.half_extents_m;
+}
+
+const std::string kOrigin = "<origin xyz=\"0.1 -0.2 0.3\" rpy=\"0.3 0.2 0.1\"/>";
+const Eigen::Isometry3d kX_LC =
+    PoseFromXyzRpy(Eigen::Vector3d(0.1, -0.2, 0.3), Eigen::Vector3d(0.3, 0.2, 0.1));
+
+TEST(SceneMeshLinks, EveryFormatLoadsEnclosedAndAlike) {
+  const std::string dir = FreshDir("formats");
+  const TriangleMesh l_shape = LShapeMesh(0.1, 0.05);
+  WriteBytes(dir + "l_binary.stl", BinaryStl(l_shape));
+  WriteBytes(dir + "l_ascii.STL", AsciiStl(l_shape));
+  WriteBytes(dir + "l.obj", Obj(l_shape));
+  WriteBytes(dir + "l.dae", Dae(l_shape));
+  const std::vector<std::string> names = {"l_binary.stl", "l_ascii.STL", "l.obj", "l.dae"};
+  std::vector<std::string> collisions;
+  for (const std::string& name : names) collisions.push_back(MeshCollision(name, kOrigin));
+  const Files files = WriteRobot(dir, collisions);
+  const Workcell w = LoadWorkcell(files.urdf, files.scene, CacheIn(dir));
+  std::string why;
+  EXPECT_TRUE(w.Validate(&why)) << why;
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    const std::string link = "link" + std::to_string(k);
+    ExpectEncloses(w, link, l_shape, kX_LC);
+    // The same vertices and triangles in every format: the same fit.
+    ASSERT_EQ(ShapesOf(w, link).size(), 1u) << names[k];
+    EXPECT_TRUE(SameShape(ShapesOf(w, link)[0], ShapesOf(w, "link0")[0])) << names[k];
+  }
+  EXPECT_EQ(w.notices.size(), names.size());
+}
+
+TEST(SceneMeshLinks, ScaleAndOriginAreHonoured) {
+  const std::string dir = FreshDir("scale_origin");
+  const TriangleMesh box = BoxMesh(Eigen::Vector3d(0.4, 0.1, 0.1));
+  WriteBytes(dir + "box.stl", BinaryStl(box));
+  const Files files = WriteRobot(dir, {MeshCollision("box.stl", kOrigin, "2 1 0.5")});
+  const Workcell w = LoadWorkcell(files.urdf, files.scene, CacheIn(dir));
+  const TriangleMesh scaled = Scaled(box, Eigen::Vector3d(2, 1, 0.5));  // 0.8 x 0.1 x 0.05
+  ExpectEncloses(w, "link0", scaled, kX_LC);
+  const Capsule c = std::get<Capsule>(ShapesOf(w, "link0").at(0));
+  const Eigen::Vector3d axis_L = (c.p1_W - c.p0_W).normalized();
+  EXPECT_GT(std::abs(axis_L.dot(kX_LC.linear() * Eigen::Vector3d::UnitX())), 0.999);
+  EXPECT_LT((0.5 * (c.p0_W + c.p1_W) - kX_LC.translation()).norm(), 1e-6);
+  const double half_diagonal_m = std::hypot(0.05, 0.025);
+  // The tight capsule of the scaled box: its cross-section's half diagonal as radius, and (the
+  // corners lie at that radius) its whole 0.8 m length as segment.
+  EXPECT_GE(c.radius_m, half_diagonal_m);
+  EXPECT_NEAR(c.radius_m, half_diagonal_m, 1e-6);
+  EXPECT_NEAR((c.p1_W - c.p0_W).norm(), 0.8, 1e-6);
+}
+
+TEST(SceneMeshLinks, MeshFitKindsEncloseTheNonConvexShape) {
+  const std::string dir = FreshDir("kinds");
+  const TriangleMesh l_shape = LShapeMesh(0.1, 0.05);
+  WriteBytes(dir + "l.obj", Obj(l_shape));
+  for (const std::string kind : std::vector<std::string>{"box", "capsules:3"}) {
+    const Files files = WriteRobot(dir, {MeshCollision("l.obj", kOrigin)}, "mesh_fit: " + kind);
+    const Workcell w = LoadWorkcell(files.urdf, files.scene, CacheIn(dir));
+    ExpectEncloses(w, "link0", l_shape, kX_LC);
+    const std::vector<Shape> shapes = ShapesOf(w, "link0");
+    if (kind == "box") {
+      ASSERT_EQ(shapes.size(), 1u);
+      EXPECT_TRUE(std::holds_alternative<Box>(shapes[0]));
+      EXPECT_GE(w.FindPrimitive("link0"), 0);
+    } else {
+      ASSERT_EQ(shapes.size(), 3u);
+      for (int k = 0; k < 3; ++k) EXPECT_GE(w.FindPrimitive("link0/" + std::to_string(k)), 0);
+      ASSERT_EQ(w.notices.size(), 1u);
+      EXPECT_NE(w.notices[0].find("3 capsules (capsules:3)"), std::string::npos) << w.notices[0];
+    }
+  }
+}
+
+TEST(SceneMeshLinks, ReportHasOneLinePerMeshWithTheExcessVolume) {
+  const std::string dir = FreshDir("report");
+  TriangleMesh open_box = BoxMesh(Eigen::Vector3d(0.2, 0.1, 0.1));
+  open_box.triangles.pop_back();  // one triangle less: not closed
+  WriteBytes(dir + "closed.stl", BinaryStl(BoxMesh(Eigen::Vector3d(0.2, 0.1, 0.1))));
+  WriteBytes(dir + "open.obj", Obj(open_box));
+  const Files files = WriteRobot(dir, {MeshCollision("closed.stl"), MeshCollision("open.obj")});
+  const Workcell w = LoadWorkcell(files.urdf, files.scene, CacheIn(dir));
+  ASSERT_EQ(w.notices.size(), 2u);
+  for (const std::string part : std::vector<std::string>{files.urdf, "link 'link0'", "closed.stl", "mesh fit: 1 capsule",
+                                  "fitted/mesh volume "}) {
+    EXPECT_NE(w.notices[0].find(part), std::string::npos) << part << " not in " << w.notices[0];
+  }
+  // The capsule around a 0.2 x 0.1 x 0.1 box: its ratio, from the fitted shape.
+  const Capsule c = std::get<Capsule>(ShapesOf(w, "link0").at(0));
+  const double ratio = (M_PI * c.radius_m * c.radius_m * (c.p1_W - c.p0_W).norm() +
+                        4.0 / 3.0 * M_PI * std::pow(c.radius_m, 3)) /
+                       (0.2 * 0.1 * 0.1);
+  std::ostringstream expected;
+  expected.precision(3);
+  expected << "fitted/mesh volume " << ratio;
+  EXPECT_NE(w.notices[0].find(expected.str()), std::string::npos) << w.notices[0];
+  EXPECT_NE(w.notices[1].find("open mesh: volume undefined"), std::string::npos) << w.notices[1];
+  EXPECT_NE(w.notices[1].find("link 'link1'"), std::string::npos) << w.notices[1];
+}
+
+TEST(SceneMeshLinks, OverridesWinAndSeveralCollisionsKeepTheirNames) {
+  const std::string dir = FreshDir("overrides");
+  WriteBytes(dir + "l.stl", BinaryStl(LShapeMesh(0.1, 0.05)));
+  const std::string box = "<collision><geometry><box size=\"0.1 0.1 0.1\"/></geometry></collision>";
+  const Files files = WriteRobot(
+      dir, {MeshCollision("missing.stl"), MeshCollision("missing.stl"), box + MeshCollision("l.stl")},
+      "links:\n  link0: {p0_m: [0, 0, 0], p1_m: [0.3, 0, 0], radius_m: 0.05}\n"
+      "  link1: {ignore: true}\nmesh_fit: capsules:2\n");
+  const Workcell w = LoadWorkcell(files.urdf, files.scene, CacheIn(dir));
+  const Capsule& c = std::get<Capsule>(w.primitives[w.FindPrimitive("link0")].shape_L);
+  EXPECT_EQ(c.p1_W, Eigen::Vector3d(0.3, 0, 0));
+  EXPECT_EQ(c.radius_m, 0.05);
+  EXPECT_TRUE(ShapesOf(w, "link1").empty());
+  // link2: the box is element 0, the mesh element 1 fitted with two capsules.
+  for (const std::string name : std::vector<std::string>{"link2/0", "link2/1/0", "link2/1/1"}) {
+    EXPECT_GE(w.FindPrimitive(name), 0) << name;
+  }
+  EXPECT_EQ(w.mesh_fits.computed, 1);
+}
+
+TEST(SceneMeshLinks, SecondLoadTakesEveryFitFromTheCache) {
+  const std::string dir = FreshDir("cache");
+  WriteBytes(dir + "l.stl", BinaryStl(LShapeMesh(0.1, 0.05)));
+  WriteBytes(dir + "prism.obj", Obj(PrismMesh(0.05, 0.3, 12)));
+  const Files files = WriteRobot(
+      dir, {MeshCollision("l.stl"), MeshCollision("prism.obj"), MeshCollision("l.stl", kOrigin)});
+  const Workcell first = LoadWorkcell(files.urdf, files.scene, CacheIn(dir));
+  // link2's mesh is link0's: one content, one fit.
+  EXPECT_EQ(first.mesh_fits.computed, 2);
+  EXPECT_EQ(first.mesh_fits.from_cache, 1);
+  const Workcell second = LoadWorkcell(files.urdf, files.scene, CacheIn(dir));
+  EXPECT_EQ(second.mesh_fits.computed, 0);
+  EXPECT_EQ(second.mesh_fits.from_cache, 3);
+  ASSERT_EQ(first.primitives.size(), second.primitives.size());
+  for (std::size_t i = 0; i < first.primitives.size(); ++i) {
+    EXPECT_TRUE(SameShape(first.primitives[i].shape_L, second.primitives[i].shape_L)) << i;
+  }
+  EXPECT_NE(second.notices[0].find("(cached)"), std::string::npos);
+  // No cache: every fit computed.
+  WorkcellLoadOptions no_cache;
+  no_cache.mesh_fit_cache_dir = "";
+  EXPECT_EQ(LoadWorkcell(files.urdf, files.scene, no_cache).mesh_fits.computed, 3);
+}
+
+TEST(SceneMeshLinks, CorruptOrWrongCacheEntriesAreRefitted) {
+  const std::string dir = FreshDir("corrupt");
+  const TriangleMesh l_shape = LShapeMesh(0.1, 0.05);
+  WriteBytes(dir + "l.stl", BinaryStl(l_shape));
+  const Files files = WriteRobot(dir, {MeshCollision("l.stl")});
+  const Workcell fitted = LoadWorkcell(files.urdf, files.scene, CacheIn(dir));
+  ASSERT_EQ(fitted.mesh_fits.computed, 1);
+  std::vector<fs::path> entries;
+  for (const auto& entry : fs::directory_iterator(dir + "cache")) entries.push_back(entry.path());
+  ASSERT_EQ(entries.size(), 1u);  // no temporary file left behind
+  std::ifstream in(entries[0]);
+  const std::string good((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const Capsule c = std::get<Capsule>(ShapesOf(fitted, "link0").at(0));
+  char radius[64], smaller[64];
+  std::snprintf(radius, sizeof radius, "%a", c.radius_m);
+  std::snprintf(smaller, sizeof smaller, "%a", 0.9 * c.radius_m);
+  std::string shrunk = good;
+  ASSERT_NE(shrunk.find(radius), std::string::npos);
+  shrunk.replace(shrunk.find(radius), std::string(radius).size(), smaller);
+  for (const std::string& bad :
+       {std::string("\x01\x02garbage"), good.substr(0, good.size() / 2), shrunk,
+        good + "capsule 0 0 0 0 0 0 1\n", std::string("")}) {
+    WriteBytes(entries[0].string(), bad);
+    const Workcell w = LoadWorkcell(files.urdf, files.scene, CacheIn(dir));
+    EXPECT_EQ(w.mesh_fits.computed, 1) << bad;
+    EXPECT_EQ(w.mesh_fits.from_cache, 0) << bad;
+    ExpectEncloses(w, "link0", l_shape, Eigen::Isometry3d::Identity());
+    EXPECT_TRUE(SameShape(ShapesOf(w, "link0")[0], c));
+    // Rewritten: the next load uses it.
+    EXPECT_EQ(LoadWorkcell(files.urdf, files.scene, CacheIn(dir)).mesh_fits.from_cache, 1);
+  }
+}
+
+TEST(SceneMeshLinks, UnwritableCacheIsANotice) {
+  const std::string dir = FreshDir("unwritable");
+  WriteBytes(dir + "l.stl", BinaryStl(LShapeMesh(0.1, 0.05)));
+  WriteBytes(dir + "a_file", "not a folder");
+  const Files files = WriteRobot(dir, {MeshCollision("l.stl")});
+  WorkcellLoadOptions options;
+  options.mesh_fit_cache_dir = dir + "a_file/cache";  // below a regular file: never creatable
+  const Workcell w = LoadWorkcell(files.urdf, files.scene, options);
+  EXPECT_EQ(w.mesh_fits.computed, 1);
+  ASSERT_EQ(w.notices.size(), 2u);
+  EXPECT_NE(w.notices[1].find("mesh fit cache " + dir + "a_file/cache not written"),
+            std::string::npos)
+      << w.notices[1];
+}
+
+TEST(SceneMeshLinks, ColladaUnitIsAppliedAndItsUpAxisIgnored) {
+  const std::string dir = FreshDir("collada");
+  // A 40 x 10 x 200 mm box: long along the file's z.
+  const TriangleMesh box_mm = BoxMesh(Eigen::Vector3d(40, 10, 200));
+  for (const std::string up : std::vector<std::string>{"Z_UP", "Y_UP"}) {
+    WriteBytes(dir + "box.dae", Dae(box_mm, "0.001", up));
+    const Files files = WriteRobot(dir, {MeshCollision("box.dae")});
+    const Workcell w = LoadWorkcell(files.urdf, files.scene, CacheIn(dir));
+    const Capsule c = std::get<Capsule>(ShapesOf(w, "link0").at(0));
+    // In metres, the long axis along the link's z whatever <up_axis> says (rviz's reading).
+    EXPECT_GT(std::abs((c.p1_W - c.p0_W).normalized().z()), 0.999) << up;
+    EXPECT_NEAR(c.radius_m, std::hypot(0.020, 0.005), 1e-6) << up;
+    // The corners (at the radius) need the whole 200 mm of segment.
+    EXPECT_NEAR((c.p1_W - c.p0_W).norm(), 0.2, 1e-6) << up;
+  }
+}
+
+TEST(SceneMeshLinks, ObjectsOfTypeMesh) {
+  const std::string dir = FreshDir("objects");
+  const TriangleMesh l_shape = LShapeMesh(0.1, 0.05);
+  fs::create_directories(dir + "meshes");
+  WriteBytes(dir + "meshes/l.obj", Obj(l_shape));
+  const Files files = WriteRobot(
+      dir, {},
+      "mesh_fit: capsules:2\nobjects:\n"
+      "  - {name: bracket, type: mesh, mesh: meshes/l.obj, scale: [2, 1, 1], attachable: true,\n"
+      "     tolerance_m: 0.01, pose: {xyz_m: [0.5, 0.2, 0.8], rpy: [0, 0, 0.5]}}\n"
+      "  - {name: plate, type: mesh, mesh: 'file://" + dir + "meshes/l.obj', pose: {xyz_m: [-0.5, 0, 0.5]}}\n");
+  const Workcell w = LoadWorkcell(files.urdf, files.scene, CacheIn(dir));
+  const int bracket = w.FindObject("bracket");
+  ASSERT_GE(bracket, 0);
+  EXPECT_EQ(w.objects[bracket].primitive_count, 2);
+  EXPECT_TRUE(w.objects[bracket].is_attachable);
+  for (const std::string name : std::vector<std::string>{"bracket/0", "bracket/1", "plate/0", "plate/1"}) {
+    const int id = w.FindPrimitive(name);
+    ASSERT_GE(id, 0) << name;
+    EXPECT_EQ(w.primitives[id].tolerance_m, name[0] == 'b' ? 0.01 : 0.0);
+    EXPECT_EQ(w.primitives[id].is_static, name[0] == 'p');
+  }
+  ExpectEncloses(w, "bracket", Scaled(l_shape, Eigen::Vector3d(2, 1, 1)),
+                 w.objects[bracket].X_WO_start);
+  ExpectEncloses(w, "plate", l_shape, w.objects[w.FindObject("plate")].X_WO_start);
+  std::string why;
+  EXPECT_TRUE(w.Validate(&why)) << why;
+}
+
+// ------------------------------------------------------------------------------------------
+// Bad input: a LoadError naming the URDF (or scene file), the link (or object) and the mesh.
+
+void ExpectBadLinkMesh(const std::string& dir, const std::string& file, const std::string& bytes,
+                       const std::vector<std::string>& parts, const std::string& scale = "") {
+  if (!bytes.empty()) WriteBytes(dir + file, bytes);
+  const Files files = WriteRobot(dir, {MeshCollision(file, "", scale)});
+  std::vector<std::string> all = {files.urdf, "link 'link0'", "mesh '" + file + "'"};
+  all.insert(all.end(), parts.begin(), parts.end());
+  ExpectLoadError([&] { LoadWorkcell(files.urdf, files.scene, CacheIn(dir)); }, all);
+}
+
+TEST(SceneMeshLinks, BadMeshFilesAreRejectedNamingUrdfLinkAndFile) {
+  const std::string dir = FreshDir("bad_files");
+  ExpectBadLinkMesh(dir, "missing.stl", "", {"cannot open the file"});
+  std::string garbage;
+  for (int i = 0; i < 3000; ++i) garbage += static_cast<char>((i * 7919 + 13) % 251);
+  for (const std::string name : std::vector<std::string>{"garbage.stl", "garbage.dae", "garbage.obj"}) {
+    ExpectBadLinkMesh(dir, name, garbage, {});
+  }
+  const std::string stl = BinaryStl(LShapeMesh(0.1, 0.05));
+  ExpectBadLinkMesh(dir, "truncated.stl", stl.substr(0, stl.size() - 30), {"cannot read the mesh"});
+  ExpectBadLinkMesh(dir, "header_only.stl", stl.substr(0, 40), {"cannot read the mesh"});
+  ExpectBadLinkMesh(dir, "lines.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\nl 2 3\n", {});
+}
+
+TEST(SceneMeshLinks, MeshesWithoutVolumeAreRejected) {
+  const std::string dir = FreshDir("no_volume");
+  const std::string one = "v 0 0 0\nv 0.1 0 0\nv 0 0.1 0\nf 1 2 3\n";
+  const std::string flat = "v 0 0 0\nv 0.1 0 0\nv 0.1 0.1 0\nv 0 0.1 0\nf 1 2 3\nf 1 3 4\n";
+  const std::string collinear = "v 0 0 0\nv 0.1 0.1 0.1\nv 0.2 0.2 0.2\nf 1 2 3\n";
+  for (const auto& [name, text] : std::vector<std::pair<std::string, std::string>>{
+           {"one_triangle.obj", one}, {"flat.obj", flat}, {"collinear.obj", collinear}}) {
+    ExpectBadLinkMesh(dir, name, text, {"no volume"});
+  }
+}
+
+TEST(SceneMeshLinks, AbsurdScalesAreRejected) {
+  const std::string dir = FreshDir("scales");
+  const std::string stl = BinaryStl(LShapeMesh(0.1, 0.05));
+  for (const std::string scale : std::vector<std::string>{"0 1 1", "1 -1 1", "1 1 0"}) {
+    ExpectBadLinkMesh(dir, "l.stl", stl, {"scale", "finite numbers > 0"}, scale);
+  }
+  ExpectBadLinkMesh(dir, "l.stl", stl, {"too large"}, "1e6 1e6 1e6");
+  ExpectBadLinkMesh(dir, "l.stl", stl, {"too small"}, "1e-6 1e-6 1e-6");
+}
+
+TEST(SceneMeshLinks, NanScaleIsRejected) {
+  const std::string dir = FreshDir("nan_scale");
+  WriteBytes(dir + "l.stl", BinaryStl(LShapeMesh(0.1, 0.05)));
+  const Files files = WriteRobot(dir, {MeshCollision("l.stl", "", "nan 1 1")});
+  // urdfdom drops a collision element it cannot parse (and says so on its console only).
+  ExpectLoadError([&] { LoadWorkcell(files.urdf, files.scene, CacheIn(dir)); },
+                  {files.urdf, "link 'link0'", "1 <collision>", "urdfdom read 0"});
+}
+
+TEST(SceneMeshLinks, BadMeshObjectsAreRejectedNamingSceneObjectAndFile) {
+  const std::string dir = FreshDir("bad_objects");
+  WriteBytes(dir + "l.obj", Obj(LShapeMesh(0.1, 0.05)));
+  WriteBytes(dir + "flat.obj", "v 0 0 0\nv 0.1 0 0\nv 0.1 0.1 0\nv 0 0.1 0\nf 1 2 3\nf 1 3 4\n");
+  const std::string pose = ", pose: {xyz_m: [0, 0, 1]}}\n";
+  const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
+      {"{name: a, type: mesh" + pose, {"objects[0] 'a'", "a mesh needs mesh"}},
+      {"{name: a, type: mesh, mesh: nowhere.obj" + pose,
+       {"objects[0] 'a'", "mesh 'nowhere.obj'", "cannot open the file"}},
+      {"{name: a, type: mesh, mesh: flat.obj" + pose, {"objects[0] 'a'", "flat.obj", "no volume"}},
+      {"{name: a, type: mesh, mesh: l.obj, scale: [1, 0, 1]" + pose,
+       {"objects[0] 'a'", "l.obj", "scale"}},
+      {"{name: a, type: mesh, mesh: l.obj, scale: [1, .nan, 1]" + pose, {"objects[0] 'a'", "scale"}},
+      {"{name: a, type: box, size_m: [1, 1, 1], mesh: l.obj" + pose,
+       {"objects[0] 'a'", "mesh is not a key of a box"}},
+      {"{name: a, type: mesh, mesh: package://nowhere/l.obj" + pose,
+       {"objects[0] 'a'", "package://nowhere/l.obj", "give a file path"}},
+  };
+  for (const auto& [entry, parts] : cases) {
+    const Files files = WriteRobot(dir, {}, "objects:\n  - " + entry);
+    std::vector<std::string> all = parts;
+    all.push_back(files.scene);
+    ExpectLoadError([&] { LoadWorkcell(files.urdf, files.scene, CacheIn(dir)); }, all);
+  }
+}
+
+}  // namespace
+}  // namespace arm_collision_monitor

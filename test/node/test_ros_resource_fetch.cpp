@@ -1,0 +1,82 @@
+// FetchRosResource: package:// URLs resolved through resource_retriever (the ROS package index)
+// for URDF meshes and the scene file's srdf:, as the node and replay load them.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+#include "arm_collision_monitor/core/load_error.h"
+#include "arm_collision_monitor/ros/resource_fetch_ros.h"
+#include "arm_collision_monitor/scene/workcell.h"
+
+namespace arm_collision_monitor {
+namespace {
+
+namespace fs = std::filesystem;
+
+// This package is found in the folder that holds its source (rostest and catkin set
+// ROS_PACKAGE_PATH too; a bare run of the binary may not).
+void AddThisPackageToRosPackagePath() {
+  const std::string folder = fs::path(ACM_SOURCE_DIR).parent_path().string();
+  const char* current = std::getenv("ROS_PACKAGE_PATH");
+  const std::string path = current ? folder + ":" + current : folder;
+  setenv("ROS_PACKAGE_PATH", path.c_str(), 1);
+}
+
+TEST(RosResourceFetch, PackageUrlsOfUrdfMeshesAndSrdfResolve) {
+  AddThisPackageToRosPackagePath();
+  const std::string dir = ::testing::TempDir() + "acm_ros_fetch/";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string urdf = dir + "robot.urdf";
+  std::ofstream(urdf)
+      << "<robot name=\"workcell\"><link name=\"base_link\"/>"
+         "<link name=\"forearm\"><collision><origin xyz=\"0 0 0.1\"/><geometry><mesh filename="
+         "\"package://arm_collision_monitor/test/data/meshes/forearm.stl\"/></geometry>"
+         "</collision></link><joint name=\"j\" type=\"revolute\"><parent link=\"base_link\"/>"
+         "<child link=\"forearm\"/><axis xyz=\"0 0 1\"/><limit lower=\"-1\" upper=\"1\" "
+         "effort=\"1\" velocity=\"1\"/></joint></robot>\n";
+  const std::string scene = dir + "scene.yaml";
+  std::ofstream(scene) << "world: {center_m: [0, 0, 0], edge_m: 4}\n"
+                          "srdf: package://arm_collision_monitor/test/data/moveit/workcell.srdf\n";
+  WorkcellLoadOptions options;
+  options.fetch = FetchRosResource;
+  options.mesh_fit_cache_dir = "";
+  const Workcell w = LoadWorkcell(urdf, scene, options);
+  const int forearm = w.FindPrimitive("forearm");
+  ASSERT_GE(forearm, 0);
+  // The file's box (x in [0, 0.35], |y|, |z| <= 0.045), raised by the origin: every corner in.
+  const Capsule c = std::get<Capsule>(w.primitives[forearm].shape_L);
+  for (const double x : {0.0, 0.35}) {
+    for (const double y : {-0.045, 0.045}) {
+      for (const double z : {0.055, 0.145}) {
+        const Eigen::Vector3d p(x, y, z);
+        const Eigen::Vector3d d = c.p1_W - c.p0_W;
+        const double s = std::clamp((p - c.p0_W).dot(d) / d.squaredNorm(), 0.0, 1.0);
+        EXPECT_LE((p - c.p0_W - s * d).norm(), c.radius_m) << p.transpose();
+      }
+    }
+  }
+  EXPECT_NEAR((c.p1_W - c.p0_W).norm(), 0.35, 1e-6);
+  EXPECT_EQ(w.mesh_fits.computed, 1);
+  // The SRDF was read: its links are not this robot's, so it leaves a notice naming them.
+  bool has_srdf_notice = false;
+  for (const std::string& warning : w.warnings) {
+    has_srdf_notice |= warning.find("workcell.srdf: collision rules: skipped") != std::string::npos;
+  }
+  EXPECT_TRUE(has_srdf_notice);
+}
+
+TEST(RosResourceFetch, UnknownPackageIsALoadError) {
+  AddThisPackageToRosPackagePath();
+  try {
+    FetchRosResource("package://no_such_package_acm/meshes/a.stl");
+    ADD_FAILURE() << "expected a LoadError";
+  } catch (const LoadError& e) {
+    EXPECT_NE(std::string(e.what()).find("no_such_package_acm"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace arm_collision_monitor
