@@ -3,10 +3,13 @@
 #include <resource_retriever/retriever.h>
 
 #include "arm_collision_monitor/core/load_error.h"
+#include "arm_collision_monitor/scene/resource_fetch.h"
 
 namespace arm_collision_monitor {
 
 std::string FetchRosResource(const std::string& url) {
+  // resource_retriever hands a name without a scheme to curl, which cannot read a plain path.
+  if (url.find("://") == std::string::npos) return FetchLocalResource(url);
   resource_retriever::Retriever retriever;
   resource_retriever::MemoryResource resource;
   try {

@@ -106,5 +106,27 @@ TEST(RosResourceFetch, UnknownPackageIsALoadError) {
   }
 }
 
+// Plain paths (what a scene file's srdf: and planning_scene: resolve to, relative to the scene
+// file) are read as files: resource_retriever alone hands them to curl, which refuses them.
+TEST(RosResourceFetch, PlainPathsAreReadAsFiles) {
+  const std::string dir = ::testing::TempDir() + "acm_ros_fetch_plain/";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string bytes = std::string("solid\0binary\xff", 13);
+  std::ofstream(dir + "a.bin", std::ios::binary) << bytes;
+  EXPECT_EQ(FetchRosResource(dir + "a.bin"), bytes);
+  EXPECT_EQ(FetchRosResource("file://" + dir + "a.bin"), bytes);
+  const fs::path previous = fs::current_path();
+  fs::current_path(dir);
+  EXPECT_EQ(FetchRosResource("a.bin"), bytes);
+  fs::current_path(previous);
+  try {
+    FetchRosResource(dir + "missing.bin");
+    ADD_FAILURE() << "expected a LoadError";
+  } catch (const LoadError& e) {
+    EXPECT_NE(std::string(e.what()).find("missing.bin"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace arm_collision_monitor
