@@ -139,6 +139,12 @@ inline constexpr std::uint32_t kAutoOctreeMinPrimitives = 480;
 /// grasped object touches the gripper; 10 cm absorbs perception error.
 inline constexpr double kAttachMaxGap_m = 0.10;
 
+/// Margin (m) on every side of the world cube derived when the scene file omits world:
+/// (DeriveWorldCube). The reach envelopes already bound every primitive for every q; this leaves
+/// room for what the broad phase grows boxes by (index slack, speed-scaled tolerance: a box
+/// beyond the cube is still checked, only in the border cells). Typical 0.10.
+inline constexpr double kDerivedWorldMargin_m = 0.10;
+
 /// Default index slack, m (MonitorOptions::index_slack_m): a moving primitive is re-indexed
 /// once a point of it has moved this far since it was last indexed. Larger means fewer index
 /// updates but more candidate pairs; 0.10 m is about three cycles at the 0.61 m/s speed bound
