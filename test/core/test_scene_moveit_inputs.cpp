@@ -380,8 +380,9 @@ TEST(SceneMoveitInputs, MalformedSrdfNamesItsFileAndLine) {
       "<robot name='workcell'>\n  <disable_collisions link1='left_link1' link2='left_link3'/>\n"
       "  <group name='arm'>\n</robot>\n");
   ExpectBundledSceneError("srdf: " + srdf, {srdf + ":3:", "malformed XML", "name=group"});
-  const std::string unknown = WriteTempFile(
-      "unknown_element.srdf", "<robot name='workcell'>\n  <disable_colisions link1='a'/>\n</robot>\n");
+  const std::string unknown =
+      WriteTempFile("unknown_element.srdf",
+                    "<robot name='workcell'>\n  <disable_colisions link1='a'/>\n</robot>\n");
   ExpectBundledSceneError("srdf: " + unknown,
                           {unknown + ":2:", "unknown element <disable_colisions>"});
 }
