@@ -11,7 +11,6 @@
 #include "arm_collision_monitor/broadphase/broad_phase_util.h"
 #include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/geometry/distance.h"
-#include "arm_collision_monitor/monitor/motion_bounds.h"
 #include "arm_collision_monitor/scene/workcell_reach.h"
 
 namespace arm_collision_monitor {
