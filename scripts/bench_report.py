@@ -521,10 +521,69 @@ def section_fidelity(rows, out_dir, md):
     md.append(f"\n![fidelity]({save(fig, out_dir, 'fidelity.png')})\n")
 
 
+def section_fidelity_cylinders(rows, out_dir, md):
+    md.append("\n## 8a'. Model fidelity: scene cylinders (cylinder_model)\n\n")
+    r0 = rows[0]
+    md.append(f"Cans (upright on the front table under the tools' paths, tilted beside the "
+              f"paths; {r0['cans']} of them, seed {r0['seed']}) against the arms' "
+              f"{r0['arm_capsules']} moving capsules, on the three tasks and on seeded random "
+              "configurations within the joint limits. A pair warns when the monitor's "
+              "narrow phase (IsCloserThan) puts the can's model within the pair's threshold "
+              "(the sum of tolerances). *false*: the model warns, the exact cylinder is beyond "
+              "the threshold; *missed*: the exact cylinder is within it, the model does not "
+              "warn (both models enclose the cylinder: must be 0). Exact distance: golden-"
+              "section search along the capsule's segment of the convex point-to-cylinder "
+              f"distance, error below {num(r0['reference_accuracy_m']):.0e} m (pairs within it "
+              "of the threshold, *borderline*, count as neither), checked against FCL's "
+              "capsule-cylinder distance (*max FCL difference*).\n")
+    md.append(table(["workload", "model", "configurations", "pairs", "model warnings",
+                     "exact warnings", "false", "missed", "borderline", "FCL-checked pairs",
+                     "max FCL difference m"],
+                    [[r["workload"], r["model"], r["configurations"], r["pairs"],
+                      r["model_warnings"], r["exact_warnings"], r["false"], r["missed"],
+                      r["borderline"], r["fcl_checked_pairs"],
+                      f'{num(r["max_fcl_difference_m"]):.1e}'] for r in rows]))
+    missed = sum(int(num(r["missed"])) for r in rows)
+    md.append(f"\n- Missed warnings against the exact cylinder: {missed} in all"
+              + (" (both models enclose it)" if missed == 0 else " -- CONTAINMENT VIOLATED")
+              + ".\n")
+    for w in sorted({r["workload"] for r in rows}, key=lambda w: w != "tasks"):
+        sel = sorted((r for r in rows if r["workload"] == w), key=lambda r: num(r["false"]))
+        md.append(f"- *{w}*: fewest false warnings with *{sel[0]['model']}* ({sel[0]['false']} of "
+                  f"{sel[0]['model_warnings']} warned pairs), then "
+                  + ", ".join(f"*{r['model']}* ({r['false']} of {r['model_warnings']})"
+                              for r in sel[1:]) + ".\n")
+    workloads = sorted({r["workload"] for r in rows}, key=lambda w: w != "tasks")
+    models = sorted({r["model"] for r in rows}, key=lambda m: m != "capsule")
+    fig, ax = plt.subplots(figsize=(7, 4))
+    width = 0.8 / max(1, len(models))
+    for k, model in enumerate(models):
+        xs, ys = [], []
+        for i, w in enumerate(workloads):
+            r = next(r for r in rows if r["workload"] == w and r["model"] == model)
+            exact = max(1.0, num(r["exact_warnings"]))
+            xs.append(i + (k - 0.5 * (len(models) - 1)) * width)
+            ys.append(100.0 * num(r["false"]) / exact)
+            ax.annotate(f'{r["false"]} false\n{r["missed"]} missed', (xs[-1], ys[-1]),
+                        ha="center", fontsize=7, textcoords="offset points", xytext=(0, 3))
+        ax.bar(xs, ys, width, label=model)
+    ax.set_xticks(range(len(workloads)))
+    ax.set_xticklabels(workloads)
+    ax.margins(y=0.2)
+    ax.set_ylabel("false warnings (% of exact warnings)")
+    ax.set_title("Scene cylinders: cylinder_model against the exact cylinder")
+    ax.grid(True, axis="y", alpha=0.3)
+    ax.legend(title="cylinder_model")
+    md.append(f"\n![cylinders]({save(fig, out_dir, 'fidelity_cylinders.png')})\n")
+
+
 def section_tradeoffs(out_dir, md):
     rows = read(out_dir, "fidelity.csv")
     if rows:
         section_fidelity(rows, out_dir, md)
+    rows = read(out_dir, "fidelity_cylinders.csv")
+    if rows:
+        section_fidelity_cylinders(rows, out_dir, md)
     rows = read(out_dir, "temporal.csv")
     if rows:
         md.append("\n## 8b. Run time against error: check rate and sub-stepping\n\n")

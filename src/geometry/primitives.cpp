@@ -1,5 +1,8 @@
 #include "arm_collision_monitor/geometry/primitives.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace arm_collision_monitor {
 
 Shape TransformShape(const Eigen::Isometry3d& X_WL, const Shape& shape_L) {
@@ -8,6 +11,16 @@ Shape TransformShape(const Eigen::Isometry3d& X_WL, const Shape& shape_L) {
   }
   const Box& box = std::get<Box>(shape_L);
   return Box{X_WL * box.X_WB, box.half_extents_m};
+}
+
+double MaxDistanceFromPoint_m(const Shape& shape, const Eigen::Vector3d& p) {
+  if (const auto* capsule = std::get_if<Capsule>(&shape)) {
+    return std::max((capsule->p0_W - p).norm(), (capsule->p1_W - p).norm()) + capsule->radius_m;
+  }
+  const Box& box = std::get<Box>(shape);
+  // The farthest point of a box from p is the vertex opposite p in every axis.
+  const Eigen::Vector3d p_B = box.X_WB.inverse(Eigen::Isometry) * p;
+  return (p_B.cwiseAbs() + box.half_extents_m).norm();
 }
 
 Eigen::Isometry3d PoseFromXyzRpy(const Eigen::Vector3d& p_WF_m, const Eigen::Vector3d& rpy_rad) {

@@ -13,6 +13,12 @@
 #include "arm_collision_monitor/kinematics/urdf_conversions.h"
 
 namespace arm_collision_monitor {
+
+double PrismaticTravel_m(const JointSpec& joint) {
+  if (joint.type != JointType::kPrismatic) return 0.0;
+  return std::max(std::abs(joint.lower), std::abs(joint.upper));
+}
+
 namespace {
 
 bool IsFinitePose(const Eigen::Isometry3d& X) { return X.matrix().allFinite(); }

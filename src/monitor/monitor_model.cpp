@@ -11,7 +11,7 @@
 #include "arm_collision_monitor/broadphase/broad_phase_util.h"
 #include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/geometry/distance.h"
-#include "arm_collision_monitor/monitor/motion_bounds.h"
+#include "arm_collision_monitor/scene/workcell_reach.h"
 
 namespace arm_collision_monitor {
 
@@ -155,68 +155,12 @@ void MonitorModel::BuildStartPose() {
 }
 
 // Reach envelope (the seed's observation that stationary objects only cost time when they share
-// cells with moving ones, taken to the limit): a link L's points stay within a sphere centred on
-// the origin of the first moving joint above it, of radius (sum of the joint offsets between
-// that joint and L, plus prismatic travel) + (farthest point of L's geometry, or of an object it
-// may hold, from L's origin) -- the triangle inequality over the chain, valid for every q.
+// cells with moving ones, taken to the limit): per link, the sphere of ComputeWorkcellReach.
 // Frame-bound objects reach what is near their start pose (SetObjectPose re-checks).
 std::vector<Capsule> MonitorModel::ComputeReachSpheres() {
-  const int link_count = kinematics->link_count();
-  double max_attach_diameter_m = 0.0;
-  bool has_attachable = false;
-  for (const Object& object : objects) {
-    if (!object.is_attachable) continue;
-    has_attachable = true;
-    Aabb box = ComputeAabb(workcell->primitives[object.prims.front()].shape_L);
-    for (const PrimitiveId id : object.prims) {
-      const Aabb b = ComputeAabb(workcell->primitives[id].shape_L);
-      box.min_W = box.min_W.cwiseMin(b.min_W);
-      box.max_W = box.max_W.cwiseMax(b.max_W);
-    }
-    // The AABB diagonal bounds the object's diameter (which a rigid motion keeps).
-    max_attach_diameter_m = std::max(max_attach_diameter_m, (box.max_W - box.min_W).norm());
-  }
-  // Per link: world centre of its reach sphere and the chain length from that centre.
-  std::vector<Eigen::Vector3d> centre_W(link_count, Eigen::Vector3d::Zero());
-  std::vector<double> chain_m(link_count, 0.0);
-  std::vector<std::uint8_t> is_below_joint(link_count, 0);  // a non-fixed joint above it
-  for (int link = 1; link < link_count; ++link) {
-    const int parent = kinematics->parent_link(link);
-    const JointSpec& joint = kinematics->joint(link);
-    const double travel_m = PrismaticTravel_m(joint);
-    if (is_below_joint[parent]) {
-      is_below_joint[link] = 1;
-      centre_W[link] = centre_W[parent];
-      chain_m[link] = chain_m[parent] + joint.X_PJ.translation().norm() + travel_m;
-    } else if (joint.type != JointType::kFixed) {
-      // The first moving joint (actuated or mimic): its origin is fixed (revolute) or slides by
-      // `travel_m`.
-      is_below_joint[link] = 1;
-      centre_W[link] = X_WL_start[parent] * joint.X_PJ.translation();
-      chain_m[link] = travel_m;
-    }
-  }
-  // Only links below a moving joint may hold objects (holding with a fixed link would make a
-  // static object "moving" for nothing); hold_radius_m < 0 marks the others.
-  hold_radius_m.assign(link_count, -1.0);
-  std::vector<Capsule> spheres(link_count, Capsule{Eigen::Vector3d::Zero(),
-                                                   Eigen::Vector3d::Zero(), -1.0});
-  for (int link = 0; link < link_count; ++link) {
-    if (!is_below_joint[link]) continue;
-    double extent_m = 0.0;
-    for (const PrimitiveId id : link_prims[link]) {
-      extent_m = std::max(extent_m, MaxDistanceFromPoint_m(workcell->primitives[id].shape_L,
-                                                           Eigen::Vector3d::Zero()));
-    }
-    hold_radius_m[link] = extent_m + kAttachMaxGap_m + max_attach_diameter_m;
-    spheres[link].p0_W = spheres[link].p1_W = centre_W[link];
-    if (has_attachable) {
-      spheres[link].radius_m = chain_m[link] + hold_radius_m[link];
-    } else if (!link_prims[link].empty()) {
-      spheres[link].radius_m = chain_m[link] + extent_m;
-    }
-  }
-  return spheres;
+  WorkcellReach reach = ComputeWorkcellReach(*workcell);
+  hold_radius_m = std::move(reach.hold_radius_m);
+  return std::move(reach.spheres);
 }
 
 void MonitorModel::ComputeReachability() {

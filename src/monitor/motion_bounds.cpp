@@ -7,16 +7,6 @@
 
 namespace arm_collision_monitor {
 
-double MaxDistanceFromPoint_m(const Shape& shape, const Eigen::Vector3d& p) {
-  if (const auto* capsule = std::get_if<Capsule>(&shape)) {
-    return std::max((capsule->p0_W - p).norm(), (capsule->p1_W - p).norm()) + capsule->radius_m;
-  }
-  const Box& box = std::get<Box>(shape);
-  // The farthest point of a box from p is the vertex opposite p in every axis.
-  const Eigen::Vector3d p_B = box.X_WB.inverse(Eigen::Isometry) * p;
-  return (p_B.cwiseAbs() + box.half_extents_m).norm();
-}
-
 double MaxPointDisplacement_m(const Shape& before, const Shape& after) {
   if (const auto* c0 = std::get_if<Capsule>(&before)) {
     const Capsule& c1 = std::get<Capsule>(after);
@@ -33,11 +23,6 @@ double MaxPointDisplacement_m(const Shape& before, const Shape& after) {
     max_sq = std::max(max_sq, (b1.X_WB * v_B - b0.X_WB * v_B).squaredNorm());
   }
   return std::sqrt(max_sq);
-}
-
-double PrismaticTravel_m(const JointSpec& joint) {
-  if (joint.type != JointType::kPrismatic) return 0.0;
-  return std::max(std::abs(joint.lower), std::abs(joint.upper));
 }
 
 int DrivingQIndex(const JointSpec& joint) {

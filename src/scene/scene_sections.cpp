@@ -299,7 +299,6 @@ ShapeOptions ReadShapeOptions(const YAML::Node& scene, const std::string& scene_
 }
 
 Aabb ReadWorld(const YAML::Node& node, const Where& where) {
-  if (!node.IsDefined()) where.Fail(node, "missing; expected {center_m: [x, y, z], edge_m: e}");
   yaml_fields::RequireMap(node, where);
   yaml_fields::CheckKeys(node, {"center_m", "edge_m"}, where);
   const Eigen::Vector3d center_W =

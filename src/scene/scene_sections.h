@@ -68,7 +68,8 @@ void CheckSectionNames(const YAML::Node& scene, const std::string& scene_path);
 /// [1, kMeshFitMaxCapsules]); both optional.
 ShapeOptions ReadShapeOptions(const YAML::Node& scene, const std::string& scene_path);
 
-/// world: the cube the spatial index covers, in the fixed frame.
+/// world: the cube the spatial index covers, in the fixed frame (`node` defined: without it the
+/// loader derives the cube, DeriveWorldCube).
 Aabb ReadWorld(const YAML::Node& node, const Where& where);
 
 /// joint_limits: soft limits, each within the URDF's limits of an actuated joint; set on `model`.

@@ -6,12 +6,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <random>
 
 #include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/geometry/distance.h"
 #include "arm_collision_monitor/kinematics/urdf_conversions.h"
 #include "arm_collision_monitor/scene/workcell.h"
+#include "arm_collision_monitor/scene/workcell_reach.h"
 #include "arm_collision_monitor/scene/workcell_shapes.h"
 #include "moveit_sections.h"
 #include "scene_sections.h"
@@ -126,6 +129,16 @@ std::vector<std::string> SampledConfigurationWarnings(const Workcell& w) {
   return warnings;
 }
 
+// The start-up notice of a derived world cube, in the form world: takes.
+std::string DerivedWorldNotice(const Workcell& w) {
+  const Eigen::Vector3d center_W = 0.5 * (w.world_W.min_W + w.world_W.max_W);
+  char text[200];
+  std::snprintf(text, sizeof(text), "{center_m: [%.3f, %.3f, %.3f], edge_m: %.3f}", center_W.x(),
+                center_W.y(), center_W.z(), (w.world_W.max_W - w.world_W.min_W).maxCoeff());
+  return w.scene_path + ": world: not given; derived from the arms' reach envelopes and the " +
+         "objects: " + text;
+}
+
 }  // namespace
 
 Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_path,
@@ -154,7 +167,12 @@ Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_pat
   w.solid_options = SolidShapeOptions{shape_options.cylinder_model, shape_options.mesh_fit};
   scene_sections::ReadJointLimits(scene["joint_limits"], Where{scene_path, "joint_limits"},
                                   &w.kinematics);
-  w.world_W = scene_sections::ReadWorld(scene["world"], Where{scene_path, "world"});
+  // Without world:, every object fits until the cube is derived from the finished workcell.
+  const bool derives_world = !scene["world"].IsDefined();
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  w.world_W = derives_world
+                  ? Aabb{Eigen::Vector3d::Constant(-kInf), Eigen::Vector3d::Constant(kInf)}
+                  : scene_sections::ReadWorld(scene["world"], Where{scene_path, "world"});
   scene_sections::LinkSettings links;
   links.default_tolerance_m = default_arm_tolerance_m;
   w.arms = scene_sections::ReadArms(scene["arms"], Where{scene_path, "arms"}, w.kinematics,
@@ -187,6 +205,10 @@ Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_pat
                                                      Where{scene_path, "grasp_targets"}, w);
 
   // Derived values.
+  if (derives_world) {
+    w.world_W = DeriveWorldCube(w);
+    w.warnings.push_back(DerivedWorldNotice(w));
+  }
   w.joint_names = w.kinematics.ActuatedJointNames();
   w.compatible = ComputeCompatibility(w, compatible_pairs);
   const std::vector<std::string> sampled = SampledConfigurationWarnings(w);

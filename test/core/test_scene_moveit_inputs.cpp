@@ -374,6 +374,19 @@ TEST(SceneMoveitInputs, BadSceneKeysAreRejected) {
   ExpectBundledSceneError("mesh_fit: hull", {"mesh_fit", "'hull'"});
 }
 
+TEST(SceneMoveitInputs, MalformedSrdfNamesItsFileAndLine) {
+  const std::string srdf = WriteTempFile(
+      "malformed.srdf",
+      "<robot name='workcell'>\n  <disable_collisions link1='left_link1' link2='left_link3'/>\n"
+      "  <group name='arm'>\n</robot>\n");
+  ExpectBundledSceneError("srdf: " + srdf, {srdf + ":3:", "malformed XML", "name=group"});
+  const std::string unknown =
+      WriteTempFile("unknown_element.srdf",
+                    "<robot name='workcell'>\n  <disable_colisions link1='a'/>\n</robot>\n");
+  ExpectBundledSceneError("srdf: " + unknown,
+                          {unknown + ":2:", "unknown element <disable_colisions>"});
+}
+
 std::string PlanningSceneWithObject(const std::string& name, const std::string& object) {
   return WriteTempFile(name, "world:\n  collision_objects:\n" + object);
 }
@@ -399,6 +412,11 @@ TEST(SceneMoveitInputs, BadPlanningSceneObjectsAreRejected) {
        "          vertices: [[0, 0, 0], [0.1, 0, 0], [0.1, 0.1, 0], [0, 0.1, 0]]\n"
        "      mesh_poses: [{position: [0.5, 0, 1]}]\n",
        {"'sheet'", "meshes[0]", "no volume"}},
+      {"    - id: torus\n      primitives: [{type: torus, dimensions: [0.1, 0.02]}]\n"
+       "      primitive_poses: [{position: [0.5, 0, 1]}]\n",
+       {"'torus'", "primitives[0].type", "unknown value 'torus'", "4 CONE"}},
+      {"    - id: lid\n      header: {frame_id: no_such_frame}\n" + box,
+       {"'lid'", "frame_id 'no_such_frame'", "not a URDF link"}},
   };
   for (const Case& c : cases) {
     const std::string ps = PlanningSceneWithObject("bad_ps.yaml", c.object);

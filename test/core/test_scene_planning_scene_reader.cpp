@@ -206,6 +206,49 @@ TEST(PlanningSceneReader, BadObjectsNameFileElementAndExpectation) {
       ReadScene);
 }
 
+const std::string kTriangle =
+    "{vertices: [[0, 0, 0], [1, 0, 0], [0, 1, 0]], triangles: [[0, 1, 2]]}";
+
+TEST(PlanningSceneReader, MissingPosesAndNonFiniteNumbersNameFileAndObject) {
+  ExpectBadInputFilesRejected(
+      "bad_poses.yaml",
+      {
+          // Poses missing or not one per shape.
+          {OneObject("id: a, primitives: [{type: 2, dimensions: [0.1]}]"),
+           {kObject + ".primitive_poses", "0 poses for 1 primitives", "one pose per entry"}},
+          {OneObject("id: a, meshes: [" + kTriangle + "]"),
+           {kObject + ".mesh_poses", "0 poses for 1 meshes", "one pose per entry of meshes"}},
+          {OneObject("id: a, meshes: [" + kTriangle + "], mesh_poses: [{}, {}]"),
+           {kObject + ".mesh_poses", "2 poses for 1 meshes"}},
+          {OneObject("id: a, " + kBox + ", meshes: [" + kTriangle + "], mesh_poses: []"),
+           {kObject + ".mesh_poses", "0 poses for 1 meshes"}},
+          {OneObject("id: a, primitives: [{type: 1, dimensions: [1, 1, 1]}], "
+                     "primitive_poses: [7]"),
+           {kObject + ".primitive_poses[0]", "expected a map"}},
+          // Non-finite numbers, wherever they are.
+          {OneObject("id: a, primitives: [{type: 1, dimensions: [1, 1, 1]}], "
+                     "primitive_poses: [{position: {x: 0, y: .inf, z: 0}}]"),
+           {kObject + ".primitive_poses[0].position.y", "expected a finite number"}},
+          {OneObject("id: a, " + kBox + ", pose: {position: [0, .nan, 0]}"),
+           {kObject + ".pose.position[1]", "expected a finite number"}},
+          {OneObject("id: a, " + kBox + ", pose: {orientation: [0, 0, -.inf, 1]}"),
+           {kObject + ".pose.orientation[2]", "expected a finite number"}},
+          {OneObject("id: a, primitives: [{type: 1, dimensions: [1, 1, 1]}], "
+                     "primitive_poses: [{orientation: {x: 0, y: 0, z: 0, w: .nan}}]"),
+           {kObject + ".primitive_poses[0].orientation.w", "expected a finite number"}},
+          {OneObject("id: a, meshes: [{vertices: [[0, 0, 0], [1, 0, .inf], [0, 1, 0]], "
+                     "triangles: [[0, 1, 2]]}], mesh_poses: [{}]"),
+           {kObject + ".meshes[0].vertices[1][2]", "expected a finite number"}},
+          {OneObject("id: a, primitives: [{type: cylinder, dimensions: [.inf, 0.1]}], "
+                     "primitive_poses: [{}]"),
+           {kObject + ".primitives[0].dimensions[0]", "expected a finite number"}},
+          {OneObject("id: a, primitives: [{type: box, dimensions: [1, 1e999, 1]}], "
+                     "primitive_poses: [{}]"),
+           {kObject + ".primitives[0].dimensions[1]", "expected a number, got '1e999'"}},
+      },
+      ReadScene);
+}
+
 TEST(PlanningSceneReader, BadMatricesNameFileElementAndExpectation) {
   const std::string acm = "allowed_collision_matrix";
   ExpectBadInputFilesRejected(

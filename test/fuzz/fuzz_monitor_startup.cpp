@@ -5,12 +5,9 @@
 //
 // Input: the three texts separated by kSeparator, in the order URDF, scene, options; with only
 // two parts the bundled config/monitor.yaml is used. Seeds: test/fuzz/corpus/monitor_startup/.
-#include <unistd.h>
-
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
-#include <fstream>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -21,13 +18,14 @@
 #include "arm_collision_monitor/core/load_error.h"
 #include "arm_collision_monitor/monitor/monitor.h"
 #include "arm_collision_monitor/scene/workcell.h"
+#include "fuzz_files.h"
 
 namespace arm_collision_monitor {
 namespace {
 
 constexpr std::string_view kSeparator = "\n=====\n";
 
-// One scratch directory per fuzzing process; the loaders take paths, so the texts go to files.
+// The three texts' files, in the scratch directory.
 struct ScratchFiles {
   std::string urdf_path;
   std::string scene_path;
@@ -36,18 +34,10 @@ struct ScratchFiles {
 
 const ScratchFiles& Scratch() {
   static const ScratchFiles files = [] {
-    char directory[] = "/tmp/acm_fuzz_startup_XXXXXX";
-    if (mkdtemp(directory) == nullptr) std::abort();
-    const std::string base(directory);
+    const std::string& base = fuzz::ScratchDirectory("startup");
     return ScratchFiles{base + "/workcell.urdf", base + "/scene.yaml", base + "/monitor.yaml"};
   }();
   return files;
-}
-
-void WriteFile(const std::string& path, std::string_view text) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out.write(text.data(), static_cast<std::streamsize>(text.size()));
-  if (!out) std::abort();  // the scratch directory is ours: failing to write is a harness bug
 }
 
 std::vector<std::string_view> Split(std::string_view text) {
@@ -75,12 +65,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       Split(std::string_view(reinterpret_cast<const char*>(data), size));
   if (parts.size() < 2 || parts.size() > 3) return -1;  // not in the input format: not kept
   const ScratchFiles& files = Scratch();
-  WriteFile(files.urdf_path, parts[0]);
-  WriteFile(files.scene_path, parts[1]);
+  fuzz::WriteScratchFile(files.urdf_path, parts[0]);
+  fuzz::WriteScratchFile(files.scene_path, parts[1]);
   const std::string options_path = parts.size() == 3
                                        ? files.options_path
                                        : std::string(ACM_SOURCE_DIR) + "/config/monitor.yaml";
-  if (parts.size() == 3) WriteFile(files.options_path, parts[2]);
+  if (parts.size() == 3) fuzz::WriteScratchFile(files.options_path, parts[2]);
 
   std::shared_ptr<const Workcell> workcell;
   MonitorOptions options;

@@ -148,6 +148,11 @@ inline constexpr std::uint32_t kLiveObjectMaxPrimitives = 64;
 /// is below this (dimensionless). Typical 1e-6: a unit quaternion turned into a matrix is
 /// orthonormal to ~1e-15; a float32 round trip to ~1e-7.
 inline constexpr double kLiveObjectRotationTolerance = 1e-6;
+/// Margin (m) on every side of the world cube derived when the scene file omits world:
+/// (DeriveWorldCube). The reach envelopes already bound every primitive for every q; this leaves
+/// room for what the broad phase grows boxes by (index slack, speed-scaled tolerance: a box
+/// beyond the cube is still checked, only in the border cells). Typical 0.10.
+inline constexpr double kDerivedWorldMargin_m = 0.10;
 
 /// Default index slack, m (MonitorOptions::index_slack_m): a moving primitive is re-indexed
 /// once a point of it has moved this far since it was last indexed. Larger means fewer index

@@ -82,6 +82,9 @@ inline Aabb ComputeAabb(const Shape& shape) {
 /// The shape `shape_L`, given in frame L, expressed in W (rigid transform X_WL).
 Shape TransformShape(const Eigen::Isometry3d& X_WL, const Shape& shape_L);
 
+/// Distance (m) from point p to the farthest point of `shape` (both in the same frame).
+double MaxDistanceFromPoint_m(const Shape& shape, const Eigen::Vector3d& p);
+
 /// The pose of a frame F in W from its origin `p_WF_m` and URDF-convention angles `rpy_rad`
 /// (fixed-axis roll about x, then pitch about y, then yaw about z: R = Rz(yaw) Ry(pitch) Rx(roll)).
 Eigen::Isometry3d PoseFromXyzRpy(const Eigen::Vector3d& p_WF_m, const Eigen::Vector3d& rpy_rad);

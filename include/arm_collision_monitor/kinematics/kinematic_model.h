@@ -37,6 +37,10 @@ struct JointSpec {
   double mimic_offset = 0.0;
 };
 
+/// How far the prismatic joint's child can slide from the joint's origin (m; inf if unlimited);
+/// 0 for other joints.
+double PrismaticTravel_m(const JointSpec& joint);
+
 /// A URDF joint tree, immutable after FromUrdfFile (apart from start-up soft limits).
 class KinematicModel {
  public:

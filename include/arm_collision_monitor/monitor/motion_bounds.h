@@ -18,17 +18,10 @@
 
 namespace arm_collision_monitor {
 
-/// Distance (m) from point p to the farthest point of `shape` (both in the same frame).
-double MaxDistanceFromPoint_m(const Shape& shape, const Eigen::Vector3d& p);
-
 /// Largest displacement (m) of a defining point between two poses of the same primitive: the
 /// endpoints of a capsule, the vertices of a box. The displacement of a rigid motion is affine
 /// in the point, so this bounds the displacement of every point of the shape.
 double MaxPointDisplacement_m(const Shape& before, const Shape& after);
-
-/// How far the prismatic joint's child can slide from the joint's origin (m; inf if unlimited);
-/// 0 for other joints.
-double PrismaticTravel_m(const JointSpec& joint);
 
 /// The index into q that drives `joint` (its own, or the one it mimics); -1 if it does not move.
 int DrivingQIndex(const JointSpec& joint);

@@ -49,22 +49,6 @@ const CylinderModelInfo kCylinderModels[] = {
     {CylinderModel::kCapsuleEndSpheres, "capsule + end spheres", true, "end_spheres"},
 };
 
-// Minimum of a unimodal f on [lo, hi] (golden-section search; Press et al., Numerical Recipes,
-// 3rd ed., 10.2). Tolerance 1e-12 relative to the interval.
-double GoldenSectionMinimum(const std::function<double(double)>& f, double lo, double hi) {
-  const double k = 0.5 * (std::sqrt(5.0) - 1.0);
-  double a = lo, b = hi;
-  double x1 = b - k * (b - a), x2 = a + k * (b - a), f1 = f(x1), f2 = f(x2);
-  while (b - a > 1e-12 * (hi - lo)) {
-    if (f1 < f2) {
-      b = x2, x2 = x1, f2 = f1, x1 = b - k * (b - a), f1 = f(x1);
-    } else {
-      a = x1, x1 = x2, f1 = f2, x2 = a + k * (b - a), f2 = f(x2);
-    }
-  }
-  return 0.5 * (a + b);
-}
-
 // Closed-form volumes (m^3) of one cylinder model outside the cylinder (`excess`) and of the
 // cylinder outside the model (`uncovered`); NaN where there is none (the parallel covers).
 //  - capsule: two hemispheres, 4/3 pi r^3 excess.
@@ -299,6 +283,20 @@ MonteCarloVolumes EstimateVolumes(const ExactOracle& oracle, const Workcell* mod
 }
 
 }  // namespace
+
+double GoldenSectionMinimum(const std::function<double(double)>& f, double lo, double hi) {
+  const double k = 0.5 * (std::sqrt(5.0) - 1.0);
+  double a = lo, b = hi;
+  double x1 = b - k * (b - a), x2 = a + k * (b - a), f1 = f(x1), f2 = f(x2);
+  while (b - a > 1e-12 * (hi - lo)) {
+    if (f1 < f2) {
+      b = x2, x2 = x1, f2 = f1, x1 = b - k * (b - a), f1 = f(x1);
+    } else {
+      a = x1, x1 = x2, f1 = f2, x2 = a + k * (b - a), f2 = f(x2);
+    }
+  }
+  return 0.5 * (a + b);
+}
 
 void ExperimentFidelity(const Args& args, const std::vector<const Scenario*>& scenarios,
                         Csv* csv) {

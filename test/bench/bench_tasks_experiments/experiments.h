@@ -257,6 +257,15 @@ void ExperimentFloatDouble(const Args& args);
 // on each scenario. Rows into `csv` (fidelity.csv).
 void ExperimentFidelity(const Args& args, const std::vector<const Scenario*>& scenarios,
                         Csv* csv);
+
+// Minimum of a unimodal f on [lo, hi] (golden-section search; Press et al., Numerical Recipes,
+// 3rd ed., 10.2): the midpoint of a final bracket 1e-12 (hi - lo) wide that holds a minimiser.
+double GoldenSectionMinimum(const std::function<double(double)>& f, double lo, double hi);
+
+// Model fidelity (3a) of scene cylinders: cans near the tasks' paths (base's tasks) and in
+// seeded random configurations, cylinder_model capsule and box against the exact cylinder
+// (golden-section reference, checked against FCL). Rows into `csv` (fidelity_cylinders.csv).
+void ExperimentFidelityCylinders(const Args& args, const Scenario& base, Csv* csv);
 #endif
 
 }  // namespace bench

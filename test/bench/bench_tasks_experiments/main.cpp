@@ -33,7 +33,7 @@ int main(int argc, char** argv) {
       args.seed = std::stoull(argv[++i]);
     } else {
       std::fprintf(stderr, "usage: %s [--out DIR] [--quick] [--seed S] [--only tasks,octree,sweeps,slack,static,"
-                   "moving,temporal,float,fidelity]\n", argv[0]);
+                   "moving,temporal,float,fidelity,cylinders]\n", argv[0]);
       return 2;
     }
   }
@@ -82,6 +82,13 @@ int main(int argc, char** argv) {
             "uncovered_volume_percent,excess_volume_closed_form_percent,mc_samples_per_link,"
             "mc_seed");
     ExperimentFidelity(args, {&s, &clutter}, &csv);
+  }
+  if (args.Runs("cylinders")) {
+    Csv csv(args.out_dir + "/fidelity_cylinders.csv",
+            "workload,model,configurations,cans,arm_capsules,pairs,model_warnings,"
+            "exact_warnings,false,missed,borderline,reference_accuracy_m,fcl_checked_pairs,"
+            "max_fcl_difference_m,seed");
+    ExperimentFidelityCylinders(args, s, &csv);
   }
 #endif
   Csv meta(args.out_dir + "/meta.csv", "key,value");

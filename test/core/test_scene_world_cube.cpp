@@ -1,0 +1,166 @@
+// The world cube derived when the scene file omits world: (DeriveWorldCube) and the reach
+// envelopes it is built from (ComputeWorkcellReach), checked against sampled forward kinematics:
+// every primitive of every model, with its tolerance, in the home pose and in seeded random
+// configurations within the joint limits (continuous joints over a full turn), and every object
+// at its start pose, must lie inside.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <iterator>
+#include <random>
+#include <regex>
+#include <string>
+
+#include "arm_collision_monitor/scene/workcell_reach.h"
+#include "arm_collision_monitor/scene/workcell_shapes.h"
+#include "load_error_expect.h"
+#include "test_scene_util.h"
+
+namespace arm_collision_monitor {
+namespace {
+
+constexpr std::uint64_t kSeed = 20261123;
+constexpr int kSamples = 2000;
+// Rounding of forward kinematics and AABBs over a few metres, m.
+constexpr double kRounding_m = 1e-9;
+
+std::string ReadText(const std::string& path) {
+  std::ifstream in(path);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+// `scene_path`'s text without its world: line, written to a temporary file.
+std::string WithoutWorld(const std::string& name, const std::string& scene_path) {
+  const std::string text = ReadText(scene_path);
+  const std::string without = std::regex_replace(text, std::regex("\nworld:[^\n]*"), "\n");
+  EXPECT_NE(without, text) << scene_path << " has no world: line";
+  return WriteTempFile(name, without);
+}
+
+// A random q within the joint limits; continuous joints over a full turn.
+Eigen::VectorXd RandomConfiguration(const KinematicModel& model, std::mt19937_64* rng) {
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(model.q_size());
+  for (int link = 1; link < model.link_count(); ++link) {
+    const JointSpec& joint = model.joint(link);
+    if (joint.q_index < 0) continue;
+    const bool is_continuous = joint.type == JointType::kContinuous;
+    q[joint.q_index] = std::uniform_real_distribution<double>(
+        is_continuous ? -M_PI : joint.lower, is_continuous ? M_PI : joint.upper)(*rng);
+  }
+  return q;
+}
+
+// Expects every primitive of every model (with its tolerance) inside `w.world_W` and every
+// link primitive inside its link's reach sphere, at home and in kSamples random configurations.
+void ExpectEnclosedInAllConfigurations(const Workcell& w) {
+  const WorkcellReach reach = ComputeWorkcellReach(w);
+  WorkcellShapes shapes(w, WorkcellShapes::Models::kAll);
+  std::mt19937_64 rng(kSeed);
+  const Aabb cube = w.world_W.Inflated(kRounding_m);
+  int failures = 0;
+  for (int sample = 0; sample <= kSamples && failures < 10; ++sample) {
+    if (sample > 0) shapes.Evaluate(RandomConfiguration(w.kinematics, &rng));
+    for (PrimitiveId id = 0; id < w.primitives.size(); ++id) {
+      const PrimitiveSpec& p = w.primitives[id];
+      const bool in_cube = cube.Contains(ComputeAabb(shapes.shape_W(id)).Inflated(p.tolerance_m));
+      EXPECT_TRUE(in_cube) << "'" << p.name << "' outside the cube in sample " << sample
+                           << " (seed " << kSeed << ")";
+      failures += in_cube ? 0 : 1;
+      if (p.link_index < 0 || !w.kinematics.is_moving(p.link_index)) continue;
+      const Capsule& sphere = reach.spheres[p.link_index];
+      const double reach_m = MaxDistanceFromPoint_m(shapes.shape_W(id), sphere.p0_W);
+      EXPECT_LE(reach_m, sphere.radius_m + kRounding_m)
+          << "'" << p.name << "' beyond its link's reach sphere in sample " << sample;
+      failures += reach_m <= sphere.radius_m + kRounding_m ? 0 : 1;
+    }
+  }
+}
+
+void ExpectCube(const Aabb& box) {
+  const Eigen::Vector3d edges = box.max_W - box.min_W;
+  EXPECT_NEAR(edges.x(), edges.y(), kRounding_m);
+  EXPECT_NEAR(edges.x(), edges.z(), kRounding_m);
+  EXPECT_GT(edges.x(), 0.0);
+}
+
+bool HasNotice(const Workcell& w, const std::string& part) {
+  for (const std::string& warning : w.warnings) {
+    if (warning.find(part) != std::string::npos) return true;
+  }
+  return false;
+}
+
+TEST(SceneWorldCube, ThreeLinkArmWithoutWorldEnclosesEveryConfiguration) {
+  // Offset and rotated joint origins, a continuous wrist, a prismatic joint and its mimic.
+  const std::string scene =
+      WithoutWorld("three_link_no_world.yaml", kData + "three_link_scene.yaml");
+  const Workcell w = LoadWorkcell(kData + "three_link_arm.urdf", scene);
+  std::string why;
+  EXPECT_TRUE(w.Validate(&why)) << why;
+  ExpectCube(w.world_W);
+  EXPECT_TRUE(HasNotice(w, "world: not given; derived")) << ::testing::PrintToString(w.warnings);
+  ExpectEnclosedInAllConfigurations(w);
+}
+
+TEST(SceneWorldCube, BundledSceneWithoutWorldContainsTheStatedCubesContents) {
+  const Workcell stated = LoadWorkcell(kUrdf, kScene);
+  const Workcell w = LoadWorkcell(kUrdf, WithoutWorld("bundled_no_world.yaml", kScene));
+  ASSERT_EQ(w.primitives.size(), stated.primitives.size());
+  ExpectCube(w.world_W);
+  // Every object (attachable and frame-bound ones at their start poses) of the stated cube.
+  ASSERT_FALSE(w.objects.empty());
+  for (const ObjectSpec& object : w.objects) {
+    for (int k = 0; k < object.primitive_count; ++k) {
+      const PrimitiveSpec& p = w.primitives[object.primitive + k];
+      const Aabb box = ComputeAabb(p.shape_L).Inflated(p.tolerance_m);
+      ASSERT_TRUE(stated.world_W.Contains(box)) << p.name;  // the stated cube's contents
+      EXPECT_TRUE(w.world_W.Contains(box)) << p.name;
+    }
+  }
+  ExpectEnclosedInAllConfigurations(w);
+  const double edge_m = (w.world_W.max_W - w.world_W.min_W).x();
+  std::printf("derived world cube: edge %.3f m (stated %.3f m), centre %s\n", edge_m,
+              (stated.world_W.max_W - stated.world_W.min_W).x(),
+              ::testing::PrintToString(0.5 * (w.world_W.min_W + w.world_W.max_W)).c_str());
+}
+
+TEST(SceneWorldCube, ExplicitWorldWins) {
+  const Workcell w = LoadWorkcell(kUrdf, kScene);
+  const Aabb stated = Aabb::Cube(Eigen::Vector3d(0.0, 0.0, 3.0), 6.35);
+  EXPECT_EQ(w.world_W.min_W, stated.min_W);
+  EXPECT_EQ(w.world_W.max_W, stated.max_W);
+  EXPECT_FALSE(HasNotice(w, "world: not given"));
+  // ... and an object outside a stated cube is still an error.
+  ExpectLoadError(
+      [&] {
+        LoadWorkcell(kData + "three_link_arm.urdf",
+                     WriteTempFile("small_world.yaml",
+                                   std::regex_replace(ReadText(kData + "three_link_scene.yaml"),
+                                                      std::regex("edge_m: 4.0"), "edge_m: 0.5")));
+      },
+      {"'table'", "not inside the world cube"});
+}
+
+TEST(SceneWorldCube, ReachSpheresOnlyForLinksBelowAMovingJoint) {
+  const Workcell w = LoadWorkcell(kData + "three_link_arm.urdf", kData + "three_link_scene.yaml");
+  const WorkcellReach reach = ComputeWorkcellReach(w);
+  ASSERT_EQ(reach.spheres.size(), static_cast<std::size_t>(w.kinematics.link_count()));
+  for (int link = 0; link < w.kinematics.link_count(); ++link) {
+    const bool moves = w.kinematics.is_moving(link);
+    EXPECT_EQ(reach.hold_radius_m[link] >= 0.0, moves) << w.kinematics.link_name(link);
+    if (!moves) {
+      EXPECT_LT(reach.spheres[link].radius_m, 0.0) << w.kinematics.link_name(link);
+    }
+  }
+}
+
+TEST(SceneWorldCube, NothingToDeriveFromIsAnError) {
+  const std::string urdf = WriteTempFile("bare.urdf", "<robot name='r'><link name='a'/></robot>\n");
+  const std::string scene = WriteTempFile("bare.yaml", "arms: []\n");
+  ExpectLoadError([&] { LoadWorkcell(urdf, scene); },
+                  {scene, "world: missing", "no primitive", "edge_m"});
+}
+
+}  // namespace
+}  // namespace arm_collision_monitor

@@ -1,0 +1,101 @@
+// libFuzzer harness for the planning-scene reader: a moveit_msgs/PlanningScene YAML file as a
+// user (or MoveIt, or a benchmark suite) could supply it, through ReadPlanningSceneFile, then,
+// when it is read, through LoadWorkcell as the planning_scene: (with planning_scene_acm) of a
+// small arm's scene (test/data/three_link_arm.urdf), which turns its objects into primitives
+// (meshes fitted). LoadError is the expected answer to bad input; any other exception, a crash,
+// undefined behaviour, a leak or a broken invariant of the result is a finding.
+//
+// Input: the planning-scene YAML text. Seeds: test/fuzz/corpus/scene_planning_scene/.
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <string>
+#include <string_view>
+
+#include <console_bridge/console.h>
+
+#include "arm_collision_monitor/core/load_error.h"
+#include "arm_collision_monitor/scene/planning_scene_reader.h"
+#include "arm_collision_monitor/scene/workcell.h"
+#include "fuzz_files.h"
+
+namespace arm_collision_monitor {
+namespace {
+
+const std::string& PlanningScenePath() {
+  static const std::string path = fuzz::ScratchDirectory("planning_scene") + "/scene_dump.yaml";
+  return path;
+}
+
+// The three-link arm's scene with the fuzzed planning scene and its matrix.
+const std::string& ScenePath() {
+  static const std::string path = [] {
+    const std::string scene = fuzz::ScratchDirectory("planning_scene") + "/scene.yaml";
+    fuzz::WriteScratchFile(scene,
+                           "world: {center_m: [0.0, 0.0, 1.0], edge_m: 4.0}\n"
+                           "arms:\n  - {name: arm, root_link: upper_arm}\n"
+                           "planning_scene: " + PlanningScenePath() + "\n"
+                           "planning_scene_acm: true\n");
+    return scene;
+  }();
+  return path;
+}
+
+// The reader's contract (planning_scene_reader.h): ids, finite positive dimensions, finite
+// poses, triangle indices within the vertices.
+bool IsWellFormed(const SceneCollisionObject& object) {
+  if (object.id.empty() || (object.primitives.empty() && object.meshes.empty())) return false;
+  for (const ScenePrimitive& p : object.primitives) {
+    if (!p.X_FP.matrix().allFinite()) return false;
+    for (const double d : p.dimensions_m) {
+      if (!std::isfinite(d) || !(d > 0.0)) return false;
+    }
+  }
+  for (const SceneMesh& mesh : object.meshes) {
+    if (!mesh.X_FM.matrix().allFinite() || mesh.vertices_M.empty() || mesh.triangles.empty()) {
+      return false;
+    }
+    for (const auto& triangle : mesh.triangles) {
+      for (const std::uint32_t index : triangle) {
+        if (index >= mesh.vertices_M.size()) return false;
+      }
+    }
+    for (const Eigen::Vector3d& v : mesh.vertices_M) {
+      if (!v.allFinite()) return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+}  // namespace arm_collision_monitor
+
+extern "C" int LLVMFuzzerInitialize(int*, char***) {
+  // urdfdom reports through console_bridge on stderr: noise at 10^4 inputs/s.
+  console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_NONE);
+  return 0;
+}
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  using namespace arm_collision_monitor;
+  fuzz::WriteScratchFile(PlanningScenePath(),
+                         std::string_view(reinterpret_cast<const char*>(data), size));
+  PlanningSceneFile file;
+  try {
+    file = ReadPlanningSceneFile(PlanningScenePath());
+  } catch (const LoadError&) {
+    return 0;  // refused with a message: the expected answer to bad input
+  }
+  for (const SceneCollisionObject& object : file.objects) {
+    if (!IsWellFormed(object)) std::abort();
+  }
+  try {
+    const Workcell w = LoadWorkcell(std::string(ACM_SOURCE_DIR) + "/test/data/three_link_arm.urdf",
+                                    ScenePath());
+    std::string why;
+    if (!w.Validate(&why)) std::abort();
+  } catch (const LoadError&) {
+    return 0;
+  }
+  return 0;
+}
