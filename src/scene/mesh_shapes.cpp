@@ -44,10 +44,12 @@ MeshFitter::MeshFitter(ResourceFetcher fetch, std::string cache_dir, const MeshF
 std::vector<Shape> MeshFitter::FitFile(const std::string& name, const std::string& base_dir,
                                        const Eigen::Vector3d& scale, const std::string& where) {
   const std::string element = where + " mesh '" + name + "'";
-  if (!scale.allFinite() || (scale.array() <= 0.0).any()) {
+  // A negative factor mirrors the mesh (URDFs reuse one mesh for left and right parts this way);
+  // the fit only needs the vertices, so mirroring is fine. Zero flattens it.
+  if (!scale.allFinite() || (scale.array() == 0.0).any()) {
     std::ostringstream text;
     text << element << ": scale (" << scale.x() << ", " << scale.y() << ", " << scale.z()
-         << ") must be 3 finite numbers > 0";
+         << ") must be 3 finite, non-zero numbers";
     throw LoadError(text.str());
   }
   TriangleMesh mesh;

@@ -21,11 +21,15 @@ auto ReadNamedFile(const Where& where, Read read) {
   }
 }
 
-// The pose in W of a planning-scene object's header frame: the fixed frame ("" means it) or a
-// URDF link fixed to it (its pose does not depend on q).
+// The pose in W of a planning-scene object's header frame: the fixed frame ("" or one of
+// `root_aliases` means it) or a URDF link fixed to it (its pose does not depend on q).
 Eigen::Isometry3d HeaderFramePose(const SceneCollisionObject& object, const Workcell& workcell,
+                                  const std::vector<std::string>& root_aliases,
                                   const std::string& path) {
-  const std::string& frame = object.frame_id.empty() ? workcell.fixed_frame : object.frame_id;
+  const bool is_alias = std::find(root_aliases.begin(), root_aliases.end(), object.frame_id) !=
+                        root_aliases.end();
+  const std::string& frame =
+      object.frame_id.empty() || is_alias ? workcell.fixed_frame : object.frame_id;
   const int link = workcell.kinematics.FindLink(frame);
   const std::string where = path + ":" + std::to_string(object.line) + ": " + object.element +
                             ": header.frame_id" + Quoted(frame);
@@ -83,13 +87,14 @@ std::vector<Shape> CollisionObjectShapes_W(const SceneCollisionObject& object,
 
 // One collision object: the object and its primitives, appended to `workcell`.
 void AddCollisionObject(const SceneCollisionObject& object, const std::string& path,
-                        const ShapeOptions& options, double tolerance_m, MeshFitter* meshes,
+                        const ShapeOptions& options, double tolerance_m,
+                        const std::vector<std::string>& root_aliases, MeshFitter* meshes,
                         NameRegistry* names, Workcell* workcell) {
   const std::string origin = path + ":" + std::to_string(object.line) + ": " + object.element;
   names->Claim(object.id, origin);
   const std::vector<Shape> shapes_W =
-      CollisionObjectShapes_W(object, HeaderFramePose(object, *workcell, path), options, path,
-                              meshes);
+      CollisionObjectShapes_W(object, HeaderFramePose(object, *workcell, root_aliases, path),
+                              options, path, meshes);
   ObjectSpec spec;
   spec.name = object.id;
   spec.primitive = static_cast<PrimitiveId>(workcell->primitives.size());
@@ -165,37 +170,57 @@ std::vector<std::pair<PrimitiveId, PrimitiveId>> ResolveCollisionRules(
   return pairs;
 }
 
-std::vector<std::pair<PrimitiveId, PrimitiveId>> ReadSrdfPairs(const YAML::Node& scene,
-                                                               const std::string& scene_path,
-                                                               const std::string& urdf_robot_name,
-                                                               const ResourceFetcher& fetch,
-                                                               Workcell* workcell) {
-  if (!scene["srdf"]) return {};
+SrdfInput ReadSrdf(const YAML::Node& scene, const std::string& scene_path,
+                   const std::string& urdf_robot_name, const ResourceFetcher& fetch,
+                   Workcell* workcell) {
+  SrdfInput input;
+  if (!scene["srdf"]) return input;
   const Where where{scene_path, "srdf"};
   const NamedFile file = FetchNamedFile(scene["srdf"], where, fetch);
-  const std::string& path = file.url;
-  const SrdfCollisionRules srdf =
-      ReadNamedFile(where, [&] { return ReadSrdfCollisionRulesText(file.text, path); });
-  if (!srdf.robot_name.empty() && srdf.robot_name != urdf_robot_name) {
-    workcell->warnings.push_back(path + ": <robot name='" + srdf.robot_name +
+  input.path = file.url;
+  input.rules =
+      ReadNamedFile(where, [&] { return ReadSrdfCollisionRulesText(file.text, input.path); });
+  const std::string& robot_name = input.rules.robot_name;
+  if (!robot_name.empty() && robot_name != urdf_robot_name) {
+    workcell->warnings.push_back(input.path + ": <robot name='" + robot_name +
                                  "'> differs from the URDF's robot '" + urdf_robot_name +
                                  "' (is it the SRDF of this robot?)");
   }
+  const std::string& root = workcell->kinematics.link_name(0);
+  for (const SrdfVirtualJoint& joint : input.rules.virtual_joints) {
+    if (joint.child_link != root || joint.parent_frame == root) continue;
+    if (joint.type == "fixed") {
+      input.root_aliases.push_back(joint.parent_frame);
+    } else {
+      workcell->warnings.push_back(
+          input.path + ":" + std::to_string(joint.line) + ": <virtual_joint name='" + joint.name +
+          "' type='" + joint.type + "'>: the root link moves in '" + joint.parent_frame +
+          "'; the monitor works in the root link's frame '" + root +
+          "' (planning-scene objects in '" + joint.parent_frame + "' are refused)");
+    }
+  }
+  return input;
+}
+
+std::vector<std::pair<PrimitiveId, PrimitiveId>> SrdfPairs(const SrdfInput& input,
+                                                           Workcell* workcell) {
+  if (input.path.empty()) return {};
   NamedCollisionRules rules;
-  for (const SrdfLinkPair& pair : srdf.disabled_pairs) {
+  for (const SrdfLinkPair& pair : input.rules.disabled_pairs) {
     rules.allowed_pairs.emplace_back(pair.link1, pair.link2);
   }
-  for (const SrdfLinkPair& pair : srdf.enabled_pairs) {
+  for (const SrdfLinkPair& pair : input.rules.enabled_pairs) {
     rules.denied_pairs.emplace_back(pair.link1, pair.link2);
   }
-  for (const SrdfLink& link : srdf.default_disabled_links) {
+  for (const SrdfLink& link : input.rules.default_disabled_links) {
     rules.default_allowed.push_back(link.link);
   }
-  return ResolveCollisionRules(rules, path + ": collision rules", workcell);
+  return ResolveCollisionRules(rules, input.path + ": collision rules", workcell);
 }
 
 PlanningSceneInput ReadPlanningScene(const YAML::Node& scene, const std::string& scene_path,
                                      const ShapeOptions& options, const ResourceFetcher& fetch,
+                                     const std::vector<std::string>& root_aliases,
                                      MeshFitter* meshes, NameRegistry* names,
                                      Workcell* workcell) {
   PlanningSceneInput input;
@@ -220,7 +245,8 @@ PlanningSceneInput ReadPlanningScene(const YAML::Node& scene, const std::string&
   }
   ReadNamedFile(where, [&] {
     for (const SceneCollisionObject& object : input.file.objects) {
-      AddCollisionObject(object, input.path, options, tolerance_m, meshes, names, workcell);
+      AddCollisionObject(object, input.path, options, tolerance_m, root_aliases, meshes, names,
+                         workcell);
     }
   });
   return input;

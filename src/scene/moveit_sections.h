@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "arm_collision_monitor/scene/planning_scene_reader.h"
+#include "arm_collision_monitor/scene/srdf_reader.h"
 #include "scene_sections.h"
 
 namespace arm_collision_monitor {
@@ -40,15 +41,27 @@ struct NamedCollisionRules {
 std::vector<std::pair<PrimitiveId, PrimitiveId>> ResolveCollisionRules(
     const NamedCollisionRules& rules, const std::string& source, Workcell* workcell);
 
-/// srdf: (optional): the SRDF's <disable_collisions> as allowed pairs, <enable_collisions> as
-/// denied pairs, <disable_default_collisions> as default-allowed links, resolved in `workcell`
-/// (after every primitive is known). A notice is added when the SRDF names another robot than
-/// `urdf_robot_name`.
-std::vector<std::pair<PrimitiveId, PrimitiveId>> ReadSrdfPairs(const YAML::Node& scene,
-                                                               const std::string& scene_path,
-                                                               const std::string& urdf_robot_name,
-                                                               const ResourceFetcher& fetch,
-                                                               Workcell* workcell);
+/// What srdf: loaded.
+struct SrdfInput {
+  std::string path;  ///< "" when the scene file has no srdf:
+  SrdfCollisionRules rules;
+  /// Parent frames of the SRDF's fixed virtual joints whose child is the URDF root link: other
+  /// names of the fixed frame (a Setup Assistant SRDF hangs base_link from "world" this way, and
+  /// MoveIt's planning-scene dumps then say "world").
+  std::vector<std::string> root_aliases;
+};
+
+/// srdf: (optional): reads the SRDF (a notice when it names another robot than
+/// `urdf_robot_name`, or when a non-fixed virtual joint moves the root link).
+SrdfInput ReadSrdf(const YAML::Node& scene, const std::string& scene_path,
+                   const std::string& urdf_robot_name, const ResourceFetcher& fetch,
+                   Workcell* workcell);
+
+/// The SRDF's <disable_collisions> as allowed pairs, <enable_collisions> as denied pairs,
+/// <disable_default_collisions> as default-allowed links, resolved in `workcell` (after every
+/// primitive is known). None when there is no srdf:.
+std::vector<std::pair<PrimitiveId, PrimitiveId>> SrdfPairs(const SrdfInput& input,
+                                                           Workcell* workcell);
 
 /// What planning_scene: loaded, kept for its allowed collision matrix.
 struct PlanningSceneInput {
@@ -59,12 +72,13 @@ struct PlanningSceneInput {
 
 /// planning_scene: (optional), planning_scene_acm and planning_scene_tolerance_m: appends each
 /// world collision object of the file as a static object of `workcell` (whose world_W and
-/// kinematics must be read). Its frame must be the fixed frame ("" means it) or a URDF link
-/// fixed to it. Box -> Box; sphere -> zero-length capsule; cylinder, and a cone's bounding
+/// kinematics must be read). Its frame must be the fixed frame ("" or one of `root_aliases`
+/// means it) or a URDF link fixed to it. Box -> Box; sphere -> zero-length capsule; cylinder, and a cone's bounding
 /// cylinder -> per options.cylinder_model; inline mesh -> the primitives `meshes` fits to it.
 /// The file is read through `fetch`; its notices are added to workcell->warnings.
 PlanningSceneInput ReadPlanningScene(const YAML::Node& scene, const std::string& scene_path,
                                      const ShapeOptions& options, const ResourceFetcher& fetch,
+                                     const std::vector<std::string>& root_aliases,
                                      MeshFitter* meshes, NameRegistry* names,
                                      Workcell* workcell);
 

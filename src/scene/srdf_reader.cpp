@@ -16,7 +16,6 @@ namespace {
 constexpr const char* kIgnoredElements[] = {"group",
                                             "group_state",
                                             "end_effector",
-                                            "virtual_joint",
                                             "passive_joint",
                                             "joint_property",
                                             "link_sphere_approximation"};
@@ -102,6 +101,17 @@ SrdfCollisionRules ReadSrdfCollisionRulesText(const std::string& text, const std
       const std::string link =
           RequiredName(*xml, "link", path, element, "<disable_default_collisions link=\"LINK\"/>");
       rules.default_disabled_links.push_back(SrdfLink{link, xml->GetLineNum()});
+    } else if (name == "virtual_joint") {
+      const std::string form =
+          "<virtual_joint name=\"NAME\" type=\"fixed|floating|planar\" parent_frame=\"FRAME\" "
+          "child_link=\"LINK\"/>";
+      SrdfVirtualJoint joint;
+      joint.name = RequiredName(*xml, "name", path, element, form);
+      joint.type = RequiredName(*xml, "type", path, element, form);
+      joint.parent_frame = RequiredName(*xml, "parent_frame", path, element, form);
+      joint.child_link = RequiredName(*xml, "child_link", path, element, form);
+      joint.line = xml->GetLineNum();
+      rules.virtual_joints.push_back(joint);
     } else if (!IsIgnored(name.c_str())) {
       Fail(path, xml->GetLineNum(), element,
            "unknown element <" + name +

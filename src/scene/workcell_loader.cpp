@@ -189,16 +189,16 @@ Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_pat
   w.primitives = scene_sections::MakeLinkPrimitives(*urdf_model, w, links, &meshes, &names);
   scene_sections::ReadObjects(scene["objects"], Where{scene_path, "objects"}, shape_options,
                               &meshes, &names, &w);
+  const scene_sections::SrdfInput srdf =
+      scene_sections::ReadSrdf(scene, scene_path, urdf_model->getName(), options.fetch, &w);
   const scene_sections::PlanningSceneInput planning_scene = scene_sections::ReadPlanningScene(
-      scene, scene_path, shape_options, options.fetch, &meshes, &names, &w);
+      scene, scene_path, shape_options, options.fetch, srdf.root_aliases, &meshes, &names, &w);
   meshes.ReportTo(&w);
   scene_sections::ReadVariants(scene["variants"], Where{scene_path, "variants"}, links, &names, &w);
   auto compatible_pairs =
       scene_sections::ReadCompatiblePairs(scene["compatible"], Where{scene_path, "compatible"}, w);
   for (const auto& more :
-       {scene_sections::ReadSrdfPairs(scene, scene_path, urdf_model->getName(), options.fetch,
-                                      &w),
-        scene_sections::PlanningSceneAcmPairs(planning_scene, &w)}) {
+       {scene_sections::SrdfPairs(srdf, &w), scene_sections::PlanningSceneAcmPairs(planning_scene, &w)}) {
     compatible_pairs.insert(compatible_pairs.end(), more.begin(), more.end());
   }
   w.grasp_targets = scene_sections::ReadGraspTargets(scene["grasp_targets"],
@@ -207,7 +207,7 @@ Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_pat
   // Derived values.
   if (derives_world) {
     w.world_W = DeriveWorldCube(w);
-    w.warnings.push_back(DerivedWorldNotice(w));
+    w.notices.push_back(DerivedWorldNotice(w));
   }
   w.joint_names = w.kinematics.ActuatedJointNames();
   w.compatible = ComputeCompatibility(w, compatible_pairs);

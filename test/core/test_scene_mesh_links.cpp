@@ -166,6 +166,15 @@ TEST(SceneMeshLinks, ScaleAndOriginAreHonoured) {
   EXPECT_NEAR((c.p1_W - c.p0_W).norm(), 0.8, 1e-6);
 }
 
+TEST(SceneMeshLinks, NegativeScaleMirrorsTheMesh) {
+  const std::string dir = FreshDir("mirror");
+  const TriangleMesh l_shape = LShapeMesh(0.1, 0.05);
+  WriteBytes(dir + "l.stl", BinaryStl(l_shape));
+  const Files files = WriteRobot(dir, {MeshCollision("l.stl", kOrigin, "1 -1 1")});
+  const Workcell w = LoadWorkcell(files.urdf, files.scene, CacheIn(dir));
+  ExpectEncloses(w, "link0", Scaled(l_shape, Eigen::Vector3d(1, -1, 1)), kX_LC);
+}
+
 TEST(SceneMeshLinks, MeshFitKindsEncloseTheNonConvexShape) {
   const std::string dir = FreshDir("kinds");
   const TriangleMesh l_shape = LShapeMesh(0.1, 0.05);
@@ -396,8 +405,8 @@ TEST(SceneMeshLinks, MeshesWithoutVolumeAreRejected) {
 TEST(SceneMeshLinks, AbsurdScalesAreRejected) {
   const std::string dir = FreshDir("scales");
   const std::string stl = BinaryStl(LShapeMesh(0.1, 0.05));
-  for (const std::string& scale : std::vector<std::string>{"0 1 1", "1 -1 1", "1 1 0"}) {
-    ExpectBadLinkMesh(dir, "l.stl", stl, {"scale", "finite numbers > 0"}, scale);
+  for (const std::string& scale : std::vector<std::string>{"0 1 1", "1 0 1", "1 1 0"}) {
+    ExpectBadLinkMesh(dir, "l.stl", stl, {"scale", "finite, non-zero numbers"}, scale);
   }
   ExpectBadLinkMesh(dir, "l.stl", stl, {"too large"}, "1e6 1e6 1e6");
   ExpectBadLinkMesh(dir, "l.stl", stl, {"too small"}, "1e-6 1e-6 1e-6");

@@ -426,6 +426,36 @@ TEST(SceneMoveitInputs, BadPlanningSceneObjectsAreRejected) {
   }
 }
 
+// A Setup Assistant SRDF hangs the URDF root from another frame by a fixed virtual joint, and
+// MoveIt's planning-scene dumps then name that frame: it means the fixed frame. A non-fixed
+// virtual joint does not make an alias (the root moves in that frame).
+TEST(SceneMoveitInputs, FixedVirtualJointParentFrameNamesTheFixedFrame) {
+  const std::string object =
+      "    - id: lid\n      header: {frame_id: map}\n"
+      "      primitives: [{type: box, dimensions: [0.1, 0.1, 0.1]}]\n"
+      "      primitive_poses: [{position: [0.5, 0, 1]}]\n";
+  const std::string ps = PlanningSceneWithObject("alias_ps.yaml", object);
+  auto srdf_with = [](const std::string& type) {
+    return WriteTempFile("alias_" + type + ".srdf",
+                         "<robot name='workcell'>\n  <virtual_joint name='vj' type='" + type +
+                             "' parent_frame='map' child_link='world'/>\n</robot>\n");
+  };
+  const Workcell w = LoadWorkcell(
+      kUrdf, BundledSceneWith("alias.yaml",
+                              "srdf: " + srdf_with("fixed") + "\nplanning_scene: " + ps + "\n"));
+  const Shape& lid = ShapeOf(w, "lid");
+  ASSERT_TRUE(std::holds_alternative<Box>(lid));
+  EXPECT_TRUE(std::get<Box>(lid).X_WB.translation().isApprox(Eigen::Vector3d(0.5, 0, 1)));
+  ExpectBundledSceneError("planning_scene: " + ps,
+                          {ps, "'lid'", "frame_id 'map'", "not a URDF link"});
+  const std::string floating = srdf_with("floating");
+  ExpectBundledSceneError("srdf: " + floating + "\nplanning_scene: " + ps,
+                          {ps, "'lid'", "frame_id 'map'", "not a URDF link"});
+  const Workcell moving =
+      LoadWorkcell(kUrdf, BundledSceneWith("floating.yaml", "srdf: " + floating + "\n"));
+  EXPECT_NE(FindWarning(moving, "type='floating'>: the root link moves in 'map'"), "");
+}
+
 TEST(SceneMoveitInputs, BadTypedObjectsAreRejected) {
   const std::string world = "world: {center_m: [0, 0, 1], edge_m: 4}\nobjects:\n";
   const std::string pose = "pose: {xyz_m: [1, 1, 1]}";

@@ -85,8 +85,8 @@ void ExpectCube(const Aabb& box) {
 }
 
 bool HasNotice(const Workcell& w, const std::string& part) {
-  for (const std::string& warning : w.warnings) {
-    if (warning.find(part) != std::string::npos) return true;
+  for (const std::string& notice : w.notices) {
+    if (notice.find(part) != std::string::npos) return true;
   }
   return false;
 }
@@ -99,7 +99,7 @@ TEST(SceneWorldCube, ThreeLinkArmWithoutWorldEnclosesEveryConfiguration) {
   std::string why;
   EXPECT_TRUE(w.Validate(&why)) << why;
   ExpectCube(w.world_W);
-  EXPECT_TRUE(HasNotice(w, "world: not given; derived")) << ::testing::PrintToString(w.warnings);
+  EXPECT_TRUE(HasNotice(w, "world: not given; derived")) << ::testing::PrintToString(w.notices);
   ExpectEnclosedInAllConfigurations(w);
 }
 

@@ -23,7 +23,17 @@ struct SrdfLink {
   int line = 0;
 };
 
-/// The collision rules of an SRDF, in file order. MoveIt applies them as: a link listed in
+/// One <virtual_joint name type parent_frame child_link/>: how the robot's root link hangs from
+/// a frame outside the URDF (MoveIt's planning frame is its parent_frame).
+struct SrdfVirtualJoint {
+  std::string name;
+  std::string type;  ///< "fixed", "floating" or "planar"
+  std::string parent_frame;
+  std::string child_link;
+  int line = 0;
+};
+
+/// The collision rules of an SRDF, and its virtual joints, in file order. MoveIt applies them as: a link listed in
 /// default_disabled_links may touch anything by default; enabled_pairs re-enable checking for
 /// their pairs (overriding that default); disabled_pairs excuse their pairs. Link names are not
 /// checked against any URDF here (the caller knows the model). Pairs are returned as written:
@@ -33,14 +43,16 @@ struct SrdfCollisionRules {
   std::vector<SrdfLinkPair> disabled_pairs;
   std::vector<SrdfLinkPair> enabled_pairs;
   std::vector<SrdfLink> default_disabled_links;
+  std::vector<SrdfVirtualJoint> virtual_joints;
 };
 
 /// Reads the collision rules of the SRDF file at `path` (a file system path: resolving
 /// `package://` URLs or reading robot_description_semantic is the caller's job).
 ///
 /// Read: <disable_collisions link1 link2 [reason]>, <enable_collisions link1 link2 [reason]>,
-/// <disable_default_collisions link>. Ignored (they describe planning, not collision geometry):
-/// <group>, <group_state>, <end_effector>, <virtual_joint>, <passive_joint>, <joint_property>,
+/// <disable_default_collisions link>, <virtual_joint name type parent_frame child_link>. Ignored
+/// (they describe planning, not collision geometry): <group>, <group_state>, <end_effector>,
+/// <passive_joint>, <joint_property>,
 /// <link_sphere_approximation>. Any other element under <robot> is rejected, so that a misspelt
 /// rule (say <enable_colisions>) is not silently dropped; so is an unexpanded .srdf.xacro (its
 /// <xacro:...> elements): run xacro first.

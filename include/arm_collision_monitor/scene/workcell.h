@@ -101,7 +101,8 @@ struct Workcell {
   std::vector<std::string> warnings;
   /// Start-up report that needs no action (the node logs it at INFO level, replay prints it):
   /// one line per fitted mesh (the fit, its primitive count, fitted/mesh volume or "open mesh"),
-  /// and a line when the fit cache could not be written. Kept apart from warnings because a
+  /// a line when the fit cache could not be written, the world cube derived when the scene file
+  /// gives none. Kept apart from warnings because a
   /// robot of 20 mesh links would otherwise start with 20 warnings about nothing wrong.
   std::vector<std::string> notices;
   MeshFitCounts mesh_fits;
