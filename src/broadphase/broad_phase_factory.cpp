@@ -1,13 +1,15 @@
 #include "arm_collision_monitor/broadphase/broad_phase_factory.h"
 
 #include "arm_collision_monitor/broadphase/grid_broad_phase.h"
+#include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/broadphase/naive_broad_phase.h"
 #include "arm_collision_monitor/broadphase/octree_broad_phase.h"
 
 namespace arm_collision_monitor {
 
 bool ParseBroadPhaseMethod(const std::string& name, BroadPhaseMethod* method) {
-  static constexpr BroadPhaseMethod kAll[] = {BroadPhaseMethod::kOctree, BroadPhaseMethod::kNaive,
+  static constexpr BroadPhaseMethod kAll[] = {BroadPhaseMethod::kAuto,
+                                              BroadPhaseMethod::kOctree, BroadPhaseMethod::kNaive,
                                               BroadPhaseMethod::kGrid, BroadPhaseMethod::kRebuild,
                                               BroadPhaseMethod::kReinsert};
   for (const BroadPhaseMethod m : kAll) {
@@ -21,6 +23,7 @@ bool ParseBroadPhaseMethod(const std::string& name, BroadPhaseMethod* method) {
 
 std::string BroadPhaseMethodName(BroadPhaseMethod method) {
   switch (method) {
+    case BroadPhaseMethod::kAuto: return "auto";
     case BroadPhaseMethod::kOctree: return "octree";
     case BroadPhaseMethod::kNaive: return "naive";
     case BroadPhaseMethod::kGrid: return "grid";
@@ -40,8 +43,19 @@ std::unique_ptr<BroadPhase> MakeOctree(const BroadPhaseOptions& options,
 }
 }  // namespace
 
+BroadPhaseMethod ChooseBroadPhaseMethod(std::uint32_t moving, std::uint32_t statics) {
+  const std::uint64_t total = std::uint64_t{moving} + statics;
+  if (total < kAutoGridMinPrimitives) return BroadPhaseMethod::kNaive;
+  return BroadPhaseMethod::kGrid;
+}
+
 std::unique_ptr<BroadPhase> MakeBroadPhase(const BroadPhaseOptions& options) {
   switch (options.method) {
+    case BroadPhaseMethod::kAuto: {
+      BroadPhaseOptions chosen = options;
+      chosen.method = ChooseBroadPhaseMethod(options.auto_moving, options.auto_statics);
+      return MakeBroadPhase(chosen);
+    }
     case BroadPhaseMethod::kNaive: {
       auto naive = std::make_unique<NaiveBroadPhase>();
       naive->Reserve(options.reserve_primitives);

@@ -9,10 +9,11 @@
 
 namespace arm_collision_monitor {
 
-/// Which broad phase MakeBroadPhase builds (names as in ParseBroadPhaseMethod).
-enum class BroadPhaseMethod { kOctree, kNaive, kGrid, kRebuild, kReinsert };
+/// Which broad phase MakeBroadPhase builds (names as in ParseBroadPhaseMethod). kAuto: one of
+/// naive, grid and octree, chosen from the scene by ChooseBroadPhaseMethod.
+enum class BroadPhaseMethod { kAuto, kOctree, kNaive, kGrid, kRebuild, kReinsert };
 
-/// Parses "octree", "naive", "grid", "rebuild", "reinsert". False if unknown.
+/// Parses "auto", "octree", "naive", "grid", "rebuild", "reinsert". False if unknown.
 bool ParseBroadPhaseMethod(const std::string& name, BroadPhaseMethod* method);
 /// The name ParseBroadPhaseMethod accepts for `method`.
 std::string BroadPhaseMethodName(BroadPhaseMethod method);
@@ -29,8 +30,16 @@ struct BroadPhaseTechniques {
   bool bounding_box_pretests = true;
 };
 
+/// auto's rule: the fastest of naive, grid and octree per cycle for `moving` moving and
+/// `statics` static primitives in the broad phase, by the crossovers that
+/// bench_broadphase_workloads measures (its sweep prints the method this picks per point).
+BroadPhaseMethod ChooseBroadPhaseMethod(std::uint32_t moving, std::uint32_t statics);
+
 struct BroadPhaseOptions {
-  BroadPhaseMethod method = BroadPhaseMethod::kOctree;
+  BroadPhaseMethod method = BroadPhaseMethod::kAuto;
+  /// For kAuto: the moving and static primitives the structure will hold (a caller that knows
+  /// its scene sets them; the Monitor counts its active primitives at start-up).
+  std::uint32_t auto_moving = 0, auto_statics = 0;
   Aabb world_W;                   ///< the world cube (octree root, grid extent)
   int max_objects_per_leaf = 10;  ///< the seed's decomposition rule N
   /// No cell is split below this edge length: the maximum speed times the cycle period (the
@@ -43,7 +52,8 @@ struct BroadPhaseOptions {
   BroadPhaseTechniques techniques;
 };
 
-/// The broad phase `options.method` names, configured by `options`, its pools reserved for
+/// The broad phase `options.method` names (kAuto: ChooseBroadPhaseMethod(options.auto_moving,
+/// options.auto_statics)), configured by `options`, its pools reserved for
 /// options.reserve_primitives ids.
 std::unique_ptr<BroadPhase> MakeBroadPhase(const BroadPhaseOptions& options);
 

@@ -123,15 +123,9 @@ constexpr std::uint64_t kAlwaysOverlappingSeed = 20260521;
 /// limits by a few milliradians; a larger excursion means a corrupt or mis-ordered message.
 inline constexpr double kJointLimitMargin = 0.01;
 
-/// auto_broad_phase rule: with at least this many primitives in the broad phase at start-up
-/// the octree is chosen, below it the all-pairs (naive) broad phase, whose index work is
-/// moving x present box tests and wins on small scenes. 480 (dimensionless count): scripts/bench
-/// measured the default Monitor's (index slack 0.10 m) naive/octree mean cycle-time ratio
-/// crossing 1 at 430 to 480 active primitives (two runs) on the three tasks with boxes added
-/// near the arms (0.88 at 232, 1.02-1.05 at 531; medians are equal, being bounded cycles that
-/// skip the index; on the seed's loop, slack 0, the crossing is about 290-300).
-/// build/bench/report.md recomputes it.
-inline constexpr std::uint32_t kAutoOctreeMinPrimitives = 480;
+/// auto's rule (ChooseBroadPhaseMethod): below this many primitives in the broad phase the
+/// all-pairs (naive) one, at or above it the uniform grid. PLACEHOLDER, measured below.
+inline constexpr std::uint32_t kAutoGridMinPrimitives = 480;
 
 /// Largest gap (m) between a held object and its holding link's geometry that Attach accepts.
 /// Bounds how far an attached object can reach beyond its arm, which the start-up reach
