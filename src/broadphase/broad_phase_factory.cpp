@@ -44,9 +44,13 @@ std::unique_ptr<BroadPhase> MakeOctree(const BroadPhaseOptions& options,
 }  // namespace
 
 BroadPhaseMethod ChooseBroadPhaseMethod(std::uint32_t moving, std::uint32_t statics) {
-  const std::uint64_t total = std::uint64_t{moving} + statics;
-  if (total < kAutoGridMinPrimitives) return BroadPhaseMethod::kNaive;
-  return BroadPhaseMethod::kGrid;
+  if (moving >= kAutoGridMinMoving || statics >= kAutoGridMinStatics) {
+    return BroadPhaseMethod::kGrid;
+  }
+  const bool octree_wins =
+      statics >= kAutoOctreeMinStatics ||
+      (statics >= kAutoOctreeMinStaticsCrowded && moving >= kAutoOctreeMinMovingCrowded);
+  return octree_wins ? BroadPhaseMethod::kOctree : BroadPhaseMethod::kNaive;
 }
 
 std::unique_ptr<BroadPhase> MakeBroadPhase(const BroadPhaseOptions& options) {

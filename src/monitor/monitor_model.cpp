@@ -260,18 +260,22 @@ void MonitorModel::ComputeReachability() {
   }
 }
 
-// auto_broad_phase: the octree when enough primitives are active at start-up, else all pairs.
+// broad_phase auto: ChooseBroadPhaseMethod on the primitives active at start-up (the default
+// variants; moving, or static and reachable), its choice written into the options.
 void MonitorModel::ChooseBroadPhase() {
-  if (!options.auto_broad_phase) return;
-  std::uint32_t active = 0;
+  if (options.broad_phase.method != BroadPhaseMethod::kAuto) return;
+  std::uint32_t moving = 0, statics = 0;
   for (PrimitiveId id = 0; id < primitive_count; ++id) {
-    // The default variants; moving or reachable.
-    const bool is_active =
-        variant_index[id] == 0 && (is_moving_start[id] || is_reachable_start[id]);
-    active += is_active ? 1 : 0;
+    if (variant_index[id] != 0) continue;
+    if (is_moving_start[id]) {
+      ++moving;
+    } else if (is_reachable_start[id]) {
+      ++statics;
+    }
   }
-  options.broad_phase.method =
-      active >= kAutoOctreeMinPrimitives ? BroadPhaseMethod::kOctree : BroadPhaseMethod::kNaive;
+  options.broad_phase.auto_moving = moving;
+  options.broad_phase.auto_statics = statics;
+  options.broad_phase.method = ChooseBroadPhaseMethod(moving, statics);
 }
 
 }  // namespace arm_collision_monitor

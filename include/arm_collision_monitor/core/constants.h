@@ -123,9 +123,22 @@ constexpr std::uint64_t kAlwaysOverlappingSeed = 20260521;
 /// limits by a few milliradians; a larger excursion means a corrupt or mis-ordered message.
 inline constexpr double kJointLimitMargin = 0.01;
 
-/// auto's rule (ChooseBroadPhaseMethod): below this many primitives in the broad phase the
-/// all-pairs (naive) one, at or above it the uniform grid. PLACEHOLDER, measured below.
-inline constexpr std::uint32_t kAutoGridMinPrimitives = 480;
+/// auto's rule (ChooseBroadPhaseMethod), from the sweep of bench_broadphase_workloads (moving
+/// 7..150 x static 0..3,000 primitives; counts, dimensionless): the uniform grid from
+/// kAutoGridMinMoving moving or kAutoGridMinStatics static primitives up; otherwise the octree
+/// from kAutoOctreeMinStatics statics up, or from kAutoOctreeMinStaticsCrowded statics with at
+/// least kAutoOctreeMinMovingCrowded moving; otherwise all pairs (naive), whose moving x present
+/// box tests beat any index's upkeep on small scenes. Measured 2026-11-23 on this 2-core
+/// machine (medians per cycle): naive best up to 50 statics below 50 movers (0.52 against the
+/// octree's 0.98 us at 7+50) and up to 20 statics at 75 movers; the octree best at 100 statics
+/// below 100 movers (0.67 against naive 0.99 and grid 0.94 us at 7+100) and at 75+50; the grid
+/// best, or within 5 %, from 200 statics and at 150 movers (27.3 against octree 40.6 us at
+/// 150+200).
+inline constexpr std::uint32_t kAutoGridMinMoving = 100;
+inline constexpr std::uint32_t kAutoGridMinStatics = 200;
+inline constexpr std::uint32_t kAutoOctreeMinStatics = 100;
+inline constexpr std::uint32_t kAutoOctreeMinStaticsCrowded = 50;
+inline constexpr std::uint32_t kAutoOctreeMinMovingCrowded = 50;
 
 /// Largest gap (m) between a held object and its holding link's geometry that Attach accepts.
 /// Bounds how far an attached object can reach beyond its arm, which the start-up reach
