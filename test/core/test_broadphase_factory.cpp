@@ -2,9 +2,12 @@
 // its monotonicity in the counts, and MakeBroadPhase(kAuto) building what the rule names.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <string>
 
 #include "arm_collision_monitor/broadphase/broad_phase_factory.h"
+#include "arm_collision_monitor/broadphase/grid_broad_phase.h"
 #include "arm_collision_monitor/core/constants.h"
 
 namespace arm_collision_monitor {
@@ -71,6 +74,20 @@ TEST(BroadPhaseAuto, MonotoneInBothCounts) {
   }
 }
 
+TEST(BroadPhaseAuto, GridCellsAboutTheBoxEdge) {
+  EXPECT_EQ(GridCellsFor(6.0, 1.0, 16), 6);
+  EXPECT_EQ(GridCellsFor(6.35, 0.5, 16), 13);  // 12.7 rounded
+  EXPECT_EQ(GridCellsFor(6.0, 100.0, 16), kAutoGridMinCellsPerAxis);
+  EXPECT_EQ(GridCellsFor(6.0, 1e-6, 1000), kAutoGridMaxCellsPerAxis);
+  EXPECT_EQ(GridCellsFor(6.0, 0.1, 16), 16);  // never finer than configured
+  EXPECT_EQ(GridCellsFor(6.0, 0.1, 40), 40);
+  EXPECT_EQ(GridCellsFor(6.0, 0.0, 16), 16);  // unknown edge: the configured G
+  EXPECT_EQ(GridCellsFor(6.0, 0.0, 100), 100);
+  EXPECT_EQ(GridCellsFor(0.0, 1.0, 9), 9);
+  EXPECT_EQ(GridCellsFor(std::nan(""), 1.0, 9), 9);
+  EXPECT_EQ(GridCellsFor(6.0, std::numeric_limits<double>::infinity(), 9), 9);
+}
+
 TEST(BroadPhaseAuto, MakeBroadPhaseBuildsTheChosenMethod) {
   BroadPhaseOptions options;
   options.method = BroadPhaseMethod::kAuto;
@@ -85,6 +102,14 @@ TEST(BroadPhaseAuto, MakeBroadPhaseBuildsTheChosenMethod) {
     EXPECT_EQ(bp->name(), BroadPhaseMethodName(ChooseBroadPhaseMethod(p[0], p[1])));
     EXPECT_NE(bp->name(), "auto");
   }
+  // The grid it builds has cells of about the movers' box edge: 2 m / 0.5 m = 4 per axis.
+  options.auto_moving = 14;
+  options.auto_statics = 2000;
+  options.auto_moving_box_edge_m = 0.5;
+  const auto bp = MakeBroadPhase(options);
+  const auto* grid = dynamic_cast<const GridBroadPhase*>(bp.get());
+  ASSERT_NE(grid, nullptr);
+  EXPECT_DOUBLE_EQ(grid->cell_size_m(), 0.5);
 }
 
 }  // namespace

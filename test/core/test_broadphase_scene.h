@@ -104,6 +104,13 @@ class RandomScene {
     options.reserve_primitives = static_cast<std::uint32_t>(Count());
     options.auto_moving = static_cast<std::uint32_t>(config_.movers);
     options.auto_statics = static_cast<std::uint32_t>(config_.statics);
+    double edge_sum_m = 0.0;
+    for (const Prim& p : prims_) {
+      if (!p.moving) continue;
+      const Aabb box_W = BoxOf(p).Inflated(p.tolerance_m);
+      edge_sum_m += (box_W.max_W - box_W.min_W).maxCoeff();
+    }
+    options.auto_moving_box_edge_m = config_.movers > 0 ? edge_sum_m / config_.movers : 0.0;
     return options;
   }
 
