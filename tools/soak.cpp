@@ -290,7 +290,6 @@ int RunSoak(const SoakOptions& soak) {
   MonitorOptions options = LoadMonitorOptions(soak.config_path);
   const auto workcell = std::make_shared<const Workcell>(
       LoadWorkcell(soak.urdf_path, soak.scene_path, options.tolerance_m));
-  options.auto_broad_phase = false;
   options.broad_phase.method = BroadPhaseMethod::kOctree;
   Monitor monitor(workcell, options);
   MotionGenerator motion(*workcell, options.cycle_period_s, soak.seed);

@@ -1,13 +1,19 @@
 #include "arm_collision_monitor/broadphase/broad_phase_factory.h"
 
+#include <algorithm>
+#include <cmath>
+
+#include "arm_collision_monitor/broadphase/broad_phase_util.h"
 #include "arm_collision_monitor/broadphase/grid_broad_phase.h"
+#include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/broadphase/naive_broad_phase.h"
 #include "arm_collision_monitor/broadphase/octree_broad_phase.h"
 
 namespace arm_collision_monitor {
 
 bool ParseBroadPhaseMethod(const std::string& name, BroadPhaseMethod* method) {
-  static constexpr BroadPhaseMethod kAll[] = {BroadPhaseMethod::kOctree, BroadPhaseMethod::kNaive,
+  static constexpr BroadPhaseMethod kAll[] = {BroadPhaseMethod::kAuto,
+                                              BroadPhaseMethod::kOctree, BroadPhaseMethod::kNaive,
                                               BroadPhaseMethod::kGrid, BroadPhaseMethod::kRebuild,
                                               BroadPhaseMethod::kReinsert};
   for (const BroadPhaseMethod m : kAll) {
@@ -21,6 +27,7 @@ bool ParseBroadPhaseMethod(const std::string& name, BroadPhaseMethod* method) {
 
 std::string BroadPhaseMethodName(BroadPhaseMethod method) {
   switch (method) {
+    case BroadPhaseMethod::kAuto: return "auto";
     case BroadPhaseMethod::kOctree: return "octree";
     case BroadPhaseMethod::kNaive: return "naive";
     case BroadPhaseMethod::kGrid: return "grid";
@@ -40,8 +47,37 @@ std::unique_ptr<BroadPhase> MakeOctree(const BroadPhaseOptions& options,
 }
 }  // namespace
 
+BroadPhaseMethod ChooseBroadPhaseMethod(std::uint32_t moving, std::uint32_t statics) {
+  if (moving >= kAutoGridMinMoving || statics >= kAutoGridMinStatics) {
+    return BroadPhaseMethod::kGrid;
+  }
+  const bool octree_wins =
+      statics >= kAutoOctreeMinStatics ||
+      (statics >= kAutoOctreeMinStaticsCrowded && moving >= kAutoOctreeMinMovingCrowded);
+  return octree_wins ? BroadPhaseMethod::kOctree : BroadPhaseMethod::kNaive;
+}
+
+int GridCellsFor(double world_edge_m, double box_edge_m, int configured) {
+  auto is_length = [](double x_m) { return std::isfinite(x_m) && x_m > 0.0; };
+  if (!is_length(world_edge_m) || !is_length(box_edge_m)) return configured;
+  const double cells = std::clamp(std::round(world_edge_m / box_edge_m),
+                                  double{kAutoGridMinCellsPerAxis},
+                                  double{kAutoGridMaxCellsPerAxis});
+  return std::min(configured, static_cast<int>(cells));
+}
+
 std::unique_ptr<BroadPhase> MakeBroadPhase(const BroadPhaseOptions& options) {
   switch (options.method) {
+    case BroadPhaseMethod::kAuto: {
+      BroadPhaseOptions chosen = options;
+      chosen.method = ChooseBroadPhaseMethod(options.auto_moving, options.auto_statics);
+      if (chosen.method == BroadPhaseMethod::kGrid) {
+        chosen.grid_cells_per_axis =
+            GridCellsFor(WorldCubeEdge(options.world_W), options.auto_moving_box_edge_m,
+                         options.grid_cells_per_axis);
+      }
+      return MakeBroadPhase(chosen);
+    }
     case BroadPhaseMethod::kNaive: {
       auto naive = std::make_unique<NaiveBroadPhase>();
       naive->Reserve(options.reserve_primitives);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "arm_collision_monitor/broadphase/broad_phase_util.h"
 #include "arm_collision_monitor/core/constants.h"
@@ -31,8 +32,9 @@ Aabb GridCube(const BroadPhaseOptions& options) {
 }  // namespace
 
 GridBroadPhase::GridBroadPhase(const BroadPhaseOptions& options)
+    // Range differences are exact for steps of any size: no jump limit (an infinite spacing).
     : CellBroadPhase(GridCube(options), options.techniques, CellUpdateStrategy::kIncremental,
-                     CellSize(options)),
+                     std::numeric_limits<double>::infinity()),
       g_(CellsPerAxis(options)),
       cell_m_(CellSize(options)) {
   ResizeCells(static_cast<std::size_t>(g_) * g_ * g_);
@@ -79,46 +81,64 @@ void GridBroadPhase::CandidateRange(const Aabb& box_W, int lo[3], int hi[3]) con
   }
 }
 
-void GridBroadPhase::InsertIntoCells(PrimitiveId id) {
-  int lo[3], hi[3];
-  CandidateRange(records_[id].box_W, lo, hi);
-  for (int i = lo[0]; i <= hi[0]; ++i) {
-    for (int j = lo[1]; j <= hi[1]; ++j) {
-      for (int k = lo[2]; k <= hi[2]; ++k) {
-        ++counters_.object_node_tests;
-        if (records_[id].box_W.Overlaps(CellBox(i, j, k))) AddLink(id, Index(i, j, k));
-      }
+void GridBroadPhase::OverlapRange(const Aabb& box_W, int lo[3], int hi[3]) const {
+  CandidateRange(box_W, lo, hi);
+  for (int a = 0; a < 3; ++a) {
+    const double origin_m = world_W_.min_W[a];
+    // Cell i spans [L(i), L(i + 1)] and overlaps the closed box on axis a iff
+    // L(i) <= max and min <= L(i + 1); the cells that do are contiguous.
+    while (lo[a] < g_ - 1 &&
+           LatticeCoordinate(origin_m, static_cast<std::uint32_t>(lo[a] + 1), cell_m_) <
+               box_W.min_W[a]) {
+      ++lo[a];
+    }
+    while (hi[a] > 0 &&
+           LatticeCoordinate(origin_m, static_cast<std::uint32_t>(hi[a]), cell_m_) >
+               box_W.max_W[a]) {
+      --hi[a];
     }
   }
 }
 
-// The octree's update with the neighbours simplified to the 26 surrounding cells (the seed,
-// section 5). Exactness: the argument at the top of cell_broad_phase.cpp, with s = cell edge.
-void GridBroadPhase::UpdateCells(PrimitiveId id, const Aabb& old_box_W) {
-  const std::uint32_t stamp = NextVisitStamp();
-  const std::uint32_t old_head = records_[id].first_link;
-  StampLinkedCells(id, stamp);
-  for (std::uint32_t l = old_head; l != kNone; l = links_[l].next_of_prim) {
-    int u[3];
-    CellCoordinates(links_[l].cell, u);
-    const CellReach reach =
-        ComputeCellReach(old_box_W, records_[id].box_W, CellBox(u[0], u[1], u[2]));
-    if (techniques_.inside_node_exit && reach.reach_new == 0) continue;
-    for (const Direction& dir : Directions()) {
-      if (!NeedsDirection(reach, dir)) continue;
-      const int i = u[0] + dir.d[0], j = u[1] + dir.d[1], k = u[2] + dir.d[2];
-      if (i < 0 || j < 0 || k < 0 || i >= g_ || j >= g_ || k >= g_) continue;
-      const std::uint32_t neighbour = Index(i, j, k);
-      ++counters_.neighbours_visited;
-      if (cell_visit_[neighbour] == stamp) continue;
-      cell_visit_[neighbour] = stamp;
-      ++counters_.object_node_tests;
-      if (records_[id].box_W.Overlaps(CellBox(i, j, k))) AddLink(id, neighbour);
+void GridBroadPhase::InsertIntoCells(PrimitiveId id) {
+  int lo[3], hi[3];
+  OverlapRange(records_[id].box_W, lo, hi);
+  for (int i = lo[0]; i <= hi[0]; ++i) {
+    for (int j = lo[1]; j <= hi[1]; ++j) {
+      for (int k = lo[2]; k <= hi[2]; ++k) AddLink(id, Index(i, j, k));
     }
   }
-  RemoveExitedLinks(
-      id, old_head, [this](std::uint32_t cell) { return CellBox(cell); },
-      [](std::uint32_t) {});
+  counters_.object_node_tests += 6;  // the range's faces
+}
+
+// Range difference: unlink the old cells outside the new range, link the new cells outside the
+// old range. Exact for any step, as both ranges are exact (the links of a box are always its
+// OverlapRange). The octree's neighbour techniques have nothing to skip here.
+void GridBroadPhase::UpdateCells(PrimitiveId id, const Aabb& old_box_W) {
+  int old_lo[3], old_hi[3], lo[3], hi[3];
+  OverlapRange(old_box_W, old_lo, old_hi);
+  OverlapRange(records_[id].box_W, lo, hi);
+  counters_.object_node_tests += 12;
+  auto inside = [](const int u[3], const int l[3], const int h[3]) {
+    return l[0] <= u[0] && u[0] <= h[0] && l[1] <= u[1] && u[1] <= h[1] && l[2] <= u[2] &&
+           u[2] <= h[2];
+  };
+  for (std::uint32_t l = records_[id].first_link; l != kNone;) {
+    const std::uint32_t next = links_[l].next_of_prim;
+    int u[3];
+    CellCoordinates(links_[l].cell, u);
+    if (!inside(u, lo, hi)) RemoveLink(l);
+    l = next;
+  }
+  for (int i = lo[0]; i <= hi[0]; ++i) {
+    for (int j = lo[1]; j <= hi[1]; ++j) {
+      for (int k = lo[2]; k <= hi[2]; ++k) {
+        const int u[3] = {i, j, k};
+        ++counters_.neighbours_visited;
+        if (!inside(u, old_lo, old_hi)) AddLink(id, Index(i, j, k));
+      }
+    }
+  }
 }
 
 void GridBroadPhase::RemoveFromCells(PrimitiveId id) {

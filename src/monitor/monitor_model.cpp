@@ -207,18 +207,30 @@ void MonitorModel::ComputeReachability() {
   }
 }
 
-// auto_broad_phase: the octree when enough primitives are active at start-up, else all pairs.
+// broad_phase auto: ChooseBroadPhaseMethod on the primitives active at start-up (the default
+// variants; moving, or static and reachable), its choice written into the options.
 void MonitorModel::ChooseBroadPhase() {
-  if (!options.auto_broad_phase) return;
-  std::uint32_t active = 0;
-  for (PrimitiveId id = 0; id < first_live_primitive; ++id) {
-    // The default variants; moving or reachable.
-    const bool is_active =
-        variant_index[id] == 0 && (is_moving_start[id] || is_reachable_start[id]);
-    active += is_active ? 1 : 0;
+  if (options.broad_phase.method != BroadPhaseMethod::kAuto) return;
+  std::uint32_t moving = 0, statics = 0;
+  double edge_sum_m = 0.0;
+  for (PrimitiveId id = 0; id < first_live_primitive; ++id) {  // live slots start empty
+    if (variant_index[id] != 0) continue;
+    if (is_moving_start[id]) {
+      ++moving;
+      // The box the index holds: grown by the broad-phase tolerance and the index slack.
+      const Aabb box_W = ComputeAabb(shape_W_start[id])
+                             .Inflated(BroadTolerance_m(workcell->primitives[id].tolerance_m,
+                                                        true) +
+                                       options.index_slack_m);
+      edge_sum_m += (box_W.max_W - box_W.min_W).maxCoeff();
+    } else if (is_reachable_start[id]) {
+      ++statics;
+    }
   }
-  options.broad_phase.method =
-      active >= kAutoOctreeMinPrimitives ? BroadPhaseMethod::kOctree : BroadPhaseMethod::kNaive;
+  options.broad_phase.auto_moving_box_edge_m = moving > 0 ? edge_sum_m / moving : 0.0;
+  options.broad_phase.auto_moving = moving;
+  options.broad_phase.auto_statics = statics;
+  options.broad_phase.method = ChooseBroadPhaseMethod(moving, statics);
 }
 
 }  // namespace arm_collision_monitor

@@ -12,9 +12,14 @@ MonitorOptions LoadMonitorOptions(const std::string& path) {
   using yaml_fields::Where;
   const YAML::Node root = yaml_fields::LoadMapFile(path);
   const Where top{path, ""};
+  if (root["auto_broad_phase"]) {
+    top.Child("auto_broad_phase")
+        .Fail(root["auto_broad_phase"],
+              "was replaced by 'broad_phase: auto' (the default; name a method to force it)");
+  }
   yaml_fields::CheckKeys(
       root,
-      {"broad_phase", "auto_broad_phase", "max_objects_per_leaf", "grid_cells_per_axis",
+      {"broad_phase", "max_objects_per_leaf", "grid_cells_per_axis",
        "techniques", "tolerance_m", "max_speed_mps", "cycle_period_s", "speed_scaled_tolerance",
        "reaction_time_s", "stopping_time_s", "index_slack_m", "fixed_frame", "live_objects"},
       top);
@@ -24,11 +29,10 @@ MonitorOptions LoadMonitorOptions(const std::string& path) {
     if (!ParseBroadPhaseMethod(name, &options.broad_phase.method)) {
       top.Child("broad_phase")
           .Fail(root["broad_phase"], "unknown method '" + name +
-                                         "' (expected octree, naive, grid, rebuild or reinsert)");
+                                         "' (expected auto, octree, naive, grid, rebuild or reinsert)");
     }
   }
   using yaml_fields::ReadIfPresent;
-  ReadIfPresent(root, "auto_broad_phase", top, yaml_fields::ReadBool, &options.auto_broad_phase);
   ReadIfPresent(root, "max_objects_per_leaf", top, yaml_fields::ReadPositiveInt,
                 &options.broad_phase.max_objects_per_leaf);
   ReadIfPresent(root, "grid_cells_per_axis", top, yaml_fields::ReadPositiveInt,

@@ -43,7 +43,7 @@ namespace {
 
 struct Options {
   std::string urdf, scene, config;
-  std::string method = "octree";
+  std::string method = "auto";
   bool json = false;
   std::vector<TaskGraspTarget> grasp_targets;
   std::string input;
@@ -60,12 +60,12 @@ const char* kUsage =
     "options:\n"
     "  --urdf F --scene F --config F   workcell and monitor options (default: the package's\n"
     "                                  urdf/workcell.urdf, config/scene.yaml, config/monitor.yaml)\n"
-    "  --method M     octree | naive | grid | rebuild | reinsert"
+    "  --method M     auto | octree | naive | grid | rebuild | reinsert"
 #ifdef ACM_HAVE_PEERS
     " | fcl | bullet"
 #endif
     "\n"
-    "                 (default octree; overrides the config's broad_phase)\n"
+    "                 (default auto; overrides the config's broad_phase)\n"
     "  --grasp L:O    declare object O the grasp target of link L before the first cycle\n"
     "                 (repeatable)\n"
     "  --task N       the grasp targets of the seed's task N (task 3: right_link7:front_box)\n"
@@ -329,7 +329,6 @@ std::unique_ptr<Checker> MakeChecker(const Options& options,
   BroadPhaseMethod method;
   if (ParseBroadPhaseMethod(options.method, &method)) {
     monitor_options.broad_phase.method = method;
-    monitor_options.auto_broad_phase = false;
     return std::make_unique<MonitorChecker>(workcell, monitor_options, options.grasp_targets);
   }
 #ifdef ACM_HAVE_PEERS

@@ -260,5 +260,65 @@ TEST(BroadPhaseDifferential, StampsWrapAroundWithoutLosingPairs) {
   RunDifferential(config, 200, 3, forcing);
 }
 
+// The inputs of issue 15 that used to cost more than all pairs, each against the reference.
+TEST(BroadPhaseDifferential, PrimitivesOutsideTheWorldCube) {
+  for (std::uint64_t seed : {81u, 82u}) {
+    SceneConfig config;
+    config.seed = seed;
+    config.statics = 80;
+    config.index_world_edge_m = 2.0;  // most of the scene partly or wholly outside the index
+    config.leave_probability = 0.02;
+    const BroadPhaseCounters c = RunDifferential(config, 400, 4);
+    EXPECT_GT(c.outside_world, 0u);
+    if (HasFailure()) return;
+  }
+}
+
+TEST(BroadPhaseDifferential, StepsOfManyCells) {
+  for (std::uint64_t seed : {91u, 92u}) {
+    SceneConfig config;
+    config.seed = seed;
+    config.statics = 80;
+    config.max_speed_mps = 12.0;  // steps up to 20 minimum cells
+    config.index_speed_mps = 0.61;
+    const BroadPhaseCounters c = RunDifferential(config, 400, 4);
+    EXPECT_GT(c.reinsert_fallbacks, 0u);
+    if (HasFailure()) return;
+  }
+}
+
+TEST(BroadPhaseDifferential, InflatedBoxesLargerThanCells) {
+  SceneConfig config;
+  config.seed = 101;
+  config.statics = 80;
+  config.tolerance_max_m = 0.6;  // up to 1.2 m more per box: many grid cells and leaves
+  config.world_edge_m = 3.0;
+  RunDifferential(config, 300, 3);
+}
+
+TEST(BroadPhaseDifferential, ManyPrimitivesCrowdedTogether) {
+  // A dual-arm sphere model: 75 spheres within 1.2 m, 15 shelf boards, a large index; then the
+  // same with large steps and a small index that leaves most of it outside.
+  SceneConfig config;
+  config.seed = 111;
+  config.statics = 15;
+  config.movers = 75;
+  config.world_edge_m = 1.2;
+  config.world_min_W = Eigen::Vector3d::Constant(-0.6);
+  config.index_world_edge_m = 6.35;
+  config.mover_length_m = 0.0;
+  config.mover_radius_m = 0.06;
+  config.static_half_max_m = 0.4;
+  config.tolerance_max_m = 0.1;
+  RunDifferential(config, 200, 10);
+  if (HasFailure()) return;
+  config.seed = 112;
+  config.max_speed_mps = 6.0;
+  config.index_speed_mps = 0.61;
+  config.index_world_edge_m = 0.8;
+  config.leave_probability = 0.05;
+  RunDifferential(config, 200, 10);
+}
+
 }  // namespace
 }  // namespace arm_collision_monitor

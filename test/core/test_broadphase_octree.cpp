@@ -56,6 +56,38 @@ TEST(Octree, MinimumLeafIsTheSmallestRootOverPowerOfTwoAtLeastTheMotionPerCycle)
   EXPECT_EQ(cube.max_depth(), 2);
 }
 
+TEST(Octree, ACrowdOfBoxesLargerThanTheChildrenDoesNotSplitTheirLeaf) {
+  // 12 mutually overlapping 1.5 m boxes in a 64 m world with 1 m minimum leaves (depth 6),
+  // N = 2: leaves of 4 m split (their 2 m children fit the boxes), 2 m leaves do not (1 m
+  // children are smaller than every box), so each box lies in at most 2 x 2 x 2 leaves; splitting
+  // down to the minimum would put each in up to 27 leaves and separate nothing.
+  BroadPhaseOptions options;
+  options.world_W = Box(0, 0, 0, 64, 64, 64);
+  options.min_cell_size_m = 1.0;
+  options.max_objects_per_leaf = 2;
+  OctreeBroadPhase octree(options, CellUpdateStrategy::kIncremental);
+  for (PrimitiveId id = 0; id < 12; ++id) {
+    const double x = 33.0 + 0.04 * id;
+    octree.Add(id, Box(x, x, x, x + 1.5, x + 1.5, x + 1.5), 0.0, Motion::kMoving);
+    ExpectValid(octree);
+  }
+  OctreeStatistics stats = octree.ComputeStatistics();
+  EXPECT_LE(stats.mean_leaves_per_primitive, 8.0);
+  EXPECT_LE(stats.depth, 5);  // 2 m leaves: level 5 of 64 m
+  // A small box entering the crowd's leaf still counts for a split only with more than N small
+  // ones: three 0.5 m boxes (they fit a 1 m child) do split a 2 m leaf they share.
+  for (PrimitiveId id = 12; id < 15; ++id) {
+    const double x = 32.1 + 0.1 * (id - 12);
+    octree.Add(id, Box(x, x, x, x + 0.5, x + 0.5, x + 0.5), 0.0, Motion::kMoving);
+    ExpectValid(octree);
+  }
+  stats = octree.ComputeStatistics();
+  EXPECT_EQ(stats.depth, 6);
+  std::vector<CandidatePair> pairs;
+  octree.FindPairs(CompatibilityMatrix(15), &pairs);
+  EXPECT_EQ(pairs.size(), 12u * 11u / 2u + 3u);  // the crowd's pairs and the small boxes'
+}
+
 TEST(Octree, SplitsWhenMoreThanNAndMergesWhenTheyLeave) {
   OctreeBroadPhase octree(SmallWorld(2), CellUpdateStrategy::kIncremental);
   octree.Add(0, Box(1, 1, 1, 2, 2, 2), 0.0, Motion::kStatic);

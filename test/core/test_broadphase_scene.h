@@ -37,6 +37,13 @@ struct SceneConfig {
   /// Snap every coordinate to the lattice origin + i * snap_m (0: off). With snap_m a cell edge
   /// divided by a power of two and tolerance 0, boxes sit exactly on cell faces/edges/corners.
   double snap_m = 0.0;
+  /// The broad phase's world cube, when not the scene's: edge (m) of a cube centred on the
+  /// scene's (0: the scene's cube). Smaller than the scene: primitives outside the index;
+  /// larger: the scene is a crowded cluster in a large index.
+  double index_world_edge_m = 0.0;
+  /// The speed (m/s) the broad phase's minimum cell is sized for (0: max_speed_mps). Below
+  /// max_speed_mps: steps larger than the cells.
+  double index_speed_mps = 0.0;
 };
 
 /// One change to apply to every broad phase under test.
@@ -87,8 +94,23 @@ class RandomScene {
     options.method = method;
     options.world_W.min_W = config_.world_min_W;
     options.world_W.max_W = config_.world_min_W + Eigen::Vector3d::Constant(config_.world_edge_m);
-    options.min_cell_size_m = config_.max_speed_mps * config_.period_s;
+    if (config_.index_world_edge_m > 0.0) {
+      options.world_W = Aabb::Cube(0.5 * (options.world_W.min_W + options.world_W.max_W),
+                                   config_.index_world_edge_m);
+    }
+    const double speed_mps =
+        config_.index_speed_mps > 0.0 ? config_.index_speed_mps : config_.max_speed_mps;
+    options.min_cell_size_m = speed_mps * config_.period_s;
     options.reserve_primitives = static_cast<std::uint32_t>(Count());
+    options.auto_moving = static_cast<std::uint32_t>(config_.movers);
+    options.auto_statics = static_cast<std::uint32_t>(config_.statics);
+    double edge_sum_m = 0.0;
+    for (const Prim& p : prims_) {
+      if (!p.moving) continue;
+      const Aabb box_W = BoxOf(p).Inflated(p.tolerance_m);
+      edge_sum_m += (box_W.max_W - box_W.min_W).maxCoeff();
+    }
+    options.auto_moving_box_edge_m = config_.movers > 0 ? edge_sum_m / config_.movers : 0.0;
     return options;
   }
 

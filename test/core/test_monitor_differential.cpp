@@ -239,11 +239,21 @@ TEST(MonitorReach, UnreachableStaticsAreLeftOut) {
 TEST(MonitorReach, AutoBroadPhasePicksByScaleRule) {
   const auto wc = LoadBundledWorkcell();
   MonitorOptions options;
-  options.auto_broad_phase = true;
+  options.broad_phase.method = BroadPhaseMethod::kAuto;
   Monitor monitor(wc, options);
-  std::uint32_t active = 0;
-  for (PrimitiveId id = 0; id < monitor.primitive_count(); ++id) active += monitor.is_active(id);
-  EXPECT_EQ(monitor.broad_phase_name(), active >= kAutoOctreeMinPrimitives ? "octree" : "naive");
+  // The rule's inputs counted independently: active primitives of the scene, moving or not.
+  std::uint32_t moving = 0, statics = 0;
+  for (PrimitiveId id = 0; id < monitor.primitive_count(); ++id) {
+    if (!monitor.is_active(id)) continue;
+    const PrimitiveSpec& spec = wc->primitives[id];
+    const bool is_moving = spec.link_index >= 0 ? !spec.is_static
+                                                : !wc->objects[spec.object_index].frame.empty();
+    ++(is_moving ? moving : statics);
+  }
+  EXPECT_GT(moving, 0u);
+  EXPECT_GT(statics, 0u);
+  EXPECT_EQ(monitor.broad_phase_name(),
+            BroadPhaseMethodName(ChooseBroadPhaseMethod(moving, statics)));
 }
 
 }  // namespace

@@ -18,14 +18,14 @@ const std::string kData = kSource + "/test/data/";
 
 TEST(MonitorOptions, BundledMonitorOptions) {
   const MonitorOptions o = LoadMonitorOptions(kMonitorYaml);
-  EXPECT_EQ(o.broad_phase.method, BroadPhaseMethod::kOctree);
+  EXPECT_EQ(o.broad_phase.method, BroadPhaseMethod::kAuto);
   EXPECT_EQ(o.broad_phase.max_objects_per_leaf, 10);
   EXPECT_EQ(o.tolerance_m, 0.0305);
   EXPECT_EQ(o.max_speed_mps, 0.61);
   EXPECT_EQ(o.cycle_period_s, 0.05);
   EXPECT_NEAR(MinCellSize_m(o), 0.0305 + kDefaultIndexSlack_m, 1e-15);
   EXPECT_FALSE(o.speed_scaled_tolerance);
-  EXPECT_FALSE(o.auto_broad_phase);
+  EXPECT_EQ(MonitorOptions{}.broad_phase.method, BroadPhaseMethod::kAuto);  // same default
   EXPECT_EQ(o.index_slack_m, kDefaultIndexSlack_m);
   EXPECT_EQ(o.fixed_frame, "world");
   EXPECT_EQ(o.live_objects.capacity, 16u);
@@ -51,7 +51,8 @@ TEST(MonitorOptions, MonitorOptionsOverridesAndErrors) {
     std::string text;
     std::vector<std::string> parts;
   } bad[] = {
-      {"broad_phase: kdtree\n", {"broad_phase", "kdtree", "octree"}},
+      {"broad_phase: kdtree\n", {"broad_phase", "kdtree", "auto, octree"}},
+      {"auto_broad_phase: true\n", {"auto_broad_phase", "broad_phase: auto"}},
       {"max_speed_mps: -1\n", {"max_speed_mps", "> 0"}},
       {"index_slack_m: -0.1\n", {"index_slack_m", ">= 0"}},
       {"cycle_period_s: .nan\n", {"cycle_period_s", "finite"}},

@@ -80,7 +80,8 @@ class CellBroadPhase : public BroadPhase {
   /// needed.
   virtual void InsertIntoCells(PrimitiveId id) = 0;
   /// Brings the links of `id` from `old_box_W` to its current box. Preconditions: every face
-  /// moved by less than the cell spacing (see ShortMove); both boxes meet the world cube.
+  /// moved by less than the cell spacing given at construction (see ShortMove; infinite for a
+  /// structure whose update is exact for any step); both boxes meet the world cube.
   virtual void UpdateCells(PrimitiveId id, const Aabb& old_box_W) = 0;
   /// Unlinks `id` from all its cells (merging where the structure allows).
   virtual void RemoveFromCells(PrimitiveId id) = 0;

@@ -1,6 +1,7 @@
 // The uniform grid the seed compares the octree with (section 5): a G x G x G array of cells
-// over the world cube, updated like the octree except that a cell's neighbours are simply the
-// 26 cells around it and cells never split or merge.
+// over the world cube that never split or merge. A moved box's cells are a range of cell
+// indices on each axis, so its update is the difference of its old and new ranges: cost in
+// proportion to the cells it leaves and enters, whatever the size of the step or of the box.
 #pragma once
 
 #include <cstdint>
@@ -43,6 +44,9 @@ class GridBroadPhase final : public CellBroadPhase {
   /// Cell index range on each axis that can overlap the box (one cell of slack each side
   /// against rounding; the exact test decides).
   void CandidateRange(const Aabb& box_W, int lo[3], int hi[3]) const;
+  /// The cells the closed box overlaps: lo[a]..hi[a] on each axis (the same closed test as
+  /// Aabb::Overlaps against CellBox, done per axis). Precondition: the box meets the grid cube.
+  void OverlapRange(const Aabb& box_W, int lo[3], int hi[3]) const;
 
   int g_;
   double cell_m_;

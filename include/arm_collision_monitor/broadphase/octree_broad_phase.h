@@ -1,5 +1,6 @@
 // The seed's N-objects octree (Shaffer & Herb, TR 90-28, section 3): a leaf splits when more
-// than N primitives lie in it, never below the minimum cell size (the farthest any primitive
+// than N primitives lie in it and more than N of them fit in a child (boxes larger than the
+// children would not be separated), never below the minimum cell size (the farthest any primitive
 // moves in one cycle); moving primitives are followed by visiting only the face, edge and
 // corner neighbours of the leaves they were in, toward where they now reach, and siblings merge
 // when the primitives leave. The same class also runs the two update schemes the seed rejects
@@ -67,6 +68,7 @@ class OctreeBroadPhase final : public CellBroadPhase {
   }
   void InsertFrom(PrimitiveId id, std::uint32_t node);
   void InsertIntoLeaf(PrimitiveId id, std::uint32_t leaf);
+  bool SplitSeparates(std::uint32_t leaf, PrimitiveId id) const;
   void SplitLeaf(std::uint32_t leaf);
   std::uint32_t AllocateBlock();
   void FreeBlock(std::uint32_t first);
@@ -96,8 +98,8 @@ class OctreeBroadPhase final : public CellBroadPhase {
   // The parts of ValidateCells. ValidateSplitNode: the children's parent, level and corner,
   // and the canonical shape (more than N distinct primitives below; `region_stamp` marks the
   // primitives seen in `region`, a number new for each call). ValidateReachableNodes: every
-  // node reachable from the root once, leaves within N above the minimum size, split nodes
-  // valid. ValidateFreeBlocks: the free list, which with the reachable nodes makes the pool.
+  // node reachable from the root once, split nodes valid. ValidateFreeBlocks: the free list,
+  // which with the reachable nodes makes the pool.
   bool ValidateSplitNode(std::uint32_t n, std::vector<std::uint32_t>* region_stamp,
                          std::uint32_t region, std::string* why) const;
   bool ValidateReachableNodes(std::vector<char>* reached, std::size_t* reached_count,

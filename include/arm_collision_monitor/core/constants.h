@@ -123,15 +123,29 @@ constexpr std::uint64_t kAlwaysOverlappingSeed = 20260521;
 /// limits by a few milliradians; a larger excursion means a corrupt or mis-ordered message.
 inline constexpr double kJointLimitMargin = 0.01;
 
-/// auto_broad_phase rule: with at least this many primitives in the broad phase at start-up
-/// the octree is chosen, below it the all-pairs (naive) broad phase, whose index work is
-/// moving x present box tests and wins on small scenes. 480 (dimensionless count): scripts/bench
-/// measured the default Monitor's (index slack 0.10 m) naive/octree mean cycle-time ratio
-/// crossing 1 at 430 to 480 active primitives (two runs) on the three tasks with boxes added
-/// near the arms (0.88 at 232, 1.02-1.05 at 531; medians are equal, being bounded cycles that
-/// skip the index; on the seed's loop, slack 0, the crossing is about 290-300).
-/// build/bench/report.md recomputes it.
-inline constexpr std::uint32_t kAutoOctreeMinPrimitives = 480;
+/// auto's rule (ChooseBroadPhaseMethod), from the sweep of bench_broadphase_workloads (moving
+/// 7..150 x static 0..3,000 primitives; counts, dimensionless): the uniform grid from
+/// kAutoGridMinMoving moving or kAutoGridMinStatics static primitives up; otherwise the octree
+/// from kAutoOctreeMinStatics statics up, or from kAutoOctreeMinStaticsCrowded statics with at
+/// least kAutoOctreeMinMovingCrowded moving; otherwise all pairs (naive), whose moving x present
+/// box tests beat any index's upkeep on small scenes. Measured 2026-11-23 on this 2-core
+/// machine (medians per cycle): naive best up to 50 statics below 50 movers (0.52 against the
+/// octree's 0.98 us at 7+50) and up to 20 statics at 75 movers; the octree best at 100 statics
+/// below 100 movers (0.67 against naive 0.99 and grid 0.94 us at 7+100) and at 75+50; the grid
+/// best, or within 5 %, from 200 statics and at 150 movers (27.3 against octree 40.6 us at
+/// 150+200).
+inline constexpr std::uint32_t kAutoGridMinMoving = 100;
+inline constexpr std::uint32_t kAutoGridMinStatics = 200;
+inline constexpr std::uint32_t kAutoOctreeMinStatics = 100;
+inline constexpr std::uint32_t kAutoOctreeMinStaticsCrowded = 50;
+inline constexpr std::uint32_t kAutoOctreeMinMovingCrowded = 50;
+/// Bounds on auto's grid resolution (GridCellsFor; cells per axis). 4: coarser and the grid is
+/// all pairs in a few cells; 64: 262,144 cells, 3 MB of per-cell arrays. bench_broadphase_workloads, 14 movers among 200
+/// statics with boxes inflated by up to 0.6 m: 6 cells per axis (about the movers' mean box
+/// edge) 6.5 us per cycle against 14.7 us with 16, and 16 against 32 cells 4.7 against 7.1 us
+/// with 2,000 statics.
+inline constexpr int kAutoGridMinCellsPerAxis = 4;
+inline constexpr int kAutoGridMaxCellsPerAxis = 64;
 
 /// Largest gap (m) between a held object and its holding link's geometry that Attach accepts.
 /// Bounds how far an attached object can reach beyond its arm, which the start-up reach

@@ -67,8 +67,8 @@ struct CycleReport {
 ///   joint above it (see MonitorModel, monitor_model.cpp). A frame-bound object brings the
 ///   statics near its pose back in (SetObjectPose).
 /// - A held object gets at least its holder's tolerance and is compatible with its holder link.
-/// - auto_broad_phase: the octree when at least kAutoOctreeMinPrimitives primitives are active
-///   at start-up, else the all-pairs (naive) broad phase.
+/// - broad_phase auto (the default): naive, grid or octree, chosen at start-up from the active
+///   moving and static primitives (ChooseBroadPhaseMethod).
 /// - Index slack (MonitorOptions::index_slack_m): moving primitives are indexed by boxes grown
 ///   by the slack and re-indexed only after moving farther; the candidate pairs are kept with a
 ///   lower bound on their distance, and a pair is tested exactly only when that bound, less both
@@ -184,7 +184,7 @@ class Monitor {
   /// Counters accumulated over the whole run.
   const BroadPhaseCounters& total_counters() const;
   std::uint64_t refused_inputs() const;
-  /// The broad phase in use ("octree", "naive", ...; auto_broad_phase decides at start-up).
+  /// The broad phase in use ("octree", "naive", ...; auto's choice once started).
   std::string broad_phase_name() const;
   /// Tolerance of primitive `id` in the last cycle (speed-scaled when enabled), metres.
   double tolerance_m(PrimitiveId id) const;

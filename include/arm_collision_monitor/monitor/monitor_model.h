@@ -56,8 +56,8 @@ struct MonitorModel {
                double static_tol_m) const;
 
   std::shared_ptr<const Workcell> workcell;
-  /// The options as used: world box, smallest cell (MinCellSize_m), pool reservation and, with
-  /// auto_broad_phase, the chosen method filled in.
+  /// The options as used: world box, smallest cell (MinCellSize_m), pool reservation and, for
+  /// broad_phase auto, the chosen method filled in.
   MonitorOptions options;
   const KinematicModel* kinematics = nullptr;  ///< workcell->kinematics
   std::uint32_t primitive_count = 0;  ///< the live slots' included

@@ -21,10 +21,10 @@ struct LiveObjectOptions {
 /// The Monitor's options (LoadMonitorOptions; format: config/monitor.yaml).
 struct MonitorOptions {
   /// The broad phase; world_W and min_cell_size_m are filled in by the Monitor from the
-  /// workcell and from MinCellSize_m().
+  /// workcell and from MinCellSize_m(). method kAuto (the default): the Monitor picks naive,
+  /// grid or octree at start-up from its active moving and static primitives
+  /// (ChooseBroadPhaseMethod).
   BroadPhaseOptions broad_phase;
-  /// Let the Monitor pick the faster of octree and naive for the scene at start-up.
-  bool auto_broad_phase = false;
   double max_speed_mps = 0.61;   ///< 24 in/s: bounds the per-cycle motion
   double cycle_period_s = 0.05;  ///< 20 Hz
   /// Optional speed-dependent tolerance (ISO/TS 15066 protective separation distance): each

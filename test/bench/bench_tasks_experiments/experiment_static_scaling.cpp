@@ -34,7 +34,7 @@ void ExperimentStaticScaling(const Args& args, const Scenario& base, std::uint64
       std::vector<RunResult> results = RunScalingImplementations(s, ref, SeedLoopOptions());
       if (near) {
         // The default Monitor (index slack) too: where its octree overtakes its naive broad
-        // phase sets the auto_broad_phase threshold.
+        // phase is one of the crossovers auto's rule (ChooseBroadPhaseMethod) is checked against.
         for (const char* method : {"octree", "naive"}) {
           MonitorOptions o = DefaultOptions();
           ParseBroadPhaseMethod(method, &o.broad_phase.method);

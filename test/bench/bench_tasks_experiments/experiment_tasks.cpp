@@ -35,7 +35,7 @@ double ExperimentTasks(const Args& args, const Scenario& s, const Reference& ref
   }
   runs.push_back([&s, &ref] {
     MonitorOptions o = DefaultOptions();
-    o.auto_broad_phase = true;
+    o.broad_phase.method = BroadPhaseMethod::kAuto;
     RunResult r = RunMonitor(s, o, &ref, "auto");
     r.impl = "auto(" + r.chosen + ")";
     return r;

@@ -162,6 +162,7 @@ MonitorOptions DefaultOptions() { return LoadMonitorOptions(SourcePath("config/m
 MonitorOptions SeedLoopOptions() {
   MonitorOptions o = DefaultOptions();
   o.index_slack_m = 0.0;
+  o.broad_phase.method = BroadPhaseMethod::kOctree;
   return o;
 }
 
