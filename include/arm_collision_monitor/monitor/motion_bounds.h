@@ -64,6 +64,14 @@ class MotionBounds {
                       const Eigen::Ref<const Eigen::VectorXd>& q_from) {
     dq_abs_ = (q - q_from).cwiseAbs();
   }
+  /// Per cycle, for a whole step: a joint motion that bounds |q - q_from| for every q on the
+  /// straight path from q0 to q1, joint by joint the larger of its two ends' (|.| of an affine
+  /// function is convex, so its largest value on a segment is at an end).
+  void SetSegmentMotion(const Eigen::Ref<const Eigen::VectorXd>& q0,
+                        const Eigen::Ref<const Eigen::VectorXd>& q1,
+                        const Eigen::Ref<const Eigen::VectorXd>& q_from) {
+    dq_abs_ = (q0 - q_from).cwiseAbs().cwiseMax((q1 - q_from).cwiseAbs());
+  }
   /// Bound (m) on the motion of every point of `id` for the joint motion set last (0 without
   /// levers); keeps its partial sums for PairBound_m. NaN when a delta is NaN.
   double ComputeBound_m(PrimitiveId id) {

@@ -1,0 +1,226 @@
+// The swept check (MonitorOptions::swept_check): nothing slips between two samples. Each step
+// runs from the last accepted q to the new one along the straight joint-space path (what a
+// driver interpolates). On that path the joint motion over a sub-interval [s0, s1] is
+// (s1 - s0) |q1 - q0|, so the motion bounds of the whole step (MotionBounds: joint deltas times
+// lever arms) scale linearly to any sub-interval. A pair is certified clear when its distance,
+// less its relative motion bound, clears the threshold (conservative advancement; Mirtich,
+// "Timewarp rigid body simulation", SIGGRAPH 2000, section 4, for the bound-and-advance idea);
+// else the interval is bisected until a sample warns or the interval's relative motion is at
+// most twice the resolution, where a sample within threshold + resolution exists.
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "arm_collision_monitor/core/load_error.h"
+#include "arm_collision_monitor/geometry/distance.h"
+#include "monitor_impl.h"
+
+namespace arm_collision_monitor {
+namespace {
+
+/// What TestPair warns on: closer than the threshold, or touching / overlapping.
+bool IsWarning(double distance_m, double threshold_m) {
+  return distance_m < threshold_m || distance_m <= 0.0;
+}
+
+bool IsBefore(const Warning& w, const CandidatePair& p) {
+  return w.a < p.a || (w.a == p.a && w.b < p.b);
+}
+
+}  // namespace
+
+void Monitor::Impl::InitSwept() {
+  const std::uint32_t n = model.primitive_count;
+  swept.q_start = model.q_start;
+  swept.q_s = model.q_start;
+  swept.X_WL_start = model.X_WL_start;
+  swept.X_WL_s = model.X_WL_start;
+  swept.box_W.resize(n);
+  swept.pairs.reserve(static_cast<std::size_t>(n) * (n > 0 ? n - 1 : 0) / 2);
+  CheckStepTolerance();
+}
+
+void Monitor::Impl::CheckStepTolerance() {
+  const MonitorOptions& options = model.options;
+  const KinematicModel& kinematics = *model.kinematics;
+  const double speed_step_m = options.max_speed_mps * options.cycle_period_s;
+  // What the URDF velocity limits allow per cycle (joints without a limit count as 0).
+  Eigen::VectorXd dq = Eigen::VectorXd::Zero(kinematics.q_size());
+  for (int link = 1; link < kinematics.link_count(); ++link) {
+    const JointSpec& joint = kinematics.joint(link);
+    if (joint.q_index >= 0) dq[joint.q_index] = joint.max_velocity * options.cycle_period_s;
+  }
+  motion.SetJointMotion(dq, Eigen::VectorXd::Zero(kinematics.q_size()));
+  double worst_gap_m = 0.0;
+  PrimitiveId worst = 0;
+  double worst_urdf_m = 0.0;
+  for (PrimitiveId id = 0; id < model.primitive_count; ++id) {
+    if (!is_moving[id] || motion.lever_count(id) == 0) continue;
+    const double urdf_step_m = motion.ComputeBound_m(id);
+    const double gap_m = std::max(speed_step_m, urdf_step_m) - tol_base[id];
+    if (gap_m > worst_gap_m) {
+      worst_gap_m = gap_m;
+      worst = id;
+      worst_urdf_m = urdf_step_m;
+    }
+  }
+  if (worst_gap_m <= 0.0) return;
+  std::ostringstream msg;
+  msg << "the tolerance of primitive '" << model.workcell->primitives[worst].name << "' ("
+      << tol_base[worst] << " m) is below its per-cycle motion: max_speed_mps * cycle_period_s = "
+      << speed_step_m << " m, the URDF velocity limits allow " << worst_urdf_m << " m";
+  if (!options.swept_check) {
+    throw LoadError("monitor options: swept_check is false and " + msg.str() +
+                    ": a contact could pass between two cycles (raise tolerance_m or switch "
+                    "swept_check on)");
+  }
+  notices.push_back(msg.str() + "; the swept check covers the motion between cycles");
+}
+
+double Monitor::Impl::ComputeStepBound_m(const Eigen::Ref<const Eigen::VectorXd>& q) {
+  motion.SetJointMotion(q, swept.q_start);
+  double step_m = 0.0;
+  for (PrimitiveId id = 0; id < model.primitive_count; ++id) {
+    if (motion.lever_count(id) == 0) continue;
+    const double bound_m = motion.ComputeBound_m(id);
+    if (!(bound_m <= step_m)) step_m = bound_m;  // NaN and inf propagate
+  }
+  return step_m;
+}
+
+void Monitor::Impl::SweepStep(const Eigen::Ref<const Eigen::VectorXd>& q, CycleWork* work) {
+  // The step bounds (they were overwritten by the bounded-cycle test); and whether every
+  // indexed primitive stays within its slack along the step: its displacement at q plus its
+  // motion from any point of the step to q.
+  ComputeStepBound_m(q);
+  bool is_within_slack = true;
+  for (PrimitiveId id = 0; id < model.primitive_count && is_within_slack; ++id) {
+    if (motion.lever_count(id) == 0 || !in_broad_phase[id]) continue;
+    is_within_slack =
+        cache.displacement_m(id) + motion.bound_m(id) <= model.options.index_slack_m;
+  }
+  CollectSweptPairs(is_within_slack);
+  swept.has_start = false;
+  const std::size_t discrete = report.warnings.size();
+  std::size_t w = 0;
+  for (const SweptPair& candidate : swept.pairs) {
+    const PrimitiveId a = candidate.pair.a;
+    const PrimitiveId b = candidate.pair.b;
+    // A pair warned at q already stops the arm.
+    while (w < discrete && IsBefore(report.warnings[w], candidate.pair)) ++w;
+    if (w < discrete && report.warnings[w].a == a && report.warnings[w].b == b) continue;
+    // Every point of the step is within the pair's relative motion bound of its end.
+    const double pair_motion_m = motion.PairBound_m(a, b);
+    const double threshold_m = tol_now[a] + tol_now[b];
+    if (cache.IsClear(candidate.end_bound_m, pair_motion_m, threshold_m)) continue;
+    // The exact distance at q (a kept pair's bound may be its indexed copies' distance).
+    const double end_m = ShapeDistance(shape_W[a], shape_W[b]).distance_m;
+    ++work->swept_tests;
+    if (cache.IsClear(end_m, pair_motion_m, threshold_m)) continue;
+    ++work->swept_pairs;
+    SweepPair(a, b, pair_motion_m, end_m, q, work);
+  }
+  if (report.warnings.size() > discrete) {
+    std::sort(report.warnings.begin(), report.warnings.end(),
+              [](const Warning& x, const Warning& y) {
+                return x.a < y.a || (x.a == y.a && x.b < y.b);
+              });
+  }
+}
+
+void Monitor::Impl::CollectSweptPairs(bool is_within_slack) {
+  swept.pairs.clear();
+  if (is_within_slack) {
+    // Any other pair's indexed boxes, grown by tolerance + slack, are apart, and both stay
+    // within their slack along the step: clear throughout.
+    for (const KeptPair& kept : cache.pairs()) {
+      swept.pairs.push_back({kept.pair, kept.kinematics_bound_m});
+    }
+    return;
+  }
+  // A large step: every pair whose boxes at q, grown by tolerance + step bound, overlap.
+  constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
+  const std::uint32_t n = model.primitive_count;
+  for (PrimitiveId id = 0; id < n; ++id) {
+    if (!in_broad_phase[id]) continue;
+    const double bound_m = motion.lever_count(id) > 0 ? motion.bound_m(id) : 0.0;
+    swept.box_W[id] = ComputeAabb(shape_W[id]).Inflated(tol_now[id] + bound_m);
+  }
+  for (PrimitiveId a = 0; a < n; ++a) {
+    if (!in_broad_phase[a]) continue;
+    for (PrimitiveId b = a + 1; b < n; ++b) {
+      if (!in_broad_phase[b] || (!is_moving[a] && !is_moving[b]) ||
+          compatible.AreCompatible(a, b) || !swept.box_W[a].Overlaps(swept.box_W[b])) {
+        continue;
+      }
+      swept.pairs.push_back({CandidatePair{a, b}, kUnknown});
+    }
+  }
+}
+
+void Monitor::Impl::ComputeStepPoses(double s, const Eigen::Ref<const Eigen::VectorXd>& q) {
+  swept.q_s = swept.q_start + s * (q - swept.q_start);
+  model.kinematics->ComputeMovingLinkPoses(swept.q_s, &swept.X_WL_s);
+}
+
+void Monitor::Impl::SweepPair(PrimitiveId a, PrimitiveId b, double pair_motion_m, double d1_m,
+                              const Eigen::Ref<const Eigen::VectorXd>& q, CycleWork* work) {
+  const double threshold_m = tol_now[a] + tol_now[b];
+  if (!swept.has_start) {
+    model.kinematics->ComputeMovingLinkPoses(swept.q_start, &swept.X_WL_start);
+    swept.has_start = true;
+  }
+  // Appends the warning at fraction s for link poses X (true: done with this pair).
+  auto warn_at = [&](double s, const std::vector<Eigen::Isometry3d>& X) {
+    const DistanceResult d = ShapeDistance(ShapeAt(a, X), ShapeAt(b, X));
+    Warning warning;
+    warning.a = a;
+    warning.b = b;
+    warning.distance_m = d.distance_m;
+    warning.threshold_m = threshold_m;
+    warning.p_WA = d.p_WA;
+    warning.p_WB = d.p_WB;
+    warning.between_samples = true;
+    warning.step_fraction = s;
+    report.warnings.push_back(warning);
+  };
+  const double d0_m = ShapeDistance(ShapeAt(a, swept.X_WL_start), ShapeAt(b, swept.X_WL_start))
+                          .distance_m;
+  ++work->swept_tests;
+  if (IsWarning(d0_m, threshold_m)) {  // the step starts in the tolerance zone
+    warn_at(0.0, swept.X_WL_start);
+    return;
+  }
+  const double resolution_m = model.options.swept_resolution_m;
+  int top = 0;
+  swept.stack[top++] = SweptInterval{0.0, 1.0, d0_m, d1_m, 0};
+  while (top > 0) {
+    const SweptInterval iv = swept.stack[--top];
+    // On [s0, s1] the distance is at least max(d0 - P (s - s0), d1 - P (s1 - s)), whose
+    // smallest value is (d0 + d1 - P (s1 - s0)) / 2; NaN is not clear.
+    const double motion_m = pair_motion_m * (iv.s1 - iv.s0);
+    const double lower_m = 0.5 * (iv.d0_m + iv.d1_m - motion_m);
+    if (lower_m - cache.BoundMargin_m(lower_m) > threshold_m) continue;
+    if (motion_m <= 2.0 * resolution_m || iv.depth >= kMaxSweptBisections) {
+      // Resolved: the nearer end is within threshold + motion / 2 <= threshold + resolution.
+      const double s = iv.d0_m <= iv.d1_m ? iv.s0 : iv.s1;
+      ComputeStepPoses(s, q);
+      warn_at(s, swept.X_WL_s);
+      return;
+    }
+    const double mid = 0.5 * (iv.s0 + iv.s1);
+    ComputeStepPoses(mid, q);
+    const double mid_m = ShapeDistance(ShapeAt(a, swept.X_WL_s), ShapeAt(b, swept.X_WL_s))
+                             .distance_m;
+    ++work->swept_tests;
+    if (IsWarning(mid_m, threshold_m)) {
+      warn_at(mid, swept.X_WL_s);
+      return;
+    }
+    // The earlier half first: the first contact along the step is the one reported.
+    swept.stack[top++] = SweptInterval{mid, iv.s1, mid_m, iv.d1_m, iv.depth + 1};
+    swept.stack[top++] = SweptInterval{iv.s0, mid, iv.d0_m, mid_m, iv.depth + 1};
+  }
+}
+
+}  // namespace arm_collision_monitor
