@@ -216,8 +216,9 @@ double Monitor::Impl::TestPair(PrimitiveId a, PrimitiveId b, const std::vector<S
 
 void Monitor::Impl::RecordCycle(CycleKind kind, InputStatus input, const CycleWork& work) {
   ++report.cycle;
-  // An idle cycle repeats the last good report (input kOk); a refused one keeps its warnings;
-  // a bounded one has none; a kinematics cycle has the narrow phase's.
+  // An idle cycle repeats the last good report (input kOk) but for the swept check's warnings;
+  // a refused one keeps its warnings; a bounded one has none; a kinematics cycle has the narrow
+  // phase's and the swept check's.
   if (kind == CycleKind::kBounded) report.warnings.clear();
   report.input = input;
   report.stop = input != InputStatus::kOk || !report.warnings.empty();
@@ -226,11 +227,15 @@ void Monitor::Impl::RecordCycle(CycleKind kind, InputStatus input, const CycleWo
   report.candidate_pairs = work.candidate_pairs;
   report.narrow_phase_tests = work.narrow_phase_tests;
   report.bounded = kind == CycleKind::kBounded;
-  // An idle cycle repeats the last step's figures; a refused one has no step.
-  if (kind != CycleKind::kIdle) {
-    report.step_motion_m = work.step_m;
-    report.input_jumped = work.is_jumped;
+  // An idle cycle is a step of zero: the last step's between-samples warnings go (in place).
+  if (kind == CycleKind::kIdle) {
+    report.warnings.erase(std::remove_if(report.warnings.begin(), report.warnings.end(),
+                                         [](const Warning& w) { return w.between_samples; }),
+                          report.warnings.end());
+    report.stop = !report.warnings.empty();
   }
+  report.step_motion_m = work.step_m;
+  report.input_jumped = work.is_jumped;
   report.stop = report.stop || report.input_jumped;
   report.swept_pairs = work.swept_pairs;
   report.swept_distance_tests = work.swept_tests;

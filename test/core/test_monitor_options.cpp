@@ -28,14 +28,21 @@ TEST(MonitorOptions, BundledMonitorOptions) {
   EXPECT_FALSE(o.auto_broad_phase);
   EXPECT_EQ(o.index_slack_m, kDefaultIndexSlack_m);
   EXPECT_EQ(o.fixed_frame, "world");
+  EXPECT_TRUE(o.swept_check);
+  EXPECT_EQ(o.swept_resolution_m, 0.001);
+  EXPECT_EQ(o.max_step_m, 1.0);
 }
 
 TEST(MonitorOptions, MonitorOptionsOverridesAndErrors) {
   const MonitorOptions o = LoadMonitorOptions(
       WriteTempFile("monitor.yaml",
                 "broad_phase: grid\ngrid_cells_per_axis: 8\nmax_speed_mps: 1.0\n"
-                "cycle_period_s: 0.01\ntechniques: {inside_node_exit: false}\nindex_slack_m: 0\n"));
+                "cycle_period_s: 0.01\ntechniques: {inside_node_exit: false}\nindex_slack_m: 0\n"
+                "swept_check: false\nswept_resolution_m: 0.002\nmax_step_m: 0.3\n"));
   EXPECT_EQ(o.index_slack_m, 0.0);
+  EXPECT_FALSE(o.swept_check);
+  EXPECT_EQ(o.swept_resolution_m, 0.002);
+  EXPECT_EQ(o.max_step_m, 0.3);
   EXPECT_EQ(o.broad_phase.method, BroadPhaseMethod::kGrid);
   EXPECT_EQ(o.broad_phase.grid_cells_per_axis, 8);
   EXPECT_NEAR(MinCellSize_m(o), 0.01, 1e-15);
@@ -49,6 +56,9 @@ TEST(MonitorOptions, MonitorOptionsOverridesAndErrors) {
       {"broad_phase: kdtree\n", {"broad_phase", "kdtree", "octree"}},
       {"max_speed_mps: -1\n", {"max_speed_mps", "> 0"}},
       {"index_slack_m: -0.1\n", {"index_slack_m", ">= 0"}},
+      {"swept_resolution_m: 0\n", {"swept_resolution_m", "> 0"}},
+      {"max_step_m: -1\n", {"max_step_m", "> 0"}},
+      {"swept_check: 1.5\n", {"swept_check", "true or false"}},
       {"cycle_period_s: .nan\n", {"cycle_period_s", "finite"}},
       {"max_objects_per_leaf: 0\n", {"max_objects_per_leaf", "positive integer"}},
       {"tolerence_m: 0.03\n", {"unknown key 'tolerence_m'"}},

@@ -368,7 +368,11 @@ TEST(MonitorSwept, MetreJumpIsSweptOrStopped) {
   EXPECT_TRUE(jump.stop);
   EXPECT_GT(jump.step_motion_m, jumped.options().max_step_m);
   CheckStep(*wc, jumped.options(), home, q0, jump, "jump", &tally);  // swept all the same
-  EXPECT_TRUE(jumped.Update(q0).stop);  // idle: the same report
+  // Idle (a step of zero) and normal steps: no longer jumped.
+  const CycleReport& idle = jumped.Update(q0);
+  EXPECT_FALSE(idle.input_jumped);
+  EXPECT_EQ(idle.stop, !idle.warnings.empty());
+  for (const Warning& w : idle.warnings) EXPECT_FALSE(w.between_samples);
   Eigen::VectorXd q_next = q0;
   q_next[JointIndex(*wc, "left_joint3")] += 0.01;
   const CycleReport& normal = jumped.Update(q_next);

@@ -71,7 +71,8 @@ struct CycleReport {
 /// Per-cycle collision monitor (the seed's update loop). Rules it follows:
 /// - Only primitives whose carrier link's pose changed (bit for bit) are moved in the broad
 ///   phase; a q bit-identical to the last good one with no scene change since is an idle cycle:
-///   the previous report with cycle + 1 (and zero moved / counters), no work.
+///   the previous report with cycle + 1 (and zero moved / counters), no work -- a step of zero,
+///   so without the previous step's between-samples warnings and input_jumped.
 /// - Static primitives (links with only fixed joints above them, resting objects) are never
 ///   tested against each other. A resting attachable object is static; it moves (and is tested
 ///   against statics) while attached. Frame-bound objects always move.
