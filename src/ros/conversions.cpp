@@ -32,6 +32,8 @@ void ToWarningMsg(const Workcell& workcell, const Warning& in, CollisionWarning*
   out->point_b.y = in.p_WB.y();
   out->point_b.z = in.p_WB.z();
   out->severity = WarningSeverity(in.distance_m, in.threshold_m);
+  out->between_samples = in.between_samples;
+  out->step_fraction = in.step_fraction;
 }
 
 std::uint8_t ToInputStatusMsg(SafetyStatus status) {
