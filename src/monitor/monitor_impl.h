@@ -106,9 +106,9 @@ struct Monitor::Impl {
   // After the narrow phase at q (shapes at q): every pair certified clear along the straight
   // path from swept.q_start to q, or warned between samples (appended, then sorted).
   void SweepStep(const Eigen::Ref<const Eigen::VectorXd>& q, CycleWork* work);
-  // The pairs SweepStep looks at: the kept ones when every primitive stays within its slack
-  // along the step, else all whose boxes grown by tolerance + step bound overlap.
-  void CollectSweptPairs(bool is_within_slack);
+  // The pairs SweepStep looks at: the kept ones, and those of each primitive that may leave
+  // its slack during the step whose boxes grown by tolerance + step bound overlap.
+  void CollectSweptPairs();
   // Bisects one pair along the step (conservative advancement) from its distance d1_m at q;
   // appends its warning if any.
   void SweepPair(PrimitiveId a, PrimitiveId b, double pair_motion_m, double d1_m,

@@ -36,7 +36,9 @@ void Monitor::Impl::InitSwept() {
   swept.X_WL_start = model.X_WL_start;
   swept.X_WL_s = model.X_WL_start;
   swept.box_W.resize(n);
-  swept.pairs.reserve(static_cast<std::size_t>(n) * (n > 0 ? n - 1 : 0) / 2);
+  swept.leaves_slack.assign(n, 0);
+  // The kept pairs, then those of the primitives leaving their slack (duplicates included).
+  swept.pairs.reserve(static_cast<std::size_t>(n) * (n > 0 ? n - 1 : 0));
   CheckStepTolerance();
 }
 
@@ -93,13 +95,7 @@ void Monitor::Impl::SweepStep(const Eigen::Ref<const Eigen::VectorXd>& q, CycleW
   // indexed primitive stays within its slack along the step: its displacement at q plus its
   // motion from any point of the step to q.
   ComputeStepBound_m(q);
-  bool is_within_slack = true;
-  for (PrimitiveId id = 0; id < model.primitive_count && is_within_slack; ++id) {
-    if (motion.lever_count(id) == 0 || !in_broad_phase[id]) continue;
-    is_within_slack =
-        cache.displacement_m(id) + motion.bound_m(id) <= model.options.index_slack_m;
-  }
-  CollectSweptPairs(is_within_slack);
+  CollectSweptPairs();
   swept.has_start = false;
   const std::size_t discrete = report.warnings.size();
   std::size_t w = 0;
@@ -128,34 +124,50 @@ void Monitor::Impl::SweepStep(const Eigen::Ref<const Eigen::VectorXd>& q, CycleW
   }
 }
 
-void Monitor::Impl::CollectSweptPairs(bool is_within_slack) {
+void Monitor::Impl::CollectSweptPairs() {
+  // The kept pairs. Any other pair's indexed boxes, grown by tolerance + slack, are apart: it
+  // is clear along the step while both primitives stay within their slack, i.e. while each
+  // one's displacement at q plus its motion from any point of the step to q is within it.
   swept.pairs.clear();
-  if (is_within_slack) {
-    // Any other pair's indexed boxes, grown by tolerance + slack, are apart, and both stay
-    // within their slack along the step: clear throughout.
-    for (const KeptPair& kept : cache.pairs()) {
-      swept.pairs.push_back({kept.pair, kept.kinematics_bound_m});
-    }
-    return;
+  for (const KeptPair& kept : cache.pairs()) {
+    swept.pairs.push_back({kept.pair, kept.kinematics_bound_m});
   }
-  // A large step: every pair whose boxes at q, grown by tolerance + step bound, overlap.
-  constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
   const std::uint32_t n = model.primitive_count;
+  bool has_leaver = false;
+  for (PrimitiveId id = 0; id < n; ++id) {
+    const bool has_motion = motion.lever_count(id) > 0 && in_broad_phase[id];
+    swept.leaves_slack[id] =
+        has_motion && !(cache.displacement_m(id) + motion.bound_m(id) <= model.options.index_slack_m);
+    has_leaver = has_leaver || swept.leaves_slack[id];
+  }
+  if (!has_leaver) return;
+  // The pairs of a primitive that may leave its slack during the step: all whose boxes at q,
+  // grown by tolerance + step bound, overlap (kept ones come twice: the one with a bound stays).
+  constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
   for (PrimitiveId id = 0; id < n; ++id) {
     if (!in_broad_phase[id]) continue;
     const double bound_m = motion.lever_count(id) > 0 ? motion.bound_m(id) : 0.0;
     swept.box_W[id] = ComputeAabb(shape_W[id]).Inflated(tol_now[id] + bound_m);
   }
   for (PrimitiveId a = 0; a < n; ++a) {
-    if (!in_broad_phase[a]) continue;
-    for (PrimitiveId b = a + 1; b < n; ++b) {
-      if (!in_broad_phase[b] || (!is_moving[a] && !is_moving[b]) ||
+    if (!swept.leaves_slack[a]) continue;
+    for (PrimitiveId b = 0; b < n; ++b) {
+      if (b == a || !in_broad_phase[b] || (swept.leaves_slack[b] && b < a) ||
           compatible.AreCompatible(a, b) || !swept.box_W[a].Overlaps(swept.box_W[b])) {
         continue;
       }
-      swept.pairs.push_back({CandidatePair{a, b}, kUnknown});
+      swept.pairs.push_back({CandidatePair{std::min(a, b), std::max(a, b)}, kUnknown});
     }
   }
+  std::sort(swept.pairs.begin(), swept.pairs.end(), [](const SweptPair& x, const SweptPair& y) {
+    return x.pair < y.pair || (x.pair == y.pair && !std::isnan(x.end_bound_m) &&
+                               std::isnan(y.end_bound_m));
+  });
+  swept.pairs.erase(std::unique(swept.pairs.begin(), swept.pairs.end(),
+                                [](const SweptPair& x, const SweptPair& y) {
+                                  return x.pair == y.pair;
+                                }),
+                    swept.pairs.end());
 }
 
 void Monitor::Impl::ComputeStepPoses(double s, const Eigen::Ref<const Eigen::VectorXd>& q) {

@@ -36,6 +36,7 @@ struct SweptScratch {
   std::vector<Eigen::Isometry3d> X_WL_s;      // link poses at q_s
   bool has_start = false;
   std::vector<Aabb> box_W;                 // per primitive, grown by tolerance + step bound
+  std::vector<std::uint8_t> leaves_slack;  // per primitive: may leave its slack in the step
   std::vector<SweptPair> pairs;            // this step's pairs, sorted
   // Depth-first bisection: at most one pending sibling per level, plus the current interval.
   std::array<SweptInterval, kMaxSweptBisections + 2> stack;
