@@ -52,7 +52,8 @@ void Monitor::Impl::RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q) {
   // the model's start pose).
   swept.q_start = q_good;
   if (has_good) {
-    work.step_m = ComputeStepBound_m(q);
+    motion.SetJointMotion(q, swept.q_start);
+    work.step_m = motion.ComputeLargestBound_m();
     work.is_jumped = !(work.step_m <= model.options.max_step_m);
   }
   if (IsProvablyClear(q)) {

@@ -106,13 +106,18 @@ struct Monitor::Impl {
   // After the narrow phase at q (shapes at q): every pair certified clear along the straight
   // path from swept.q_start to q, or warned between samples (appended, then sorted).
   void SweepStep(const Eigen::Ref<const Eigen::VectorXd>& q, CycleWork* work);
-  // The pairs SweepStep looks at: the kept ones, and those of each primitive that may leave
-  // its slack during the step whose boxes grown by tolerance + step bound overlap.
-  void CollectSweptPairs();
+  // Into swept.pairs (sorted), the pairs SweepStep looks at besides the kept ones: those of
+  // each primitive that may leave its slack during the step whose bounding balls, grown by
+  // tolerance + step bound, meet. False when no primitive may leave it (none).
+  bool CollectSweptPairs();
   // Bisects one pair along the step (conservative advancement) from its distance d1_m at q;
   // appends its warning if any.
   void SweepPair(PrimitiveId a, PrimitiveId b, double pair_motion_m, double d1_m,
                  const Eigen::Ref<const Eigen::VectorXd>& q, CycleWork* work);
+  // The step bound of `id` (after ComputeStepBound_m; 0 without levers), m.
+  double StepBound_m(PrimitiveId id) const {
+    return motion.lever_count(id) > 0 ? motion.bound_m(id) : 0.0;
+  }
   // Link poses at fraction s of the step into swept.X_WL_s.
   void ComputeStepPoses(double s, const Eigen::Ref<const Eigen::VectorXd>& q);
   // The world shape of `id` for link poses X_WL (the static and free ones: as they are).

@@ -27,6 +27,18 @@ bool IsBefore(const Warning& w, const CandidatePair& p) {
   return w.a < p.a || (w.a == p.a && w.b < p.b);
 }
 
+/// A ball holding `shape`: its centre and radius (m), same frame.
+void BoundingBall(const Shape& shape, Eigen::Vector3d* centre, double* radius_m) {
+  if (const auto* capsule = std::get_if<Capsule>(&shape)) {
+    *centre = 0.5 * (capsule->p0_W + capsule->p1_W);
+    *radius_m = 0.5 * (capsule->p1_W - capsule->p0_W).norm() + capsule->radius_m;
+    return;
+  }
+  const Box& box = std::get<Box>(shape);
+  *centre = box.X_WB.translation();
+  *radius_m = box.half_extents_m.norm();
+}
+
 }  // namespace
 
 void Monitor::Impl::InitSwept() {
@@ -35,10 +47,10 @@ void Monitor::Impl::InitSwept() {
   swept.q_s = model.q_start;
   swept.X_WL_start = model.X_WL_start;
   swept.X_WL_s = model.X_WL_start;
-  swept.box_W.resize(n);
+  swept.centre_W.assign(n, Eigen::Vector3d::Zero());
+  swept.reach_m.assign(n, 0.0);
   swept.leaves_slack.assign(n, 0);
-  // The kept pairs, then those of the primitives leaving their slack (duplicates included).
-  swept.pairs.reserve(static_cast<std::size_t>(n) * (n > 0 ? n - 1 : 0));
+  swept.pairs.reserve(static_cast<std::size_t>(n) * (n > 0 ? n - 1 : 0) / 2);
   CheckStepTolerance();
 }
 
@@ -95,27 +107,41 @@ void Monitor::Impl::SweepStep(const Eigen::Ref<const Eigen::VectorXd>& q, CycleW
   // indexed primitive stays within its slack along the step: its displacement at q plus its
   // motion from any point of the step to q.
   ComputeStepBound_m(q);
-  CollectSweptPairs();
   swept.has_start = false;
   const std::size_t discrete = report.warnings.size();
   std::size_t w = 0;
-  for (const SweptPair& candidate : swept.pairs) {
-    const PrimitiveId a = candidate.pair.a;
-    const PrimitiveId b = candidate.pair.b;
+  auto sweep = [&](const CandidatePair& pair, double end_bound_m, bool is_exact) {
+    const PrimitiveId a = pair.a;
+    const PrimitiveId b = pair.b;
     // A pair warned at q already stops the arm.
-    while (w < discrete && IsBefore(report.warnings[w], candidate.pair)) ++w;
-    if (w < discrete && report.warnings[w].a == a && report.warnings[w].b == b) continue;
+    while (w < discrete && IsBefore(report.warnings[w], pair)) ++w;
+    if (w < discrete && report.warnings[w].a == a && report.warnings[w].b == b) return;
     // Every point of the step is within the pair's relative motion bound of its end.
     const double pair_motion_m = motion.PairBound_m(a, b);
     const double threshold_m = tol_now[a] + tol_now[b];
-    if (cache.IsClear(candidate.end_bound_m, pair_motion_m, threshold_m)) continue;
-    // The exact distance at q (a kept pair's bound may be its indexed copies' distance).
-    const double end_m = ShapeDistance(shape_W[a], shape_W[b]).distance_m;
-    ++work->swept_tests;
-    if (cache.IsClear(end_m, pair_motion_m, threshold_m)) continue;
+    if (cache.IsClear(end_bound_m, pair_motion_m, threshold_m)) return;
+    // The exact distance at q (unless the narrow phase just computed it, a kept pair's bound
+    // is its indexed copies' distance less their displacements).
+    double end_m = end_bound_m;
+    if (!is_exact) {
+      end_m = ShapeDistance(shape_W[a], shape_W[b]).distance_m;
+      ++work->swept_tests;
+      if (cache.IsClear(end_m, pair_motion_m, threshold_m)) return;
+    }
     ++work->swept_pairs;
     SweepPair(a, b, pair_motion_m, end_m, q, work);
+  };
+  // The kept pairs and, merged in order, the others of primitives leaving their slack.
+  CollectSweptPairs();
+  std::size_t extra = 0;
+  const std::vector<SweptPair>& others = swept.pairs;
+  for (const KeptPair& k : cache.pairs()) {
+    for (; extra < others.size() && !(k.pair < others[extra].pair); ++extra) {
+      if (!(others[extra].pair == k.pair)) sweep(others[extra].pair, others[extra].end_bound_m, false);
+    }
+    sweep(k.pair, k.kinematics_bound_m, k.is_exact);
   }
+  for (; extra < others.size(); ++extra) sweep(others[extra].pair, others[extra].end_bound_m, false);
   if (report.warnings.size() > discrete) {
     std::sort(report.warnings.begin(), report.warnings.end(),
               [](const Warning& x, const Warning& y) {
@@ -124,50 +150,50 @@ void Monitor::Impl::SweepStep(const Eigen::Ref<const Eigen::VectorXd>& q, CycleW
   }
 }
 
-void Monitor::Impl::CollectSweptPairs() {
-  // The kept pairs. Any other pair's indexed boxes, grown by tolerance + slack, are apart: it
-  // is clear along the step while both primitives stay within their slack, i.e. while each
-  // one's displacement at q plus its motion from any point of the step to q is within it.
-  swept.pairs.clear();
-  for (const KeptPair& kept : cache.pairs()) {
-    swept.pairs.push_back({kept.pair, kept.kinematics_bound_m});
-  }
+bool Monitor::Impl::CollectSweptPairs() {
+  // Beside the kept pairs: any other pair's indexed boxes, grown by tolerance + slack, are
+  // apart, so it is clear along the step while both primitives stay within their slack, i.e.
+  // while each one's displacement at q plus its motion from any point of the step to q is.
   const std::uint32_t n = model.primitive_count;
   bool has_leaver = false;
   for (PrimitiveId id = 0; id < n; ++id) {
     const bool has_motion = motion.lever_count(id) > 0 && in_broad_phase[id];
-    swept.leaves_slack[id] =
-        has_motion && !(cache.displacement_m(id) + motion.bound_m(id) <= model.options.index_slack_m);
+    swept.leaves_slack[id] = has_motion && !(cache.displacement_m(id) + motion.bound_m(id) <=
+                                             model.options.index_slack_m);
     has_leaver = has_leaver || swept.leaves_slack[id];
   }
-  if (!has_leaver) return;
-  // The pairs of a primitive that may leave its slack during the step: all whose boxes at q,
-  // grown by tolerance + step bound, overlap (kept ones come twice: the one with a bound stays).
-  constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
+  swept.pairs.clear();
+  if (!has_leaver) return false;
+  // The pairs of a primitive that may leave its slack: all whose bounding balls at q, grown by
+  // tolerance + step bound, meet (the kept ones among them are dropped in the merge).
   for (PrimitiveId id = 0; id < n; ++id) {
     if (!in_broad_phase[id]) continue;
-    const double bound_m = motion.lever_count(id) > 0 ? motion.bound_m(id) : 0.0;
-    swept.box_W[id] = ComputeAabb(shape_W[id]).Inflated(tol_now[id] + bound_m);
+    double radius_m = 0.0;
+    BoundingBall(shape_W[id], &swept.centre_W[id], &radius_m);
+    swept.reach_m[id] = radius_m + tol_now[id] + StepBound_m(id);
   }
   for (PrimitiveId a = 0; a < n; ++a) {
     if (!swept.leaves_slack[a]) continue;
     for (PrimitiveId b = 0; b < n; ++b) {
       if (b == a || !in_broad_phase[b] || (swept.leaves_slack[b] && b < a) ||
-          compatible.AreCompatible(a, b) || !swept.box_W[a].Overlaps(swept.box_W[b])) {
+          compatible.AreCompatible(a, b)) {
         continue;
       }
-      swept.pairs.push_back({CandidatePair{std::min(a, b), std::max(a, b)}, kUnknown});
+      const double reach_m = swept.reach_m[a] + swept.reach_m[b];
+      if ((swept.centre_W[a] - swept.centre_W[b]).squaredNorm() > reach_m * reach_m) continue;
+      // The boxes' gap bounds the distance at q from below (they hold the shapes).
+      const Aabb box_a = ComputeAabb(shape_W[a]);
+      const Aabb box_b = ComputeAabb(shape_W[b]);
+      const double gap_m = (box_b.min_W - box_a.max_W)
+                               .cwiseMax(box_a.min_W - box_b.max_W)
+                               .cwiseMax(0.0)
+                               .norm();
+      swept.pairs.push_back({CandidatePair{std::min(a, b), std::max(a, b)}, gap_m, false});
     }
   }
-  std::sort(swept.pairs.begin(), swept.pairs.end(), [](const SweptPair& x, const SweptPair& y) {
-    return x.pair < y.pair || (x.pair == y.pair && !std::isnan(x.end_bound_m) &&
-                               std::isnan(y.end_bound_m));
-  });
-  swept.pairs.erase(std::unique(swept.pairs.begin(), swept.pairs.end(),
-                                [](const SweptPair& x, const SweptPair& y) {
-                                  return x.pair == y.pair;
-                                }),
-                    swept.pairs.end());
+  std::sort(swept.pairs.begin(), swept.pairs.end(),
+            [](const SweptPair& x, const SweptPair& y) { return x.pair < y.pair; });
+  return true;
 }
 
 void Monitor::Impl::ComputeStepPoses(double s, const Eigen::Ref<const Eigen::VectorXd>& q) {

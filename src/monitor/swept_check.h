@@ -20,6 +20,7 @@ namespace arm_collision_monitor {
 struct SweptPair {
   CandidatePair pair;
   double end_bound_m = 0.0;
+  bool is_exact = false;  ///< end_bound_m is the distance itself
 };
 
 /// A sub-interval [s0, s1] of the step (fractions) with the pair's exact distances at its ends.
@@ -35,9 +36,11 @@ struct SweptScratch {
   std::vector<Eigen::Isometry3d> X_WL_start;  // link poses at q_start (has_start)
   std::vector<Eigen::Isometry3d> X_WL_s;      // link poses at q_s
   bool has_start = false;
-  std::vector<Aabb> box_W;                 // per primitive, grown by tolerance + step bound
+  // Per primitive: a bounding ball's centre, and its radius + tolerance + step bound (m).
+  std::vector<Eigen::Vector3d> centre_W;
+  std::vector<double> reach_m;
   std::vector<std::uint8_t> leaves_slack;  // per primitive: may leave its slack in the step
-  std::vector<SweptPair> pairs;            // this step's pairs, sorted
+  std::vector<SweptPair> pairs;            // pairs of those besides the kept ones, sorted
   // Depth-first bisection: at most one pending sibling per level, plus the current interval.
   std::array<SweptInterval, kMaxSweptBisections + 2> stack;
 };

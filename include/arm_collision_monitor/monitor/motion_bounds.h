@@ -81,6 +81,11 @@ class MotionBounds {
     for (int k = 0; k < count; ++k) sums[k + 1] = sums[k] + dq_abs_[l[k].q_index] * l[k].m_per_unit;
     return sums[count];
   }
+  /// The largest ComputeBound_m over all primitives for the joint motion set last (m; 0 when
+  /// none has levers), computed over the undominated ones only: a primitive each of whose
+  /// levers another matches on the same joint with one no smaller never has the larger bound.
+  /// Updates the lever sums of those alone. The set is rebuilt after SetCarrier (no allocation).
+  double ComputeLargestBound_m();
   /// The bound ComputeBound_m(id) returned last (m).
   double bound_m(PrimitiveId id) const { return LeverSums(id)[lever_count_[id]]; }
   /// After ComputeBound_m of both (of those with levers): how far a and b can have moved
@@ -101,6 +106,9 @@ class MotionBounds {
   bool Validate(std::string* why) const;
 
  private:
+  // Whether every lever of p is matched by one of r on the same joint, no smaller.
+  bool Covers(PrimitiveId r, PrimitiveId p) const;
+  void FindUndominated();
   // Slot k: the motion bound from primitive id's k lowest levers (slot 0 is 0).
   double* LeverSums(PrimitiveId id) {
     return &lever_sums_m_[static_cast<std::size_t>(id) * (max_levers_ + 1)];
@@ -119,6 +127,8 @@ class MotionBounds {
   std::vector<Lever> levers_;                 // per primitive, max_levers_ slots
   std::vector<int> lever_count_;              // per primitive
   std::vector<double> lever_sums_m_;          // per primitive, max_levers_ + 1 slots
+  std::vector<PrimitiveId> undominated_;      // ComputeLargestBound_m's primitives
+  bool is_undominated_stale_ = true;          // SetCarrier since they were found
   Eigen::VectorXd dq_abs_;                    // |q - q_from| of the last SetJointMotion
 };
 
