@@ -12,8 +12,8 @@ MonitorOptions LoadMonitorOptions(const std::string& path) {
       root,
       {"broad_phase", "auto_broad_phase", "max_objects_per_leaf", "grid_cells_per_axis",
        "techniques", "tolerance_m", "max_speed_mps", "cycle_period_s", "speed_scaled_tolerance",
-       "reaction_time_s", "stopping_time_s", "index_slack_m", "swept_check", "swept_resolution_m", "max_step_m",
-       "fixed_frame"},
+       "reaction_time_s", "stopping_time_s", "index_slack_m", "swept_check",
+       "swept_resolution_m", "max_step_m", "fixed_frame"},
       top);
   MonitorOptions options;
   if (root["broad_phase"]) {

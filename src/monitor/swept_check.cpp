@@ -3,10 +3,10 @@
 // driver interpolates). On that path the joint motion over a sub-interval [s0, s1] is
 // (s1 - s0) |q1 - q0|, so the motion bounds of the whole step (MotionBounds: joint deltas times
 // lever arms) scale linearly to any sub-interval. A pair is certified clear when its distance,
-// less its relative motion bound, clears the threshold (conservative advancement; Mirtich,
-// "Timewarp rigid body simulation", SIGGRAPH 2000, section 4, for the bound-and-advance idea);
-// else the interval is bisected until a sample warns or the interval's relative motion is at
-// most twice the resolution, where a sample within threshold + resolution exists.
+// less its relative motion bound, clears the threshold (conservative advancement, after
+// B. Mirtich, Impulse-based Dynamic Simulation of Rigid Body Systems, PhD thesis, UC Berkeley,
+// 1996); else the interval is bisected until a sample warns or the interval's relative motion
+// is at most twice the resolution, where a sample within threshold + resolution exists.
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -137,11 +137,14 @@ void Monitor::Impl::SweepStep(const Eigen::Ref<const Eigen::VectorXd>& q, CycleW
   const std::vector<SweptPair>& others = swept.pairs;
   for (const KeptPair& k : cache.pairs()) {
     for (; extra < others.size() && !(k.pair < others[extra].pair); ++extra) {
-      if (!(others[extra].pair == k.pair)) sweep(others[extra].pair, others[extra].end_bound_m, false);
+      const SweptPair& o = others[extra];
+      if (!(o.pair == k.pair)) sweep(o.pair, o.end_bound_m, false);
     }
     sweep(k.pair, k.kinematics_bound_m, k.is_exact);
   }
-  for (; extra < others.size(); ++extra) sweep(others[extra].pair, others[extra].end_bound_m, false);
+  for (; extra < others.size(); ++extra) {
+    sweep(others[extra].pair, others[extra].end_bound_m, false);
+  }
   if (report.warnings.size() > discrete) {
     std::sort(report.warnings.begin(), report.warnings.end(),
               [](const Warning& x, const Warning& y) {
@@ -208,7 +211,7 @@ void Monitor::Impl::SweepPair(PrimitiveId a, PrimitiveId b, double pair_motion_m
     model.kinematics->ComputeMovingLinkPoses(swept.q_start, &swept.X_WL_start);
     swept.has_start = true;
   }
-  // Appends the warning at fraction s for link poses X (true: done with this pair).
+  // Appends the pair's warning at fraction s of the step, for the link poses X there.
   auto warn_at = [&](double s, const std::vector<Eigen::Isometry3d>& X) {
     const DistanceResult d = ShapeDistance(ShapeAt(a, X), ShapeAt(b, X));
     Warning warning;
