@@ -65,6 +65,7 @@ void Monitor::Impl::RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q) {
     RecordCycle(CycleKind::kBounded, InputStatus::kOk, work);
     return;
   }
+  if (model.options.swept_check) RecordStartDisplacements();
   work.moved = FollowKinematics(q);
   q_good = q;
   work.narrow_phase_tests = TestCandidatePairs();

@@ -110,6 +110,10 @@ struct Monitor::Impl {
   // each primitive that may leave its slack during the step whose bounding balls, grown by
   // tolerance + step bound, meet. False when no primitive may leave it (none).
   bool CollectSweptPairs();
+  // Before the kinematics: a bound on each primitive's displacement from its indexed copy at
+  // the step's start (its displacement at the last kinematics plus its motion bound since),
+  // unless the index changed since (swept.has_start_displacement).
+  void RecordStartDisplacements();
   // Bisects one pair along the step (conservative advancement) from its distance d1_m at q;
   // appends its warning if any.
   void SweepPair(PrimitiveId a, PrimitiveId b, double pair_motion_m, double d1_m,

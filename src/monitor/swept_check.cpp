@@ -50,6 +50,8 @@ void Monitor::Impl::InitSwept() {
   swept.centre_W.assign(n, Eigen::Vector3d::Zero());
   swept.reach_m.assign(n, 0.0);
   swept.leaves_slack.assign(n, 0);
+  swept.start_displacement_m.assign(n, 0.0);
+  swept.is_reindexed.assign(n, 0);
   swept.pairs.reserve(static_cast<std::size_t>(n) * (n > 0 ? n - 1 : 0) / 2);
   CheckStepTolerance();
 }
@@ -153,18 +155,42 @@ void Monitor::Impl::SweepStep(const Eigen::Ref<const Eigen::VectorXd>& q, CycleW
   }
 }
 
+void Monitor::Impl::RecordStartDisplacements() {
+  swept.has_start_displacement = has_good && !cache.is_stale();
+  if (!swept.has_start_displacement) return;
+  // After bounded cycles the last kinematics is behind q_start: add the motion since (the lever
+  // sums are recomputed for the step in SweepStep).
+  if (kinematics_behind) motion.SetJointMotion(swept.q_start, q_kinematics);
+  for (PrimitiveId id = 0; id < model.primitive_count; ++id) {
+    const bool has_moved = kinematics_behind && motion.lever_count(id) > 0;
+    swept.start_displacement_m[id] =
+        cache.displacement_m(id) + (has_moved ? motion.ComputeBound_m(id) : 0.0);
+  }
+}
+
 bool Monitor::Impl::CollectSweptPairs() {
   // Beside the kept pairs: any other pair's indexed boxes, grown by tolerance + slack, are
-  // apart, so it is clear along the step while both primitives stay within their slack, i.e.
-  // while each one's displacement at q plus its motion from any point of the step to q is.
+  // apart, so it is clear along the step while both primitives stay within their slack. At
+  // fraction s a primitive is within d1 + (1 - s) B of its indexed copy (d1: its displacement
+  // at q, B: its step bound) and, when its copy is the one it had at the start, within
+  // d0 + s B too (d0: its displacement there); the larger of the smaller is (d0 + d1 + B) / 2.
   const std::uint32_t n = model.primitive_count;
+  const double slack_m = model.options.index_slack_m;
+  for (const PrimitiveId id : cache.reindexed()) swept.is_reindexed[id] = 1;
   bool has_leaver = false;
   for (PrimitiveId id = 0; id < n; ++id) {
-    const bool has_motion = motion.lever_count(id) > 0 && in_broad_phase[id];
-    swept.leaves_slack[id] = has_motion && !(cache.displacement_m(id) + motion.bound_m(id) <=
-                                             model.options.index_slack_m);
-    has_leaver = has_leaver || swept.leaves_slack[id];
+    bool leaves = false;
+    if (motion.lever_count(id) > 0 && in_broad_phase[id]) {
+      const double end_m = cache.displacement_m(id) + motion.bound_m(id);
+      leaves = !(end_m <= slack_m);
+      if (leaves && swept.has_start_displacement && !swept.is_reindexed[id]) {
+        leaves = !(0.5 * (swept.start_displacement_m[id] + end_m) <= slack_m);
+      }
+    }
+    swept.leaves_slack[id] = leaves;
+    has_leaver = has_leaver || leaves;
   }
+  for (const PrimitiveId id : cache.reindexed()) swept.is_reindexed[id] = 0;
   swept.pairs.clear();
   if (!has_leaver) return false;
   // The pairs of a primitive that may leave its slack: all whose bounding balls at q, grown by

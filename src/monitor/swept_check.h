@@ -40,6 +40,11 @@ struct SweptScratch {
   std::vector<Eigen::Vector3d> centre_W;
   std::vector<double> reach_m;
   std::vector<std::uint8_t> leaves_slack;  // per primitive: may leave its slack in the step
+  // Per primitive: a bound on its displacement from its indexed copy at q_start (m), when
+  // has_start_displacement (the index unchanged since the last kinematics).
+  std::vector<double> start_displacement_m;
+  bool has_start_displacement = false;
+  std::vector<std::uint8_t> is_reindexed;  // per primitive, this cycle (scratch)
   std::vector<SweptPair> pairs;            // pairs of those besides the kept ones, sorted
   // Depth-first bisection: at most one pending sibling per level, plus the current interval.
   std::array<SweptInterval, kMaxSweptBisections + 2> stack;
