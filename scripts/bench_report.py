@@ -577,6 +577,52 @@ def section_fidelity_cylinders(rows, out_dir, md):
     md.append(f"\n![cylinders]({save(fig, out_dir, 'fidelity_cylinders.png')})\n")
 
 
+def section_swept(rows, out_dir, md):
+    """The Monitor's swept check at each check rate (temporal.csv's swept columns)."""
+    md.append("\n### The swept check at each rate\n\n")
+    md.append("The default Monitor (swept_check on) run at each schedule on the same time-scaled "
+              "tasks: a warning event or contact counts as warned when a check whose step "
+              "reaches into it reports the pair (at its sample or between samples; a contact at "
+              "the latest by the check ending its step). Cost per cycle beside the same Monitor "
+              "checking the samples only (swept_check off, which needs a 2 ms cycle_period_s "
+              "to start: its octree's smallest cell is 10 cm instead of 13). *path needed* = "
+              "cycles whose swept check needed the path (a pair's distance at the step's "
+              "start).\n\n")
+    md.append(table(["scene", "speed m/s", "schedule", "contacts", "unwarned (samples)",
+                     "unwarned (swept)", "events missed (swept)", "us / cycle swept",
+                     "us / cycle samples only", "path needed %"],
+                    [[r["scene"], fmt(r["speed_mps"]), r["schedule"], r["contacts"],
+                      r["missed_contacts"], r["swept_unwarned_contacts"],
+                      r["swept_missed_events"], fmt(r["swept_us_per_cycle"]),
+                      fmt(r["samples_us_per_cycle"]),
+                      fmt(100.0 * num(r["swept_path_fraction"]))] for r in rows]))
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4))
+    for (scene, speed) in sorted({(r["scene"], r["speed_mps"]) for r in rows}):
+        sel = [r for r in rows if r["speed_mps"] == speed and r["scene"] == scene]
+        rates = [num(r["checks_per_s"]) for r in sel]
+        label = f"{scene}, {num(speed):.2f} m/s"
+        axes[0].plot(rates, [100.0 * num(r["missed_contacts"]) / max(1.0, num(r["contacts"]))
+                             for r in sel], "o--", label=f"{label}, samples")
+        axes[0].plot(rates, [100.0 * num(r["swept_unwarned_contacts"]) /
+                             max(1.0, num(r["contacts"])) for r in sel], "s-",
+                     label=f"{label}, swept")
+        line, = axes[1].plot(rates, [num(r["swept_us_per_cycle"]) for r in sel], "s-",
+                             label=f"{label}, swept")
+        axes[1].plot(rates, [num(r["samples_us_per_cycle"]) for r in sel], "o--",
+                     color=line.get_color(), label=f"{label}, samples only")
+    for ax in axes:
+        ax.set_xscale("log")
+        ax.set_xlabel("checks per second")
+        ax.grid(True, which="both", alpha=0.3)
+    axes[0].set_ylabel("contacts unwarned (%)")
+    axes[0].set_title("Unwarned contacts: samples only against swept", fontsize=8)
+    axes[1].set_ylabel("us per cycle")
+    axes[1].set_title("Cost per cycle", fontsize=8)
+    axes[0].legend(fontsize=6)
+    axes[1].legend(fontsize=6)
+    md.append(f"\n![swept]({save(fig, out_dir, 'temporal_swept.png')})\n")
+
+
 def section_tradeoffs(out_dir, md):
     rows = read(out_dir, "fidelity.csv")
     if rows:
@@ -618,6 +664,8 @@ def section_tradeoffs(out_dir, md):
         ax.grid(True, which="both", alpha=0.3)
         ax.legend()
         md.append(f"\n![temporal]({save(fig, out_dir, 'temporal.png')})\n")
+        if "swept_unwarned_contacts" in rows[0]:
+            section_swept(rows, out_dir, md)
     rows = read(out_dir, "float_double.csv")
     if rows:
         md.append("\n## 8c. Run time against error: float against double\n\n")

@@ -48,6 +48,14 @@ void Monitor::Impl::RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q) {
   total += broad_phase->counters();
   broad_phase->ResetCounters();
   CycleWork work;
+  // The step from the last accepted q (none before the first good cycle: q_good is then only
+  // the model's start pose).
+  swept.q_start = q_good;
+  if (has_good) {
+    motion.SetJointMotion(q, swept.q_start);
+    work.step_m = motion.ComputeLargestBound_m();
+    work.is_jumped = !(work.step_m <= model.options.max_step_m);
+  }
   if (IsProvablyClear(q)) {
     // Every kept pair is clear, and every other pair's indexed boxes are apart while both
     // primitives stay within their slack: no warning, and the kinematics can wait.
@@ -57,9 +65,12 @@ void Monitor::Impl::RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q) {
     RecordCycle(CycleKind::kBounded, InputStatus::kOk, work);
     return;
   }
+  if (model.options.swept_check) RecordStartDisplacements();
   work.moved = FollowKinematics(q);
   q_good = q;
   work.narrow_phase_tests = TestCandidatePairs();
+  // A jump is swept too: its stop is requested anyway, and what its path meets is reported.
+  if (model.options.swept_check && work.step_m > 0.0) SweepStep(q, &work);
   work.reindexed = static_cast<std::uint32_t>(cache.reindexed().size());
   work.candidate_pairs = static_cast<std::uint32_t>(cache.pairs().size());
   RecordCycle(CycleKind::kKinematics, InputStatus::kOk, work);
@@ -82,7 +93,13 @@ bool Monitor::Impl::IsProvablyClear(const Eigen::Ref<const Eigen::VectorXd>& q) 
       report.input != InputStatus::kOk) {
     return false;
   }
-  motion.SetJointMotion(q, q_kinematics);
+  // With the swept check, bounds for every point of the step from q_good to q: what they
+  // certify then holds along the whole path.
+  if (model.options.swept_check) {
+    motion.SetSegmentMotion(q_good, q, q_kinematics);
+  } else {
+    motion.SetJointMotion(q, q_kinematics);
+  }
   const double slack_m = model.options.index_slack_m;
   for (PrimitiveId id = 0; id < live_end; ++id) {
     if (motion.lever_count(id) == 0) continue;
@@ -201,8 +218,9 @@ double Monitor::Impl::TestPair(PrimitiveId a, PrimitiveId b, const std::vector<S
 
 void Monitor::Impl::RecordCycle(CycleKind kind, InputStatus input, const CycleWork& work) {
   ++report.cycle;
-  // An idle cycle repeats the last good report (input kOk); a refused one keeps its warnings;
-  // a bounded one has none; a kinematics cycle has the narrow phase's.
+  // An idle cycle repeats the last good report (input kOk) but for the swept check's warnings;
+  // a refused one keeps its warnings; a bounded one has none; a kinematics cycle has the narrow
+  // phase's and the swept check's.
   if (kind == CycleKind::kBounded) report.warnings.clear();
   report.input = input;
   report.stop = input != InputStatus::kOk || !report.warnings.empty();
@@ -211,6 +229,19 @@ void Monitor::Impl::RecordCycle(CycleKind kind, InputStatus input, const CycleWo
   report.candidate_pairs = work.candidate_pairs;
   report.narrow_phase_tests = work.narrow_phase_tests;
   report.bounded = kind == CycleKind::kBounded;
+  // An idle cycle is a step of zero: the last step's between-samples warnings go (in place).
+  if (kind == CycleKind::kIdle) {
+    report.warnings.erase(std::remove_if(report.warnings.begin(), report.warnings.end(),
+                                         [](const Warning& w) { return w.between_samples; }),
+                          report.warnings.end());
+    report.stop = !report.warnings.empty();
+  }
+  report.step_motion_m = work.step_m;
+  report.input_jumped = work.is_jumped;
+  report.stop = report.stop || report.input_jumped;
+  report.swept_pairs = work.swept_pairs;
+  report.swept_distance_tests = work.swept_tests;
+  if (work.swept_pairs > 0) ++swept_cycles;
   report.counters = BroadPhaseCounters{};
   if (kind == CycleKind::kKinematics) {
     report.counters = broad_phase->counters();
@@ -232,6 +263,7 @@ Monitor::Impl::Impl(std::shared_ptr<const Workcell> workcell, const MonitorOptio
     : model(std::move(workcell), options) {
   InitData();
   BuildBroadPhase();
+  InitSwept();
 }
 
 void Monitor::Impl::InitData() {
@@ -299,6 +331,8 @@ void Monitor::CollectIndexCells(std::vector<IndexCell>* cells) const {
 const BroadPhaseCounters& Monitor::total_counters() const { return impl_->total; }
 std::uint64_t Monitor::refused_inputs() const { return impl_->refused; }
 std::string Monitor::broad_phase_name() const { return impl_->broad_phase->name(); }
+const std::vector<std::string>& Monitor::startup_notices() const { return impl_->notices; }
+std::uint64_t Monitor::swept_cycles() const { return impl_->swept_cycles; }
 double Monitor::tolerance_m(PrimitiveId id) const { return impl_->tol_now[id]; }
 
 }  // namespace arm_collision_monitor

@@ -17,6 +17,7 @@
 #include "arm_collision_monitor/monitor/monitor_model.h"
 #include "arm_collision_monitor/monitor/motion_bounds.h"
 #include "arm_collision_monitor/monitor/pair_cache.h"
+#include "swept_check.h"
 
 namespace arm_collision_monitor {
 
@@ -67,6 +68,9 @@ struct Monitor::Impl {
   CycleReport report;
   BroadPhaseCounters total;
   std::uint64_t refused = 0;
+  SweptScratch swept;                   // the swept check's scratch (swept_check.h)
+  std::uint64_t swept_cycles = 0;       // cycles whose swept check bisected some pair
+  std::vector<std::string> notices;     // start-up notices (CheckStepTolerance)
 
   Impl(std::shared_ptr<const Workcell> workcell, const MonitorOptions& options);
   // The data's start state (from the model's) and the index.
@@ -81,6 +85,10 @@ struct Monitor::Impl {
     std::uint32_t reindexed = 0;
     std::uint32_t candidate_pairs = 0;
     std::uint32_t narrow_phase_tests = 0;
+    double step_m = 0.0;  // largest motion bound over primitives since the last accepted q
+    bool is_jumped = false;
+    std::uint32_t swept_pairs = 0;
+    std::uint32_t swept_tests = 0;
   };
   InputStatus CheckInput(const Eigen::Ref<const Eigen::VectorXd>& q) const;
   bool IsIdle(const Eigen::Ref<const Eigen::VectorXd>& q) const {
@@ -101,6 +109,40 @@ struct Monitor::Impl {
   std::uint32_t ReindexMoved();
   // The narrow phase over the kept pairs into report.warnings; returns the tests done.
   std::uint32_t TestCandidatePairs();
+  // --- the swept check (swept_check.cpp) -----------------------------------------------------
+  // Start-up: the swept scratch, and the notice (or, with swept_check off, the LoadError) for
+  // a moving primitive whose tolerance is below its per-cycle motion.
+  void InitSwept();
+  void CheckStepTolerance();
+  // The step bounds from swept.q_start to q (lever sums for PairBound_m); returns the largest
+  // (m).
+  double ComputeStepBound_m(const Eigen::Ref<const Eigen::VectorXd>& q);
+  // After the narrow phase at q (shapes at q): every pair certified clear along the straight
+  // path from swept.q_start to q, or warned between samples (appended, then sorted).
+  void SweepStep(const Eigen::Ref<const Eigen::VectorXd>& q, CycleWork* work);
+  // Into swept.pairs (sorted), the pairs SweepStep looks at besides the kept ones: those of
+  // each primitive that may leave its slack during the step whose bounding balls, grown by
+  // tolerance + step bound, meet. False when no primitive may leave it (none).
+  bool CollectSweptPairs();
+  // Before the kinematics: a bound on each primitive's displacement from its indexed copy at
+  // the step's start (its displacement at the last kinematics plus its motion bound since),
+  // unless the index changed since (swept.has_start_displacement).
+  void RecordStartDisplacements();
+  // Bisects one pair along the step (conservative advancement) from its distance d1_m at q;
+  // appends its warning if any.
+  void SweepPair(PrimitiveId a, PrimitiveId b, double pair_motion_m, double d1_m,
+                 const Eigen::Ref<const Eigen::VectorXd>& q, CycleWork* work);
+  // The step bound of `id` (after ComputeStepBound_m; 0 without levers), m.
+  double StepBound_m(PrimitiveId id) const {
+    return motion.lever_count(id) > 0 ? motion.bound_m(id) : 0.0;
+  }
+  // Link poses at fraction s of the step into swept.X_WL_s.
+  void ComputeStepPoses(double s, const Eigen::Ref<const Eigen::VectorXd>& q);
+  // The world shape of `id` for link poses X_WL (the static and free ones: as they are).
+  Shape ShapeAt(PrimitiveId id, const std::vector<Eigen::Isometry3d>& X_WL_at) const {
+    return carrier[id] < 0 ? shape_W[id] : TransformShape(X_WL_at[carrier[id]], shape_C[id]);
+  }
+
   // The one place the report is written (the narrow phase fills its warnings).
   void RecordCycle(CycleKind kind, InputStatus input, const CycleWork& work);
   // After bounded cycles: the kinematics (shapes, index, kept pairs) brought to q_good, for

@@ -21,7 +21,8 @@ MonitorOptions LoadMonitorOptions(const std::string& path) {
       root,
       {"broad_phase", "max_objects_per_leaf", "grid_cells_per_axis",
        "techniques", "tolerance_m", "max_speed_mps", "cycle_period_s", "speed_scaled_tolerance",
-       "reaction_time_s", "stopping_time_s", "index_slack_m", "fixed_frame", "live_objects"},
+       "reaction_time_s", "stopping_time_s", "index_slack_m", "swept_check",
+       "swept_resolution_m", "max_step_m", "fixed_frame", "live_objects"},
       top);
   MonitorOptions options;
   if (root["broad_phase"]) {
@@ -69,6 +70,10 @@ MonitorOptions LoadMonitorOptions(const std::string& path) {
                 &options.speed_scaled_tolerance);
   ReadIfPresent(root, "index_slack_m", top, yaml_fields::ReadNonNegativeDouble,
                 &options.index_slack_m);
+  ReadIfPresent(root, "swept_check", top, yaml_fields::ReadBool, &options.swept_check);
+  ReadIfPresent(root, "swept_resolution_m", top, yaml_fields::ReadPositiveDouble,
+                &options.swept_resolution_m);
+  ReadIfPresent(root, "max_step_m", top, yaml_fields::ReadPositiveDouble, &options.max_step_m);
   ReadIfPresent(root, "fixed_frame", top, yaml_fields::ReadName, &options.fixed_frame);
   if (root["live_objects"]) {
     const YAML::Node live = root["live_objects"];

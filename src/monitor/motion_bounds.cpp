@@ -57,12 +57,62 @@ MotionBounds::MotionBounds(const KinematicModel& model, std::uint32_t primitive_
   lever_sums_m_.assign(static_cast<std::size_t>(primitive_count) * (max_levers_ + 1), 0.0);
   levers_.assign(static_cast<std::size_t>(primitive_count) * max_levers_, Lever{});
   lever_count_.assign(primitive_count, 0);
+  undominated_.reserve(primitive_count);
   dq_abs_ = Eigen::VectorXd::Zero(model.q_size());
+}
+
+bool MotionBounds::Covers(PrimitiveId r, PrimitiveId p) const {
+  const Lever* lr = levers(r);
+  const Lever* lp = levers(p);
+  for (int k = 0; k < lever_count_[p]; ++k) {
+    bool is_matched = false;
+    for (int i = 0; i < lever_count_[r] && !is_matched; ++i) {
+      is_matched = lr[i].q_index == lp[k].q_index && lr[i].m_per_unit >= lp[k].m_per_unit;
+    }
+    if (!is_matched) return false;
+  }
+  return true;
+}
+
+void MotionBounds::FindUndominated() {
+  undominated_.clear();
+  const auto n = static_cast<PrimitiveId>(lever_count_.size());
+  for (PrimitiveId p = 0; p < n; ++p) {
+    if (lever_count_[p] == 0) continue;
+    // Two levers on one joint (a mimic joint above its target): one matching lever would not
+    // cover their sum, so such a primitive is always kept.
+    const Lever* lp = levers(p);
+    bool is_dominated = false;
+    for (int k = 0; k < lever_count_[p]; ++k) {
+      for (int i = 0; i < k; ++i) is_dominated = is_dominated || lp[i].q_index == lp[k].q_index;
+    }
+    if (is_dominated) {
+      undominated_.push_back(p);
+      continue;
+    }
+    for (PrimitiveId r = 0; r < n && !is_dominated; ++r) {
+      // Equal lever sets: the lower id stands for both.
+      is_dominated = r != p && lever_count_[r] > 0 && Covers(r, p) && (!Covers(p, r) || r < p);
+    }
+    if (!is_dominated) undominated_.push_back(p);
+  }
+  is_undominated_stale_ = false;
+}
+
+double MotionBounds::ComputeLargestBound_m() {
+  if (is_undominated_stale_) FindUndominated();
+  double largest_m = 0.0;
+  for (const PrimitiveId id : undominated_) {
+    const double bound_m = ComputeBound_m(id);
+    if (!(bound_m <= largest_m)) largest_m = bound_m;  // NaN and inf propagate
+  }
+  return largest_m;
 }
 
 void MotionBounds::SetCarrier(PrimitiveId id, int link, bool is_moving, const Shape& shape_L) {
   carrier_[id] = link;
   lever_count_[id] = 0;
+  is_undominated_stale_ = true;
   if (link < 0 || !is_moving) return;
   // The primitive reaches at most `extent` from its link's origin, and a joint's origin at
   // most the chain of joint offsets (plus prismatic travel) below it from there; a point's

@@ -44,7 +44,10 @@ bool PairCache::FollowMoved(PrimitiveId id, const Shape& shape_W) {
 
 void PairCache::Update(BroadPhase* broad_phase, const CompatibilityMatrix& compatible) {
   UpdatePairs(broad_phase, compatible);
-  for (KeptPair& kept : pairs_) kept.kinematics_bound_m = KinematicsBound_m(kept);
+  for (KeptPair& kept : pairs_) {
+    kept.kinematics_bound_m = KinematicsBound_m(kept);
+    kept.is_exact = false;
+  }
 }
 
 void PairCache::UpdatePairs(BroadPhase* broad_phase, const CompatibilityMatrix& compatible) {
@@ -52,7 +55,7 @@ void PairCache::UpdatePairs(BroadPhase* broad_phase, const CompatibilityMatrix& 
   if (is_stale_) {
     broad_phase->FindPairs(compatible, &found_);
     pairs_.clear();
-    for (const CandidatePair& p : found_) pairs_.push_back({p, kUnknown});
+    for (const CandidatePair& p : found_) pairs_.push_back({p, kUnknown, kUnknown, false});
     is_stale_ = false;
     return;
   }
@@ -81,7 +84,7 @@ void PairCache::UpdatePairs(BroadPhase* broad_phase, const CompatibilityMatrix& 
   auto old_it = pairs_.begin();
   for (const CandidatePair& p : new_pairs_) {
     while (old_it != pairs_.end() && old_it->pair < p) scratch_.push_back(*old_it++);
-    scratch_.push_back({p, kUnknown});
+    scratch_.push_back({p, kUnknown, kUnknown, false});
   }
   scratch_.insert(scratch_.end(), old_it, pairs_.end());
   pairs_.swap(scratch_);

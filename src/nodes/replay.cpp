@@ -190,10 +190,14 @@ Input ReadCsv(const std::string& path, const Workcell& workcell) {
   return result;
 }
 
-// One cycle's outcome: warning pairs with their distances, and the wall time of the check.
+// One cycle's outcome: warning pairs with their distances at the cycle's q, those the swept
+// check found between the previous cycle's q and this one's (the Monitor only: the peers check
+// the samples), and the wall time of the check.
 struct CycleResult {
   std::vector<Warning> warnings;
+  std::vector<Warning> between_samples;
   bool refused = false;
+  bool is_jumped = false;
   double time_s = 0.0;
 };
 
@@ -203,6 +207,8 @@ class Checker {
   virtual ~Checker() = default;
   virtual void Run(const Eigen::VectorXd& q, CycleResult* result) = 0;
   virtual BroadPhaseCounters counters() const { return {}; }
+  /// Whether the steps between samples are checked too (the Monitor's swept check).
+  virtual bool is_swept() const { return false; }
 };
 
 class MonitorChecker : public Checker {
@@ -210,6 +216,9 @@ class MonitorChecker : public Checker {
   MonitorChecker(std::shared_ptr<const Workcell> workcell, const MonitorOptions& options,
                  const std::vector<TaskGraspTarget>& targets)
       : monitor_(std::move(workcell), options) {
+    for (const std::string& notice : monitor_.startup_notices()) {
+      std::fprintf(stderr, "replay: %s\n", notice.c_str());
+    }
     for (const TaskGraspTarget& t : targets) {
       std::string error;
       if (!monitor_.SetGraspTarget(t.link, t.object, true, &error)) {
@@ -222,10 +231,16 @@ class MonitorChecker : public Checker {
     const CycleReport& report = monitor_.Update(q);
     result->time_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    result->warnings = report.warnings;
+    result->warnings.clear();
+    result->between_samples.clear();
+    for (const Warning& w : report.warnings) {
+      (w.between_samples ? result->between_samples : result->warnings).push_back(w);
+    }
     result->refused = report.input != InputStatus::kOk;
+    result->is_jumped = report.input_jumped;
   }
   BroadPhaseCounters counters() const override { return monitor_.total_counters(); }
+  bool is_swept() const override { return monitor_.options().swept_check; }
 
  private:
   Monitor monitor_;
@@ -342,7 +357,10 @@ std::unique_ptr<Checker> MakeChecker(const Options& options,
 // What both output formats report about the whole run.
 struct RunSummary {
   std::uint64_t warning_cycles = 0, refused_cycles = 0;
-  int first = -1;  ///< the first cycle with a warning, -1 if none
+  int first = -1;  ///< the first cycle with a warning at its q, -1 if none
+  std::uint64_t between_cycles = 0;  ///< cycles with a warning between samples (swept check)
+  int first_between = -1;            ///< the first of those, -1 if none
+  std::uint64_t jumped_cycles = 0;   ///< steps beyond max_step_m
   TimingSummary time_s;
   BroadPhaseCounters counters;
   std::uint64_t refused_messages = 0;
@@ -359,6 +377,11 @@ RunSummary Summarize(const Input& input, const std::vector<CycleResult>& cycles,
       ++summary.warning_cycles;
       if (summary.first < 0) summary.first = static_cast<int>(k);
     }
+    if (!cycles[k].between_samples.empty()) {
+      ++summary.between_cycles;
+      if (summary.first_between < 0) summary.first_between = static_cast<int>(k);
+    }
+    summary.jumped_cycles += cycles[k].is_jumped;
   }
   summary.time_s = SummarizeTimings(std::move(times));
   summary.counters = checker.counters();
@@ -368,9 +391,10 @@ RunSummary Summarize(const Input& input, const std::vector<CycleResult>& cycles,
 
 // The JSON header: input, method, grasp targets, message and cycle counts.
 void PrintJsonCounts(const Options& options, const Input& input, std::size_t cycle_count,
-                     const RunSummary& summary) {
-  std::printf("{\n  \"input\": %s,\n  \"method\": %s,\n", JsonString(options.input).c_str(),
-              JsonString(options.method).c_str());
+                     const RunSummary& summary, bool is_swept) {
+  std::printf("{\n  \"input\": %s,\n  \"method\": %s,\n  \"swept_check\": %s,\n",
+              JsonString(options.input).c_str(), JsonString(options.method).c_str(),
+              is_swept ? "true" : "false");
   std::printf("  \"grasp_targets\": [");
   for (std::size_t i = 0; i < options.grasp_targets.size(); ++i) {
     std::printf("%s[%s, %s]", i ? ", " : "", JsonString(options.grasp_targets[i].link).c_str(),
@@ -385,16 +409,20 @@ void PrintJsonCounts(const Options& options, const Input& input, std::size_t cyc
     comma = true;
   }
   std::printf("},\n  \"incomplete_cycles\": %llu,\n  \"cycles\": %zu,\n"
-              "  \"refused_cycles\": %llu,\n  \"warning_cycles\": %llu,\n",
+              "  \"refused_cycles\": %llu,\n  \"warning_cycles\": %llu,\n"
+              "  \"between_samples_cycles\": %llu,\n  \"jumped_cycles\": %llu,\n",
               static_cast<unsigned long long>(input.incomplete_cycles), cycle_count,
               static_cast<unsigned long long>(summary.refused_cycles),
-              static_cast<unsigned long long>(summary.warning_cycles));
+              static_cast<unsigned long long>(summary.warning_cycles),
+              static_cast<unsigned long long>(summary.between_cycles),
+              static_cast<unsigned long long>(summary.jumped_cycles));
 }
 
 void PrintJson(const Options& options, const Workcell& wc, const Input& input,
-               const std::vector<CycleResult>& cycles, const RunSummary& summary) {
+               const std::vector<CycleResult>& cycles, const RunSummary& summary,
+               bool is_swept) {
   auto name = [&](PrimitiveId id) { return JsonString(wc.primitives[id].name); };
-  PrintJsonCounts(options, input, cycles.size(), summary);
+  PrintJsonCounts(options, input, cycles.size(), summary, is_swept);
   if (summary.first >= 0) {
     const Warning& w = cycles[summary.first].warnings.front();
     std::printf("  \"first_warning\": {\"cycle\": %d, \"time_s\": %.3f, \"a\": %s, \"b\": %s, "
@@ -419,7 +447,8 @@ void PrintJson(const Options& options, const Workcell& wc, const Input& input,
               static_cast<unsigned long long>(c.merges),
               static_cast<unsigned long long>(c.reinsert_fallbacks),
               static_cast<unsigned long long>(c.outside_world));
-  // One entry per cycle: [[a, b, distance_m], ...] (empty when clear).
+  // One entry per cycle: [[a, b, distance_m], ...] at its q (empty when clear), and the swept
+  // check's [[a, b, distance_m, step_fraction], ...] between the previous cycle's q and this.
   std::printf("  \"per_cycle\": [");
   for (std::size_t k = 0; k < cycles.size(); ++k) {
     std::printf("%s\n    {\"cycle\": %zu, \"time_s\": %.3f, \"refused\": %s, \"warnings\": [",
@@ -428,6 +457,12 @@ void PrintJson(const Options& options, const Workcell& wc, const Input& input,
       const Warning& w = cycles[k].warnings[i];
       std::printf("%s[%s, %s, %.9g]", i ? ", " : "", name(w.a).c_str(), name(w.b).c_str(),
                   w.distance_m);
+    }
+    std::printf("], \"between_samples\": [");
+    for (std::size_t i = 0; i < cycles[k].between_samples.size(); ++i) {
+      const Warning& w = cycles[k].between_samples[i];
+      std::printf("%s[%s, %s, %.9g, %.9g]", i ? ", " : "", name(w.a).c_str(), name(w.b).c_str(),
+                  w.distance_m, w.step_fraction);
     }
     std::printf("]}");
   }
@@ -463,11 +498,31 @@ void PrintWarningRuns(const Workcell& wc, const Input& input,
   }
 }
 
+// The swept check's warnings, one line each (first few), and a count.
+void PrintBetweenSamples(const Workcell& wc, const Input& input,
+                         const std::vector<CycleResult>& cycles, const RunSummary& summary) {
+  constexpr int kMaxLines = 20;
+  int lines = 0;
+  for (std::size_t k = 0; k < cycles.size() && lines < kMaxLines; ++k) {
+    for (const Warning& w : cycles[k].between_samples) {
+      if (lines++ == kMaxLines) break;
+      std::printf("cycle %zu (%.2f s), between samples at %.3f of the step: %s -- %s  %.4f m "
+                  "(threshold %.4f m)\n",
+                  k, input.time_s[k], w.step_fraction, wc.primitives[w.a].name.c_str(),
+                  wc.primitives[w.b].name.c_str(), w.distance_m, w.threshold_m);
+    }
+  }
+  std::printf("swept check: %llu cycles warn between samples, %llu steps beyond max_step_m\n",
+              static_cast<unsigned long long>(summary.between_cycles),
+              static_cast<unsigned long long>(summary.jumped_cycles));
+}
+
 void PrintText(const Options& options, const Workcell& wc, const Input& input,
-               const std::vector<CycleResult>& cycles, const RunSummary& summary) {
-  std::printf("replay %s: method %s, %zu cycles from %llu messages", options.input.c_str(),
-              options.method.c_str(), cycles.size(),
-              static_cast<unsigned long long>(input.messages));
+               const std::vector<CycleResult>& cycles, const RunSummary& summary,
+               bool is_swept) {
+  std::printf("replay %s: method %s (%s), %zu cycles from %llu messages", options.input.c_str(),
+              options.method.c_str(), is_swept ? "swept check on" : "samples only",
+              cycles.size(), static_cast<unsigned long long>(input.messages));
   for (const TaskGraspTarget& t : options.grasp_targets) {
     std::printf(", grasp target %s:%s", t.link.c_str(), t.object.c_str());
   }
@@ -484,6 +539,7 @@ void PrintText(const Options& options, const Workcell& wc, const Input& input,
                 static_cast<unsigned long long>(summary.refused_cycles));
   }
   PrintWarningRuns(wc, input, cycles);
+  if (is_swept) PrintBetweenSamples(wc, input, cycles, summary);
   if (summary.first >= 0) {
     const Warning& w = cycles[summary.first].warnings.front();
     std::printf("summary: %llu of %zu cycles warn; first at cycle %d (%.2f s): %s -- %s at "
@@ -492,7 +548,8 @@ void PrintText(const Options& options, const Workcell& wc, const Input& input,
                 summary.first, input.time_s[summary.first], wc.primitives[w.a].name.c_str(),
                 wc.primitives[w.b].name.c_str(), w.distance_m);
   } else {
-    std::printf("summary: no warning in %zu cycles\n", cycles.size());
+    std::printf("summary: no warning at the samples of %zu cycles%s\n", cycles.size(),
+                summary.between_cycles > 0 ? " (but between them: see the swept check)" : "");
   }
   const TimingSummary& t = summary.time_s;
   std::printf("cycle time: p50 %.1f us, p99 %.1f us, max %.1f us, mean %.1f us\n",
@@ -528,9 +585,9 @@ int Run(const Options& options) {
   for (std::size_t k = 0; k < input.q.size(); ++k) checker->Run(input.q[k], &cycles[k]);
   const RunSummary summary = Summarize(input, cycles, *checker);
   if (options.json) {
-    PrintJson(options, *workcell, input, cycles, summary);
+    PrintJson(options, *workcell, input, cycles, summary, checker->is_swept());
   } else {
-    PrintText(options, *workcell, input, cycles, summary);
+    PrintText(options, *workcell, input, cycles, summary, checker->is_swept());
   }
   return 0;
 }

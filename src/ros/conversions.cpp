@@ -33,6 +33,8 @@ void ToWarningMsg(const std::vector<PrimitiveSpec>& primitives, const Warning& i
   out->point_b.y = in.p_WB.y();
   out->point_b.z = in.p_WB.z();
   out->severity = WarningSeverity(in.distance_m, in.threshold_m);
+  out->between_samples = in.between_samples;
+  out->step_fraction = in.step_fraction;
 }
 
 std::uint8_t ToInputStatusMsg(SafetyStatus status) {

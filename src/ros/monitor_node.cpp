@@ -98,6 +98,9 @@ MonitorNode::MonitorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   }
   monitor_ = std::make_unique<Monitor>(workcell_, monitor_options);
   primitives_ = monitor_->workcell().primitives;
+  for (const std::string& notice : monitor_->startup_notices()) {
+    ROS_INFO("arm_collision_monitor: %s", notice.c_str());
+  }
   fixed_frame_ =
       options_.fixed_frame.empty() ? monitor_options.fixed_frame : options_.fixed_frame;
   input_ = std::make_unique<JointMerger>(workcell_->joint_names, options_.input_timeout_s);
@@ -236,6 +239,9 @@ void MonitorNode::RunCycle(std::chrono::steady_clock::time_point start) {
   has_pending_input_ = false;
   report_.moved_primitives = 0;
   report_.reinsert_fallbacks = 0;
+  report_.step_motion_m = 0.0;
+  report_.input_jumped = false;
+  report_.swept_pairs = 0;
   if (policy_.BeginCycle(pending, *input_)) {
     UpdateBoundObjects();
     const CycleReport& cycle = monitor_->Update(input_->q());
@@ -245,6 +251,11 @@ void MonitorNode::RunCycle(std::chrono::steady_clock::time_point start) {
       report_.reinsert_fallbacks = static_cast<std::uint32_t>(cycle.counters.reinsert_fallbacks);
       reinsert_fallbacks_ += cycle.counters.reinsert_fallbacks;
       outside_world_ += cycle.counters.outside_world;
+      report_.step_motion_m = cycle.step_motion_m;
+      report_.input_jumped = cycle.input_jumped;
+      report_.swept_pairs = cycle.swept_pairs;
+      largest_step_m_ = std::max(largest_step_m_, cycle.step_motion_m);
+      input_jumps_ += cycle.input_jumped ? 1 : 0;
     }
     policy_.OnCycleReport(cycle, primitives_, *input_, now.toSec());
   }
@@ -470,6 +481,10 @@ void MonitorNode::DiagnoseCycle(diagnostic_updater::DiagnosticStatusWrapper& sta
   status.add("re-insert fallbacks (total)", reinsert_fallbacks_);
   status.add("moves outside the world (total)", outside_world_);
   status.add("inputs refused by the monitor", monitor_->refused_inputs());
+  status.addf("step motion bound, last cycle (m)", "%.4f", report_.step_motion_m);
+  status.addf("step motion bound, largest (m)", "%.4f", largest_step_m_);
+  status.add("swept path needed (cycles, total)", monitor_->swept_cycles());
+  status.add("input jumps (total)", input_jumps_);
 }
 
 void MonitorNode::DiagnoseSafety(diagnostic_updater::DiagnosticStatusWrapper& status) {

@@ -100,6 +100,9 @@ void StopPolicy::OnCycleReport(const CycleReport& report,
   }
   if (input.IsStale(now_s)) {
     RaiseStale(input, now_s);
+  } else if (report.input_jumped) {
+    Raise(Rank::kJumped, SafetyStatus::kOk, "input jumped: a %.3f m step in one cycle",
+          report.step_motion_m);
   } else if (!report.warnings.empty()) {
     const Warning& w = report.warnings.front();
     Raise(Rank::kWarning, SafetyStatus::kOk, "%zu warning(s), e.g. %s - %s at %.3f m",

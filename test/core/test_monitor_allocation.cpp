@@ -46,6 +46,37 @@ TEST_P(MonitorAllocation, SteadyStateUpdateDoesNotAllocate) {
   }
 }
 
+// The swept check on fast steps (5 Hz at the velocity limits: beyond the index slack, and
+// contacts between samples) does not allocate either.
+TEST_P(MonitorAllocation, SweptStepsDoNotAllocate) {
+  const auto wc = test::LoadBundledWorkcell();
+  MonitorOptions options = test::OptionsFor(GetParam());
+  Monitor monitor(wc, options);
+  std::mt19937_64 rng(test::PrintSeed(4343));
+  const test::JointLimits limits = test::LimitsOf(*wc);
+  const test::SmoothTrajectory path(limits, 1.0, &rng);
+  const int cycles = 400;
+  std::vector<Eigen::VectorXd> qs(2 * cycles);
+  for (int k = 0; k < 2 * cycles; ++k) path.At(k * 0.2, &qs[k]);
+  for (int k = 0; k < cycles; ++k) monitor.Update(qs[k]);
+  std::uint64_t swept_pairs = 0, between = 0;
+  const std::uint64_t before = test::AllocationCount();
+  for (int k = cycles; k < 2 * cycles; ++k) {
+    const CycleReport& report = monitor.Update(qs[k]);
+    swept_pairs += report.swept_pairs;
+    for (const Warning& w : report.warnings) between += w.between_samples ? 1 : 0;
+  }
+  const std::uint64_t allocations = test::AllocationCount() - before;
+  EXPECT_EQ(allocations, 0u) << BroadPhaseMethodName(GetParam());
+  EXPECT_GT(swept_pairs, 0u);
+  EXPECT_GT(between, 0u);
+  std::printf("%s: %llu allocations, %llu swept pairs, %llu between-samples warnings\n",
+              BroadPhaseMethodName(GetParam()).c_str(),
+              static_cast<unsigned long long>(allocations),
+              static_cast<unsigned long long>(swept_pairs),
+              static_cast<unsigned long long>(between));
+}
+
 // Run-time scene changes (grasp targets, model switching, attach / detach, frame-bound poses)
 // and the cycles after them do not allocate either, once each has happened once.
 TEST_P(MonitorAllocation, SceneChangesDoNotAllocate) {

@@ -213,6 +213,35 @@ TEST(MonitorMotionBounds, BoundsHoldAgainstExactKinematics) {
   ExpectBoundsHold(*ThreeLinkWorkcell(), &rng);
 }
 
+// The largest bound, taken over the undominated primitives only, equals the largest over all,
+// over seeded random motions; and again after a primitive's carrier changes (an attached box
+// on the gripper, which then dominates it).
+TEST(MonitorMotionBounds, LargestBoundOverUndominatedEqualsLargestOverAll) {
+  const auto wc = test::LoadBundledWorkcell();
+  MotionBounds bounds = BoundsOf(*wc);
+  const test::JointLimits limits = test::LimitsOf(*wc);
+  std::mt19937_64 rng(test::PrintSeed(kSeed + 7));
+  const PrimitiveId box = test::Prim(*wc, "front_box");
+  const int gripper = wc->kinematics.FindLink("left_link7");
+  for (int round = 0; round < 2; ++round) {
+    if (round == 1) {
+      bounds.SetCarrier(box, gripper, true, wc->primitives[box].shape_L);
+    }
+    for (int k = 0; k < 200; ++k) {
+      const Eigen::VectorXd q0 = test::RandomQ(limits, &rng);
+      const Eigen::VectorXd q1 = test::RandomQ(limits, &rng);
+      bounds.SetJointMotion(q1, q0);
+      const double largest_m = bounds.ComputeLargestBound_m();
+      double expected_m = 0.0;
+      for (PrimitiveId id = 0; id < wc->primitives.size(); ++id) {
+        if (bounds.lever_count(id) > 0) expected_m = std::max(expected_m, bounds.ComputeBound_m(id));
+      }
+      ASSERT_EQ(largest_m, expected_m) << "round " << round << " motion " << k;
+      ASSERT_GT(largest_m, 0.0);
+    }
+  }
+}
+
 TEST(MonitorMotionBounds, PointHelpers) {
   const Capsule c{Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0), 0.5};
   EXPECT_DOUBLE_EQ(MaxDistanceFromPoint_m(c, Eigen::Vector3d(-1, 0, 0)), 2.5);

@@ -30,6 +30,9 @@ TEST(MonitorOptions, BundledMonitorOptions) {
   EXPECT_EQ(o.fixed_frame, "world");
   EXPECT_EQ(o.live_objects.capacity, 16u);
   EXPECT_EQ(o.live_objects.max_primitives_per_object, 8u);
+  EXPECT_TRUE(o.swept_check);
+  EXPECT_EQ(o.swept_resolution_m, 0.001);
+  EXPECT_EQ(o.max_step_m, 1.0);
 }
 
 TEST(MonitorOptions, MonitorOptionsOverridesAndErrors) {
@@ -37,10 +40,14 @@ TEST(MonitorOptions, MonitorOptionsOverridesAndErrors) {
       WriteTempFile("monitor.yaml",
                 "broad_phase: grid\ngrid_cells_per_axis: 8\nmax_speed_mps: 1.0\n"
                 "cycle_period_s: 0.01\ntechniques: {inside_node_exit: false}\nindex_slack_m: 0\n"
-                "live_objects: {capacity: 0, max_primitives_per_object: 3}\n"));
+                "live_objects: {capacity: 0, max_primitives_per_object: 3}\n"
+                "swept_check: false\nswept_resolution_m: 0.002\nmax_step_m: 0.3\n"));
   EXPECT_EQ(o.live_objects.capacity, 0u);
   EXPECT_EQ(o.live_objects.max_primitives_per_object, 3u);
   EXPECT_EQ(o.index_slack_m, 0.0);
+  EXPECT_FALSE(o.swept_check);
+  EXPECT_EQ(o.swept_resolution_m, 0.002);
+  EXPECT_EQ(o.max_step_m, 0.3);
   EXPECT_EQ(o.broad_phase.method, BroadPhaseMethod::kGrid);
   EXPECT_EQ(o.broad_phase.grid_cells_per_axis, 8);
   EXPECT_NEAR(MinCellSize_m(o), 0.01, 1e-15);
@@ -55,6 +62,9 @@ TEST(MonitorOptions, MonitorOptionsOverridesAndErrors) {
       {"auto_broad_phase: true\n", {"auto_broad_phase", "broad_phase: auto"}},
       {"max_speed_mps: -1\n", {"max_speed_mps", "> 0"}},
       {"index_slack_m: -0.1\n", {"index_slack_m", ">= 0"}},
+      {"swept_resolution_m: 0\n", {"swept_resolution_m", "> 0"}},
+      {"max_step_m: -1\n", {"max_step_m", "> 0"}},
+      {"swept_check: 1.5\n", {"swept_check", "true or false"}},
       {"cycle_period_s: .nan\n", {"cycle_period_s", "finite"}},
       {"max_objects_per_leaf: 0\n", {"max_objects_per_leaf", "positive integer"}},
       {"tolerence_m: 0.03\n", {"unknown key 'tolerence_m'"}},

@@ -148,6 +148,22 @@ TEST_F(StopPolicyTest, WarningStopsAndClearsAfterTheHold) {
   EXPECT_EQ(ClearedAt(2.125 + kStep_s), 2.125 + kHold_s);
 }
 
+TEST_F(StopPolicyTest, InputJumpStopsUntilANormalStepAndOutranksAWarning) {
+  ASSERT_GE(ClearedAt(1.0), 0.0);
+  CycleReport jump = WarningReport();
+  jump.input_jumped = true;
+  jump.step_motion_m = 1.25;
+  Feed(2.0);
+  Cycle(2.0, jump);
+  EXPECT_TRUE(policy_.stop());
+  EXPECT_EQ(policy_.reason(), "input jumped: a 1.250 m step in one cycle");
+  // The next normal step with a warning: the warning is the reason now.
+  Feed(2.125);
+  Cycle(2.125, WarningReport());
+  EXPECT_EQ(policy_.reason(), "1 warning(s), e.g. left_link3 - right_link4 at 0.012 m");
+  EXPECT_EQ(ClearedAt(2.125 + kStep_s), 2.125 + kHold_s);
+}
+
 TEST_F(StopPolicyTest, ObjectPoseFailureStops) {
   ASSERT_GE(ClearedAt(1.0), 0.0);
   Feed(2.0);

@@ -159,7 +159,7 @@ class InputFaultsTest(unittest.TestCase):
         check = rospy.ServiceProxy(NODE + '/check', CheckJointState)
         return check(joint_state(LEFT_JOINTS + RIGHT_JOINTS, list(left) + list(right)))
 
-    def test_12_jump_beyond_cycle_bound_is_correct_and_reported(self):
+    def test_12_jump_is_swept_correct_and_reported(self):
         c = self.client
         self.assertIsNotNone(c.go_clear())
         expected = self.check(LEFT_TOWARDS_RIGHT, RIGHT_TOWARDS_LEFT)
@@ -175,13 +175,26 @@ class InputFaultsTest(unittest.TestCase):
         self.assertEqual(len(reports), 2)
         self.assertGreater(sum(r.reinsert_fallbacks for r in reports), 0,
                            'a jump beyond the per-cycle bound must be reported as a fallback')
+        # Each jump is swept (from the last accepted positions) and reported with its motion
+        # bound; one beyond max_step_m requests a stop "input jumped".
+        for r in reports:
+            self.assertGreater(r.step_motion_m, 0.5)
+            if r.input_jumped:
+                self.assertTrue(r.stop)
+                self.assertIn('input jumped', r.stop_reason)
+            for w in r.warnings:
+                if w.between_samples:
+                    self.assertTrue(0.0 <= w.step_fraction <= 1.0)
+                    self.assertLessEqual(w.distance_m, w.threshold_m + 0.001 + 1e-9)
         last = reports[-1]
         self.assertEqual(last.input_status, MonitorReport.INPUT_OK)
         self.assertTrue(last.stop)
-        got = [(w.primitive_a, w.primitive_b) for w in last.warnings]
+        # The warnings at the new positions are those of the check service.
+        at_sample = [w for w in last.warnings if not w.between_samples]
+        got = [(w.primitive_a, w.primitive_b) for w in at_sample]
         want = [(w.primitive_a, w.primitive_b) for w in expected.report.warnings]
         self.assertEqual(got, want)
-        for g, w in zip(last.warnings, expected.report.warnings):
+        for g, w in zip(at_sample, expected.report.warnings):
             self.assertAlmostEqual(g.distance_m, w.distance_m, places=9)
         # Back home: another jump, the warnings go away.
         self.assertIsNotNone(c.go_clear())

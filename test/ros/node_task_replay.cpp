@@ -187,6 +187,8 @@ TEST(TaskReplay, EveryReportMatchesTheBruteForceAndTheTaskOutcome) {
       warning.b = w.primitive_b;
       warning.distance_m = w.distance_m;
       warning.threshold_m = w.threshold_m;
+      warning.between_samples = w.between_samples;  // compared with the samples' apart
+      warning.step_fraction = w.step_fraction;
       actual.push_back(warning);
       EXPECT_EQ(w.primitive_a_name, wc.primitives[w.primitive_a].name) << context;
       EXPECT_EQ(w.primitive_b_name, wc.primitives[w.primitive_b].name) << context;

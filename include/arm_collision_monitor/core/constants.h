@@ -181,6 +181,12 @@ inline constexpr double kDefaultIndexSlack_m = 0.10;
 /// 1e-9 per metre is over 10^4 times their error for any shape within the world cube.
 inline constexpr double kLowerBoundMarginPerMetre = 1e-9;
 
+/// Swept check: the deepest bisection of one step (dimensionless levels; typical depth 5-12 for
+/// steps of cm to m at a 1 mm resolution). Reached only when a pair's motion bound is huge (an
+/// unlimited prismatic joint): the sub-interval, 2^-40 of the step, is then warned as unresolved
+/// rather than bisected forever.
+inline constexpr int kMaxSweptBisections = 40;
+
 /// Monitor::Validate: a primitive follows its carrier link when its AABB matches the recomputed
 /// one to this relative precision (dimensionless, of the coordinates' magnitude). Typical 1e-9:
 /// re-expressing an attached object in its link frame and back costs a few ulps per transform.

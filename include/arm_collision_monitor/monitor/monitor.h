@@ -36,6 +36,10 @@ struct Warning {
   double threshold_m = 0.0;  ///< tolerance(a) + tolerance(b) this cycle
   Eigen::Vector3d p_WA = Eigen::Vector3d::Zero();  ///< closest point on a, world frame
   Eigen::Vector3d p_WB = Eigen::Vector3d::Zero();  ///< closest point on b, world frame
+  /// Found by the swept check between the last accepted q and this cycle's (not at this
+  /// cycle's q): distance_m and the points are at step_fraction along the step.
+  bool between_samples = false;
+  double step_fraction = 1.0;  ///< 0 at the last accepted q, 1 at this cycle's
 };
 
 /// The result of one cycle. Lives in the Monitor's preallocated data: valid until the next
@@ -44,7 +48,7 @@ struct CycleReport {
   std::uint64_t cycle = 0;  ///< number of Update() calls so far, refused ones included
   InputStatus input = InputStatus::kOk;
   std::vector<Warning> warnings;  ///< sorted by (a, b)
-  bool stop = false;              ///< warnings non-empty, or the input was refused
+  bool stop = false;  ///< warnings non-empty, the input refused, or input_jumped
   std::uint32_t moved_primitives = 0;      ///< primitives whose pose changed
   std::uint32_t reindexed_primitives = 0;  ///< of those, the ones moved in the index
   std::uint32_t candidate_pairs = 0;       ///< pairs whose indexed boxes overlap
@@ -52,13 +56,23 @@ struct CycleReport {
   /// Decided by motion bounds alone, without kinematics: every primitive provably within its
   /// slack and every kept pair provably clear, so no warning (moved_primitives is then 0).
   bool bounded = false;
+  /// Largest motion bound over primitives for the step from the last accepted q (m; 0 on the
+  /// first good cycle and on refused and idle ones).
+  double step_motion_m = 0.0;
+  /// The step exceeded MonitorOptions::max_step_m: accepted, but stop is requested.
+  bool input_jumped = false;
+  /// Pairs whose swept check needed the path (their distance at the step's start, and
+  /// bisection); 0 when every pair was certified by its distance at q less its motion bound.
+  std::uint32_t swept_pairs = 0;
+  std::uint32_t swept_distance_tests = 0;  ///< exact distances the swept check computed
   BroadPhaseCounters counters;  ///< broad-phase work done during this cycle only
 };
 
 /// Per-cycle collision monitor (the seed's update loop). Rules it follows:
 /// - Only primitives whose carrier link's pose changed (bit for bit) are moved in the broad
 ///   phase; a q bit-identical to the last good one with no scene change since is an idle cycle:
-///   the previous report with cycle + 1 (and zero moved / counters), no work.
+///   the previous report with cycle + 1 (and zero moved / counters), no work -- a step of zero,
+///   so without the previous step's between-samples warnings and input_jumped.
 /// - Static primitives (links with only fixed joints above them, resting objects) are never
 ///   tested against each other. A resting attachable object is static; it moves (and is tested
 ///   against statics) while attached. Frame-bound objects always move.
@@ -83,6 +97,12 @@ struct CycleReport {
 ///   them to the last good q; SetGraspTarget (only the compatibility), SetObjectPose (a free
 ///   object, whatever q) and Check (on a copy, from the poses the shapes are at) need not. No
 ///   const accessor computes: shape_W() is a plain read.
+/// - Swept check (MonitorOptions::swept_check; swept_check.cpp): every step from the last
+///   accepted q to the new one is checked along the straight joint-space path between them. A
+///   bounded cycle certifies the whole path (its bounds hold for every point between); a
+///   kinematics cycle certifies each pair by its bound at the new q less its relative motion
+///   over the step, and bisects the others (conservative advancement) down to
+///   swept_resolution_m. Contacts found between samples are warnings with between_samples set.
 /// - A refused input keeps the last good model and its warnings, sets input and stop.
 class Monitor {
  public:
@@ -186,6 +206,11 @@ class Monitor {
   std::uint64_t refused_inputs() const;
   /// The broad phase in use ("octree", "naive", ...; auto's choice once started).
   std::string broad_phase_name() const;
+  /// Start-up notices (e.g. a tolerance below the per-cycle motion, covered by the swept check),
+  /// for the caller to show.
+  const std::vector<std::string>& startup_notices() const;
+  /// Cycles whose swept check needed the path (CycleReport::swept_pairs > 0), over the run.
+  std::uint64_t swept_cycles() const;
   /// Tolerance of primitive `id` in the last cycle (speed-scaled when enabled), metres.
   double tolerance_m(PrimitiveId id) const;
 

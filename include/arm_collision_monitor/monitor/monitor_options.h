@@ -38,6 +38,19 @@ struct MonitorOptions {
   /// their threshold skip the narrow phase. 0: every moved primitive is re-indexed and every
   /// candidate pair tested each cycle (the seed's loop). The warnings are the same either way.
   double index_slack_m = kDefaultIndexSlack_m;
+  /// Swept check of every step (swept_check.h): each non-compatible pair is certified clear
+  /// along the straight joint-space path from the last accepted q to the new one, or warned
+  /// (Warning::between_samples). Off: only the samples are checked, and a tolerance below the
+  /// per-cycle motion is a start-up error.
+  bool swept_check = true;
+  /// What the swept check resolves (m of relative motion bound): a between-samples warning
+  /// means the path comes within threshold + this; no closer contact is missed.
+  double swept_resolution_m = 0.001;
+  /// Largest plausible step (m): a step whose motion bound (the largest over primitives from
+  /// the last accepted q; lever arms, so up to a few times the true motion) exceeds it -- a
+  /// teleport after a driver restart -- requests a stop, "input jumped", until a normal step.
+  /// The step is still swept.
+  double max_step_m = 1.0;
   /// Default tolerance of an arm whose scene entry gives none (pass it to LoadWorkcell).
   double tolerance_m = kDefaultArmTolerance_m;
   /// The frame reports are expressed in (the URDF root link).

@@ -57,6 +57,14 @@ class MotionBounds {
                       const Eigen::Ref<const Eigen::VectorXd>& q_from) {
     dq_abs_ = (q - q_from).cwiseAbs();
   }
+  /// Per cycle, for a whole step: a joint motion that bounds |q - q_from| for every q on the
+  /// straight path from q0 to q1, joint by joint the larger of its two ends' (|.| of an affine
+  /// function is convex, so its largest value on a segment is at an end).
+  void SetSegmentMotion(const Eigen::Ref<const Eigen::VectorXd>& q0,
+                        const Eigen::Ref<const Eigen::VectorXd>& q1,
+                        const Eigen::Ref<const Eigen::VectorXd>& q_from) {
+    dq_abs_ = (q0 - q_from).cwiseAbs().cwiseMax((q1 - q_from).cwiseAbs());
+  }
   /// Bound (m) on the motion of every point of `id` for the joint motion set last (0 without
   /// levers); keeps its partial sums for PairBound_m. NaN when a delta is NaN.
   double ComputeBound_m(PrimitiveId id) {
@@ -66,6 +74,11 @@ class MotionBounds {
     for (int k = 0; k < count; ++k) sums[k + 1] = sums[k] + dq_abs_[l[k].q_index] * l[k].m_per_unit;
     return sums[count];
   }
+  /// The largest ComputeBound_m over all primitives for the joint motion set last (m; 0 when
+  /// none has levers), computed over the undominated ones only: a primitive each of whose
+  /// levers another matches on the same joint with one no smaller never has the larger bound.
+  /// Updates the lever sums of those alone. The set is rebuilt after SetCarrier (no allocation).
+  double ComputeLargestBound_m();
   /// The bound ComputeBound_m(id) returned last (m).
   double bound_m(PrimitiveId id) const { return LeverSums(id)[lever_count_[id]]; }
   /// After ComputeBound_m of both (of those with levers): how far a and b can have moved
@@ -86,6 +99,9 @@ class MotionBounds {
   bool Validate(std::string* why) const;
 
  private:
+  // Whether every lever of p is matched by one of r on the same joint, no smaller.
+  bool Covers(PrimitiveId r, PrimitiveId p) const;
+  void FindUndominated();
   // Slot k: the motion bound from primitive id's k lowest levers (slot 0 is 0).
   double* LeverSums(PrimitiveId id) {
     return &lever_sums_m_[static_cast<std::size_t>(id) * (max_levers_ + 1)];
@@ -104,6 +120,8 @@ class MotionBounds {
   std::vector<Lever> levers_;                 // per primitive, max_levers_ slots
   std::vector<int> lever_count_;              // per primitive
   std::vector<double> lever_sums_m_;          // per primitive, max_levers_ + 1 slots
+  std::vector<PrimitiveId> undominated_;      // ComputeLargestBound_m's primitives
+  bool is_undominated_stale_ = true;          // SetCarrier since they were found
   Eigen::VectorXd dq_abs_;                    // |q - q_from| of the last SetJointMotion
 };
 

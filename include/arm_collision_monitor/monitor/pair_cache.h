@@ -25,6 +25,8 @@ struct KeptPair {
   CandidatePair pair;
   double lower_bound_m = 0.0;       ///< <= distance of the indexed copies; NaN: not yet known
   double kinematics_bound_m = 0.0;  ///< <= distance of the shapes at the last kinematics; NaN
+  /// kinematics_bound_m is that distance itself (the narrow phase ran on the pair this cycle).
+  bool is_exact = false;
 };
 
 /// The index slack and the kept candidate pairs (see the file comment). Preallocated at
@@ -127,6 +129,7 @@ std::uint32_t PairCache::TestPairs(const std::vector<double>& tol_m, NarrowPhase
     const double distance_m = narrow_phase(a, b);
     kept.lower_bound_m = std::max(kept.lower_bound_m, distance_m - motion_m);
     kept.kinematics_bound_m = distance_m;
+    kept.is_exact = true;
   }
   return tests;
 }

@@ -147,6 +147,8 @@ class MonitorNode {
   std::uint64_t messages_ = 0;
   std::uint64_t reinsert_fallbacks_ = 0;
   std::uint64_t outside_world_ = 0;
+  double largest_step_m_ = 0.0;    ///< largest step motion bound over the run (m)
+  std::uint64_t input_jumps_ = 0;  ///< cycles whose step exceeded max_step_m
   std::uint64_t tf_failures_ = 0;
   std::uint64_t stale_episodes_ = 0;
   std::vector<double> cycle_times_s_;  ///< ring buffer of the latest cycle times

@@ -9,7 +9,8 @@
 //   - the clock went back (simulated time: a looping bag, a simulator reset) and some joint has
 //     not been received since (every time-derived state is re-based on the jump);
 //   - a frame-bound scene object's pose could not be looked up;
-//   - the last cycle reported a warning.
+//   - the last cycle's step was larger than max_step_m ("input jumped");
+//   - the last cycle reported a warning (at its q or between it and the last, swept check).
 // It is cleared by the first cycle on accepted, complete, fresh input with no warning that comes
 // at least the hold time after the condition was last seen (no chattering on a pair hovering at
 // its threshold).
@@ -71,7 +72,7 @@ class StopPolicy {
 
  private:
   /// Conditions, by rank: a higher one found in the same cycle replaces a lower one.
-  enum class Rank : std::uint8_t { kNone, kWarning, kObjectPose, kStale, kRefused };
+  enum class Rank : std::uint8_t { kNone, kWarning, kJumped, kObjectPose, kStale, kRefused };
   void Raise(Rank rank, SafetyStatus status, const char* format, ...)
       __attribute__((format(printf, 4, 5)));
   void RaiseStale(const JointMerger& input, double now_s);

@@ -69,7 +69,8 @@ int main(int argc, char** argv) {
     }
     Csv csv(args.out_dir + "/temporal.csv",
             "scene,speed_mps,checks_per_s,schedule,cpu_us_per_s,events,missed_events,contacts,"
-            "missed_contacts,recorded_speed_mps");
+            "missed_contacts,recorded_speed_mps,swept_missed_events,swept_unwarned_contacts,"
+            "swept_us_per_cycle,samples_us_per_cycle,swept_path_fraction");
     ExperimentTemporal(args, s, check_us, &csv);
     ExperimentTemporal(args, clutter, check_us, &csv);
   }

@@ -1,0 +1,293 @@
+// The swept check (MonitorOptions::swept_check): nothing slips between two samples. Each step
+// runs from the last accepted q to the new one along the straight joint-space path (what a
+// driver interpolates). On that path the joint motion over a sub-interval [s0, s1] is
+// (s1 - s0) |q1 - q0|, so the motion bounds of the whole step (MotionBounds: joint deltas times
+// lever arms) scale linearly to any sub-interval. A pair is certified clear when its distance,
+// less its relative motion bound, clears the threshold (conservative advancement, after
+// B. Mirtich, Impulse-based Dynamic Simulation of Rigid Body Systems, PhD thesis, UC Berkeley,
+// 1996); else the interval is bisected until a sample warns or the interval's relative motion
+// is at most twice the resolution, where a sample within threshold + resolution exists.
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "arm_collision_monitor/core/load_error.h"
+#include "arm_collision_monitor/geometry/distance.h"
+#include "monitor_impl.h"
+
+namespace arm_collision_monitor {
+namespace {
+
+/// What TestPair warns on: closer than the threshold, or touching / overlapping.
+bool IsWarning(double distance_m, double threshold_m) {
+  return distance_m < threshold_m || distance_m <= 0.0;
+}
+
+bool IsBefore(const Warning& w, const CandidatePair& p) {
+  return w.a < p.a || (w.a == p.a && w.b < p.b);
+}
+
+/// A ball holding `shape`: its centre and radius (m), same frame.
+void BoundingBall(const Shape& shape, Eigen::Vector3d* centre, double* radius_m) {
+  if (const auto* capsule = std::get_if<Capsule>(&shape)) {
+    *centre = 0.5 * (capsule->p0_W + capsule->p1_W);
+    *radius_m = 0.5 * (capsule->p1_W - capsule->p0_W).norm() + capsule->radius_m;
+    return;
+  }
+  const Box& box = std::get<Box>(shape);
+  *centre = box.X_WB.translation();
+  *radius_m = box.half_extents_m.norm();
+}
+
+}  // namespace
+
+void Monitor::Impl::InitSwept() {
+  const std::uint32_t n = model.primitive_count;
+  swept.q_start = model.q_start;
+  swept.q_s = model.q_start;
+  swept.X_WL_start = model.X_WL_start;
+  swept.X_WL_s = model.X_WL_start;
+  swept.centre_W.assign(n, Eigen::Vector3d::Zero());
+  swept.reach_m.assign(n, 0.0);
+  swept.leaves_slack.assign(n, 0);
+  swept.start_displacement_m.assign(n, 0.0);
+  swept.is_reindexed.assign(n, 0);
+  swept.pairs.reserve(static_cast<std::size_t>(n) * (n > 0 ? n - 1 : 0) / 2);
+  CheckStepTolerance();
+}
+
+void Monitor::Impl::CheckStepTolerance() {
+  const MonitorOptions& options = model.options;
+  const KinematicModel& kinematics = *model.kinematics;
+  const double speed_step_m = options.max_speed_mps * options.cycle_period_s;
+  // What the URDF velocity limits allow per cycle (joints without a limit count as 0).
+  Eigen::VectorXd dq = Eigen::VectorXd::Zero(kinematics.q_size());
+  for (int link = 1; link < kinematics.link_count(); ++link) {
+    const JointSpec& joint = kinematics.joint(link);
+    if (joint.q_index >= 0) dq[joint.q_index] = joint.max_velocity * options.cycle_period_s;
+  }
+  motion.SetJointMotion(dq, Eigen::VectorXd::Zero(kinematics.q_size()));
+  double worst_gap_m = 0.0;
+  PrimitiveId worst = 0;
+  double worst_urdf_m = 0.0;
+  for (PrimitiveId id = 0; id < model.primitive_count; ++id) {
+    if (!is_moving[id] || motion.lever_count(id) == 0) continue;
+    const double urdf_step_m = motion.ComputeBound_m(id);
+    const double gap_m = std::max(speed_step_m, urdf_step_m) - tol_base[id];
+    if (gap_m > worst_gap_m) {
+      worst_gap_m = gap_m;
+      worst = id;
+      worst_urdf_m = urdf_step_m;
+    }
+  }
+  if (worst_gap_m <= 0.0) return;
+  std::ostringstream msg;
+  msg << "the tolerance of primitive '" << model.workcell->primitives[worst].name << "' ("
+      << tol_base[worst] << " m) is below its per-cycle motion: max_speed_mps * cycle_period_s = "
+      << speed_step_m << " m, the URDF velocity limits allow " << worst_urdf_m << " m";
+  if (!options.swept_check) {
+    throw LoadError("monitor options: swept_check is false and " + msg.str() +
+                    ": a contact could pass between two cycles (raise tolerance_m or switch "
+                    "swept_check on)");
+  }
+  notices.push_back(msg.str() + "; the swept check covers the motion between cycles");
+}
+
+double Monitor::Impl::ComputeStepBound_m(const Eigen::Ref<const Eigen::VectorXd>& q) {
+  motion.SetJointMotion(q, swept.q_start);
+  double step_m = 0.0;
+  for (PrimitiveId id = 0; id < model.primitive_count; ++id) {
+    if (motion.lever_count(id) == 0) continue;
+    const double bound_m = motion.ComputeBound_m(id);
+    if (!(bound_m <= step_m)) step_m = bound_m;  // NaN and inf propagate
+  }
+  return step_m;
+}
+
+void Monitor::Impl::SweepStep(const Eigen::Ref<const Eigen::VectorXd>& q, CycleWork* work) {
+  // The step bounds (they were overwritten by the bounded-cycle test); and whether every
+  // indexed primitive stays within its slack along the step: its displacement at q plus its
+  // motion from any point of the step to q.
+  ComputeStepBound_m(q);
+  swept.has_start = false;
+  const std::size_t discrete = report.warnings.size();
+  std::size_t w = 0;
+  auto sweep = [&](const CandidatePair& pair, double end_bound_m, bool is_exact) {
+    const PrimitiveId a = pair.a;
+    const PrimitiveId b = pair.b;
+    // A pair warned at q already stops the arm.
+    while (w < discrete && IsBefore(report.warnings[w], pair)) ++w;
+    if (w < discrete && report.warnings[w].a == a && report.warnings[w].b == b) return;
+    // Every point of the step is within the pair's relative motion bound of its end.
+    const double pair_motion_m = motion.PairBound_m(a, b);
+    const double threshold_m = tol_now[a] + tol_now[b];
+    if (cache.IsClear(end_bound_m, pair_motion_m, threshold_m)) return;
+    // The exact distance at q (unless the narrow phase just computed it, a kept pair's bound
+    // is its indexed copies' distance less their displacements).
+    double end_m = end_bound_m;
+    if (!is_exact) {
+      end_m = ShapeDistance(shape_W[a], shape_W[b]).distance_m;
+      ++work->swept_tests;
+      if (cache.IsClear(end_m, pair_motion_m, threshold_m)) return;
+    }
+    ++work->swept_pairs;
+    SweepPair(a, b, pair_motion_m, end_m, q, work);
+  };
+  // The kept pairs and, merged in order, the others of primitives leaving their slack.
+  CollectSweptPairs();
+  std::size_t extra = 0;
+  const std::vector<SweptPair>& others = swept.pairs;
+  for (const KeptPair& k : cache.pairs()) {
+    for (; extra < others.size() && !(k.pair < others[extra].pair); ++extra) {
+      const SweptPair& o = others[extra];
+      if (!(o.pair == k.pair)) sweep(o.pair, o.end_bound_m, false);
+    }
+    sweep(k.pair, k.kinematics_bound_m, k.is_exact);
+  }
+  for (; extra < others.size(); ++extra) {
+    sweep(others[extra].pair, others[extra].end_bound_m, false);
+  }
+  if (report.warnings.size() > discrete) {
+    std::sort(report.warnings.begin(), report.warnings.end(),
+              [](const Warning& x, const Warning& y) {
+                return x.a < y.a || (x.a == y.a && x.b < y.b);
+              });
+  }
+}
+
+void Monitor::Impl::RecordStartDisplacements() {
+  swept.has_start_displacement = has_good && !cache.is_stale();
+  if (!swept.has_start_displacement) return;
+  // After bounded cycles the last kinematics is behind q_start: add the motion since (the lever
+  // sums are recomputed for the step in SweepStep).
+  if (kinematics_behind) motion.SetJointMotion(swept.q_start, q_kinematics);
+  for (PrimitiveId id = 0; id < model.primitive_count; ++id) {
+    const bool has_moved = kinematics_behind && motion.lever_count(id) > 0;
+    swept.start_displacement_m[id] =
+        cache.displacement_m(id) + (has_moved ? motion.ComputeBound_m(id) : 0.0);
+  }
+}
+
+bool Monitor::Impl::CollectSweptPairs() {
+  // Beside the kept pairs: any other pair's indexed boxes, grown by tolerance + slack, are
+  // apart, so it is clear along the step while both primitives stay within their slack. At
+  // fraction s a primitive is within d1 + (1 - s) B of its indexed copy (d1: its displacement
+  // at q, B: its step bound) and, when its copy is the one it had at the start, within
+  // d0 + s B too (d0: its displacement there); the larger of the smaller is (d0 + d1 + B) / 2.
+  const std::uint32_t n = model.primitive_count;
+  const double slack_m = model.options.index_slack_m;
+  for (const PrimitiveId id : cache.reindexed()) swept.is_reindexed[id] = 1;
+  bool has_leaver = false;
+  for (PrimitiveId id = 0; id < n; ++id) {
+    bool leaves = false;
+    if (motion.lever_count(id) > 0 && in_broad_phase[id]) {
+      const double end_m = cache.displacement_m(id) + motion.bound_m(id);
+      leaves = !(end_m <= slack_m);
+      if (leaves && swept.has_start_displacement && !swept.is_reindexed[id]) {
+        leaves = !(0.5 * (swept.start_displacement_m[id] + end_m) <= slack_m);
+      }
+    }
+    swept.leaves_slack[id] = leaves;
+    has_leaver = has_leaver || leaves;
+  }
+  for (const PrimitiveId id : cache.reindexed()) swept.is_reindexed[id] = 0;
+  swept.pairs.clear();
+  if (!has_leaver) return false;
+  // The pairs of a primitive that may leave its slack: all whose bounding balls at q, grown by
+  // tolerance + step bound, meet (the kept ones among them are dropped in the merge).
+  for (PrimitiveId id = 0; id < n; ++id) {
+    if (!in_broad_phase[id]) continue;
+    double radius_m = 0.0;
+    BoundingBall(shape_W[id], &swept.centre_W[id], &radius_m);
+    swept.reach_m[id] = radius_m + tol_now[id] + StepBound_m(id);
+  }
+  for (PrimitiveId a = 0; a < n; ++a) {
+    if (!swept.leaves_slack[a]) continue;
+    for (PrimitiveId b = 0; b < n; ++b) {
+      if (b == a || !in_broad_phase[b] || (swept.leaves_slack[b] && b < a) ||
+          compatible.AreCompatible(a, b)) {
+        continue;
+      }
+      const double reach_m = swept.reach_m[a] + swept.reach_m[b];
+      if ((swept.centre_W[a] - swept.centre_W[b]).squaredNorm() > reach_m * reach_m) continue;
+      // The boxes' gap bounds the distance at q from below (they hold the shapes).
+      const Aabb box_a = ComputeAabb(shape_W[a]);
+      const Aabb box_b = ComputeAabb(shape_W[b]);
+      const double gap_m = (box_b.min_W - box_a.max_W)
+                               .cwiseMax(box_a.min_W - box_b.max_W)
+                               .cwiseMax(0.0)
+                               .norm();
+      swept.pairs.push_back({CandidatePair{std::min(a, b), std::max(a, b)}, gap_m, false});
+    }
+  }
+  std::sort(swept.pairs.begin(), swept.pairs.end(),
+            [](const SweptPair& x, const SweptPair& y) { return x.pair < y.pair; });
+  return true;
+}
+
+void Monitor::Impl::ComputeStepPoses(double s, const Eigen::Ref<const Eigen::VectorXd>& q) {
+  swept.q_s = swept.q_start + s * (q - swept.q_start);
+  model.kinematics->ComputeMovingLinkPoses(swept.q_s, &swept.X_WL_s);
+}
+
+void Monitor::Impl::SweepPair(PrimitiveId a, PrimitiveId b, double pair_motion_m, double d1_m,
+                              const Eigen::Ref<const Eigen::VectorXd>& q, CycleWork* work) {
+  const double threshold_m = tol_now[a] + tol_now[b];
+  if (!swept.has_start) {
+    model.kinematics->ComputeMovingLinkPoses(swept.q_start, &swept.X_WL_start);
+    swept.has_start = true;
+  }
+  // Appends the pair's warning at fraction s of the step, for the link poses X there.
+  auto warn_at = [&](double s, const std::vector<Eigen::Isometry3d>& X) {
+    const DistanceResult d = ShapeDistance(ShapeAt(a, X), ShapeAt(b, X));
+    Warning warning;
+    warning.a = a;
+    warning.b = b;
+    warning.distance_m = d.distance_m;
+    warning.threshold_m = threshold_m;
+    warning.p_WA = d.p_WA;
+    warning.p_WB = d.p_WB;
+    warning.between_samples = true;
+    warning.step_fraction = s;
+    report.warnings.push_back(warning);
+  };
+  const double d0_m = ShapeDistance(ShapeAt(a, swept.X_WL_start), ShapeAt(b, swept.X_WL_start))
+                          .distance_m;
+  ++work->swept_tests;
+  if (IsWarning(d0_m, threshold_m)) {  // the step starts in the tolerance zone
+    warn_at(0.0, swept.X_WL_start);
+    return;
+  }
+  const double resolution_m = model.options.swept_resolution_m;
+  int top = 0;
+  swept.stack[top++] = SweptInterval{0.0, 1.0, d0_m, d1_m, 0};
+  while (top > 0) {
+    const SweptInterval iv = swept.stack[--top];
+    // On [s0, s1] the distance is at least max(d0 - P (s - s0), d1 - P (s1 - s)), whose
+    // smallest value is (d0 + d1 - P (s1 - s0)) / 2; NaN is not clear.
+    const double motion_m = pair_motion_m * (iv.s1 - iv.s0);
+    const double lower_m = 0.5 * (iv.d0_m + iv.d1_m - motion_m);
+    if (lower_m - cache.BoundMargin_m(lower_m) > threshold_m) continue;
+    if (motion_m <= 2.0 * resolution_m || iv.depth >= kMaxSweptBisections) {
+      // Resolved: the nearer end is within threshold + motion / 2 <= threshold + resolution.
+      const double s = iv.d0_m <= iv.d1_m ? iv.s0 : iv.s1;
+      ComputeStepPoses(s, q);
+      warn_at(s, swept.X_WL_s);
+      return;
+    }
+    const double mid = 0.5 * (iv.s0 + iv.s1);
+    ComputeStepPoses(mid, q);
+    const double mid_m = ShapeDistance(ShapeAt(a, swept.X_WL_s), ShapeAt(b, swept.X_WL_s))
+                             .distance_m;
+    ++work->swept_tests;
+    if (IsWarning(mid_m, threshold_m)) {
+      warn_at(mid, swept.X_WL_s);
+      return;
+    }
+    // The earlier half first: the first contact along the step is the one reported.
+    swept.stack[top++] = SweptInterval{mid, iv.s1, mid_m, iv.d1_m, iv.depth + 1};
+    swept.stack[top++] = SweptInterval{iv.s0, mid, iv.d0_m, mid_m, iv.depth + 1};
+  }
+}
+
+}  // namespace arm_collision_monitor

@@ -1,0 +1,444 @@
+// The swept check (MonitorOptions::swept_check): thin plates and rods crossed within one step,
+// arms crossing, a wrist flip, and random fast trajectories, each step against an independent
+// dense sampler (>= 1,000 sub-samples of the same straight joint-space path, brute force over
+// all pairs): no contact the sampler finds is missed, and every between-samples warning is
+// checked at its own fraction to lie within threshold + resolution. Also: jumps beyond
+// max_step_m, the start-up tolerance check, and how rarely the path is needed.
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "arm_collision_monitor/core/load_error.h"
+#include "test_monitor_util.h"
+
+namespace arm_collision_monitor {
+namespace {
+
+using test::JointIndex;
+using test::MakeQ;
+
+constexpr int kDenseSamples = 1000;
+
+/// The default options, without a step limit (the steps here are meant to be swept).
+MonitorOptions Unlimited() {
+  MonitorOptions options;
+  options.max_step_m = std::numeric_limits<double>::infinity();
+  return options;
+}
+
+/// The bundled scene with `object_line` (one YAML list entry) added to its objects.
+std::shared_ptr<const Workcell> LoadSceneWith(const std::string& name,
+                                              const std::string& object_line) {
+  std::ifstream in(ACM_SOURCE_DIR "/config/scene.yaml");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string scene = text.str();
+  const std::size_t at = scene.find("\nobjects:\n");
+  EXPECT_NE(at, std::string::npos);
+  scene.insert(at + 10, "  " + object_line + "\n");
+  const std::string path = ::testing::TempDir() + "/swept_" + name + ".yaml";
+  std::ofstream(path) << scene;
+  return std::make_shared<const Workcell>(
+      LoadWorkcell(ACM_SOURCE_DIR "/urdf/workcell.urdf", path));
+}
+
+/// The straight joint-space path of a step.
+Eigen::VectorXd Along(const Eigen::VectorXd& q0, const Eigen::VectorXd& q1, double s) {
+  return q0 + s * (q1 - q0);
+}
+
+/// Per non-excused pair (default variants, no scene change): the smallest distance over the
+/// samples s = k / N, k = 1..N, and its threshold. Independent of the Monitor: all pairs, AABB
+/// pre-test only to skip pairs far beyond any threshold.
+struct DensePair {
+  double min_m = std::numeric_limits<double>::infinity();
+  double threshold_m = 0.0;
+  bool warns = false;  ///< some sample within the threshold (or touching)
+};
+using DenseResult = std::map<std::pair<PrimitiveId, PrimitiveId>, DensePair>;
+
+DenseResult DenseStep(const Workcell& wc, const Eigen::VectorXd& q0, const Eigen::VectorXd& q1,
+                      int samples) {
+  const KinematicModel& model = wc.kinematics;
+  const std::size_t n = wc.primitives.size();
+  std::vector<Eigen::Isometry3d> X_WL(model.link_count());
+  std::vector<Shape> shape(n);
+  std::vector<Aabb> box(n);
+  // The far cut: 0.1 m beyond any threshold; nearer pairs get exact distances.
+  constexpr double kFar_m = 0.1;
+  DenseResult result;
+  for (int k = 1; k <= samples; ++k) {
+    model.ComputeLinkPoses(Along(q0, q1, static_cast<double>(k) / samples), &X_WL);
+    for (std::size_t i = 0; i < n; ++i) {
+      const PrimitiveSpec& p = wc.primitives[i];
+      shape[i] = p.link_index >= 0 ? TransformShape(X_WL[p.link_index], p.shape_L) : p.shape_L;
+      box[i] = ComputeAabb(shape[i]).Inflated(p.tolerance_m + kFar_m);
+    }
+    auto is_static = [&](const PrimitiveSpec& p) {
+      return p.link_index >= 0 ? p.is_static : wc.objects[p.object_index].frame.empty();
+    };
+    for (std::size_t a = 0; a < n; ++a) {
+      const PrimitiveSpec& pa = wc.primitives[a];
+      if (!pa.variant.empty()) continue;
+      for (std::size_t b = a + 1; b < n; ++b) {
+        const PrimitiveSpec& pb = wc.primitives[b];
+        if (!pb.variant.empty() || (is_static(pa) && is_static(pb)) ||
+            wc.compatible.AreCompatible(a, b) || !box[a].Overlaps(box[b])) {
+          continue;
+        }
+        DensePair& pair = result[{static_cast<PrimitiveId>(a), static_cast<PrimitiveId>(b)}];
+        pair.threshold_m = pa.tolerance_m + pb.tolerance_m;
+        const double d = ShapeDistance(shape[a], shape[b]).distance_m;
+        pair.min_m = std::min(pair.min_m, d);
+        pair.warns = pair.warns || d < pair.threshold_m || d <= 0.0;
+      }
+    }
+  }
+  return result;
+}
+
+/// What a step's report did against the dense sampler.
+struct StepTally {
+  int steps = 0, dense_contacts = 0, missed = 0, between = 0, false_warnings = 0;
+  int swept_cycles = 0;
+};
+
+/// Checks one step's report against the dense sampler: every pair the sampler finds within its
+/// threshold is warned (at q or between samples); every between-samples warning is re-measured
+/// independently at its own fraction and lies within threshold + resolution.
+void CheckStep(const Workcell& wc, const MonitorOptions& options, const Eigen::VectorXd& q0,
+               const Eigen::VectorXd& q1, const CycleReport& report, const std::string& context,
+               StepTally* tally) {
+  const DenseResult dense = DenseStep(wc, q0, q1, kDenseSamples);
+  ++tally->steps;
+  if (report.swept_pairs > 0) ++tally->swept_cycles;
+  for (const auto& [pair, d] : dense) {
+    if (!d.warns) continue;
+    ++tally->dense_contacts;
+    if (!test::HasWarning(report.warnings, pair.first, pair.second)) {
+      ++tally->missed;
+      ADD_FAILURE() << context << ": missed " << test::Describe(wc, pair.first, pair.second)
+                    << ", dense minimum " << d.min_m << " m, threshold " << d.threshold_m;
+    }
+  }
+  std::vector<Eigen::Isometry3d> X_WL(wc.kinematics.link_count());
+  for (const Warning& w : report.warnings) {
+    if (!w.between_samples) continue;
+    ++tally->between;
+    ASSERT_GE(w.step_fraction, 0.0) << context;
+    ASSERT_LE(w.step_fraction, 1.0) << context;
+    wc.kinematics.ComputeLinkPoses(Along(q0, q1, w.step_fraction), &X_WL);
+    auto shape_at = [&](PrimitiveId id) {
+      const PrimitiveSpec& p = wc.primitives[id];
+      return p.link_index >= 0 ? TransformShape(X_WL[p.link_index], p.shape_L) : p.shape_L;
+    };
+    const double d = ShapeDistance(shape_at(w.a), shape_at(w.b)).distance_m;
+    EXPECT_NEAR(d, w.distance_m, 1e-9) << context << " " << test::Describe(wc, w.a, w.b);
+    EXPECT_LE(w.distance_m, w.threshold_m + options.swept_resolution_m + 1e-9)
+        << context << " " << test::Describe(wc, w.a, w.b) << " at " << w.step_fraction;
+    const auto it = dense.find({w.a, w.b});
+    if (it == dense.end() || !it->second.warns) ++tally->false_warnings;
+  }
+}
+
+/// The step from q0 to q1: the Monitor first accepts q0; returns the step's report (a copy).
+CycleReport RunStep(Monitor* monitor, const Eigen::VectorXd& q0, const Eigen::VectorXd& q1) {
+  monitor->Update(q0);
+  return monitor->Update(q1);
+}
+
+/// The pair warned between samples whose owners are `owner_a` and `owner_b` (either order).
+bool HasBetweenSamples(const Workcell& wc, const CycleReport& report, const std::string& owner_a,
+                       const std::string& owner_b) {
+  for (const Warning& w : report.warnings) {
+    const std::string& x = wc.primitives[w.a].owner;
+    const std::string& y = wc.primitives[w.b].owner;
+    if (w.between_samples && ((x == owner_a && y == owner_b) || (x == owner_b && y == owner_a))) {
+      return true;
+    }
+  }
+  return false;
+}
+
+// A 2 mm plate in the gripper's path: the left arm's base joint swings the tool across it in
+// one step; neither end is near it.
+TEST(MonitorSwept, ThinPlateCrossedInOneStep) {
+  const auto wc = LoadSceneWith(
+      "plate", "- {name: plate, size_m: [0.3, 0.002, 0.3], pose: {xyz_m: [0.7, 0.55, 0.95]}}");
+  const Eigen::VectorXd mid = test::ArmReachDown(*wc, "left", 0.7, 0.55, 0.9);
+  const int j1 = JointIndex(*wc, "left_joint1");
+  Eigen::VectorXd q0 = mid, q1 = mid;
+  q0[j1] -= 0.4;
+  q1[j1] += 0.4;
+  MonitorOptions options = Unlimited();
+  Monitor monitor(wc, options);
+  ASSERT_TRUE(monitor.Check(q0).warnings.empty());
+  ASSERT_TRUE(monitor.Check(q1).warnings.empty());
+  const CycleReport report = RunStep(&monitor, q0, q1);
+  EXPECT_TRUE(report.stop);
+  EXPECT_FALSE(report.input_jumped);
+  EXPECT_TRUE(HasBetweenSamples(*wc, report, "left_link7", "plate"));
+  EXPECT_GT(report.swept_pairs, 0u);
+  StepTally tally;
+  CheckStep(*wc, options, q0, q1, report, "plate", &tally);
+  EXPECT_GT(tally.dense_contacts, 0);
+  // The same step with the swept check off: both ends are clear, the plate is missed.
+  options.swept_check = false;
+  options.cycle_period_s = 0.001;  // (a tolerance above the per-cycle motion, as required)
+  Monitor discrete(wc, options);
+  EXPECT_FALSE(RunStep(&discrete, q0, q1).stop);
+}
+
+// The left arm, stretched out, swings its base joint through the right arm (straight up) in
+// one step; the ends are found by scanning for clear poses either side of the contact.
+TEST(MonitorSwept, ArmsCrossInOneStep) {
+  const auto wc = test::LoadBundledWorkcell();
+  const int j1 = JointIndex(*wc, "left_joint1");
+  const Eigen::VectorXd base = MakeQ(*wc, {{"left_joint2", 1.3}});
+  Monitor monitor(wc, Unlimited());
+  // Scan the base joint for the left-right contact and clear poses either side of it.
+  double contact = std::nan(""), before = std::nan(""), after = std::nan("");
+  for (double t = -2.9; t <= 2.9; t += 0.01) {
+    Eigen::VectorXd q = base;
+    q[j1] = t;
+    const CycleReport r = monitor.Check(q);
+    const bool arms_near = std::any_of(r.warnings.begin(), r.warnings.end(), [&](const Warning& w) {
+      return wc->primitives[w.a].owner.rfind("left", 0) == 0 &&
+             wc->primitives[w.b].owner.rfind("right", 0) == 0;
+    });
+    if (arms_near && std::isnan(contact)) contact = t;
+    if (r.warnings.empty() && std::isnan(contact)) before = t;
+    if (r.warnings.empty() && !std::isnan(contact) && std::isnan(after)) after = t;
+  }
+  ASSERT_FALSE(std::isnan(contact) || std::isnan(before) || std::isnan(after));
+  Eigen::VectorXd q0 = base, q1 = base;
+  q0[j1] = before;
+  q1[j1] = after;
+  const CycleReport report = RunStep(&monitor, q0, q1);
+  EXPECT_TRUE(report.stop);
+  bool arm_arm = false;
+  for (const Warning& w : report.warnings) {
+    arm_arm = arm_arm || (w.between_samples && wc->primitives[w.a].owner.rfind("left", 0) == 0 &&
+                          wc->primitives[w.b].owner.rfind("right", 0) == 0);
+  }
+  EXPECT_TRUE(arm_arm) << "step " << before << " -> " << after << " rad";
+  StepTally tally;
+  CheckStep(*wc, Unlimited(), q0, q1, report, "arms cross", &tally);
+  EXPECT_GT(tally.dense_contacts, 0);
+}
+
+// A wrist flip, dominated by rotation: joint 6 swings the gripper through a 3 mm rod laid along
+// the joint's axis across the gripper's path at mid-swing.
+TEST(MonitorSwept, WristFlipPastThinRod) {
+  const auto bundled = test::LoadBundledWorkcell();
+  const KinematicModel& model = bundled->kinematics;
+  const int j6 = JointIndex(*bundled, "left_joint6");
+  const int link7 = model.FindLink("left_link7");
+  ASSERT_GE(link7, 0);
+  std::vector<Eigen::Isometry3d> X(model.link_count());
+  Eigen::VectorXd q = MakeQ(*bundled, {});
+  model.ComputeLinkPoses(q, &X);
+  const Eigen::Vector3d p_tip0 = X[link7] * Eigen::Vector3d(0, 0, 0.15);
+  const Eigen::Vector3d p_wrist = X[link7].translation();
+  q[j6] = 0.01;
+  model.ComputeLinkPoses(q, &X);
+  const Eigen::Vector3d p_tip1 = X[link7] * Eigen::Vector3d(0, 0, 0.15);
+  const Eigen::Vector3d axis = (p_tip1 - p_tip0).cross(p_tip0 - p_wrist).normalized();
+  const Eigen::Matrix3d R =
+      Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), axis).toRotationMatrix();
+  // URDF rpy: R = Rz(yaw) Ry(pitch) Rx(roll).
+  const double pitch = std::asin(-R(2, 0));
+  const double roll = std::atan2(R(2, 1), R(2, 2));
+  const double yaw = std::atan2(R(1, 0), R(0, 0));
+  std::ostringstream rod;
+  rod << "- {name: rod, type: capsule, radius_m: 0.0015, length_m: 0.12, pose: {xyz_m: ["
+      << p_tip0.x() << ", " << p_tip0.y() << ", " << p_tip0.z() << "], rpy: [" << roll << ", "
+      << pitch << ", " << yaw << "]}}";
+  const auto wc = LoadSceneWith("rod", rod.str());
+  Eigen::VectorXd q0 = MakeQ(*wc, {}), q1 = q0;
+  q0[j6] = -1.6;
+  q1[j6] = 1.6;
+  const MonitorOptions options = Unlimited();
+  Monitor monitor(wc, options);
+  ASSERT_TRUE(monitor.Check(q0).warnings.empty());
+  ASSERT_TRUE(monitor.Check(q1).warnings.empty());
+  const CycleReport report = RunStep(&monitor, q0, q1);
+  EXPECT_TRUE(report.stop);
+  EXPECT_TRUE(HasBetweenSamples(*wc, report, "left_link7", "rod"));
+  StepTally tally;
+  CheckStep(*wc, options, q0, q1, report, "wrist flip", &tally);
+  EXPECT_GT(tally.dense_contacts, 0);
+}
+
+void PrintTally(const char* what, const StepTally& t) {
+  std::printf("%s: %d steps, %d dense contacts (pairs), %d missed, %d between-samples warnings, "
+              "%d false (%.2f %% of steps), swept path needed in %d steps\n",
+              what, t.steps, t.dense_contacts, t.missed, t.between, t.false_warnings,
+              t.steps > 0 ? 100.0 * t.false_warnings / t.steps : 0.0, t.swept_cycles);
+}
+
+// Random fast trajectories (peak joint speeds at the velocity limits) sampled at 5 and 10 Hz,
+// each step against the dense sampler: 0 missed.
+TEST(MonitorSwept, RandomFastTrajectoriesMissNothing) {
+  const auto wc = test::LoadBundledWorkcell();
+  const test::JointLimits limits = test::LimitsOf(*wc);
+  std::mt19937_64 rng(test::PrintSeed(1414));
+  for (const BroadPhaseMethod method : {BroadPhaseMethod::kOctree, BroadPhaseMethod::kNaive}) {
+    for (const double period_s : {0.2, 0.1}) {
+      StepTally tally;
+      for (int trajectory = 0; trajectory < 6; ++trajectory) {
+        const test::SmoothTrajectory path(limits, 1.0, &rng);
+        MonitorOptions options = test::OptionsFor(method);
+        options.max_step_m = Unlimited().max_step_m;
+        Monitor monitor(wc, options);
+        Eigen::VectorXd q_prev, q;
+        path.At(0.0, &q_prev);
+        monitor.Update(q_prev);
+        for (int k = 1; k <= 40; ++k) {
+          path.At(k * period_s, &q);
+          const CycleReport& report = monitor.Update(q);
+          CheckStep(*wc, options, q_prev, q, report,
+                    BroadPhaseMethodName(method) + " trajectory " + std::to_string(trajectory) +
+                        " step " + std::to_string(k),
+                    &tally);
+          std::string error;
+          ASSERT_TRUE(monitor.Validate(&error)) << error;
+          q_prev = q;
+        }
+      }
+      const std::string what = BroadPhaseMethodName(method) + " at " +
+                               std::to_string(static_cast<int>(1.0 / period_s)) + " Hz";
+      PrintTally(what.c_str(), tally);
+      EXPECT_EQ(tally.missed, 0);
+      EXPECT_GT(tally.dense_contacts, 0) << "the trajectories must pass near things";
+    }
+  }
+}
+
+// Differential against the dense sampler on random steps from random configurations, up to
+// max_step_m: large steps take the swept check's all-pairs path (beyond the index slack).
+TEST(MonitorSwept, RandomStepsMatchDenseSampler) {
+  const auto wc = test::LoadBundledWorkcell();
+  const test::JointLimits limits = test::LimitsOf(*wc);
+  std::mt19937_64 rng(test::PrintSeed(1515));
+  const MonitorOptions options = Unlimited();
+  Monitor monitor(wc, options);
+  StepTally tally;
+  for (int k = 0; k < 150; ++k) {
+    const Eigen::VectorXd q0 = test::RandomQ(limits, &rng);
+    Eigen::VectorXd q1 = q0;
+    const double size_rad = std::uniform_real_distribution<double>(0.02, 0.6)(rng);
+    for (int i = 0; i < q1.size(); ++i) {
+      q1[i] = std::clamp(q0[i] + std::uniform_real_distribution<double>(-size_rad, size_rad)(rng),
+                         limits.lower[i], limits.upper[i]);
+    }
+    const CycleReport report = RunStep(&monitor, q0, q1);
+    CheckStep(*wc, options, q0, q1, report, "random step " + std::to_string(k), &tally);
+    if (::testing::Test::HasFailure()) break;
+  }
+  PrintTally("random steps", tally);
+  EXPECT_EQ(tally.missed, 0);
+  EXPECT_GT(tally.between, 0);
+}
+
+// A metre-long step (the 1 m jump between two messages): swept (the path, through the other
+// arm, warns between samples), and beyond max_step_m a stop "input jumped" that a normal step
+// clears.
+TEST(MonitorSwept, MetreJumpIsSweptOrStopped) {
+  const auto wc = test::LoadBundledWorkcell();
+  const Eigen::VectorXd home = MakeQ(*wc, {});
+  // Left arm swung from pointing away to pointing at the right arm and past it.
+  const Eigen::VectorXd q0 = MakeQ(*wc, {{"left_joint1", -2.4}, {"left_joint2", 1.3}});
+  const Eigen::VectorXd q1 = MakeQ(*wc, {{"left_joint1", -0.8}, {"left_joint2", 1.3}});
+  const MonitorOptions options = Unlimited();
+  Monitor swept(wc, options);
+  const CycleReport report = RunStep(&swept, q0, q1);
+  EXPECT_GT(report.step_motion_m, 1.0);
+  EXPECT_FALSE(report.input_jumped);
+  EXPECT_TRUE(report.stop);
+  StepTally tally;
+  CheckStep(*wc, options, q0, q1, report, "1 m step", &tally);
+  EXPECT_GT(tally.dense_contacts, 0);
+  EXPECT_GT(tally.between, 0);
+
+  Monitor jumped(wc, MonitorOptions{});
+  ASSERT_FALSE(jumped.Update(home).stop);
+  const CycleReport& jump = jumped.Update(q0);
+  EXPECT_TRUE(jump.input_jumped);
+  EXPECT_TRUE(jump.stop);
+  EXPECT_GT(jump.step_motion_m, jumped.options().max_step_m);
+  CheckStep(*wc, jumped.options(), home, q0, jump, "jump", &tally);  // swept all the same
+  // Idle (a step of zero) and normal steps: no longer jumped.
+  const CycleReport& idle = jumped.Update(q0);
+  EXPECT_FALSE(idle.input_jumped);
+  EXPECT_EQ(idle.stop, !idle.warnings.empty());
+  for (const Warning& w : idle.warnings) EXPECT_FALSE(w.between_samples);
+  Eigen::VectorXd q_next = q0;
+  q_next[JointIndex(*wc, "left_joint3")] += 0.01;
+  const CycleReport& normal = jumped.Update(q_next);
+  EXPECT_FALSE(normal.input_jumped);
+  EXPECT_EQ(normal.stop, !normal.warnings.empty());
+}
+
+// Start-up: a tolerance below the per-cycle motion is a notice with the swept check on, an
+// error with it off; a short enough cycle needs neither.
+TEST(MonitorSwept, StartupToleranceCheck) {
+  const auto wc = test::LoadBundledWorkcell();
+  MonitorOptions options;
+  {
+    Monitor monitor(wc, options);
+    ASSERT_EQ(monitor.startup_notices().size(), 1u);
+    EXPECT_NE(monitor.startup_notices()[0].find("swept check covers"), std::string::npos)
+        << monitor.startup_notices()[0];
+  }
+  options.swept_check = false;
+  try {
+    Monitor monitor(wc, options);
+    ADD_FAILURE() << "no LoadError";
+  } catch (const LoadError& e) {
+    EXPECT_NE(std::string(e.what()).find("swept_check"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("tolerance of primitive"), std::string::npos)
+        << e.what();
+  }
+  options.cycle_period_s = 0.002;
+  Monitor fast(wc, options);
+  EXPECT_TRUE(fast.startup_notices().empty());
+}
+
+// Cheap when nothing is near: on smooth trajectories at 100 Hz the path is needed only in the
+// few cycles where some pair's margin is below the step's motion bound (under 10 %); bounded
+// cycles never need it.
+TEST(MonitorSwept, PathRarelyNeededAtHighRate) {
+  const auto wc = test::LoadBundledWorkcell();
+  const test::JointLimits limits = test::LimitsOf(*wc);
+  std::mt19937_64 rng(test::PrintSeed(1616));
+  std::uint64_t cycles = 0, needed = 0, bounded = 0, tests = 0;
+  for (int trajectory = 0; trajectory < 5; ++trajectory) {
+    Monitor monitor(wc, MonitorOptions{});
+    const test::SmoothTrajectory path(limits, 0.5, &rng);
+    std::uint64_t needed_here = 0;
+    Eigen::VectorXd q;
+    for (int k = 0; k < 2000; ++k) {
+      path.At(k * 0.01, &q);
+      const CycleReport& report = monitor.Update(q);
+      ++cycles;
+      if (report.bounded) {
+        ++bounded;
+        EXPECT_EQ(report.swept_distance_tests, 0u);
+      }
+      needed_here += report.swept_pairs > 0 ? 1 : 0;
+      tests += report.swept_distance_tests;
+    }
+    EXPECT_EQ(monitor.swept_cycles(), needed_here);
+    needed += needed_here;
+  }
+  std::printf("%llu cycles at 100 Hz: %llu bounded, swept path needed in %llu (%.2f %%), %.3f "
+              "swept distance tests per cycle\n",
+              static_cast<unsigned long long>(cycles), static_cast<unsigned long long>(bounded),
+              static_cast<unsigned long long>(needed), 100.0 * needed / cycles,
+              static_cast<double>(tests) / cycles);
+  EXPECT_LT(needed, cycles / 10);
+}
+
+}  // namespace
+}  // namespace arm_collision_monitor
