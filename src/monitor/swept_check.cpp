@@ -96,7 +96,7 @@ void Monitor::Impl::CheckStepTolerance() {
 double Monitor::Impl::ComputeStepBound_m(const Eigen::Ref<const Eigen::VectorXd>& q) {
   motion.SetJointMotion(q, swept.q_start);
   double step_m = 0.0;
-  for (PrimitiveId id = 0; id < model.primitive_count; ++id) {
+  for (PrimitiveId id = 0; id < live_end; ++id) {  // free live slots never move
     if (motion.lever_count(id) == 0) continue;
     const double bound_m = motion.ComputeBound_m(id);
     if (!(bound_m <= step_m)) step_m = bound_m;  // NaN and inf propagate
@@ -161,7 +161,7 @@ void Monitor::Impl::RecordStartDisplacements() {
   // After bounded cycles the last kinematics is behind q_start: add the motion since (the lever
   // sums are recomputed for the step in SweepStep).
   if (kinematics_behind) motion.SetJointMotion(swept.q_start, q_kinematics);
-  for (PrimitiveId id = 0; id < model.primitive_count; ++id) {
+  for (PrimitiveId id = 0; id < live_end; ++id) {  // free live slots never move
     const bool has_moved = kinematics_behind && motion.lever_count(id) > 0;
     swept.start_displacement_m[id] =
         cache.displacement_m(id) + (has_moved ? motion.ComputeBound_m(id) : 0.0);
@@ -174,7 +174,7 @@ bool Monitor::Impl::CollectSweptPairs() {
   // fraction s a primitive is within d1 + (1 - s) B of its indexed copy (d1: its displacement
   // at q, B: its step bound) and, when its copy is the one it had at the start, within
   // d0 + s B too (d0: its displacement there); the larger of the smaller is (d0 + d1 + B) / 2.
-  const std::uint32_t n = model.primitive_count;
+  const std::uint32_t n = live_end;  // free live slots are not indexed
   const double slack_m = model.options.index_slack_m;
   for (const PrimitiveId id : cache.reindexed()) swept.is_reindexed[id] = 1;
   bool has_leaver = false;
