@@ -39,6 +39,13 @@ def warning_pairs(report):
     return set(tuple(sorted((w.owner_a, w.owner_b))) for w in report.warnings)
 
 
+def sample_warning_pairs(report):
+    """warning_pairs of the warnings at the report's sample, without those the swept check found
+    between the previous sample and this one (they depend on where the arms came from)."""
+    return set(tuple(sorted((w.owner_a, w.owner_b))) for w in report.warnings
+               if not w.between_samples)
+
+
 def describe_warnings(report):
     """For failure messages: each warning's owners, primitives and distance."""
     return ', '.join('%s (%s) - %s (%s) at %.3f m' % (w.owner_a, w.primitive_a_name, w.owner_b,
