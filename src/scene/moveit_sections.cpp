@@ -97,23 +97,7 @@ void AddCollisionObject(const SceneCollisionObject& object, const std::string& p
                               options, path, meshes);
   ObjectSpec spec;
   spec.name = object.id;
-  spec.primitive = static_cast<PrimitiveId>(workcell->primitives.size());
-  spec.primitive_count = static_cast<int>(shapes_W.size());
-  for (std::size_t k = 0; k < shapes_W.size(); ++k) {
-    PrimitiveSpec p;
-    p.name = shapes_W.size() == 1 ? object.id : object.id + "/" + std::to_string(k);
-    if (p.name != object.id) names->Claim(p.name, origin);
-    p.owner = object.id;
-    p.shape_L = shapes_W[k];
-    p.tolerance_m = tolerance_m;
-    p.object_index = static_cast<int>(workcell->objects.size());
-    if (!workcell->world_W.Contains(ComputeAabb(p.shape_L))) {
-      throw LoadError(origin + ": shape " + std::to_string(k) +
-                      " is not inside the world cube (expected it within world:)");
-    }
-    workcell->primitives.push_back(p);
-  }
-  workcell->objects.push_back(spec);
+  AppendObject(spec, shapes_W, tolerance_m, origin, names, workcell);
 }
 
 }  // namespace

@@ -169,23 +169,7 @@ void ReadObject(const YAML::Node& entry, Where item, const ShapeOptions& options
                              &tolerance_m);
   const std::vector<Shape> shapes_W =
       ReadObjectShapes(entry, item, object.X_WO_start, options, meshes);
-  object.primitive = static_cast<PrimitiveId>(workcell->primitives.size());
-  object.primitive_count = static_cast<int>(shapes_W.size());
-  for (std::size_t k = 0; k < shapes_W.size(); ++k) {
-    PrimitiveSpec p;
-    p.name = shapes_W.size() == 1 ? object.name : object.name + "/" + std::to_string(k);
-    if (p.name != object.name) names->Claim(p.name, origin);
-    p.owner = object.name;
-    p.shape_L = shapes_W[k];
-    p.tolerance_m = tolerance_m;
-    p.is_static = !object.is_attachable && object.frame.empty();
-    p.object_index = static_cast<int>(workcell->objects.size());
-    if (!workcell->world_W.Contains(ComputeAabb(p.shape_L))) {
-      item.Fail(entry, "the object is not inside the world cube (expected it within world:)");
-    }
-    workcell->primitives.push_back(p);
-  }
-  workcell->objects.push_back(object);
+  AppendObject(object, shapes_W, tolerance_m, origin, names, workcell);
 }
 
 // One capsule of a variants: entry, a primitive of `variant`'s link.
@@ -435,6 +419,28 @@ std::vector<PrimitiveSpec> MakeLinkPrimitives(const urdf::ModelInterface& urdf_m
     }
   }
   return primitives;
+}
+
+void AppendObject(ObjectSpec object, const std::vector<Shape>& shapes_W, double tolerance_m,
+                  const std::string& origin, NameRegistry* names, Workcell* workcell) {
+  object.primitive = static_cast<PrimitiveId>(workcell->primitives.size());
+  object.primitive_count = static_cast<int>(shapes_W.size());
+  for (std::size_t k = 0; k < shapes_W.size(); ++k) {
+    PrimitiveSpec p;
+    p.name = shapes_W.size() == 1 ? object.name : object.name + "/" + std::to_string(k);
+    if (p.name != object.name) names->Claim(p.name, origin);
+    p.owner = object.name;
+    p.shape_L = shapes_W[k];
+    p.tolerance_m = tolerance_m;
+    p.is_static = !object.is_attachable && object.frame.empty();
+    p.object_index = static_cast<int>(workcell->objects.size());
+    if (!workcell->world_W.Contains(ComputeAabb(p.shape_L))) {
+      throw LoadError(origin + ": shape " + std::to_string(k) +
+                      " is not inside the world cube (expected it within world:)");
+    }
+    workcell->primitives.push_back(p);
+  }
+  workcell->objects.push_back(object);
 }
 
 void ReadObjects(const YAML::Node& node, const Where& where, const ShapeOptions& options,

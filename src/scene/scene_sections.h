@@ -99,6 +99,13 @@ std::vector<PrimitiveSpec> MakeLinkPrimitives(const urdf::ModelInterface& urdf_m
 void ReadObjects(const YAML::Node& node, const Where& where, const ShapeOptions& options,
                  MeshFitter* meshes, NameRegistry* names, Workcell* workcell);
 
+/// Appends `object` and one primitive per shape (in W, at the object's start pose) to
+/// `workcell`: named after the object when it has one shape, else object/0, object/1, ...
+/// (claimed in `names`), static unless attachable or frame-bound. Throws a LoadError prefixed
+/// with `origin` ("file: element") when a shape is not inside workcell->world_W.
+void AppendObject(ObjectSpec object, const std::vector<Shape>& shapes_W, double tolerance_m,
+                  const std::string& origin, NameRegistry* names, Workcell* workcell);
+
 /// variants: appends each model variant and its capsules (after all primitives so far) to
 /// `workcell`.
 void ReadVariants(const YAML::Node& node, const Where& where, const LinkSettings& links,
