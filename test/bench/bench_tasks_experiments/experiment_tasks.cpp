@@ -32,8 +32,9 @@ double ExperimentTasks(const Args& args, const Scenario& s, const Reference& ref
       runs.push_back(
           [&s, &ref] { return RunMonitor(s, SeedLoopOptions(), &ref, "octree (slack 0)"); });
       // And without the swept check: its cost is the difference.
-      runs.push_back(
-          [&s, &ref] { return RunMonitor(s, SweptOffOptions(), &ref, "octree (swept off)"); });
+      MonitorOptions off = SweptOffOptions();
+      off.broad_phase.method = o.broad_phase.method;
+      runs.push_back([&s, &ref, off] { return RunMonitor(s, off, &ref, "octree (swept off)"); });
     }
   }
   runs.push_back([&s, &ref] {
