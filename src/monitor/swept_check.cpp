@@ -40,6 +40,7 @@ void Monitor::Impl::InitSwept() {
   swept.grown_W.assign(n, Aabb{});
   swept.leaves_slack.assign(n, 0);
   swept.leavers.reserve(n);
+  swept.near.reserve(n);
   swept.start_displacement_m.assign(n, 0.0);
   swept.is_reindexed.assign(n, 0);
   swept.pairs.reserve(static_cast<std::size_t>(n) * (n > 0 ? n - 1 : 0) / 2);
@@ -183,12 +184,12 @@ bool Monitor::Impl::CollectSweptPairs() {
   for (const PrimitiveId id : cache.reindexed()) swept.is_reindexed[id] = 0;
   swept.pairs.clear();
   if (swept.leavers.empty()) return false;
-  // The pairs of a primitive that may leave its slack, generated in order (a < b): a leaver
-  // with every later primitive, any other with the later leavers. The kept ones among them are
-  // dropped in SweepStep's merge. Boxes grown by g = (tol + B + k W) / (1 - k) (B: step bound,
-  // k W: BoundMargin_m(0)) that are apart have a gap over (threshold + B_a + B_b + 2 k W) /
-  // (1 - k), which SweepStep's test (cache.IsClear, motion PairBound_m <= B_a + B_b) clears
-  // with k W to spare for the rounding of the growth; a NaN bound grows a box to everything.
+  // The pairs of a primitive that may leave its slack, generated in order (a < b); the kept
+  // ones among them are dropped in SweepStep's merge. Boxes grown by g = (tol + B + k W) /
+  // (1 - k) (B: step bound, k W: BoundMargin_m(0)) that are apart have a gap over (threshold +
+  // B_a + B_b + 2 k W) / (1 - k), which SweepStep's test (cache.IsClear, motion PairBound_m <=
+  // B_a + B_b) clears with k W to spare for the rounding of the growth; a NaN bound grows a box
+  // to everything.
   const double margin_m = cache.BoundMargin_m(0.0);
   for (PrimitiveId id = 0; id < n; ++id) {
     if (!in_broad_phase[id]) continue;
@@ -199,17 +200,22 @@ bool Monitor::Impl::CollectSweptPairs() {
         swept.box_W[id].Inflated(std::isnan(grow_m) ? std::numeric_limits<double>::infinity()
                                                     : grow_m);
   }
-  const std::vector<PrimitiveId>& leavers = swept.leavers;
-  std::size_t next_leaver = 0;  // the first leaver after a
-  for (PrimitiveId a = 0; a < n; ++a) {
-    if (!in_broad_phase[a]) continue;
-    while (next_leaver < leavers.size() && leavers[next_leaver] <= a) ++next_leaver;
-    if (swept.leaves_slack[a]) {
-      for (PrimitiveId b = a + 1; b < n; ++b) {
-        if (in_broad_phase[b]) AddSweptPairIfNear(a, b);
-      }
-    } else {
-      for (std::size_t k = next_leaver; k < leavers.size(); ++k) AddSweptPairIfNear(a, leavers[k]);
+  // Only primitives whose grown box meets the leavers' (their union's) can pair with one.
+  Aabb leavers_W = swept.grown_W[swept.leavers.front()];
+  for (const PrimitiveId id : swept.leavers) {
+    leavers_W.min_W = leavers_W.min_W.cwiseMin(swept.grown_W[id].min_W);
+    leavers_W.max_W = leavers_W.max_W.cwiseMax(swept.grown_W[id].max_W);
+  }
+  std::vector<PrimitiveId>& near = swept.near;
+  near.clear();
+  for (PrimitiveId id = 0; id < n; ++id) {
+    if (in_broad_phase[id] && swept.grown_W[id].Overlaps(leavers_W)) near.push_back(id);
+  }
+  for (std::size_t i = 0; i < near.size(); ++i) {
+    const PrimitiveId a = near[i];
+    const bool a_leaves = swept.leaves_slack[a];
+    for (std::size_t j = i + 1; j < near.size(); ++j) {
+      if (a_leaves || swept.leaves_slack[near[j]]) AddSweptPairIfNear(a, near[j]);
     }
   }
   return true;
