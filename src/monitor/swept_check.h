@@ -41,7 +41,7 @@ struct SweptScratch {
   std::vector<Aabb> grown_W;
   std::vector<std::uint8_t> leaves_slack;  // per primitive: may leave its slack in the step
   std::vector<PrimitiveId> leavers;        // those that may, in order
-  std::vector<PrimitiveId> near;           // those whose grown box meets a leaver's, in order
+  std::vector<PrimitiveId> near;           // those whose grown box meets the leavers', in order
   // Per primitive: a bound on its displacement from its indexed copy at q_start (m), when
   // has_start_displacement (the index unchanged since the last kinematics).
   std::vector<double> start_displacement_m;
