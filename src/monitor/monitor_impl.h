@@ -121,9 +121,11 @@ struct Monitor::Impl {
   // path from swept.q_start to q, or warned between samples (appended, then sorted).
   void SweepStep(const Eigen::Ref<const Eigen::VectorXd>& q, CycleWork* work);
   // Into swept.pairs (sorted), the pairs SweepStep looks at besides the kept ones: those of
-  // each primitive that may leave its slack during the step whose bounding balls, grown by
-  // tolerance + step bound, meet. False when no primitive may leave it (none).
+  // each primitive that may leave its slack during the step whose boxes at q are not apart by
+  // more than threshold + both step bounds. False when no primitive may leave it (none).
   bool CollectSweptPairs();
+  // Appends (a, b), a < b, to swept.pairs unless compatible or clear by its boxes.
+  void AddSweptPairIfNear(PrimitiveId a, PrimitiveId b);
   // Before the kinematics: a bound on each primitive's displacement from its indexed copy at
   // the step's start (its displacement at the last kinematics plus its motion bound since),
   // unless the index changed since (swept.has_start_displacement).

@@ -9,6 +9,7 @@
 // is at most twice the resolution, where a sample within threshold + resolution exists.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "arm_collision_monitor/core/load_error.h"
@@ -27,18 +28,6 @@ bool IsBefore(const Warning& w, const CandidatePair& p) {
   return w.a < p.a || (w.a == p.a && w.b < p.b);
 }
 
-/// A ball holding `shape`: its centre and radius (m), same frame.
-void BoundingBall(const Shape& shape, Eigen::Vector3d* centre, double* radius_m) {
-  if (const auto* capsule = std::get_if<Capsule>(&shape)) {
-    *centre = 0.5 * (capsule->p0_W + capsule->p1_W);
-    *radius_m = 0.5 * (capsule->p1_W - capsule->p0_W).norm() + capsule->radius_m;
-    return;
-  }
-  const Box& box = std::get<Box>(shape);
-  *centre = box.X_WB.translation();
-  *radius_m = box.half_extents_m.norm();
-}
-
 }  // namespace
 
 void Monitor::Impl::InitSwept() {
@@ -47,9 +36,11 @@ void Monitor::Impl::InitSwept() {
   swept.q_s = model.q_start;
   swept.X_WL_start = model.X_WL_start;
   swept.X_WL_s = model.X_WL_start;
-  swept.centre_W.assign(n, Eigen::Vector3d::Zero());
-  swept.reach_m.assign(n, 0.0);
+  swept.box_W.assign(n, Aabb{});
+  swept.grown_W.assign(n, Aabb{});
   swept.leaves_slack.assign(n, 0);
+  swept.leavers.reserve(n);
+  swept.near.reserve(n);
   swept.start_displacement_m.assign(n, 0.0);
   swept.is_reindexed.assign(n, 0);
   swept.pairs.reserve(static_cast<std::size_t>(n) * (n > 0 ? n - 1 : 0) / 2);
@@ -177,7 +168,7 @@ bool Monitor::Impl::CollectSweptPairs() {
   const std::uint32_t n = live_end;  // free live slots are not indexed
   const double slack_m = model.options.index_slack_m;
   for (const PrimitiveId id : cache.reindexed()) swept.is_reindexed[id] = 1;
-  bool has_leaver = false;
+  swept.leavers.clear();
   for (PrimitiveId id = 0; id < n; ++id) {
     bool leaves = false;
     if (motion.lever_count(id) > 0 && in_broad_phase[id]) {
@@ -188,41 +179,62 @@ bool Monitor::Impl::CollectSweptPairs() {
       }
     }
     swept.leaves_slack[id] = leaves;
-    has_leaver = has_leaver || leaves;
+    if (leaves) swept.leavers.push_back(id);
   }
   for (const PrimitiveId id : cache.reindexed()) swept.is_reindexed[id] = 0;
   swept.pairs.clear();
-  if (!has_leaver) return false;
-  // The pairs of a primitive that may leave its slack: all whose bounding balls at q, grown by
-  // tolerance + step bound, meet (the kept ones among them are dropped in the merge).
+  if (swept.leavers.empty()) return false;
+  // The pairs of a primitive that may leave its slack, generated in order (a < b); the kept
+  // ones among them are dropped in SweepStep's merge. Boxes grown by g = (tol + B + k W) /
+  // (1 - k) (B: step bound, k W: BoundMargin_m(0)) that are apart have a gap over (threshold +
+  // B_a + B_b + 2 k W) / (1 - k), which SweepStep's test (cache.IsClear, motion PairBound_m <=
+  // B_a + B_b) clears with k W to spare for the rounding of the growth; a NaN bound grows a box
+  // to everything.
+  const double margin_m = cache.BoundMargin_m(0.0);
   for (PrimitiveId id = 0; id < n; ++id) {
     if (!in_broad_phase[id]) continue;
-    double radius_m = 0.0;
-    BoundingBall(shape_W[id], &swept.centre_W[id], &radius_m);
-    swept.reach_m[id] = radius_m + tol_now[id] + StepBound_m(id);
+    swept.box_W[id] = ComputeAabb(shape_W[id]);
+    const double grow_m =
+        (tol_now[id] + StepBound_m(id) + margin_m) / (1.0 - kLowerBoundMarginPerMetre);
+    swept.grown_W[id] =
+        swept.box_W[id].Inflated(std::isnan(grow_m) ? std::numeric_limits<double>::infinity()
+                                                    : grow_m);
   }
-  for (PrimitiveId a = 0; a < n; ++a) {
-    if (!swept.leaves_slack[a]) continue;
-    for (PrimitiveId b = 0; b < n; ++b) {
-      if (b == a || !in_broad_phase[b] || (swept.leaves_slack[b] && b < a) ||
-          compatible.AreCompatible(a, b)) {
-        continue;
-      }
-      const double reach_m = swept.reach_m[a] + swept.reach_m[b];
-      if ((swept.centre_W[a] - swept.centre_W[b]).squaredNorm() > reach_m * reach_m) continue;
-      // The boxes' gap bounds the distance at q from below (they hold the shapes).
-      const Aabb box_a = ComputeAabb(shape_W[a]);
-      const Aabb box_b = ComputeAabb(shape_W[b]);
-      const double gap_m = (box_b.min_W - box_a.max_W)
-                               .cwiseMax(box_a.min_W - box_b.max_W)
-                               .cwiseMax(0.0)
-                               .norm();
-      swept.pairs.push_back({CandidatePair{std::min(a, b), std::max(a, b)}, gap_m, false});
+  // Only primitives whose grown box meets the leavers' (their union's) can pair with one.
+  Aabb leavers_W = swept.grown_W[swept.leavers.front()];
+  for (const PrimitiveId id : swept.leavers) {
+    leavers_W.min_W = leavers_W.min_W.cwiseMin(swept.grown_W[id].min_W);
+    leavers_W.max_W = leavers_W.max_W.cwiseMax(swept.grown_W[id].max_W);
+  }
+  std::vector<PrimitiveId>& near = swept.near;
+  near.clear();
+  for (PrimitiveId id = 0; id < n; ++id) {
+    if (in_broad_phase[id] && swept.grown_W[id].Overlaps(leavers_W)) near.push_back(id);
+  }
+  for (std::size_t i = 0; i < near.size(); ++i) {
+    const PrimitiveId a = near[i];
+    const bool a_leaves = swept.leaves_slack[a];
+    for (std::size_t j = i + 1; j < near.size(); ++j) {
+      if (a_leaves || swept.leaves_slack[near[j]]) AddSweptPairIfNear(a, near[j]);
     }
   }
-  std::sort(swept.pairs.begin(), swept.pairs.end(),
-            [](const SweptPair& x, const SweptPair& y) { return x.pair < y.pair; });
   return true;
+}
+
+void Monitor::Impl::AddSweptPairIfNear(PrimitiveId a, PrimitiveId b) {
+  if (!swept.grown_W[a].Overlaps(swept.grown_W[b])) return;  // clear (CollectSweptPairs)
+  // The boxes' gap bounds the distance at q from below (they hold the shapes): a pair it clears
+  // by more than the step's motion of both is clear along the step (SweepStep's test, with the
+  // larger motion B_a + B_b).
+  const Aabb& box_a = swept.box_W[a];
+  const Aabb& box_b = swept.box_W[b];
+  const double gap_m =
+      (box_b.min_W - box_a.max_W).cwiseMax(box_a.min_W - box_b.max_W).cwiseMax(0.0).norm();
+  if (cache.IsClear(gap_m, StepBound_m(a) + StepBound_m(b), tol_now[a] + tol_now[b]) ||
+      compatible.AreCompatible(a, b)) {
+    return;
+  }
+  swept.pairs.push_back({CandidatePair{a, b}, gap_m, false});
 }
 
 void Monitor::Impl::ComputeStepPoses(double s, const Eigen::Ref<const Eigen::VectorXd>& q) {

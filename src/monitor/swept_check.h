@@ -36,16 +36,18 @@ struct SweptScratch {
   std::vector<Eigen::Isometry3d> X_WL_start;  // link poses at q_start (has_start)
   std::vector<Eigen::Isometry3d> X_WL_s;      // link poses at q_s
   bool has_start = false;
-  // Per primitive: a bounding ball's centre, and its radius + tolerance + step bound (m).
-  std::vector<Eigen::Vector3d> centre_W;
-  std::vector<double> reach_m;
+  // Per primitive, at q (CollectSweptPairs): its box, and that grown by its reach in the step.
+  std::vector<Aabb> box_W;
+  std::vector<Aabb> grown_W;
   std::vector<std::uint8_t> leaves_slack;  // per primitive: may leave its slack in the step
+  std::vector<PrimitiveId> leavers;        // those that may, in order
+  std::vector<PrimitiveId> near;           // those whose grown box meets the leavers', in order
   // Per primitive: a bound on its displacement from its indexed copy at q_start (m), when
   // has_start_displacement (the index unchanged since the last kinematics).
   std::vector<double> start_displacement_m;
   bool has_start_displacement = false;
   std::vector<std::uint8_t> is_reindexed;  // per primitive, this cycle (scratch)
-  std::vector<SweptPair> pairs;            // pairs of those besides the kept ones, sorted
+  std::vector<SweptPair> pairs;            // pairs of those besides the kept ones, in order
   // Depth-first bisection: at most one pending sibling per level, plus the current interval.
   std::array<SweptInterval, kMaxSweptBisections + 2> stack;
 };

@@ -31,6 +31,10 @@ double ExperimentTasks(const Args& args, const Scenario& s, const Reference& ref
       // The default Monitor on the seed's loop, beside it.
       runs.push_back(
           [&s, &ref] { return RunMonitor(s, SeedLoopOptions(), &ref, "octree (slack 0)"); });
+      // And without the swept check: its cost is the difference.
+      MonitorOptions off = SweptOffOptions();
+      off.broad_phase.method = o.broad_phase.method;
+      runs.push_back([&s, &ref, off] { return RunMonitor(s, off, &ref, "octree (swept off)"); });
     }
   }
   runs.push_back([&s, &ref] {

@@ -166,6 +166,14 @@ MonitorOptions SeedLoopOptions() {
   return o;
 }
 
+MonitorOptions SweptOffOptions() {
+  MonitorOptions o = DefaultOptions();
+  o.swept_check = false;
+  o.cycle_period_s /= 25.0;
+  o.max_speed_mps *= 25.0;
+  return o;
+}
+
 Reference BruteForce(const Scenario& s, int stride) {
   const Workcell& wc = *s.workcell;
   WorkcellShapes eval(wc);
