@@ -197,6 +197,18 @@ std::uint32_t Monitor::Impl::TestCandidatePairs() {
   });
 }
 
+Warning Monitor::Impl::MakeWarning(PrimitiveId a, PrimitiveId b, const DistanceResult& d,
+                                  double threshold_m) {
+  Warning w;
+  w.a = a;
+  w.b = b;
+  w.distance_m = d.distance_m;
+  w.threshold_m = threshold_m;
+  w.p_WA = d.p_WA;
+  w.p_WB = d.p_WB;
+  return w;
+}
+
 double Monitor::Impl::TestPair(PrimitiveId a, PrimitiveId b, const std::vector<Shape>& shapes,
                                const std::vector<double>& tol, std::vector<Warning>* warnings) {
   const double threshold_m = tol[a] + tol[b];
@@ -204,14 +216,7 @@ double Monitor::Impl::TestPair(PrimitiveId a, PrimitiveId b, const std::vector<S
   // Overlap is a negative signed distance, closer than any threshold: two parts without a
   // tolerance zone (threshold 0) still warn when they touch or overlap.
   if (d.distance_m < threshold_m || d.distance_m <= 0.0) {
-    Warning w;
-    w.a = a;
-    w.b = b;
-    w.distance_m = d.distance_m;
-    w.threshold_m = threshold_m;
-    w.p_WA = d.p_WA;
-    w.p_WB = d.p_WB;
-    warnings->push_back(w);
+    warnings->push_back(MakeWarning(a, b, d, threshold_m));
   }
   return d.distance_m;
 }

@@ -165,6 +165,9 @@ struct Monitor::Impl {
   // touching); returns the distance.
   static double TestPair(PrimitiveId a, PrimitiveId b, const std::vector<Shape>& shapes,
                          const std::vector<double>& tol, std::vector<Warning>* warnings);
+  // The warning of pair (a, b) at distance result `d` (at the sample: between_samples false).
+  static Warning MakeWarning(PrimitiveId a, PrimitiveId b, const DistanceResult& d,
+                             double threshold_m);
 
   // --- the index (monitor_scene.cpp) ----------------------------------------------------------
   bool IsActiveVariant(PrimitiveId id) const {

@@ -251,14 +251,8 @@ void Monitor::Impl::SweepPair(PrimitiveId a, PrimitiveId b, double pair_motion_m
   }
   // Appends the pair's warning at fraction s of the step, for the link poses X there.
   auto warn_at = [&](double s, const std::vector<Eigen::Isometry3d>& X) {
-    const DistanceResult d = ShapeDistance(ShapeAt(a, X), ShapeAt(b, X));
-    Warning warning;
-    warning.a = a;
-    warning.b = b;
-    warning.distance_m = d.distance_m;
-    warning.threshold_m = threshold_m;
-    warning.p_WA = d.p_WA;
-    warning.p_WB = d.p_WB;
+    Warning warning =
+        MakeWarning(a, b, ShapeDistance(ShapeAt(a, X), ShapeAt(b, X)), threshold_m);
     warning.between_samples = true;
     warning.step_fraction = s;
     report.warnings.push_back(warning);
