@@ -14,7 +14,6 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <memory>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -29,7 +28,6 @@
 
 #include "arm_collision_monitor/MonitorReport.h"
 #include "arm_collision_monitor/core/timing_summary.h"
-#include "arm_collision_monitor/ros/inline_input_queue.h"
 
 namespace arm_collision_monitor {
 namespace {
@@ -151,13 +149,10 @@ class LatencyProbe : public nodelet::Nodelet {
 
  private:
   void onInit() override {
-    // The three replies are recorded in the thread that delivers them (InlineInputQueue): the
-    // nodelet monitor's report inside its publish(), the TCP ones in roscpp's network thread.
-    // The same for all three series, so that none waits for the manager to wake a worker.
-    ros::NodeHandle nh = getMTNodeHandle();
+    // The multi-threaded handle: the three replies are recorded concurrently (Record locks), so
+    // that one reply never waits in a queue behind another.
+    ros::NodeHandle& nh = getMTNodeHandle();
     const ros::NodeHandle& private_nh = getMTPrivateNodeHandle();
-    inline_queue_ = std::make_unique<InlineInputQueue>(nh.getCallbackQueue());
-    nh.setCallbackQueue(inline_queue_.get());
     rate_hz_ = private_nh.param("rate_hz", 1000.0);
     duration_s_ = private_nh.param("duration_s", 10.0);
     warmup_s_ = private_nh.param("warmup_s", 1.0);
@@ -239,7 +234,6 @@ class LatencyProbe : public nodelet::Nodelet {
 
   double rate_hz_ = 0.0, duration_s_ = 0.0, warmup_s_ = 0.0;
   Measurements m_;
-  std::unique_ptr<InlineInputQueue> inline_queue_;  // outlives the subscriptions below
   ros::Publisher pub_;
   ros::Subscriber echo_sub_;
   std::vector<ros::Subscriber> report_subs_;  ///< TCP monitor, nodelet monitor
