@@ -708,6 +708,22 @@ def section_broadphase_workloads(out_dir, md):
     md.append("```\n" + text + "```\n")
 
 
+def section_latency(out_dir, md):
+    """latency_probe's table as printed (launch/latency_benchmark.launch, issue 15 item 6)."""
+    path = os.path.join(out_dir, "latency.txt")
+    if not os.path.exists(path):
+        return
+    with open(path) as f:
+        text = f.read()
+    md.append("\n## Publish -> report latency: nodelet, TCP, echo\n\n")
+    md.append(
+        "JointState at 1 kHz from the latency_probe nodelet to, in the same run, the monitor "
+        "nodelet in the same manager (in-process, no serialisation), monitor_node over TCP on "
+        "loopback and a trivial TCP echo node (the reference). Goal: the nodelet path's p50 at "
+        "most 0.15 x the echo's (column `p50/echo`, and the `aims` line).\n\n")
+    md.append("```\n" + text + "```\n")
+
+
 def main():
     args = sys.argv[1:]
     if not args:
@@ -737,6 +753,7 @@ def main():
     section_scaling(out_dir, md)
     section_tradeoffs(out_dir, md)
     section_broadphase_workloads(out_dir, md)
+    section_latency(out_dir, md)
     with open(os.path.join(out_dir, "report.md"), "w") as f:
         f.write("".join(md))
     print(f"wrote {os.path.join(out_dir, 'report.md')}")
