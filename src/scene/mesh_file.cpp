@@ -98,6 +98,42 @@ void MergeIdenticalVertices(TriangleMesh* mesh) {
   }
 }
 
+// True iff `text` contains `word` (lower case) in any case.
+bool ContainsCaseless(const std::string& text, const std::string& word) {
+  return std::search(text.begin(), text.end(), word.begin(), word.end(), [](char a, char b) {
+           return std::tolower(static_cast<unsigned char>(a)) == b;
+         }) != text.end();
+}
+
+// Refuses a COLLADA file whose <p> (index list) holds anything but integers: assimp 5.2's
+// COLLADA parser reads <p> with strtol10 and stops only at the end of the text, so a character
+// that is neither a digit, a sign nor a space stops it from advancing, and it appends index 0
+// until memory runs out (minimal input: test/fuzz/corpus/scene_mesh_file/oom_dae_letter_in_p).
+// Checked on the raw text, before XML decoding: an entity, comment or CDATA section inside <p>
+// is refused too (no exporter writes one), so every <p> that reaches assimp is safe.
+void CheckColladaIndexLists(const std::string& bytes) {
+  for (std::size_t at = bytes.find("<p"); at != std::string::npos; at = bytes.find("<p", at + 2)) {
+    const std::size_t tag_end = bytes.find('>', at);
+    if (tag_end == std::string::npos) return;  // not a tag: assimp's XML parser refuses it
+    const char after = at + 2 < bytes.size() ? bytes[at + 2] : '\0';
+    if (after != '>' && after != '/' && !std::isspace(static_cast<unsigned char>(after))) continue;
+    if (bytes[tag_end - 1] == '/') continue;  // <p/>: empty
+    const std::size_t close = bytes.find("</p", tag_end);
+    const std::size_t end = close == std::string::npos ? bytes.size() : close;
+    for (std::size_t i = tag_end + 1; i < end; ++i) {
+      const char c = bytes[i];
+      if (std::isdigit(static_cast<unsigned char>(c)) || c == '-' || c == '+' || c == ' ' ||
+          c == '\t' || c == '\r' || c == '\n') {
+        continue;
+      }
+      const auto line = 1 + std::count(bytes.begin(), bytes.begin() + i, '\n');
+      throw LoadError("COLLADA <p> element on line " + std::to_string(line) +
+                      ": character code " + std::to_string(static_cast<unsigned char>(c)) +
+                      " in its index list (expected only integers separated by spaces)");
+    }
+  }
+}
+
 }  // namespace
 
 TriangleMesh ReadMeshFileBytes(const std::string& bytes, const std::string& name,
@@ -105,6 +141,8 @@ TriangleMesh ReadMeshFileBytes(const std::string& bytes, const std::string& name
   if (bytes.empty()) throw LoadError("the file is empty (expected a mesh: STL, DAE, OBJ, ...)");
   Assimp::Importer importer;
   const std::string hint = ExtensionHint(name);
+  // Whatever the extension, assimp takes a file that names COLLADA near its start for one.
+  if (hint == "dae" || ContainsCaseless(bytes, "collada")) CheckColladaIndexLists(bytes);
   const aiScene* scene =
       importer.ReadFileFromMemory(bytes.data(), bytes.size(),
                                   aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |

@@ -22,7 +22,9 @@ namespace arm_collision_monitor {
 ///
 /// Points and lines are skipped; polygons are triangulated. Vertices at identical positions
 /// are merged (STL stores a corner once per facet). Throws LoadError (its message without the
-/// caller's context) when assimp cannot read the bytes or they hold no triangle.
+/// caller's context) when assimp cannot read the bytes or they hold no triangle, and, before
+/// assimp reads them, when a COLLADA file's <p> holds anything but integers and spaces (assimp
+/// 5.2 would append indices until memory runs out).
 TriangleMesh ReadMeshFileBytes(const std::string& bytes, const std::string& name,
                                const Eigen::Vector3d& scale);
 

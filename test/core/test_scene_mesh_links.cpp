@@ -391,6 +391,50 @@ TEST(SceneMeshLinks, BadMeshFilesAreRejectedNamingUrdfLinkAndFile) {
   ExpectBadLinkMesh(dir, "lines.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\nl 2 3\n", {});
 }
 
+// Inputs the mesh fuzzer (test/fuzz/fuzz_scene_mesh_file.cpp) found: assimp refuses them (and
+// leaks on the first, see test/fuzz/lsan.supp); the error still names the URDF, link and file.
+TEST(SceneMeshLinks, MalformedStlFilesAreRejected) {
+  const std::string dir = FreshDir("bad_stl");
+  const std::string facet_start = "solid a\nfacet normal 0 0 1\nouter loop\n";
+  ExpectBadLinkMesh(dir, "two_vertices.stl",
+                    facet_start + "vertex 0 0 0\nvertex 1 0 0\nendloop\nendfacet\nendsolid a\n",
+                    {"cannot read the mesh"});
+  ExpectBadLinkMesh(dir, "no_facet.stl", "solid a\nendsolid a\n", {"cannot read the mesh"});
+  // A binary STL whose triangle count needs more bytes than the file has, by 4 triangles or,
+  // with 32-bit arithmetic, by 2^31 (84 + 50 (2^31 + 1) wraps to the file's 134 bytes).
+  std::string stl = BinaryStl(BoxMesh(Eigen::Vector3d(0.1, 0.1, 0.1))).substr(0, 134);
+  for (const std::uint32_t count : {5u, 0x80000001u}) {
+    std::memcpy(&stl[80], &count, 4);
+    ExpectBadLinkMesh(dir, "count_" + std::to_string(count) + ".stl", stl,
+                      {"cannot read the mesh"});
+  }
+}
+
+// assimp 5.2 appends index 0 until memory runs out when a COLLADA <p> holds a non-number: the
+// reader refuses it first, naming the element and its line (fuzzer finding), whatever the
+// file's extension; a valid file with spaces, signs and attributes in <p> still loads.
+TEST(SceneMeshLinks, ColladaIndexListWithANonNumberIsRejected) {
+  const std::string dir = FreshDir("bad_dae");
+  const std::string dae = Dae(LShapeMesh(0.1, 0.05));
+  const std::size_t p = dae.find("<p>");
+  ASSERT_NE(p, std::string::npos);
+  const auto line = std::to_string(1 + std::count(dae.begin(), dae.begin() + p, '\n'));
+  for (const std::string& name : std::vector<std::string>{"letter.dae", "letter.xml"}) {
+    std::string bad = dae;
+    bad.insert(p + 3, "0 x ");
+    ExpectBadLinkMesh(dir, name, bad, {"COLLADA <p> element on line " + line, "character code 120"});
+  }
+  std::string entity = dae;
+  entity.insert(p + 3, "&#48; ");
+  ExpectBadLinkMesh(dir, "entity.dae", entity, {"<p> element", "character code 38"});
+  std::string spaced = dae;
+  spaced.replace(p, 3, "<p  class=\"x\">\t+");
+  WriteBytes(dir + "spaced.dae", spaced);
+  const Files files = WriteRobot(dir, {MeshCollision("spaced.dae")});
+  ExpectEncloses(LoadWorkcell(files.urdf, files.scene, CacheIn(dir)), "link0",
+                 LShapeMesh(0.1, 0.05), Eigen::Isometry3d::Identity());
+}
+
 TEST(SceneMeshLinks, MeshesWithoutVolumeAreRejected) {
   const std::string dir = FreshDir("no_volume");
   const std::string one = "v 0 0 0\nv 0.1 0 0\nv 0 0.1 0\nf 1 2 3\n";
