@@ -4,10 +4,15 @@
 
 #include <stdlib.h>
 
+#include <console_bridge/console.h>
+
 #include <cstdlib>
 #include <fstream>
 #include <string>
 #include <string_view>
+
+#include "arm_collision_monitor/core/load_error.h"
+#include "arm_collision_monitor/scene/workcell.h"
 
 namespace arm_collision_monitor {
 namespace fuzz {
@@ -28,6 +33,25 @@ inline void WriteScratchFile(const std::string& path, std::string_view text) {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   out.write(text.data(), static_cast<std::streamsize>(text.size()));
   if (!out) std::abort();
+}
+
+/// For LLVMFuzzerInitialize: urdfdom reports parse errors through console_bridge on stderr,
+/// noise at 10^4 inputs/s.
+inline void SilenceConsoleBridge() {
+  console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_NONE);
+}
+
+/// Loads the three-link test arm (test/data/three_link_arm.urdf) with the scene file
+/// `scene_path`: a LoadError is the expected answer to bad input; a workcell that loads but
+/// breaks its invariants (Workcell::Validate) is a finding, hence abort.
+inline void LoadThreeLinkArmAndValidate(const std::string& scene_path) {
+  try {
+    const Workcell w =
+        LoadWorkcell(std::string(ACM_SOURCE_DIR) + "/test/data/three_link_arm.urdf", scene_path);
+    std::string why;
+    if (!w.Validate(&why)) std::abort();
+  } catch (const LoadError&) {
+  }
 }
 
 }  // namespace fuzz

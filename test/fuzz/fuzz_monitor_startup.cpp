@@ -13,8 +13,6 @@
 #include <string_view>
 #include <vector>
 
-#include <console_bridge/console.h>
-
 #include "arm_collision_monitor/core/load_error.h"
 #include "arm_collision_monitor/monitor/monitor.h"
 #include "arm_collision_monitor/scene/workcell.h"
@@ -54,8 +52,7 @@ std::vector<std::string_view> Split(std::string_view text) {
 }  // namespace arm_collision_monitor
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
-  // urdfdom reports parse errors through console_bridge on stderr: noise at 10^4 inputs/s.
-  console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_NONE);
+  arm_collision_monitor::fuzz::SilenceConsoleBridge();
   return 0;
 }
 

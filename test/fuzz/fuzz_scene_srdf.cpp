@@ -10,8 +10,6 @@
 #include <string>
 #include <string_view>
 
-#include <console_bridge/console.h>
-
 #include "arm_collision_monitor/core/load_error.h"
 #include "arm_collision_monitor/scene/srdf_reader.h"
 #include "arm_collision_monitor/scene/workcell.h"
@@ -46,8 +44,7 @@ bool IsWellFormed(const SrdfLinkPair& pair) {
 }  // namespace arm_collision_monitor
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
-  // urdfdom reports through console_bridge on stderr: noise at 10^4 inputs/s.
-  console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_NONE);
+  arm_collision_monitor::fuzz::SilenceConsoleBridge();
   return 0;
 }
 
@@ -70,13 +67,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   for (const SrdfLink& link : rules.default_disabled_links) {
     if (link.link.empty() || link.line < 1) std::abort();
   }
-  try {
-    const Workcell w = LoadWorkcell(std::string(ACM_SOURCE_DIR) + "/test/data/three_link_arm.urdf",
-                                    ScenePath());
-    std::string why;
-    if (!w.Validate(&why)) std::abort();
-  } catch (const LoadError&) {
-    return 0;
-  }
+  fuzz::LoadThreeLinkArmAndValidate(ScenePath());
   return 0;
 }
