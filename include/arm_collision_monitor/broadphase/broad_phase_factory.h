@@ -45,8 +45,9 @@ int GridCellsFor(double world_edge_m, double box_edge_m, int configured);
 struct BroadPhaseOptions {
   BroadPhaseMethod method = BroadPhaseMethod::kAuto;
   /// For kAuto: the moving and static primitives the structure will hold (a caller that knows
-  /// its scene sets them; the Monitor counts its active primitives at start-up), and the mean
-  /// longest edge (m) of the moving primitives' inflated boxes (0: unknown). When auto picks
+  /// its scene sets them; the Monitor counts its active primitives at start-up; a static wholly
+  /// outside the world cube is not counted: it is only in the all-pairs outside list), and the
+  /// mean longest edge (m) of the moving primitives' inflated boxes (0: unknown). When auto picks
   /// the grid and knows that edge, cells smaller than it are coarsened to about it
   /// (GridCellsFor): boxes much larger than cells cost links and scans in every cell.
   std::uint32_t auto_moving = 0, auto_statics = 0;
