@@ -123,6 +123,14 @@ def impl_style(impl):
     return style
 
 
+def style_key():
+    """The charts' colour key, as a sentence of the report."""
+    colours = ", ".join(f"{m} {c.replace('tab:', '')}" for m, c in METHOD_COLOURS.items())
+    return (f"Charts: one colour per method in every chart ({colours}); a method's variants "
+            "(slack 0, swept off, sharp / rounded, idle skip, every cycle) keep its colour and "
+            "differ by line style, marker and bar hatch, named in each legend or label.")
+
+
 def plot_impl(ax, xs, ys, impl, label=None, hollow=False, thin=False, **kwargs):
     """One series of an implementation in its style; hollow markers and a thin line tell apart
     what is not a variant (a mean beside a median, a second speed)."""
@@ -1113,7 +1121,7 @@ def main():
           f"{env.get('load_average_at_start', '?')}. Missed warnings against brute "
           f"force over all our runs: **{meta.get('missed_vs_brute_total', '?')}**. "
           f"Times in microseconds. The seed's figures are for a 20 MHz 80386 ({SEED_TR}, "
-          "section 5); compare shapes and ratios, not absolute times.\n\n"]
+          "section 5); compare shapes and ratios, not absolute times. " + style_key() + "\n\n"]
     section_goals(out_dir, md)
     section_tasks(out_dir, md)
     section_octree(out_dir, md)
