@@ -384,8 +384,11 @@ void RunWorkload(const Args& args, const Workload& w, Csv* csv, std::uint64_t* m
   // default as shipped.
   const CycleCounts counts = CountCycles(s, DefaultOptions());
   const RunResult* dflt = &results.front();
-  std::printf("  default: %zu of %zu cycles bounded (no kinematics), %zu between-samples "
-              "warnings", counts.bounded, s.cycles(), counts.between_samples_warnings);
+  std::size_t warning_cycles = 0;
+  for (const PairSet& pairs : dflt->warnings) warning_cycles += !pairs.empty();
+  std::printf("  default: %zu of %zu cycles bounded (no kinematics), %zu with warnings, %zu "
+              "between-samples warnings", counts.bounded, s.cycles(), warning_cycles,
+              counts.between_samples_warnings);
   if (w.every_cycle_row) {
     std::printf("; every-cycle row: %zu bounded", CountCycles(s, every_cycle).bounded);
     if (w.name == "tasks_every_cycle") dflt = &results[1];
