@@ -833,9 +833,10 @@ def section_workloads(out_dir, md):
              ["naive"], 2.0)
     fair = first("tasks", lambda i: i.startswith("auto("))
     if fair is not None and any("(idle skip)" in r["impl"] for r in rows):
-        md.append("- Fairness, three tasks, default median / peer with the idle skip: " + "; ".join(
-            f"{p} {num(fair['median_us']) / num(by[('tasks', p + ' (idle skip)')]['median_us']):.2f}"
-            for p in bullets + fcls if ("tasks", p + " (idle skip)") in by) + "\n")
+        skip = {p: by.get(("tasks", p + " (idle skip)")) for p in bullets + fcls}
+        md.append(f"- Fairness, three tasks, {fair['impl']} median / peer with the idle skip: " +
+                  "; ".join(f"{p} {num(fair['median_us']) / num(r['median_us']):.2f}"
+                            for p, r in skip.items() if r is not None) + "\n")
 
 
 if __name__ == "__main__":

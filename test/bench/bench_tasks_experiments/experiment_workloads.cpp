@@ -10,8 +10,10 @@
 //                       boxes and cylinders, on quintic blends at 100 Hz between seeded random
 //                       collision-free configurations, dwelling 0.2 s at each;
 //   large_steps         tasks_every_cycle's motion sampled at 2 Hz: steps of tens of cells;
-//   outside_world       tasks_every_cycle in a world cube of 2 m that most primitives leave;
-//   statics_2000        tasks_every_cycle among 2,000 static boxes added near the arms.
+//   outside_world       that motion in a world cube of 2 m that the arms leave;
+//   statics_2000        the first half of that motion among 2,000 static boxes near the arms
+//                       (ExtraBoxesYaml).
+// --quick: a third of the cycles and 4 paths of the sphere robot instead of 12.
 // The Monitor runs with config/monitor.yaml's options (cycle_period_s 0.05 also at 100 Hz: a
 // longer period only makes its per-cycle motion bounds more conservative). Every cycle of a
 // peer includes the same forward kinematics as the Monitor's (RunPeer). Besides the default,
@@ -86,6 +88,7 @@ std::vector<Eigen::VectorXd> SmoothMotion(const Workcell& wc, std::uint64_t seed
 
 // ---- the sphere robot -----------------------------------------------------------------------
 
+constexpr double kHalfPi = 1.5707963267948966;
 constexpr int kSpheresPerLink = 5;
 constexpr double kLinkLength_m[7] = {0.25, 0.25, 0.25, 0.25, 0.2, 0.15, 0.15};
 constexpr double kSphereRadius_m[7] = {0.07, 0.065, 0.06, 0.055, 0.05, 0.045, 0.04};
@@ -96,6 +99,7 @@ constexpr double kMaxVelocity[7] = {1.0, 1.0, 1.2, 1.2, 1.5, 1.5, 1.5};
 // -y) in the home pose: 75 spheres.
 std::string SphereRobotUrdf() {
   std::ostringstream u;
+  u.precision(17);
   u << "<?xml version=\"1.0\"?>\n<robot name=\"sphere_dual_arm\">\n  <link name=\"world\"/>\n"
     << "  <joint name=\"torso_joint\" type=\"fixed\"><parent link=\"world\"/>"
     << "<child link=\"torso\"/></joint>\n  <link name=\"torso\">\n";
@@ -106,9 +110,9 @@ std::string SphereRobotUrdf() {
   u << "  </link>\n";
   for (const char* side : {"left", "right"}) {
     const bool left = std::string(side) == "left";
-    u << "  <joint name=\"" << side << "_mount\" type=\"fixed\"><parent link=\"torso\"/><child link=\""
-      << side << "_base_link\"/><origin xyz=\"0 " << (left ? 0.3 : -0.3) << " 1.3\" rpy=\""
-      << (left ? -1.5707963267948966 : 1.5707963267948966) << " 0 0\"/></joint>\n"
+    u << "  <joint name=\"" << side << "_mount\" type=\"fixed\"><parent link=\"torso\"/>"
+      << "<child link=\"" << side << "_base_link\"/><origin xyz=\"0 " << (left ? 0.3 : -0.3)
+      << " 1.3\" rpy=\"" << (left ? -kHalfPi : kHalfPi) << " 0 0\"/></joint>\n"
       << "  <link name=\"" << side << "_base_link\"/>\n";
     std::string parent = std::string(side) + "_base_link";
     for (int j = 0; j < 7; ++j) {
@@ -154,8 +158,8 @@ std::string ShelfSceneYaml() {
   const double cans[4][3] = {{0.85, -0.5, 0.47}, {0.9, 0.5, 0.47}, {0.85, 0.2, 0.87},
                              {0.9, -0.3, 1.27}};
   for (int c = 0; c < 4; ++c) {
-    s << "  - {name: can" << c << ", type: cylinder, radius_m: 0.04, length_m: 0.12, pose: {xyz_m: ["
-      << cans[c][0] << ", " << cans[c][1] << ", " << cans[c][2] << "]}}\n";
+    s << "  - {name: can" << c << ", type: cylinder, radius_m: 0.04, length_m: 0.12, "
+      << "pose: {xyz_m: [" << cans[c][0] << ", " << cans[c][1] << ", " << cans[c][2] << "]}}\n";
   }
   for (const double y : {1.2, -1.2}) {
     const char* side = y > 0 ? "l" : "r";
@@ -457,14 +461,17 @@ void ExperimentWorkloads(const Args& args, const Scenario& tasks, const Referenc
     WriteFile(urdf_path, SphereRobotUrdf());
     auto robot = LoadWorkcellText(args, "sphere_robot", urdf_path, ShelfSceneYaml());
     std::remove(urdf_path.c_str());
-    Workload w = MakeWorkload("sphere_robot", robot, SpherePaths(*robot, seed, args.quick ? 4 : 12));
+    Workload w =
+        MakeWorkload("sphere_robot", robot, SpherePaths(*robot, seed, args.quick ? 4 : 12));
     w.every_cycle_row = true;
     w.idle_skip_rows = true;
     RunWorkload(args, w, &csv, missed_total);
   }
   {
-    // The same motion as tasks_every_cycle, sampled ten times more sparsely.
-    RunWorkload(args, MakeWorkload("large_steps", wc, SmoothMotion(*wc, seed, 2.0, cycles_20hz / 2)),
+    // The same motion as tasks_every_cycle, sampled ten times more sparsely (for 5 times as
+    // long: half as many cycles).
+    RunWorkload(args,
+                MakeWorkload("large_steps", wc, SmoothMotion(*wc, seed, 2.0, cycles_20hz / 2)),
                 &csv, missed_total);
   }
   {
