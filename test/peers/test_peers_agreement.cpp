@@ -4,6 +4,8 @@
 // kSharp must give a superset, every extra pair explained by a sharp edge or corner.
 #include <algorithm>
 #include <cstdio>
+#include <iterator>
+#include <string>
 #include <random>
 #include <vector>
 
@@ -157,6 +159,76 @@ TEST_P(PeersAgreement, RandomScenesMatchBruteForce) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Seeds, PeersAgreement, ::testing::Range(0, 4));
+
+// One moving shape (primitive 0) and one static box (primitive 1) apart, seeded: `kind` 0 two
+// capsules (the second moving too), 1 a capsule and a box, 2 a sphere and a box, 3 two boxes.
+std::vector<PeerPrimitive> SeparatedPair(std::mt19937_64* rng, int kind, double* distance_m) {
+  std::uniform_real_distribution<double> half(0.02, 0.3);
+  for (;;) {
+    auto random_box = [&] {
+      Box b;
+      b.X_WB.linear() = Eigen::Quaterniond::UnitRandom().toRotationMatrix();
+      b.X_WB.translation() = RandomPoint(rng, 1.0);
+      b.half_extents_m = Eigen::Vector3d(half(*rng), half(*rng), half(*rng));
+      return b;
+    };
+    Shape a = RandomCapsule(rng);
+    if (kind == 2) std::get<Capsule>(a).p1_W = std::get<Capsule>(a).p0_W;
+    if (kind == 3) a = random_box();
+    const Shape b = kind == 0 ? Shape(RandomCapsule(rng)) : Shape(random_box());
+    *distance_m = ShapeDistance(a, b).distance_m;
+    if (*distance_m > 0.005 && *distance_m < 0.5) {
+      return {PeerPrimitive{a, 0.0, true, true}, PeerPrimitive{b, 0.0, kind == 0, true}};
+    }
+  }
+}
+
+// The agreement table at the threshold: the rounded peers on pairs whose distance lies a
+// margin inside or outside their threshold (the tolerance sum), against our distance. Printed
+// per peer, pair kind and margin; a peer must decide every pair right at margins of
+// kPeerThresholdBand_m and above (what RandomScenesMatchBruteForce lets it decide either way).
+TEST(PeersAgreement, NearThresholdPairsDecidedAtTheStatedAccuracy) {
+  constexpr int kPairs = 100;
+  const double margins_m[] = {1e-3, 1e-4, 3e-5, 1e-5, 1e-6, 1e-7};
+  const char* kinds[] = {"capsule-capsule", "capsule-box", "sphere-box", "box-box"};
+  std::printf("%-12s %-16s wrong decisions of %d pairs x 2 at margin (m):", "peer", "pairs",
+              kPairs);
+  for (const double m : margins_m) std::printf(" %8.0e", m);
+  std::printf("\n");
+  for (const bool use_fcl : {true, false}) {
+    for (int kind = 0; kind < 4; ++kind) {
+      std::mt19937_64 rng(20261124u + static_cast<std::uint64_t>(kind));
+      std::srand(20261124u);  // Eigen's Random() draws from rand()
+      std::vector<int> wrong(std::size(margins_m), 0);
+      std::string name;
+      for (int i = 0; i < kPairs; ++i) {
+        double d_m = 0.0;
+        std::vector<PeerPrimitive> pair = SeparatedPair(&rng, kind, &d_m);
+        for (std::size_t k = 0; k < std::size(margins_m); ++k) {
+          for (const double sign : {1.0, -1.0}) {
+            // The threshold a margin beyond (warn) or short of (no warning) the distance.
+            pair[0].tolerance_m = d_m + sign * margins_m[k];
+            const CompatibilityMatrix none(2);
+            auto peer = use_fcl ? MakeFclChecker(pair, none, PeerTolerance::kRounded)
+                                : MakeBulletChecker(pair, none, PeerTolerance::kRounded);
+            name = peer->name();
+            std::vector<CandidatePair> got;
+            peer->FindWarnings(&got);
+            wrong[k] += (!got.empty()) != (sign > 0.0);
+          }
+        }
+      }
+      std::printf("%-12s %-16s %39s", name.c_str(), kinds[kind], "");
+      for (std::size_t k = 0; k < std::size(margins_m); ++k) {
+        std::printf(" %8d", wrong[k]);
+        if (margins_m[k] >= kPeerThresholdBand_m) {
+          EXPECT_EQ(wrong[k], 0) << name << " " << kinds[kind] << " at margin " << margins_m[k];
+        }
+      }
+      std::printf("\n");
+    }
+  }
+}
 
 }  // namespace
 }  // namespace arm_collision_monitor

@@ -202,8 +202,11 @@ using PeerFactory = std::function<std::unique_ptr<PeerChecker>(
     const std::vector<PeerPrimitive>&, const CompatibilityMatrix&)>;
 
 // A peer's cycle: the same forward kinematics as the Monitor, the moving shapes handed over,
-// then its query. One timing pass over every task, as RunMonitor.
-RunResult RunPeer(const Scenario& s, const PeerFactory& factory, const Reference* ref);
+// then its query. One timing pass over every task, as RunMonitor. `idle_skip`: a cycle whose q
+// is bit-identical to the previous one keeps the previous warnings and does nothing else, the
+// Monitor's idle-cycle shortcut (impl "<peer> (idle skip)").
+RunResult RunPeer(const Scenario& s, const PeerFactory& factory, const Reference* ref,
+                  bool idle_skip = false);
 
 // The four peers by name: FCL and Bullet, each with sharp and rounded grown boxes.
 std::vector<std::pair<std::string, PeerFactory>> Peers();
@@ -253,6 +256,13 @@ void ExperimentMovingScaling(const Args& args, const Scenario& base, std::uint64
 // Check rate and sub-stepping against missed warnings (3b), on scenario `s`; `check_us` is the
 // default Monitor's median cycle time, to price each schedule. Rows into `csv` (temporal.csv).
 void ExperimentTemporal(const Args& args, const Scenario& s, double check_us, Csv* csv);
+
+// Issue 15 item 4: the default Monitor, naive, grid, octree and the peers (also with the
+// Monitor's idle-cycle skip) on the tasks, every joint moving every cycle, a sphere-model
+// dual-arm robot in a shelf scene, large steps, primitives outside the world cube and 2,000
+// statics (workloads_summary.csv).
+void ExperimentWorkloads(const Args& args, const Scenario& tasks, const Reference& tasks_ref,
+                         std::uint64_t* missed_total);
 
 // Float against double: seeded capsule pairs (a fifth nearly parallel and close), the distance
 // in float, in double and by the library, against long double (float_double.csv).

@@ -33,7 +33,7 @@ int main(int argc, char** argv) {
       args.seed = std::stoull(argv[++i]);
     } else {
       std::fprintf(stderr, "usage: %s [--out DIR] [--quick] [--seed S] [--only tasks,octree,sweeps,slack,static,"
-                   "moving,temporal,float,fidelity,cylinders]\n", argv[0]);
+                   "moving,workloads,temporal,float,fidelity,cylinders]\n", argv[0]);
       return 2;
     }
   }
@@ -56,6 +56,7 @@ int main(int argc, char** argv) {
   if (args.Runs("slack")) ExperimentSlack(args, s, ref, &missed_total);
   if (args.Runs("static")) ExperimentStaticScaling(args, s, &missed_total);
   if (args.Runs("moving")) ExperimentMovingScaling(args, s, &missed_total);
+  if (args.Runs("workloads")) ExperimentWorkloads(args, s, ref, &missed_total);
   // The tasks have few close approaches; the error studies also run among 200 boxes added
   // near the arms (seeded), where grazing contacts are frequent.
   std::mt19937_64 clutter_rng(args.seed);

@@ -71,6 +71,15 @@ class BulletChecker final : public PeerChecker {
         filter_(compatible_, is_moving_), shapes_(primitives.size()),
         objects_(primitives.size()) {
     broadphase_.getOverlappingPairCache()->setOverlapFilterCallback(&filter_);
+    // Bullet's box-box algorithm (btBoxBoxCollisionAlgorithm) works on the outer half extents
+    // and ignores margins, i.e. on sharp grown boxes: kRounded sends box pairs to the general
+    // convex algorithm (GJK/EPA on the core plus margin) like every other pair.
+    if (mode == PeerTolerance::kRounded) {
+      dispatcher_.registerCollisionCreateFunc(
+          BOX_SHAPE_PROXYTYPE, BOX_SHAPE_PROXYTYPE,
+          configuration_.getCollisionAlgorithmCreateFunc(CONVEX_HULL_SHAPE_PROXYTYPE,
+                                                         CONVEX_HULL_SHAPE_PROXYTYPE));
+    }
     // Only moving objects get their AABB recomputed each call (static ones never change).
     world_.setForceUpdateAllAabbs(false);
     for (std::size_t id = 0; id < primitives.size(); ++id) {

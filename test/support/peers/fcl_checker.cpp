@@ -57,6 +57,10 @@ class FclChecker final : public PeerChecker {
         statics_.push_back(objects_[id].get());
       }
     }
+    // FCL's default GJK stopping tolerance (1e-6) leaves capsule-box and sphere-box distances
+    // up to ~40 um long (libccd), so pairs that close inside their threshold were missed;
+    // 1e-9 decides them right down to 0.1 um (test_peers_agreement's near-threshold table).
+    distance_request_.distance_tolerance = 1e-9;
     static_manager_.registerObjects(statics_);
     static_manager_.setup();
     moving_manager_.registerObjects(moving_);

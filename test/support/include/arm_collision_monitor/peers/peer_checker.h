@@ -18,8 +18,9 @@ namespace arm_collision_monitor {
 /// How a peer decides "surfaces closer than tolerance(a) + tolerance(b)".
 enum class PeerTolerance : std::uint8_t {
   /// Each shape grown by its tolerance in every direction (Minkowski sum with a ball): a grown
-  /// box has rounded edges and corners. The same predicate as ours (Bullet: collision margins;
-  /// FCL: distance query on the ungrown shapes for every pair its broad phase reports).
+  /// box has rounded edges and corners. The same predicate as ours (Bullet: collision margins,
+  /// box pairs through GJK too; FCL: distance query on the ungrown shapes, GJK tolerance 1e-9,
+  /// for every pair its broad phase reports).
   kRounded,
   /// Capsule radius + tolerance, box half extents + tolerance along the box axes: the grown box
   /// keeps sharp edges, so near its edges and corners this warns where we do not (a superset).
