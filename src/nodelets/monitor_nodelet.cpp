@@ -89,11 +89,16 @@ class SerialisedCallback : public ros::CallbackInterface {
 //     publish(): there the cycle's own publishes re-enter a mutex the thread holds, and nothing
 //     it waits for can be held by a thread waiting for it. roscpp delivers messages in three
 //     kinds of thread: publishing threads (in-process nocopy delivery, inside publish()); its
-//     poll thread (TCP and UDP input, and serialised in-process delivery), which holds neither;
-//     and a thread calling subscribe() or advertise(), which delivers a latched message to a new
-//     link (for this node: only its own subscribe() calls, before Arm()). The poll thread is
-//     recognised by its id, which a poll thread listener records; until it has, and until Arm(),
-//     nothing runs inline.
+//     poll thread (TCP and UDP input, and serialised in-process delivery), which does not hold
+//     advertised_topics_mutex_ but does hold the input subscription's callbacks_mutex_, so a
+//     cycle there would wait for the former while a publisher of the same topic holds it and
+//     waits for the latter (Subscription::getPublishTypes or handleMessage: seen in gdb with
+//     TCP and in-process input on one topic); and a thread calling subscribe() or advertise(),
+//     which delivers a latched message to a new link (for this node: only its own subscribe()
+//     calls, before Arm()). The poll thread is recognised by its id, which a poll thread
+//     listener records; until it has, and until Arm(), nothing runs inline.
+//  Other queues that run callbacks inline in the delivering thread must keep these rules too:
+//  the cycle waits for in-process subscribers' callbacks_mutex_ when it publishes.
 class DirectInputQueue : public ros::CallbackQueueInterface {
  public:
   /// `queue` (the nodelet's ST queue) runs every callback that does not run inline.
