@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include <boost/make_shared.hpp>
+
 #include <std_msgs/Bool.h>
 #include <tf2_eigen/tf2_eigen.h>
 #include <visualization_msgs/MarkerArray.h>
@@ -274,7 +276,7 @@ void MonitorNode::RunCycle(std::chrono::steady_clock::time_point start) {
     cycle_times_s_[cycle_time_next_] = cycle_time_s;
     cycle_time_next_ = (cycle_time_next_ + 1) % kCycleTimeWindow;
   }
-  report_pub_.publish(report_);
+  PublishReport();
   PublishStop(/*only_on_change=*/true);
   PublishVisualisation();
 }
@@ -309,8 +311,20 @@ void MonitorNode::OnStalenessTimer(const ros::TimerEvent&) {
     ++stale_episodes_;
     report_.input_status = ToInputStatusMsg(policy_.status());
     report_.cycle_time_s = 0.0;
-    report_pub_.publish(report_);
+    PublishReport();
   }
+}
+
+void MonitorNode::PublishReport() {
+  for (const boost::shared_ptr<MonitorReport>& msg : report_pool_) {
+    if (msg.use_count() == 1) {  // only the pool holds it: nobody can be reading it
+      *msg = report_;            // reuses the copy's capacity
+      report_pub_.publish(msg);
+      return;
+    }
+  }
+  report_pool_.push_back(boost::make_shared<MonitorReport>(report_));
+  report_pub_.publish(report_pool_.back());
 }
 
 void MonitorNode::PublishStop(bool only_on_change) {

@@ -10,10 +10,13 @@
 //   roslaunch arm_collision_monitor latency_benchmark.launch [rate_hz:=1000] [duration_s:=10]
 // Messages are matched by header.stamp (a report carries its input's stamp); the send time is
 // the stamp itself (ros::Time::now(), wall clock without sim time), so latency is receive time
-// minus stamp.
+// minus stamp. All three replies are recorded the same way, in the thread that delivers them
+// (RecordOnDeliveryQueue): the TCP ones in roscpp's poll thread as it reads them off the socket,
+// the nodelet's inside the monitor's publish(); none waits for the manager to wake a thread.
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -23,7 +26,9 @@
 #include <boost/make_shared.hpp>
 #include <nodelet/nodelet.h>
 #include <pluginlib/class_list_macros.hpp>
+#include <ros/callback_queue_interface.h>
 #include <ros/ros.h>
+#include <ros/subscription_queue.h>
 #include <sensor_msgs/JointState.h>
 
 #include "arm_collision_monitor/MonitorReport.h"
@@ -62,8 +67,8 @@ struct Series {
   std::vector<double> cycle_time_s;
 };
 
-// The three receivers' series; written by the subscriptions (the manager's worker threads) and
-// the publishing thread, hence the mutex.
+// The three receivers' series; written by the subscriptions (in the delivering threads) and the
+// publishing thread, hence the mutex.
 struct Measurements {
   std::mutex mutex;
   Series echo, tcp_report, nodelet_report;
@@ -136,6 +141,29 @@ void PrintResults(const Measurements& m, long measured, double rate_hz, long war
   std::fflush(stdout);
 }
 
+// The probe's callback queue: runs a message callback at once in the thread that delivers the
+// message, so that a reply's receive time is taken when roscpp has it, whichever the transport.
+// Safe in any thread, unlike the monitor's DirectInputQueue, because the callbacks on it (Record)
+// only take Measurements' mutex, which nothing holds while waiting for another lock, and never
+// publish. A callback that cannot run now (TryAgain: its subscription's callback is running in
+// another thread) and every other kind go to the underlying queue.
+class RecordOnDeliveryQueue : public ros::CallbackQueueInterface {
+ public:
+  explicit RecordOnDeliveryQueue(ros::CallbackQueueInterface* queue) : queue_(queue) {}
+
+  void addCallback(const ros::CallbackInterfacePtr& callback, std::uint64_t owner_id) override {
+    if (dynamic_cast<ros::SubscriptionQueue*>(callback.get()) != nullptr && callback->ready() &&
+        callback->call() != ros::CallbackInterface::TryAgain) {
+      return;
+    }
+    queue_->addCallback(callback, owner_id);
+  }
+  void removeByID(std::uint64_t owner_id) override { queue_->removeByID(owner_id); }
+
+ private:
+  ros::CallbackQueueInterface* queue_;
+};
+
 }  // namespace
 
 /// Topics (remap them): publishes `joint_states`; receives `echo` (the TCP echo's copy),
@@ -149,10 +177,11 @@ class LatencyProbe : public nodelet::Nodelet {
 
  private:
   void onInit() override {
-    // The multi-threaded handle: the three replies are recorded concurrently (Record locks), so
-    // that one reply never waits in a queue behind another.
-    ros::NodeHandle& nh = getMTNodeHandle();
+    // Over the multi-threaded queue: replies may be recorded concurrently (Record locks).
+    ros::NodeHandle nh = getMTNodeHandle();
     const ros::NodeHandle& private_nh = getMTPrivateNodeHandle();
+    record_queue_ = std::make_unique<RecordOnDeliveryQueue>(nh.getCallbackQueue());
+    nh.setCallbackQueue(record_queue_.get());
     rate_hz_ = private_nh.param("rate_hz", 1000.0);
     duration_s_ = private_nh.param("duration_s", 10.0);
     warmup_s_ = private_nh.param("warmup_s", 1.0);
@@ -234,6 +263,7 @@ class LatencyProbe : public nodelet::Nodelet {
 
   double rate_hz_ = 0.0, duration_s_ = 0.0, warmup_s_ = 0.0;
   Measurements m_;
+  std::unique_ptr<RecordOnDeliveryQueue> record_queue_;  // outlives the subscriptions below
   ros::Publisher pub_;
   ros::Subscriber echo_sub_;
   std::vector<ros::Subscriber> report_subs_;  ///< TCP monitor, nodelet monitor

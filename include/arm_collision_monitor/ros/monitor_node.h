@@ -80,6 +80,8 @@ class MonitorNode {
   void TakeStopDecision(bool was_stop);
   /// Messages refused so far: by the merger, and by the Monitor (out of limits).
   std::uint64_t RefusedInputs() const;
+  /// Publishes report_ as a shared pointer (see report_pool_).
+  void PublishReport();
   void PublishStop(bool only_on_change);
   void PublishVisualisation();
   void FillReportWarnings(const CycleReport& report, MonitorReport* msg) const;
@@ -135,6 +137,11 @@ class MonitorNode {
 
   // --- per-cycle state (preallocated) ------------------------------------------------------
   MonitorReport report_;               ///< reused every cycle
+  /// Copies of report_ published as shared pointers: a subscriber in the same process (a nodelet
+  /// in the monitor nodelet's manager) receives the very message, neither serialised nor passed
+  /// through roscpp's poll thread. A copy that no subscriber holds any more is reused; a new one
+  /// is made only while all are held (bounded by the in-process subscribers' queues).
+  std::vector<boost::shared_ptr<MonitorReport>> report_pool_;
   sensor_msgs::JointState joint_state_out_;
   MergeStatus pending_refusal_ = MergeStatus::kAccepted;  ///< first refusal since last cycle
   ros::Time newest_input_stamp_;
