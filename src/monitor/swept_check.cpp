@@ -199,18 +199,20 @@ bool Monitor::Impl::CollectSweptPairs() {
   if (swept.leavers.empty()) return false;
   // The pairs of a primitive that may leave its slack, generated in order (a < b); the kept
   // ones among them are dropped in SweepStep's merge. Boxes grown by g = (tol + B + k W) /
-  // (1 - k) (B: step bound, k W: BoundMargin_m(0)) that are apart have a gap over (threshold +
-  // B_a + B_b + 2 k W) / (1 - k), which SweepStep's test (cache.IsClear, PairStepBound_m <=
-  // B_a + B_b) clears with k W to spare for the rounding of the growth; a NaN bound grows a box
-  // to everything.
+  // (1 - k) (B: at least the step bound, k W: BoundMargin_m(0)) that are apart have a gap over
+  // (threshold + B_a + B_b + 2 k W) / (1 - k), which SweepStep's test (cache.IsClear,
+  // PairStepBound_m <= B_a + B_b) clears with k W to spare for the rounding of the growth; a
+  // NaN bound grows a box to everything. A leaver's B is its step bound, any other's the
+  // largest (its own is needed only for the few pairs whose boxes meet).
   const double margin_m = cache.BoundMargin_m(0.0);
   for (PrimitiveId id = 0; id < n; ++id) {
     // Without levers a primitive moves only with the scene (Monitor::Impl::RunCycle).
     const bool is_fixed = step.lever_count(id) == 0;
     if (!in_broad_phase[id] || (is_fixed && swept.are_fixed_boxes_current)) continue;
     swept.box_W[id] = ComputeAabb(shape_W[id]);
-    const double grow_m =
-        (tol_now[id] + StepBound_m(id) + margin_m) / (1.0 - kLowerBoundMarginPerMetre);
+    double reach_m = swept.leaves_slack[id] ? StepBound_m(id) : largest_m;
+    if (is_fixed) reach_m = 0.0;
+    const double grow_m = (tol_now[id] + reach_m + margin_m) / (1.0 - kLowerBoundMarginPerMetre);
     swept.grown_W[id] =
         swept.box_W[id].Inflated(std::isnan(grow_m) ? std::numeric_limits<double>::infinity()
                                                     : grow_m);
