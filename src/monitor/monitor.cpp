@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cstring>
 #include <utility>
+#include <variant>
 
 #include "arm_collision_monitor/broadphase/broad_phase_factory.h"
 #include "arm_collision_monitor/geometry/distance.h"
@@ -19,6 +20,20 @@ namespace {
 /// Bit-identical poses: a link whose pose did not change bit for bit has not moved.
 bool IsSamePose(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
   return std::memcmp(a.matrix().data(), b.matrix().data(), sizeof(double) * 16) == 0;
+}
+
+/// *shape_W = TransformShape(X_WL, shape_C), a capsule written in place (no temporary shape
+/// assigned through the variant: the arms' capsules, moved every kinematics cycle).
+void MoveShape(const Eigen::Isometry3d& X_WL, const Shape& shape_C, Shape* shape_W) {
+  const auto* capsule_C = std::get_if<Capsule>(&shape_C);
+  auto* capsule_W = std::get_if<Capsule>(shape_W);
+  if (capsule_C == nullptr || capsule_W == nullptr) {
+    *shape_W = TransformShape(X_WL, shape_C);
+    return;
+  }
+  capsule_W->p0_W = X_WL * capsule_C->p0_W;
+  capsule_W->p1_W = X_WL * capsule_C->p1_W;
+  capsule_W->radius_m = capsule_C->radius_m;
 }
 
 }  // namespace
@@ -51,9 +66,14 @@ void Monitor::Impl::RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q) {
   // The step from the last accepted q (none before the first good cycle: q_good is then only
   // the model's start pose).
   swept.q_start = q_good;
+  swept.is_behind = kinematics_behind;
+  swept.are_step_bounds_complete = false;
+  // Scene changes may move the primitives without levers: their cached boxes go.
+  if (scene_changed) swept.are_fixed_boxes_current = false;
   if (has_good) {
-    motion.SetJointMotion(q, swept.q_start);
-    work.step_m = motion.ComputeLargestBound_m();
+    MotionBounds& step = StepMotion();
+    step.SetJointMotion(q, swept.q_start);
+    work.step_m = step.ComputeLargestBound_m();
     work.is_jumped = !(work.step_m <= model.options.max_step_m);
   }
   if (IsProvablyClear(q)) {
@@ -94,10 +114,11 @@ bool Monitor::Impl::IsProvablyClear(const Eigen::Ref<const Eigen::VectorXd>& q) 
     return false;
   }
   // With the swept check, bounds for every point of the step from q_good to q: what they
-  // certify then holds along the whole path.
-  if (model.options.swept_check) {
+  // certify then holds along the whole path. Without bounded cycles since the kinematics
+  // (q_kinematics == q_good) both are the step's motion |q - q_good|, already set (RunCycle).
+  if (kinematics_behind && model.options.swept_check) {
     motion.SetSegmentMotion(q_good, q, q_kinematics);
-  } else {
+  } else if (kinematics_behind) {
     motion.SetJointMotion(q, q_kinematics);
   }
   const double slack_m = model.options.index_slack_m;
@@ -107,6 +128,8 @@ bool Monitor::Impl::IsProvablyClear(const Eigen::Ref<const Eigen::VectorXd>& q) 
     // Motion since indexed <= motion until the kinematics + motion since; NaN fails.
     if (in_broad_phase[id] && !(cache.displacement_m(id) + bound_m <= slack_m)) return false;
   }
+  // Every step bound is known then (free live slots never move).
+  swept.are_step_bounds_complete = !kinematics_behind;
   for (const KeptPair& kept : cache.pairs()) {
     const PrimitiveId a = kept.pair.a;
     const PrimitiveId b = kept.pair.b;
@@ -148,7 +171,7 @@ void Monitor::Impl::MoveCarried(const std::vector<Eigen::Isometry3d>& X_WL_new,
   for (PrimitiveId id = 0; id < live_end; ++id) {
     const int link = carrier[id];
     if (link < 0 || !(*changed)[link]) continue;
-    (*shapes)[id] = TransformShape(X_WL_new[link], shape_C[id]);
+    MoveShape(X_WL_new[link], shape_C[id], &(*shapes)[id]);
     (*moved_flags)[id] = 1;
   }
 }
@@ -288,6 +311,7 @@ void Monitor::Impl::InitData() {
     tol_base[id] = model.workcell->primitives[id].tolerance_m;
   }
   motion = MotionBounds(*model.kinematics, n);
+  swept.step = MotionBounds(*model.kinematics, n);
   for (PrimitiveId id = 0; id < n; ++id) SetCarrierBounds(id);
   // The links fixed to the root keep their start poses in both (ComputeMovingLinkPoses).
   X_WL = model.X_WL_start;

@@ -114,9 +114,10 @@ struct Monitor::Impl {
   // a moving primitive whose tolerance is below its per-cycle motion.
   void InitSwept();
   void CheckStepTolerance();
-  // The step bounds from swept.q_start to q (lever sums for PairBound_m); returns the largest
-  // (m).
-  double ComputeStepBound_m(const Eigen::Ref<const Eigen::VectorXd>& q);
+  // The step's motion bounds, from swept.q_start to the cycle's q (lever sums for PairBound_m;
+  // the motion set in RunCycle, each bound computed on first use): see SweptScratch::step.
+  MotionBounds& StepMotion() { return swept.is_behind ? swept.step : motion; }
+  const MotionBounds& StepMotion() const { return swept.is_behind ? swept.step : motion; }
   // After the narrow phase at q (shapes at q): every pair certified clear along the straight
   // path from swept.q_start to q, or warned between samples (appended, then sorted).
   void SweepStep(const Eigen::Ref<const Eigen::VectorXd>& q, CycleWork* work);
@@ -126,17 +127,30 @@ struct Monitor::Impl {
   bool CollectSweptPairs();
   // Appends (a, b), a < b, to swept.pairs unless compatible or clear by its boxes.
   void AddSweptPairIfNear(PrimitiveId a, PrimitiveId b);
-  // Before the kinematics: a bound on each primitive's displacement from its indexed copy at
-  // the step's start (its displacement at the last kinematics plus its motion bound since),
-  // unless the index changed since (swept.has_start_displacement).
+  // Before the kinematics: what StartDisplacement_m needs, unless the index changed since the
+  // last kinematics (swept.has_start_displacement).
   void RecordStartDisplacements();
+  // After the kinematics, when swept.has_start_displacement: a bound on the displacement of
+  // `id` from its indexed copy at the step's start (its displacement at the last kinematics
+  // plus its motion bound since), m.
+  double StartDisplacement_m(PrimitiveId id);
   // Bisects one pair along the step (conservative advancement) from its distance d1_m at q;
   // appends its warning if any.
   void SweepPair(PrimitiveId a, PrimitiveId b, double pair_motion_m, double d1_m,
                  const Eigen::Ref<const Eigen::VectorXd>& q, CycleWork* work);
-  // The step bound of `id` (after ComputeStepBound_m; 0 without levers), m.
-  double StepBound_m(PrimitiveId id) const {
-    return motion.lever_count(id) > 0 ? motion.bound_m(id) : 0.0;
+  // The step bound of `id` (0 without levers), m; computed on first use in a SweepStep.
+  double StepBound_m(PrimitiveId id) {
+    MotionBounds& step = StepMotion();
+    if (step.lever_count(id) == 0) return 0.0;
+    if (swept.are_step_bounds_complete || swept.is_step_bound_known[id]) return step.bound_m(id);
+    swept.is_step_bound_known[id] = 1;
+    return step.ComputeBound_m(id);
+  }
+  // The relative motion bound of (a, b) over the step (MotionBounds::PairBound_m), m.
+  double PairStepBound_m(PrimitiveId a, PrimitiveId b) {
+    StepBound_m(a);
+    StepBound_m(b);
+    return StepMotion().PairBound_m(a, b);
   }
   // Link poses at fraction s of the step into swept.X_WL_s.
   void ComputeStepPoses(double s, const Eigen::Ref<const Eigen::VectorXd>& q);
@@ -190,6 +204,7 @@ struct Monitor::Impl {
   // The motion bounds of primitive `id` for its current carrier.
   void SetCarrierBounds(PrimitiveId id) {
     motion.SetCarrier(id, carrier[id], is_moving[id], shape_C[id]);
+    swept.step.SetCarrier(id, carrier[id], is_moving[id], shape_C[id]);
   }
   // A static left out as unreachable becomes active for good once `mover` (a frame-bound
   // object) comes within the sum of their indexed tolerances.

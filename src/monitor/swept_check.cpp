@@ -39,10 +39,10 @@ void Monitor::Impl::InitSwept() {
   swept.box_W.assign(n, Aabb{});
   swept.grown_W.assign(n, Aabb{});
   swept.leaves_slack.assign(n, 0);
+  swept.is_step_bound_known.assign(n, 0);
   swept.leavers.reserve(n);
-  swept.near.reserve(n);
-  swept.start_displacement_m.assign(n, 0.0);
-  swept.is_reindexed.assign(n, 0);
+  swept.kinematics_displacement_m.assign(n, 0.0);
+  swept.q_kinematics = model.q_start;
   swept.pairs.reserve(static_cast<std::size_t>(n) * (n > 0 ? n - 1 : 0) / 2);
   CheckStepTolerance();
 }
@@ -84,23 +84,13 @@ void Monitor::Impl::CheckStepTolerance() {
   notices.push_back(msg.str() + "; the swept check covers the motion between cycles");
 }
 
-double Monitor::Impl::ComputeStepBound_m(const Eigen::Ref<const Eigen::VectorXd>& q) {
-  motion.SetJointMotion(q, swept.q_start);
-  double step_m = 0.0;
-  for (PrimitiveId id = 0; id < live_end; ++id) {  // free live slots never move
-    if (motion.lever_count(id) == 0) continue;
-    const double bound_m = motion.ComputeBound_m(id);
-    if (!(bound_m <= step_m)) step_m = bound_m;  // NaN and inf propagate
-  }
-  return step_m;
-}
-
 void Monitor::Impl::SweepStep(const Eigen::Ref<const Eigen::VectorXd>& q, CycleWork* work) {
-  // The step bounds (they were overwritten by the bounded-cycle test); and whether every
-  // indexed primitive stays within its slack along the step: its displacement at q plus its
-  // motion from any point of the step to q.
-  ComputeStepBound_m(q);
   swept.has_start = false;
+  swept.largest_step_m = work->step_m;
+  // Each primitive's step bound is computed when first needed (StepBound_m).
+  if (!swept.are_step_bounds_complete) {
+    std::fill_n(swept.is_step_bound_known.begin(), live_end, std::uint8_t{0});
+  }
   const std::size_t discrete = report.warnings.size();
   std::size_t w = 0;
   auto sweep = [&](const CandidatePair& pair, double end_bound_m, bool is_exact) {
@@ -109,9 +99,11 @@ void Monitor::Impl::SweepStep(const Eigen::Ref<const Eigen::VectorXd>& q, CycleW
     // A pair warned at q already stops the arm.
     while (w < discrete && IsBefore(report.warnings[w], pair)) ++w;
     if (w < discrete && report.warnings[w].a == a && report.warnings[w].b == b) return;
-    // Every point of the step is within the pair's relative motion bound of its end.
-    const double pair_motion_m = motion.PairBound_m(a, b);
+    // Every point of the step is within the pair's relative motion bound of its end, which is
+    // at most twice the largest step bound (the one test most pairs need).
     const double threshold_m = tol_now[a] + tol_now[b];
+    if (cache.IsClear(end_bound_m, 2.0 * swept.largest_step_m, threshold_m)) return;
+    const double pair_motion_m = PairStepBound_m(a, b);
     if (cache.IsClear(end_bound_m, pair_motion_m, threshold_m)) return;
     // The exact distance at q (unless the narrow phase just computed it, a kept pair's bound
     // is its indexed copies' distance less their displacements).
@@ -148,15 +140,26 @@ void Monitor::Impl::SweepStep(const Eigen::Ref<const Eigen::VectorXd>& q, CycleW
 
 void Monitor::Impl::RecordStartDisplacements() {
   swept.has_start_displacement = has_good && !cache.is_stale();
+  swept.is_since_kinematics_set = false;
   if (!swept.has_start_displacement) return;
-  // After bounded cycles the last kinematics is behind q_start: add the motion since (the lever
-  // sums are recomputed for the step in SweepStep).
-  if (kinematics_behind) motion.SetJointMotion(swept.q_start, q_kinematics);
+  // The kinematics overwrites both; the motion bounds since are left to the few primitives
+  // that need them (StartDisplacement_m).
   for (PrimitiveId id = 0; id < live_end; ++id) {  // free live slots never move
-    const bool has_moved = kinematics_behind && motion.lever_count(id) > 0;
-    swept.start_displacement_m[id] =
-        cache.displacement_m(id) + (has_moved ? motion.ComputeBound_m(id) : 0.0);
+    swept.kinematics_displacement_m[id] = cache.displacement_m(id);
   }
+  if (kinematics_behind) swept.q_kinematics = q_kinematics;
+}
+
+double Monitor::Impl::StartDisplacement_m(PrimitiveId id) {
+  const double kinematics_m = swept.kinematics_displacement_m[id];
+  // Without bounded cycles since, the last kinematics was at q_start.
+  if (!swept.is_behind || motion.lever_count(id) == 0) return kinematics_m;
+  // After the kinematics `motion` is free (the step's bounds are in swept.step then).
+  if (!swept.is_since_kinematics_set) {
+    motion.SetJointMotion(swept.q_start, swept.q_kinematics);
+    swept.is_since_kinematics_set = true;
+  }
+  return kinematics_m + motion.ComputeBound_m(id);
 }
 
 bool Monitor::Impl::CollectSweptPairs() {
@@ -167,57 +170,68 @@ bool Monitor::Impl::CollectSweptPairs() {
   // d0 + s B too (d0: its displacement there); the larger of the smaller is (d0 + d1 + B) / 2.
   const std::uint32_t n = live_end;  // free live slots are not indexed
   const double slack_m = model.options.index_slack_m;
-  for (const PrimitiveId id : cache.reindexed()) swept.is_reindexed[id] = 1;
+  const MotionBounds& step = StepMotion();
+  const std::vector<PrimitiveId>& reindexed = cache.reindexed();
+  auto is_reindexed = [&reindexed](PrimitiveId id) {
+    return std::find(reindexed.begin(), reindexed.end(), id) != reindexed.end();
+  };
   swept.leavers.clear();
+  std::fill_n(swept.leaves_slack.begin(), n, std::uint8_t{0});
+  // A primitive within the largest step bound of its slack at q stays in it (most do; those
+  // not indexed or without levers have no displacement).
+  const double largest_m = swept.largest_step_m;
   for (PrimitiveId id = 0; id < n; ++id) {
-    bool leaves = false;
-    if (motion.lever_count(id) > 0 && in_broad_phase[id]) {
-      const double end_m = cache.displacement_m(id) + motion.bound_m(id);
-      leaves = !(end_m <= slack_m);
-      if (leaves && swept.has_start_displacement && !swept.is_reindexed[id]) {
-        leaves = !(0.5 * (swept.start_displacement_m[id] + end_m) <= slack_m);
-      }
+    if (cache.displacement_m(id) + largest_m <= slack_m || !in_broad_phase[id] ||
+        step.lever_count(id) == 0) {
+      continue;
     }
-    swept.leaves_slack[id] = leaves;
-    if (leaves) swept.leavers.push_back(id);
+    const double end_m = cache.displacement_m(id) + StepBound_m(id);
+    bool leaves = !(end_m <= slack_m);
+    if (leaves && swept.has_start_displacement && !is_reindexed(id)) {
+      leaves = !(0.5 * (StartDisplacement_m(id) + end_m) <= slack_m);
+    }
+    if (leaves) {
+      swept.leaves_slack[id] = 1;
+      swept.leavers.push_back(id);
+    }
   }
-  for (const PrimitiveId id : cache.reindexed()) swept.is_reindexed[id] = 0;
   swept.pairs.clear();
   if (swept.leavers.empty()) return false;
   // The pairs of a primitive that may leave its slack, generated in order (a < b); the kept
   // ones among them are dropped in SweepStep's merge. Boxes grown by g = (tol + B + k W) /
-  // (1 - k) (B: step bound, k W: BoundMargin_m(0)) that are apart have a gap over (threshold +
-  // B_a + B_b + 2 k W) / (1 - k), which SweepStep's test (cache.IsClear, motion PairBound_m <=
-  // B_a + B_b) clears with k W to spare for the rounding of the growth; a NaN bound grows a box
-  // to everything.
+  // (1 - k) (B: at least the step bound, k W: BoundMargin_m(0)) that are apart have a gap over
+  // (threshold + B_a + B_b + 2 k W) / (1 - k), which SweepStep's test (cache.IsClear,
+  // PairStepBound_m <= B_a + B_b) clears with k W to spare for the rounding of the growth; a
+  // NaN bound grows a box to everything. A leaver's B is its step bound, any other's the
+  // largest (its own is needed only for the few pairs whose boxes meet).
   const double margin_m = cache.BoundMargin_m(0.0);
   for (PrimitiveId id = 0; id < n; ++id) {
-    if (!in_broad_phase[id]) continue;
+    // Without levers a primitive moves only with the scene (Monitor::Impl::RunCycle).
+    const bool is_fixed = step.lever_count(id) == 0;
+    if (!in_broad_phase[id] || (is_fixed && swept.are_fixed_boxes_current)) continue;
     swept.box_W[id] = ComputeAabb(shape_W[id]);
-    const double grow_m =
-        (tol_now[id] + StepBound_m(id) + margin_m) / (1.0 - kLowerBoundMarginPerMetre);
+    double reach_m = swept.leaves_slack[id] ? StepBound_m(id) : largest_m;
+    if (is_fixed) reach_m = 0.0;
+    const double grow_m = (tol_now[id] + reach_m + margin_m) / (1.0 - kLowerBoundMarginPerMetre);
     swept.grown_W[id] =
         swept.box_W[id].Inflated(std::isnan(grow_m) ? std::numeric_limits<double>::infinity()
                                                     : grow_m);
   }
-  // Only primitives whose grown box meets the leavers' (their union's) can pair with one.
-  Aabb leavers_W = swept.grown_W[swept.leavers.front()];
-  for (const PrimitiveId id : swept.leavers) {
-    leavers_W.min_W = leavers_W.min_W.cwiseMin(swept.grown_W[id].min_W);
-    leavers_W.max_W = leavers_W.max_W.cwiseMax(swept.grown_W[id].max_W);
-  }
-  std::vector<PrimitiveId>& near = swept.near;
-  near.clear();
-  for (PrimitiveId id = 0; id < n; ++id) {
-    if (in_broad_phase[id] && swept.grown_W[id].Overlaps(leavers_W)) near.push_back(id);
-  }
-  for (std::size_t i = 0; i < near.size(); ++i) {
-    const PrimitiveId a = near[i];
-    const bool a_leaves = swept.leaves_slack[a];
-    for (std::size_t j = i + 1; j < near.size(); ++j) {
-      if (a_leaves || swept.leaves_slack[near[j]]) AddSweptPairIfNear(a, near[j]);
+  swept.are_fixed_boxes_current = true;
+  // Each leaver with every other indexed primitive (two leavers once), then in pair order.
+  for (const PrimitiveId leaver : swept.leavers) {
+    const Aabb& grown_W = swept.grown_W[leaver];
+    for (PrimitiveId other = 0; other < n; ++other) {
+      if (!in_broad_phase[other] || other == leaver ||
+          (swept.leaves_slack[other] && other < leaver) ||
+          !grown_W.Overlaps(swept.grown_W[other])) {
+        continue;
+      }
+      AddSweptPairIfNear(std::min(leaver, other), std::max(leaver, other));
     }
   }
+  std::sort(swept.pairs.begin(), swept.pairs.end(),
+            [](const SweptPair& x, const SweptPair& y) { return x.pair < y.pair; });
   return true;
 }
 

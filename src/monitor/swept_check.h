@@ -12,6 +12,7 @@
 #include "arm_collision_monitor/broadphase/broad_phase.h"
 #include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/geometry/primitives.h"
+#include "arm_collision_monitor/monitor/motion_bounds.h"
 
 namespace arm_collision_monitor {
 
@@ -36,17 +37,29 @@ struct SweptScratch {
   std::vector<Eigen::Isometry3d> X_WL_start;  // link poses at q_start (has_start)
   std::vector<Eigen::Isometry3d> X_WL_s;      // link poses at q_s
   bool has_start = false;
+  // The step's motion bounds when the step starts behind the last kinematics (after bounded
+  // cycles; else Impl::motion holds them: the step is then the motion since the kinematics,
+  // which the bounded-cycle test needs anyway). Same levers as Impl::motion.
+  MotionBounds step;
+  bool is_behind = false;            // kinematics_behind at the step's start: step is used
+  bool are_step_bounds_complete = false;  // every primitive's step bound computed this cycle
+  std::vector<std::uint8_t> is_step_bound_known;  // else: per primitive, computed this cycle
+  double largest_step_m = 0.0;  // the largest step bound (CycleWork::step_m)
   // Per primitive, at q (CollectSweptPairs): its box, and that grown by its reach in the step.
+  // Those without levers keep theirs until a scene change (are_fixed_boxes_current).
   std::vector<Aabb> box_W;
   std::vector<Aabb> grown_W;
+  bool are_fixed_boxes_current = false;
   std::vector<std::uint8_t> leaves_slack;  // per primitive: may leave its slack in the step
   std::vector<PrimitiveId> leavers;        // those that may, in order
-  std::vector<PrimitiveId> near;           // those whose grown box meets the leavers', in order
-  // Per primitive: a bound on its displacement from its indexed copy at q_start (m), when
-  // has_start_displacement (the index unchanged since the last kinematics).
-  std::vector<double> start_displacement_m;
+  // At the step's start, when has_start_displacement (the index unchanged since the last
+  // kinematics): per primitive its displacement from its indexed copy as of the last
+  // kinematics (m), and that kinematics' q; a bound on its displacement at q_start adds its
+  // motion since (Impl::StartDisplacement_m, only for the few primitives that need it).
+  std::vector<double> kinematics_displacement_m;
+  Eigen::VectorXd q_kinematics;
   bool has_start_displacement = false;
-  std::vector<std::uint8_t> is_reindexed;  // per primitive, this cycle (scratch)
+  bool is_since_kinematics_set = false;  // Impl::motion holds q_kinematics -> q_start
   std::vector<SweptPair> pairs;            // pairs of those besides the kept ones, in order
   // Depth-first bisection: at most one pending sibling per level, plus the current interval.
   std::array<SweptInterval, kMaxSweptBisections + 2> stack;

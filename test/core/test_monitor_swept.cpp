@@ -189,6 +189,51 @@ TEST(MonitorSwept, ThinPlateCrossedInOneStep) {
   EXPECT_FALSE(RunStep(&discrete, q0, q1).stop);
 }
 
+// The same swing past a live plate that a scene change moves into the path after a swept step
+// found it far: the swept check's kept boxes of primitives without levers (cached until a scene
+// change) must follow it.
+TEST(MonitorSwept, PlateMovedIntoPathAfterSweptStep) {
+  const auto wc = test::LoadBundledWorkcell();
+  const Eigen::VectorXd mid = test::ArmReachDown(*wc, "left", 0.7, 0.55, 0.9);
+  const int j1 = JointIndex(*wc, "left_joint1");
+  Eigen::VectorXd q0 = mid, q1 = mid;
+  q0[j1] -= 0.4;
+  q1[j1] += 0.4;
+  Monitor monitor(wc, Unlimited());
+  const std::vector<Shape> plate_O = {Box{Eigen::Isometry3d::Identity(), {0.15, 0.001, 0.15}}};
+  Eigen::Isometry3d X_WO = Eigen::Isometry3d::Identity();
+  X_WO.translation() = Eigen::Vector3d(2.5, 2.5, 0.5);
+  std::string error;
+  ASSERT_TRUE(monitor.AddObject("plate", plate_O, X_WO, 0.0, false, &error)) << error;
+  // Whether the report warns about the plate (`between`: between samples, with the left arm's
+  // tool).
+  auto plate_warned = [&](const CycleReport& report, bool between) {
+    for (const Warning& w : report.warnings) {
+      const std::string& x = monitor.primitive(w.a).owner;
+      const std::string& y = monitor.primitive(w.b).owner;
+      const bool is_plate = x == "plate" || y == "plate";
+      const bool is_tool = x == "left_link7" || y == "left_link7";
+      if (is_plate && (!between || (w.between_samples && is_tool))) return true;
+    }
+    return false;
+  };
+  // Far from the path: both ways swept (pairs beyond the slack looked at), nothing met.
+  monitor.Update(q0);
+  CycleReport report = monitor.Update(q1);
+  EXPECT_FALSE(plate_warned(report, false));
+  report = monitor.Update(q0);
+  EXPECT_FALSE(plate_warned(report, false));
+  // Into the path, where the swing crosses it; both ends stay clear of it.
+  X_WO.translation() = Eigen::Vector3d(0.7, 0.55, 0.95);
+  ASSERT_TRUE(monitor.MoveObject("plate", X_WO, &error)) << error;
+  ASSERT_FALSE(plate_warned(monitor.Check(q0), false));
+  ASSERT_FALSE(plate_warned(monitor.Check(q1), false));
+  report = monitor.Update(q1);
+  EXPECT_TRUE(report.stop);
+  EXPECT_TRUE(plate_warned(report, true));
+  EXPECT_GT(report.swept_pairs, 0u);
+}
+
 // The left arm, stretched out, swings its base joint through the right arm (straight up) in
 // one step; the ends are found by scanning for clear poses either side of the contact.
 TEST(MonitorSwept, ArmsCrossInOneStep) {
