@@ -85,12 +85,20 @@ void Monitor::Impl::RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q) {
     RecordCycle(CycleKind::kBounded, InputStatus::kOk, work);
     return;
   }
+  const bool is_swept = model.options.swept_check && work.step_m > 0.0;
   if (model.options.swept_check) RecordStartDisplacements();
-  work.moved = FollowKinematics(q);
+  if (is_swept) {
+    // Each primitive's step bound is computed when first needed (StepBound_m).
+    swept.largest_step_m = work.step_m;
+    if (!swept.are_step_bounds_complete) {
+      std::fill_n(swept.is_step_bound_known.begin(), live_end, std::uint8_t{0});
+    }
+  }
+  work.moved = FollowKinematics(q, is_swept);
   q_good = q;
   work.narrow_phase_tests = TestCandidatePairs();
   // A jump is swept too: its stop is requested anyway, and what its path meets is reported.
-  if (model.options.swept_check && work.step_m > 0.0) SweepStep(q, &work);
+  if (is_swept) SweepStep(q, &work);
   work.reindexed = static_cast<std::uint32_t>(cache.reindexed().size());
   work.candidate_pairs = static_cast<std::uint32_t>(cache.pairs().size());
   RecordCycle(CycleKind::kKinematics, InputStatus::kOk, work);
@@ -142,13 +150,14 @@ bool Monitor::Impl::IsProvablyClear(const Eigen::Ref<const Eigen::VectorXd>& q) 
   return true;
 }
 
-std::uint32_t Monitor::Impl::FollowKinematics(const Eigen::Ref<const Eigen::VectorXd>& q) {
+std::uint32_t Monitor::Impl::FollowKinematics(const Eigen::Ref<const Eigen::VectorXd>& q,
+                                              bool is_step) {
   model.kinematics->ComputeMovingLinkPoses(q, &X_WL_next);
   MoveCarried(X_WL_next, &link_changed, &shape_W, &moved);
   X_WL.swap(X_WL_next);
   q_kinematics = q;
   kinematics_behind = false;
-  const std::uint32_t moved_count = ReindexMoved();
+  const std::uint32_t moved_count = ReindexMoved(is_step);
   // Fixed tolerances: tol_now already equals tol_base (Attach / Detach keep both).
   const bool is_speed_scaled = model.speed_tol_gain_s != 0.0;
   if (is_speed_scaled) ComputeTolerances(shape_W, moved, &tol_now);
@@ -176,13 +185,28 @@ void Monitor::Impl::MoveCarried(const std::vector<Eigen::Isometry3d>& X_WL_new,
   }
 }
 
-std::uint32_t Monitor::Impl::ReindexMoved() {
+std::uint32_t Monitor::Impl::ReindexMoved(bool is_step) {
   std::uint32_t moved_count = 0;
   cache.BeginReindex();
+  const double slack_m = model.options.index_slack_m;
   for (PrimitiveId id = 0; id < live_end; ++id) {
     if (!moved[id] || !in_broad_phase[id]) continue;
     ++moved_count;
-    if (cache.FollowMoved(id, shape_W[id])) broad_phase->Move(id, ComputeAabb(shape_W[id]));
+    bool is_reindexed = cache.FollowMoved(id, shape_W[id]);
+    // The swept check: a primitive that may have left its slack during the step (the test of
+    // CollectSweptPairs, with its displacements d0 at the start and d1 at q and its step bound
+    // B) would need its pairs with every primitive swept. Indexed at q instead, it is within
+    // B <= slack of its copy along the whole step, so the kept pairs cover it; it would be
+    // re-indexed a few cycles later anyway.
+    if (!is_reindexed && is_step && cache.displacement_m(id) + swept.largest_step_m > slack_m) {
+      const double d1_m = cache.displacement_m(id);
+      const double bound_m = StepBound_m(id);
+      is_reindexed = bound_m <= slack_m && !(d1_m + bound_m <= slack_m) &&
+                     !(swept.has_start_displacement &&
+                       0.5 * (StartDisplacement_m(id) + d1_m + bound_m) <= slack_m);
+      if (is_reindexed) cache.Reindex(id, shape_W[id]);
+    }
+    if (is_reindexed) broad_phase->Move(id, ComputeAabb(shape_W[id]));
   }
   return moved_count;
 }

@@ -103,10 +103,14 @@ struct Monitor::Impl {
   // still clears its threshold -- then no pair can warn. Changes nothing but bound scratch.
   bool IsProvablyClear(const Eigen::Ref<const Eigen::VectorXd>& q);
   // Forward kinematics at q, the moved primitives re-indexed, the kept pairs brought up to
-  // date: the shapes then follow q. Returns the number of primitives that moved.
-  std::uint32_t FollowKinematics(const Eigen::Ref<const Eigen::VectorXd>& q);
-  // Moves in the index the moved primitives that left their slack; counts the moved ones.
-  std::uint32_t ReindexMoved();
+  // date: the shapes then follow q. Returns the number of primitives that moved. `is_step`:
+  // q ends the step of this cycle (RunCycle), whose bounds StepBound_m gives.
+  std::uint32_t FollowKinematics(const Eigen::Ref<const Eigen::VectorXd>& q,
+                                 bool is_step = false);
+  // Moves in the index the moved primitives that left their slack, and with `is_step` those
+  // that could leave it if the step were run again from q (the swept check then needs no pairs
+  // beyond the kept ones for them); counts the moved ones.
+  std::uint32_t ReindexMoved(bool is_step);
   // The narrow phase over the kept pairs into report.warnings; returns the tests done.
   std::uint32_t TestCandidatePairs();
   // --- the swept check (swept_check.cpp) -----------------------------------------------------

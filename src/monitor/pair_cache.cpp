@@ -36,10 +36,14 @@ bool PairCache::FollowMoved(PrimitiveId id, const Shape& shape_W) {
     disp_m_[id] = d_m;
     return false;
   }
+  Reindex(id, shape_W);
+  return true;
+}
+
+void PairCache::Reindex(PrimitiveId id, const Shape& shape_W) {
   indexed_W_[id] = shape_W;
   disp_m_[id] = 0.0;
   reindexed_.push_back(id);
-  return true;
 }
 
 void PairCache::Update(BroadPhase* broad_phase, const CompatibilityMatrix& compatible) {

@@ -86,11 +86,6 @@ void Monitor::Impl::CheckStepTolerance() {
 
 void Monitor::Impl::SweepStep(const Eigen::Ref<const Eigen::VectorXd>& q, CycleWork* work) {
   swept.has_start = false;
-  swept.largest_step_m = work->step_m;
-  // Each primitive's step bound is computed when first needed (StepBound_m).
-  if (!swept.are_step_bounds_complete) {
-    std::fill_n(swept.is_step_bound_known.begin(), live_end, std::uint8_t{0});
-  }
   const std::size_t discrete = report.warnings.size();
   std::size_t w = 0;
   auto sweep = [&](const CandidatePair& pair, double end_bound_m, bool is_exact) {

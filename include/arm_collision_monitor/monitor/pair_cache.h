@@ -50,6 +50,9 @@ class PairCache {
   /// Indexed primitive `id` moved to `shape_W`: true when it left its slack, then `shape_W` is
   /// its new indexed copy and the caller moves it in the index (listed in reindexed()).
   bool FollowMoved(PrimitiveId id, const Shape& shape_W);
+  /// Makes `shape_W`, where indexed primitive `id` is now, its indexed copy before it leaves its
+  /// slack (the caller moves it in the index; listed in reindexed()).
+  void Reindex(PrimitiveId id, const Shape& shape_W);
   /// The primitives re-indexed since BeginReindex, in call order.
   const std::vector<PrimitiveId>& reindexed() const { return reindexed_; }
   /// How far (m) a point of `id` has moved from its indexed copy, as of the last FollowMoved.
