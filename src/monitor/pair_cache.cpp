@@ -2,6 +2,7 @@
 #include "arm_collision_monitor/monitor/pair_cache.h"
 
 #include <algorithm>
+#include <cstring>
 #include <sstream>
 
 #include "arm_collision_monitor/monitor/motion_bounds.h"
@@ -14,6 +15,13 @@ PairCache::PairCache(std::uint32_t primitive_count, double slack_m, double world
   const std::size_t max_pairs = n * (n > 0 ? n - 1 : 0) / 2;
   indexed_W_.resize(n);
   disp_m_.assign(n, 0.0);
+  indexed_f_.resize(n);
+  now_f_.resize(n);
+  is_now_indexed_.assign(n, 1);
+  batch_pairs_.resize(max_pairs);
+  batch_a_.resize(max_pairs);
+  batch_b_.resize(max_pairs);
+  batch_bound_m_.resize(max_pairs);
   pairs_.reserve(max_pairs);
   scratch_.reserve(max_pairs);
   found_.reserve(max_pairs);
@@ -25,6 +33,9 @@ PairCache::PairCache(std::uint32_t primitive_count, double slack_m, double world
 void PairCache::SetIndexed(PrimitiveId id, const Shape& shape_W) {
   indexed_W_[id] = shape_W;
   disp_m_[id] = 0.0;
+  now_f_[id] = ToFloatPrimitive(shape_W);
+  indexed_f_[id] = now_f_[id];
+  is_now_indexed_[id] = 1;
   is_stale_ = true;
 }
 
@@ -32,11 +43,15 @@ bool PairCache::FollowMoved(PrimitiveId id, const Shape& shape_W) {
   // Every point of the shape lies within this of its indexed copy (the displacement of a point
   // of a capsule or box is a convex combination of its defining points').
   const double d_m = MaxPointDisplacement_m(indexed_W_[id], shape_W);
+  now_f_[id] = ToFloatPrimitive(shape_W);
   if (d_m <= slack_m_) {
     disp_m_[id] = d_m;
+    is_now_indexed_[id] = 0;
     return false;
   }
   indexed_W_[id] = shape_W;
+  indexed_f_[id] = now_f_[id];
+  is_now_indexed_[id] = 1;
   disp_m_[id] = 0.0;
   reindexed_.push_back(id);
   return true;
@@ -92,6 +107,13 @@ void PairCache::UpdatePairs(BroadPhase* broad_phase, const CompatibilityMatrix& 
 
 bool PairCache::ValidatePrimitive(PrimitiveId id, const Shape& shape_W, std::string* why) const {
   const double d_m = MaxPointDisplacement_m(indexed_W_[id], shape_W);
+  const FloatPrimitive now_f = ToFloatPrimitive(shape_W);
+  const FloatPrimitive indexed_f = ToFloatPrimitive(indexed_W_[id]);
+  if (std::memcmp(&now_f, &now_f_[id], sizeof now_f) != 0 ||
+      std::memcmp(&indexed_f, &indexed_f_[id], sizeof indexed_f) != 0) {
+    *why = "primitive " + std::to_string(id) + ": its float copy is not its shape's";
+    return false;
+  }
   if (d_m == disp_m_[id] && d_m <= slack_m_) return true;
   std::ostringstream msg;
   msg << "primitive " << id << " moved " << d_m << " m from its indexed copy, recorded "

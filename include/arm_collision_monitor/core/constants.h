@@ -44,6 +44,22 @@ constexpr double kDistanceErrorFloor_m = 1e-150;
 // squared cross product of two directions) must stay below the double overflow at ~1.8e308.
 constexpr double kMaxSupportedCoordinate_m = 1e60;
 
+// The batched single-precision clearance bounds (geometry/clearance_batch.h): the margin taken
+// off each bound, in units of the float unit roundoff u = 2^-24 (~6e-8) times the pair's length
+// scale S = |c_A|_1 + |c_B|_1 + sum h_A + sum h_B + r_A + r_B (centres, half lengths, radii; m).
+// Worst cases, each a multiple of u S: rounding the double shape to float moves it by at most
+// u (|c| + 2 sum h + r) per primitive, 2; the sphere bound's difference, norm and sums, 12; the
+// direction bound's centre difference, its three-term dot products (each within 3u of the sum
+// of the terms' magnitudes), the nine-term reach sums and the direction's norm 1 +- 3u, 20;
+// taking the margin off and the larger bound, 2. 64 is over twice their sum, 24; in metres
+// 64 u S ~ 4e-6 S (23 um for S = 6 m, the bundled workcell). test_geometry_clearance_batch pins
+// that no bound exceeds the exact distance (random, touching, far and degenerate pairs).
+constexpr float kClearanceBatchMarginUlps = 64.0f;
+// Largest |coordinate|, half length or radius (m) the batch accepts (typical 1e15): squares of
+// lengths must stay far below the float overflow (~3.4e38). A primitive beyond it gets a NaN
+// radius, so its bounds are -inf and the exact distance decides.
+constexpr double kClearanceBatchMaxLength_m = 1e15;
+
 // ---------------------------------------------------------------------------------------------
 // Broad phase (octree, grid)
 // ---------------------------------------------------------------------------------------------

@@ -6,6 +6,11 @@
 // apart less both primitives' motion since, so the narrow phase runs only on the pairs whose
 // bound no longer clears their threshold. The set is rebuilt after any change of the index or
 // of the compatibility (stale), and otherwise updated per re-indexed primitive.
+//
+// The narrow phase is batched (TestPairs): the pairs whose bound does not clear their threshold
+// get a single-precision certified lower bound first (geometry/clearance_batch.h, on float copies
+// of the current shapes kept here), and only those it cannot clear get the exact double distance
+// and its witness points. New pairs' bounds on their indexed copies come from the same batch.
 #pragma once
 
 #include <cmath>
@@ -16,6 +21,7 @@
 
 #include "arm_collision_monitor/broadphase/broad_phase.h"
 #include "arm_collision_monitor/core/constants.h"
+#include "arm_collision_monitor/geometry/clearance_batch.h"
 #include "arm_collision_monitor/geometry/distance.h"
 
 namespace arm_collision_monitor {
@@ -25,7 +31,8 @@ struct KeptPair {
   CandidatePair pair;
   double lower_bound_m = 0.0;       ///< <= distance of the indexed copies; NaN: not yet known
   double kinematics_bound_m = 0.0;  ///< <= distance of the shapes at the last kinematics; NaN
-  /// kinematics_bound_m is that distance itself (the narrow phase ran on the pair this cycle).
+  /// kinematics_bound_m is that distance itself (the exact narrow phase ran on the pair this
+  /// cycle); false after a float clearance bound settled it (then it is that bound).
   bool is_exact = false;
 };
 
@@ -39,16 +46,18 @@ class PairCache {
   PairCache(std::uint32_t primitive_count, double slack_m, double world_edge_m);
 
   // --- the index slack, per primitive ----------------------------------------------------
-  /// Primitive `id` was (re-)added to the index at `shape_W`: its indexed copy; the pair set is
-  /// stale.
+  /// Primitive `id` was (re-)added to the index at `shape_W`: its indexed copy (and its current
+  /// shape); the pair set is stale.
   void SetIndexed(PrimitiveId id, const Shape& shape_W);
   /// The index or the compatibility changed: the next Update rebuilds the pair set.
   void MarkStale() { is_stale_ = true; }
   bool is_stale() const { return is_stale_; }
   /// Starts a cycle's re-indexing: clears reindexed().
   void BeginReindex() { reindexed_.clear(); }
-  /// Indexed primitive `id` moved to `shape_W`: true when it left its slack, then `shape_W` is
-  /// its new indexed copy and the caller moves it in the index (listed in reindexed()).
+  /// Indexed primitive `id` moved to `shape_W` (its current shape from now on): true when it left
+  /// its slack, then `shape_W` is its new indexed copy and the caller moves it in the index
+  /// (listed in reindexed()). Every change of an indexed primitive's shape comes through here or
+  /// SetIndexed: TestPairs bounds the pairs on these copies.
   bool FollowMoved(PrimitiveId id, const Shape& shape_W);
   /// The primitives re-indexed since BeginReindex, in call order.
   const std::vector<PrimitiveId>& reindexed() const { return reindexed_; }
@@ -62,10 +71,10 @@ class PairCache {
   /// replaced, their bounds unknown until TestPairs), and each pair's kinematics bound: its
   /// distance now is at least its indexed distance less both primitives' displacement.
   void Update(BroadPhase* broad_phase, const CompatibilityMatrix& compatible);
-  /// The narrow phase over the kept pairs: `narrow_phase(a, b)` (returning the distance of the
-  /// current shapes, m) is called on each pair whose lower bound does not clear its threshold
-  /// tol_m[a] + tol_m[b], in pair order. Returns the exact distance computations done (those of
-  /// new pairs' bounds included).
+  /// The narrow phase over the kept pairs: `narrow_phase(a, b)` (returning the exact distance of
+  /// the current shapes, m) is called, in pair order, on each pair that neither its lower bound
+  /// nor the float clearance bound of its current shapes clears of its threshold
+  /// tol_m[a] + tol_m[b]. Returns the exact distance computations done (narrow_phase's calls).
   template <typename NarrowPhase>
   std::uint32_t TestPairs(const std::vector<double>& tol_m, NarrowPhase&& narrow_phase);
   /// The kept pairs, sorted.
@@ -83,7 +92,7 @@ class PairCache {
   }
 
   /// Checks `id`'s recorded displacement against its shape `shape_W` (as of its last
-  /// FollowMoved) and the slack; and, unless stale, that the kept pairs are exactly `expected`
+  /// FollowMoved) and the slack, and its float copy against `shape_W`; and, unless stale, that the kept pairs are exactly `expected`
   /// (sorted: the pairs whose indexed boxes overlap, by brute force), that each lower bound
   /// under-estimates its indexed copies' distance and each kinematics bound the distance of
   /// `shapes_W`. False with the first violation in `why`.
@@ -97,11 +106,27 @@ class PairCache {
   double KinematicsBound_m(const KeptPair& kept) const {
     return kept.lower_bound_m - disp_m_[kept.pair.a] - disp_m_[kept.pair.b];
   }
+  // Lists in batch_pairs_ (and their primitives in batch_a_, batch_b_) the kept pairs for which
+  // `is_wanted(kept)` holds, in pair order; returns their count.
+  template <typename Predicate>
+  std::size_t CollectBatch(Predicate&& is_wanted);
+  // The float clearance bounds of the first `count` batched pairs on `primitives` into
+  // batch_bound_m_.
+  void BoundBatch(const std::vector<FloatPrimitive>& primitives, std::size_t count) {
+    ComputeClearanceLowerBounds(primitives.data(), batch_a_.data(), batch_b_.data(), count,
+                                batch_bound_m_.data());
+  }
 
   double slack_m_ = 0.0;
   double world_edge_m_ = 0.0;
   std::vector<Shape> indexed_W_;     // per primitive: as last indexed
   std::vector<double> disp_m_;       // per primitive: farthest point motion since then
+  std::vector<FloatPrimitive> indexed_f_, now_f_;  // per primitive: float copies, indexed / now
+  std::vector<std::uint8_t> is_now_indexed_;       // per primitive: now_f_ is indexed_f_
+  // The batched pairs (CollectBatch): index into pairs_, primitives, float bound (m).
+  std::vector<std::uint32_t> batch_pairs_;
+  std::vector<PrimitiveId> batch_a_, batch_b_;
+  std::vector<double> batch_bound_m_;
   std::vector<KeptPair> pairs_;      // the broad phase's candidate pairs, sorted
   std::vector<KeptPair> scratch_;
   std::vector<CandidatePair> found_, new_pairs_;  // scratch for FindPairs / FindPairsOf
@@ -110,24 +135,64 @@ class PairCache {
   bool is_stale_ = true;
 };
 
+template <typename Predicate>
+std::size_t PairCache::CollectBatch(Predicate&& is_wanted) {
+  std::size_t count = 0;
+  for (std::uint32_t i = 0; i < pairs_.size(); ++i) {
+    if (!is_wanted(pairs_[i])) continue;
+    batch_pairs_[count] = i;
+    batch_a_[count] = pairs_[i].pair.a;
+    batch_b_[count] = pairs_[i].pair.b;
+    ++count;
+  }
+  return count;
+}
+
 template <typename NarrowPhase>
 std::uint32_t PairCache::TestPairs(const std::vector<double>& tol_m, NarrowPhase&& narrow_phase) {
+  // New pairs: a lower bound on the distance of their indexed copies, kept until either is
+  // re-indexed.
+  std::size_t count =
+      CollectBatch([](const KeptPair& kept) { return std::isnan(kept.lower_bound_m); });
+  BoundBatch(indexed_f_, count);
+  for (std::size_t k = 0; k < count; ++k) {
+    KeptPair& kept = pairs_[batch_pairs_[k]];
+    kept.lower_bound_m = batch_bound_m_[k];
+    kept.kinematics_bound_m = KinematicsBound_m(kept);
+  }
+  // Triangle inequality: dist(now) >= dist(indexed) - motion of a - motion of b. The pairs that
+  // bound does not clear get the float bound of their current shapes (unless both are their
+  // indexed copies: it was just computed), and those it does not clear either the exact distance.
+  auto motion_m = [this](const KeptPair& kept) {
+    return disp_m_[kept.pair.a] + disp_m_[kept.pair.b];
+  };
+  auto is_at_indexed = [this](const KeptPair& kept) {
+    return is_now_indexed_[kept.pair.a] && is_now_indexed_[kept.pair.b];
+  };
+  auto needs_test = [&](const KeptPair& kept) {
+    return !IsClear(kept.lower_bound_m, motion_m(kept), tol_m[kept.pair.a] + tol_m[kept.pair.b]);
+  };
+  count = CollectBatch(
+      [&](const KeptPair& kept) { return needs_test(kept) && !is_at_indexed(kept); });
+  BoundBatch(now_f_, count);
   std::uint32_t tests = 0;
-  for (KeptPair& kept : pairs_) {
+  std::size_t k = 0;  // the next batched pair
+  for (std::uint32_t i = 0; i < pairs_.size(); ++i) {
+    KeptPair& kept = pairs_[i];
+    if (!needs_test(kept)) continue;
     const PrimitiveId a = kept.pair.a;
     const PrimitiveId b = kept.pair.b;
-    // A new pair: the distance of the indexed copies, exact until either is re-indexed.
-    if (std::isnan(kept.lower_bound_m)) {
-      ++tests;
-      kept.lower_bound_m = ShapeDistance(indexed_W_[a], indexed_W_[b]).distance_m;
-      kept.kinematics_bound_m = KinematicsBound_m(kept);
+    if (k < count && batch_pairs_[k] == i) {
+      const double now_bound_m = batch_bound_m_[k++];
+      if (IsClear(now_bound_m, 0.0, tol_m[a] + tol_m[b])) {
+        kept.lower_bound_m = std::max(kept.lower_bound_m, now_bound_m - motion_m(kept));
+        kept.kinematics_bound_m = std::max(kept.kinematics_bound_m, now_bound_m);
+        continue;
+      }
     }
-    // Triangle inequality: dist(now) >= dist(indexed) - motion of a - motion of b.
-    const double motion_m = disp_m_[a] + disp_m_[b];
-    if (IsClear(kept.lower_bound_m, motion_m, tol_m[a] + tol_m[b])) continue;
     ++tests;
     const double distance_m = narrow_phase(a, b);
-    kept.lower_bound_m = std::max(kept.lower_bound_m, distance_m - motion_m);
+    kept.lower_bound_m = std::max(kept.lower_bound_m, distance_m - motion_m(kept));
     kept.kinematics_bound_m = distance_m;
     kept.is_exact = true;
   }
