@@ -10,33 +10,11 @@
 namespace arm_collision_monitor {
 namespace {
 
-/// Pairs per gathered block: two SSE or one AVX register of floats per field.
-constexpr int kLanes = 8;
+/// Pairs per block: one SSE register of floats per field (more lanes only waste work
+/// on the short batches of a cycle: a few to a few tens of pairs).
+constexpr int kLanes = 4;
 /// The unit roundoff of float (2^-24), the unit of kClearanceBatchMarginUlps.
 constexpr float kFloatUnitRoundoff = 5.9604644775390625e-8f;
-
-/// A primitive's fields, one array of kLanes per field (field order of FloatPrimitive).
-struct Lanes {
-  float c[3][kLanes];
-  float u[3][3][kLanes];
-  float h[3][kLanes];
-  float r[kLanes];
-};
-
-/// Lane l of `out` from primitives[ids[first + min(l, live - 1)]]: a partial block repeats its
-/// last pair (its results are not written).
-void Gather(const FloatPrimitive* primitives, const PrimitiveId* ids, std::size_t first,
-            int live, Lanes* out) {
-  for (int l = 0; l < kLanes; ++l) {
-    const FloatPrimitive& p = primitives[ids[first + std::min(l, live - 1)]];
-    for (int k = 0; k < 3; ++k) {
-      out->c[k][l] = p.c_W[k];
-      out->h[k][l] = p.half_m[k];
-      for (int i = 0; i < 3; ++i) out->u[i][k][l] = p.u_W[i][k];
-    }
-    out->r[l] = p.radius_m;
-  }
-}
 
 /// Three floats of one lane, written out so that the lane loop has no inner loops.
 struct V3 {
@@ -51,17 +29,17 @@ inline float Clamp(float v, float half) {
   return above < half ? above : half;
 }
 
-/// Lane l of one primitive of the block.
+/// One primitive's fields as the lane loop reads them.
 struct LanePrimitive {
   V3 c, u0, u1, u2;
   float h0, h1, h2, r;
 };
-inline LanePrimitive Load(const Lanes& s, int l) {
-  return {{s.c[0][l], s.c[1][l], s.c[2][l]},
-          {s.u[0][0][l], s.u[0][1][l], s.u[0][2][l]},
-          {s.u[1][0][l], s.u[1][1][l], s.u[1][2][l]},
-          {s.u[2][0][l], s.u[2][1][l], s.u[2][2][l]},
-          s.h[0][l], s.h[1][l], s.h[2][l], s.r[l]};
+inline LanePrimitive Load(const FloatPrimitive& p) {
+  return {{p.c_W[0], p.c_W[1], p.c_W[2]},
+          {p.u_W[0][0], p.u_W[0][1], p.u_W[0][2]},
+          {p.u_W[1][0], p.u_W[1][1], p.u_W[1][2]},
+          {p.u_W[2][0], p.u_W[2][1], p.u_W[2][2]},
+          p.half_m[0], p.half_m[1], p.half_m[2], p.radius_m};
 }
 
 /// The point of the primitive's core (the box without its radius) nearest to x in the core's
@@ -80,22 +58,23 @@ inline float Reach(const LanePrimitive& s, V3 n) {
 
 inline float SumAbs(V3 a) { return std::abs(a.x) + std::abs(a.y) + std::abs(a.z); }
 
-/// The certified bounds of one gathered block (see the header), lane by lane without branches.
-void BoundBlock(const Lanes& lanes_a, const Lanes& lanes_b, float bound_m[kLanes]) {
+/// The certified bounds of one block of pairs (primitives[ia[l]], primitives[ib[l]]) (see the
+/// header), lane by lane without branches: the compiler vectorises the lane loop, loading each
+/// field of the kLanes primitives element by element.
+void BoundBlock(const FloatPrimitive* primitives, const PrimitiveId ia[kLanes],
+                const PrimitiveId ib[kLanes], float bound_m[kLanes]) {
   for (int l = 0; l < kLanes; ++l) {
-    const LanePrimitive A = Load(lanes_a, l);
-    const LanePrimitive B = Load(lanes_b, l);
+    const LanePrimitive A = Load(primitives[ia[l]]);
+    const LanePrimitive B = Load(primitives[ib[l]]);
     const V3 d = B.c - A.c;
     const float sum_h_a = A.h0 + A.h1 + A.h2;
     const float sum_h_b = B.h0 + B.h1 + B.h2;
     // Enclosing spheres about the centres: |sum t_i u_i| <= sum h_i for unit u_i.
     const float centres_m = std::sqrt(Dot(d, d));
     const float sphere_bound_m = centres_m - (sum_h_a + A.r) - (sum_h_b + B.r);
-    // Alternating projections from A's centre: q on B, p on A, and so on.
+    // Alternating projections from A's centre: q on B, p on A, then q on B again.
     V3 q = ClampIntoCore(B, A.c);
-    V3 p = ClampIntoCore(A, q);
-    q = ClampIntoCore(B, p);
-    p = ClampIntoCore(A, q);
+    const V3 p = ClampIntoCore(A, q);
     q = ClampIntoCore(B, p);
     V3 n = q - p;
     // Cores that meet give no direction: the centres' then (zero too: the sphere bound decides).
@@ -112,9 +91,6 @@ void BoundBlock(const Lanes& lanes_a, const Lanes& lanes_b, float bound_m[kLanes
   }
 }
 
-}  // namespace
-
-namespace {
 
 // `shape_W` rounded to float, each number once.
 FloatPrimitive RoundToFloat(const Shape& shape_W) {
@@ -147,27 +123,31 @@ FloatPrimitive RoundToFloat(const Shape& shape_W) {
 
 FloatPrimitive ToFloatPrimitive(const Shape& shape_W) {
   FloatPrimitive f = RoundToFloat(shape_W);
-  // NaN, or beyond the float range the batch supports: a NaN radius makes every bound -inf.
-  const float limit_m = static_cast<float>(kClearanceBatchMaxLength_m);
-  bool is_supported = std::abs(f.radius_m) <= limit_m;  // false for NaN
+  // NaN, or beyond the float range the batch supports: a NaN radius makes every bound -inf. The
+  // sum of magnitudes bounds each (and is NaN or inf with any of them).
+  float sum_m = std::abs(f.radius_m);
   for (int k = 0; k < 3; ++k) {
-    is_supported = is_supported && std::abs(f.c_W[k]) <= limit_m && std::abs(f.half_m[k]) <= limit_m;
-    for (int i = 0; i < 3; ++i) is_supported = is_supported && std::abs(f.u_W[i][k]) <= limit_m;
+    sum_m += std::abs(f.c_W[k]) + std::abs(f.half_m[k]) + std::abs(f.u_W[0][k]) +
+             std::abs(f.u_W[1][k]) + std::abs(f.u_W[2][k]);
   }
-  if (!is_supported) f.radius_m = std::numeric_limits<float>::quiet_NaN();
+  if (!(sum_m <= static_cast<float>(kClearanceBatchMaxLength_m))) {
+    f.radius_m = std::numeric_limits<float>::quiet_NaN();
+  }
   return f;
 }
 
 void ComputeClearanceLowerBounds(const FloatPrimitive* primitives, const PrimitiveId* a,
                                  const PrimitiveId* b, std::size_t count,
                                  double* lower_bound_m) {
-  Lanes lanes_a, lanes_b;
   float bound_m[kLanes];
   for (std::size_t first = 0; first < count; first += kLanes) {
     const int live = static_cast<int>(std::min<std::size_t>(kLanes, count - first));
-    Gather(primitives, a, first, live, &lanes_a);
-    Gather(primitives, b, first, live, &lanes_b);
-    BoundBlock(lanes_a, lanes_b, bound_m);
+    PrimitiveId ia[kLanes], ib[kLanes];
+    for (int l = 0; l < kLanes; ++l) {
+      ia[l] = a[first + std::min(l, live - 1)];
+      ib[l] = b[first + std::min(l, live - 1)];
+    }
+    BoundBlock(primitives, ia, ib, bound_m);
     for (int l = 0; l < live; ++l) {
       // NaN (bad input) would compare false anyway; -inf says the same plainly.
       lower_bound_m[first + l] = std::isnan(bound_m[l])

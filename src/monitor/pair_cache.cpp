@@ -18,6 +18,7 @@ PairCache::PairCache(std::uint32_t primitive_count, double slack_m, double world
   indexed_f_.resize(n);
   now_f_.resize(n);
   is_now_indexed_.assign(n, 1);
+  test_pairs_.resize(max_pairs);
   batch_pairs_.resize(max_pairs);
   batch_a_.resize(max_pairs);
   batch_b_.resize(max_pairs);

@@ -55,9 +55,10 @@ constexpr double kMaxSupportedCoordinate_m = 1e60;
 // 64 u S ~ 4e-6 S (23 um for S = 6 m, the bundled workcell). test_geometry_clearance_batch pins
 // that no bound exceeds the exact distance (random, touching, far and degenerate pairs).
 constexpr float kClearanceBatchMarginUlps = 64.0f;
-// Largest |coordinate|, half length or radius (m) the batch accepts (typical 1e15): squares of
-// lengths must stay far below the float overflow (~3.4e38). A primitive beyond it gets a NaN
-// radius, so its bounds are -inf and the exact distance decides.
+// Largest sum of a primitive's |coordinates|, half lengths and radius (m) the batch accepts
+// (typical 1e15): squares of lengths must stay far below the float overflow (~3.4e38). A
+// primitive beyond it (or with NaN) gets a NaN radius: its bounds are -inf, the exact distance
+// decides.
 constexpr double kClearanceBatchMaxLength_m = 1e15;
 
 // ---------------------------------------------------------------------------------------------

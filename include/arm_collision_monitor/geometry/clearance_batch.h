@@ -13,7 +13,7 @@
 // - bounding spheres: |c_B - c_A| less each primitive's enclosing radius (sum of h_i, plus r);
 // - a separating direction: the gap between the two primitives' projections on a direction n
 //   (support functions: c.n +- (sum |u_i.n| h_i + r)) bounds their distance from below for any
-//   n. n is taken from the pair of points that a few alternating projections (clamping a point
+//   n. n is taken from the pair of points that three alternating projections (clamping a point
 //   into one core, then into the other; von Neumann's alternating projections onto convex sets)
 //   reach; the nearer they come to the closest pair, the nearer the bound comes to the distance.
 // The float rounding of the inputs and of the arithmetic is then taken off the bound:
@@ -21,9 +21,9 @@
 // its derivation), so the bound never exceeds the exact distance of the double shapes.
 //
 // Layout: each primitive's 16 floats fill one 64-byte line (pairs name primitives in any order,
-// so gathering a pair reads two lines); the kernel gathers 8 pairs at a time into a structure of
-// arrays (one array of 8 lanes per field) and runs its arithmetic lane by lane without branches,
-// which the compiler turns into vector instructions.
+// so a pair reads two lines). The kernel takes 4 pairs at a time and runs its arithmetic lane by
+// lane without branches; the compiler turns that lane loop into vector instructions, one lane
+// per pair, loading each field of the 4 primitives element by element (SSE has no gather).
 #pragma once
 
 #include <cstddef>

@@ -106,10 +106,12 @@ class PairCache {
   double KinematicsBound_m(const KeptPair& kept) const {
     return kept.lower_bound_m - disp_m_[kept.pair.a] - disp_m_[kept.pair.b];
   }
-  // Lists in batch_pairs_ (and their primitives in batch_a_, batch_b_) the kept pairs for which
-  // `is_wanted(kept)` holds, in pair order; returns their count.
-  template <typename Predicate>
-  std::size_t CollectBatch(Predicate&& is_wanted);
+  // Pair pairs_[i] as batched pair k.
+  void AddToBatch(std::uint32_t i, std::size_t k) {
+    batch_pairs_[k] = i;
+    batch_a_[k] = pairs_[i].pair.a;
+    batch_b_[k] = pairs_[i].pair.b;
+  }
   // The float clearance bounds of the first `count` batched pairs on `primitives` into
   // batch_bound_m_.
   void BoundBatch(const std::vector<FloatPrimitive>& primitives, std::size_t count) {
@@ -123,8 +125,9 @@ class PairCache {
   std::vector<double> disp_m_;       // per primitive: farthest point motion since then
   std::vector<FloatPrimitive> indexed_f_, now_f_;  // per primitive: float copies, indexed / now
   std::vector<std::uint8_t> is_now_indexed_;       // per primitive: now_f_ is indexed_f_
-  // The batched pairs (CollectBatch): index into pairs_, primitives, float bound (m).
-  std::vector<std::uint32_t> batch_pairs_;
+  // TestPairs' scratch: the pairs to test (index into pairs_, in pair order); the batched pairs:
+  // index into pairs_, primitives, float bound (m).
+  std::vector<std::uint32_t> test_pairs_, batch_pairs_;
   std::vector<PrimitiveId> batch_a_, batch_b_;
   std::vector<double> batch_bound_m_;
   std::vector<KeptPair> pairs_;      // the broad phase's candidate pairs, sorted
@@ -135,25 +138,15 @@ class PairCache {
   bool is_stale_ = true;
 };
 
-template <typename Predicate>
-std::size_t PairCache::CollectBatch(Predicate&& is_wanted) {
-  std::size_t count = 0;
-  for (std::uint32_t i = 0; i < pairs_.size(); ++i) {
-    if (!is_wanted(pairs_[i])) continue;
-    batch_pairs_[count] = i;
-    batch_a_[count] = pairs_[i].pair.a;
-    batch_b_[count] = pairs_[i].pair.b;
-    ++count;
-  }
-  return count;
-}
-
 template <typename NarrowPhase>
 std::uint32_t PairCache::TestPairs(const std::vector<double>& tol_m, NarrowPhase&& narrow_phase) {
   // New pairs: a lower bound on the distance of their indexed copies, kept until either is
   // re-indexed.
-  std::size_t count =
-      CollectBatch([](const KeptPair& kept) { return std::isnan(kept.lower_bound_m); });
+  std::size_t count = 0;
+  for (std::uint32_t i = 0; i < pairs_.size(); ++i) {
+    if (!std::isnan(pairs_[i].lower_bound_m)) continue;
+    AddToBatch(i, count++);
+  }
   BoundBatch(indexed_f_, count);
   for (std::size_t k = 0; k < count; ++k) {
     KeptPair& kept = pairs_[batch_pairs_[k]];
@@ -163,36 +156,36 @@ std::uint32_t PairCache::TestPairs(const std::vector<double>& tol_m, NarrowPhase
   // Triangle inequality: dist(now) >= dist(indexed) - motion of a - motion of b. The pairs that
   // bound does not clear get the float bound of their current shapes (unless both are their
   // indexed copies: it was just computed), and those it does not clear either the exact distance.
-  auto motion_m = [this](const KeptPair& kept) {
-    return disp_m_[kept.pair.a] + disp_m_[kept.pair.b];
-  };
-  auto is_at_indexed = [this](const KeptPair& kept) {
-    return is_now_indexed_[kept.pair.a] && is_now_indexed_[kept.pair.b];
-  };
-  auto needs_test = [&](const KeptPair& kept) {
-    return !IsClear(kept.lower_bound_m, motion_m(kept), tol_m[kept.pair.a] + tol_m[kept.pair.b]);
-  };
-  count = CollectBatch(
-      [&](const KeptPair& kept) { return needs_test(kept) && !is_at_indexed(kept); });
+  std::size_t test_count = 0;
+  count = 0;
+  for (std::uint32_t i = 0; i < pairs_.size(); ++i) {
+    const KeptPair& kept = pairs_[i];
+    const PrimitiveId a = kept.pair.a;
+    const PrimitiveId b = kept.pair.b;
+    if (IsClear(kept.lower_bound_m, disp_m_[a] + disp_m_[b], tol_m[a] + tol_m[b])) continue;
+    test_pairs_[test_count++] = i;
+    if (!(is_now_indexed_[a] && is_now_indexed_[b])) AddToBatch(i, count++);
+  }
   BoundBatch(now_f_, count);
   std::uint32_t tests = 0;
   std::size_t k = 0;  // the next batched pair
-  for (std::uint32_t i = 0; i < pairs_.size(); ++i) {
+  for (std::size_t t = 0; t < test_count; ++t) {
+    const std::uint32_t i = test_pairs_[t];
     KeptPair& kept = pairs_[i];
-    if (!needs_test(kept)) continue;
     const PrimitiveId a = kept.pair.a;
     const PrimitiveId b = kept.pair.b;
+    const double motion_m = disp_m_[a] + disp_m_[b];
     if (k < count && batch_pairs_[k] == i) {
       const double now_bound_m = batch_bound_m_[k++];
       if (IsClear(now_bound_m, 0.0, tol_m[a] + tol_m[b])) {
-        kept.lower_bound_m = std::max(kept.lower_bound_m, now_bound_m - motion_m(kept));
+        kept.lower_bound_m = std::max(kept.lower_bound_m, now_bound_m - motion_m);
         kept.kinematics_bound_m = std::max(kept.kinematics_bound_m, now_bound_m);
         continue;
       }
     }
     ++tests;
     const double distance_m = narrow_phase(a, b);
-    kept.lower_bound_m = std::max(kept.lower_bound_m, distance_m - motion_m(kept));
+    kept.lower_bound_m = std::max(kept.lower_bound_m, distance_m - motion_m);
     kept.kinematics_bound_m = distance_m;
     kept.is_exact = true;
   }
