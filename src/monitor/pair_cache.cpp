@@ -17,6 +17,8 @@ PairCache::PairCache(std::uint32_t primitive_count, double slack_m, double world
   disp_m_.assign(n, 0.0);
   indexed_f_.resize(n);
   now_f_.resize(n);
+  is_indexed_f_made_.assign(n, 0);
+  is_now_f_made_.assign(n, 0);
   is_now_indexed_.assign(n, 1);
   test_pairs_.resize(max_pairs);
   batch_pairs_.resize(max_pairs);
@@ -34,8 +36,8 @@ PairCache::PairCache(std::uint32_t primitive_count, double slack_m, double world
 void PairCache::SetIndexed(PrimitiveId id, const Shape& shape_W) {
   indexed_W_[id] = shape_W;
   disp_m_[id] = 0.0;
-  now_f_[id] = ToFloatPrimitive(shape_W);
-  indexed_f_[id] = now_f_[id];
+  is_indexed_f_made_[id] = 0;
+  is_now_f_made_[id] = 0;
   is_now_indexed_[id] = 1;
   is_stale_ = true;
 }
@@ -44,14 +46,14 @@ bool PairCache::FollowMoved(PrimitiveId id, const Shape& shape_W) {
   // Every point of the shape lies within this of its indexed copy (the displacement of a point
   // of a capsule or box is a convex combination of its defining points').
   const double d_m = MaxPointDisplacement_m(indexed_W_[id], shape_W);
-  now_f_[id] = ToFloatPrimitive(shape_W);
+  is_now_f_made_[id] = 0;
   if (d_m <= slack_m_) {
     disp_m_[id] = d_m;
     is_now_indexed_[id] = 0;
     return false;
   }
   indexed_W_[id] = shape_W;
-  indexed_f_[id] = now_f_[id];
+  is_indexed_f_made_[id] = 0;
   is_now_indexed_[id] = 1;
   disp_m_[id] = 0.0;
   reindexed_.push_back(id);
@@ -110,8 +112,8 @@ bool PairCache::ValidatePrimitive(PrimitiveId id, const Shape& shape_W, std::str
   const double d_m = MaxPointDisplacement_m(indexed_W_[id], shape_W);
   const FloatPrimitive now_f = ToFloatPrimitive(shape_W);
   const FloatPrimitive indexed_f = ToFloatPrimitive(indexed_W_[id]);
-  if (std::memcmp(&now_f, &now_f_[id], sizeof now_f) != 0 ||
-      std::memcmp(&indexed_f, &indexed_f_[id], sizeof indexed_f) != 0) {
+  if ((is_now_f_made_[id] && std::memcmp(&now_f, &now_f_[id], sizeof now_f) != 0) ||
+      (is_indexed_f_made_[id] && std::memcmp(&indexed_f, &indexed_f_[id], sizeof now_f) != 0)) {
     *why = "primitive " + std::to_string(id) + ": its float copy is not its shape's";
     return false;
   }

@@ -188,12 +188,11 @@ BENCHMARK(BM_MonitorIdleCycle);
 // The narrow phase alone on a sphere-robot-like scene: 75 spheres (zero-length capsules) and 15
 // boxes in a 1.5 m cube, the pairs whose boxes grown by 5 cm overlap (what a broad phase would
 // hand over), threshold 5 cm. Exact: ShapeDistance on every pair (the narrow phase before the
-// batch). Batch: the float bounds of all pairs, then ShapeDistance on those they do not clear
-// (counter settled_fraction).
+// batch). Batch: float copies of all 90 shapes (all move in a sphere robot), the float bounds of
+// all pairs, then ShapeDistance on those they do not clear (counter settled_fraction).
 constexpr double kSphereRobotThreshold_m = 0.05;
 struct SphereRobotPairs {
   std::vector<Shape> shapes;
-  std::vector<FloatPrimitive> floats;
   std::vector<PrimitiveId> a, b;
 };
 const SphereRobotPairs& SphereRobotScene() {
@@ -219,7 +218,6 @@ const SphereRobotPairs& SphereRobotScene() {
       box.half_extents_m = Eigen::Vector3d(half_m(rng), half_m(rng), half_m(rng));
       s.shapes.push_back(box);
     }
-    for (const Shape& shape : s.shapes) s.floats.push_back(ToFloatPrimitive(shape));
     for (PrimitiveId i = 0; i < s.shapes.size(); ++i) {
       for (PrimitiveId j = i + 1; j < s.shapes.size(); ++j) {
         if (ComputeAabb(s.shapes[i]).Inflated(kSphereRobotThreshold_m)
@@ -253,10 +251,12 @@ BENCHMARK(BM_NarrowPhaseExact);
 void BM_NarrowPhaseBatch(benchmark::State& state) {
   const SphereRobotPairs& s = SphereRobotScene();
   std::vector<double> bound_m(s.a.size());
+  std::vector<FloatPrimitive> floats(s.shapes.size());
   std::size_t close = 0, exact = 0;
   for (auto _ : state) {
     close = exact = 0;
-    ComputeClearanceLowerBounds(s.floats.data(), s.a.data(), s.b.data(), s.a.size(),
+    for (std::size_t i = 0; i < s.shapes.size(); ++i) floats[i] = ToFloatPrimitive(s.shapes[i]);
+    ComputeClearanceLowerBounds(floats.data(), s.a.data(), s.b.data(), s.a.size(),
                                 bound_m.data());
     for (std::size_t k = 0; k < s.a.size(); ++k) {
       if (bound_m[k] > kSphereRobotThreshold_m) continue;

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <random>
 #include <set>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -62,7 +63,7 @@ struct PairScene {
     cache.BeginReindex();
     cache.Update(broad_phase.get(), compatible);
     std::set<std::pair<PrimitiveId, PrimitiveId>> exact;
-    cache.TestPairs(tol_m, [&](PrimitiveId a, PrimitiveId b) {
+    cache.TestPairs(shapes_W, tol_m, [&](PrimitiveId a, PrimitiveId b) {
       exact.insert({a, b});
       return ShapeDistance(shapes_W[a], shapes_W[b]).distance_m;
     });
@@ -149,28 +150,37 @@ TEST(MonitorNarrowPhase, PairsAtOrBelowTheThresholdReachTheExactDistance) {
 }
 
 TEST(MonitorNarrowPhase, FloatCopiesFollowTheShapes) {
-  // A moved primitive's float copy follows FollowMoved (ValidatePrimitive compares them); one
-  // pair moved from far above the threshold to below it is then tested exactly.
+  // Moved primitives' float copies follow FollowMoved (ValidatePrimitive compares them): 20
+  // pairs (a batch: kClearanceBatchMinPairs), moved from above the threshold to below it, are
+  // then all tested exactly.
+  constexpr int kPairs = 20;
+  static_assert(kPairs >= kClearanceBatchMinPairs, "the float batch must run");
   std::mt19937_64 rng(kSeed + 1);
-  auto pair = CapsuleOverBox(0, 0.06, &rng);
-  PairScene scene({pair}, 0.02);
-  EXPECT_TRUE(scene.Cycle().empty());  // 6 cm apart, threshold 4 cm: settled
-  ASSERT_EQ(scene.cache.pairs().size(), 1u);
-  Capsule moved = std::get<Capsule>(pair.first);
-  moved.p0_W.z() -= 0.05;
-  moved.p1_W.z() -= 0.05;  // now 1 cm apart
-  scene.shapes_W[0] = moved;
+  std::vector<std::pair<Shape, Shape>> pairs;
+  for (int slot = 0; slot < kPairs; ++slot) pairs.push_back(CapsuleOverBox(slot, 0.06, &rng));
+  PairScene scene(pairs, 0.02);
+  EXPECT_TRUE(scene.Cycle().empty());  // 6 cm apart, threshold 4 cm: all settled by the batch
+  ASSERT_EQ(scene.cache.pairs().size(), static_cast<std::size_t>(kPairs));
+  for (const KeptPair& kept : scene.cache.pairs()) EXPECT_FALSE(kept.is_exact);
   scene.cache.BeginReindex();
-  if (scene.cache.FollowMoved(0, moved)) scene.broad_phase->Move(0, ComputeAabb(moved));
-  std::string why;
-  EXPECT_TRUE(scene.cache.ValidatePrimitive(0, moved, &why)) << why;
+  for (PrimitiveId id = 0; id < 2 * kPairs; id += 2) {
+    Capsule moved = std::get<Capsule>(scene.shapes_W[id]);
+    moved.p0_W.z() -= 0.05;
+    moved.p1_W.z() -= 0.05;  // now 1 cm apart
+    scene.shapes_W[id] = moved;
+    if (scene.cache.FollowMoved(id, moved)) scene.broad_phase->Move(id, ComputeAabb(moved));
+  }
   scene.cache.Update(scene.broad_phase.get(), scene.compatible);
   int exact = 0;
-  scene.cache.TestPairs(scene.tol_m, [&](PrimitiveId a, PrimitiveId b) {
+  scene.cache.TestPairs(scene.shapes_W, scene.tol_m, [&](PrimitiveId a, PrimitiveId b) {
     ++exact;
     return ShapeDistance(scene.shapes_W[a], scene.shapes_W[b]).distance_m;
   });
-  EXPECT_EQ(exact, 1);
+  EXPECT_EQ(exact, kPairs);
+  for (PrimitiveId id = 0; id < 2 * kPairs; ++id) {
+    std::string why;
+    EXPECT_TRUE(scene.cache.ValidatePrimitive(id, scene.shapes_W[id], &why)) << why;
+  }
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 // dimensionless, multiplied by a length scale of the inputs) over absolute ones.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 
 namespace arm_collision_monitor {
@@ -60,6 +61,14 @@ constexpr float kClearanceBatchMarginUlps = 64.0f;
 // primitive beyond it (or with NaN) gets a NaN radius: its bounds are -inf, the exact distance
 // decides.
 constexpr double kClearanceBatchMaxLength_m = 1e15;
+// PairCache::TestPairs bounds a batch of pairs in float only from this many pairs up
+// (dimensionless); fewer take the exact double distance directly. Each batched pair pays for
+// float copies of its two shapes (~10 ns each) and a share of a 4-lane block (~20 ns per pair),
+// about what an exact capsule distance costs (~50 ns): on the bundled workcell, every joint
+// moving, batches of 3-14 pairs made the narrow phase slower (perf, every-cycle run: 11.3 % of
+// the cycle before, 13.9 % batched), while on 168 pairs of a sphere-robot-like scene the batch
+// was 1.3x faster (bench_monitor_cycle BM_NarrowPhase*). 16 lies between; not tuned further.
+constexpr std::size_t kClearanceBatchMinPairs = 16;
 
 // ---------------------------------------------------------------------------------------------
 // Broad phase (octree, grid)

@@ -9,8 +9,9 @@
 //
 // The narrow phase is batched (TestPairs): the pairs whose bound does not clear their threshold
 // get a single-precision certified lower bound first (geometry/clearance_batch.h, on float copies
-// of the current shapes kept here), and only those it cannot clear get the exact double distance
-// and its witness points. New pairs' bounds on their indexed copies come from the same batch.
+// of the shapes, made when a batch first needs them), and only those it cannot clear get the
+// exact double distance and its witness points. New pairs' bounds on their indexed copies come
+// from the same batch.
 #pragma once
 
 #include <cmath>
@@ -46,18 +47,18 @@ class PairCache {
   PairCache(std::uint32_t primitive_count, double slack_m, double world_edge_m);
 
   // --- the index slack, per primitive ----------------------------------------------------
-  /// Primitive `id` was (re-)added to the index at `shape_W`: its indexed copy (and its current
-  /// shape); the pair set is stale.
+  /// Primitive `id` was (re-)added to the index at `shape_W`: its indexed copy; the pair set is
+  /// stale.
   void SetIndexed(PrimitiveId id, const Shape& shape_W);
   /// The index or the compatibility changed: the next Update rebuilds the pair set.
   void MarkStale() { is_stale_ = true; }
   bool is_stale() const { return is_stale_; }
   /// Starts a cycle's re-indexing: clears reindexed().
   void BeginReindex() { reindexed_.clear(); }
-  /// Indexed primitive `id` moved to `shape_W` (its current shape from now on): true when it left
-  /// its slack, then `shape_W` is its new indexed copy and the caller moves it in the index
-  /// (listed in reindexed()). Every change of an indexed primitive's shape comes through here or
-  /// SetIndexed: TestPairs bounds the pairs on these copies.
+  /// Indexed primitive `id` moved to `shape_W`: true when it left its slack, then `shape_W` is
+  /// its new indexed copy and the caller moves it in the index (listed in reindexed()). Every
+  /// change of an indexed primitive's shape comes through here or SetIndexed (TestPairs' float
+  /// copies of the shapes follow these calls).
   bool FollowMoved(PrimitiveId id, const Shape& shape_W);
   /// The primitives re-indexed since BeginReindex, in call order.
   const std::vector<PrimitiveId>& reindexed() const { return reindexed_; }
@@ -73,10 +74,13 @@ class PairCache {
   void Update(BroadPhase* broad_phase, const CompatibilityMatrix& compatible);
   /// The narrow phase over the kept pairs: `narrow_phase(a, b)` (returning the exact distance of
   /// the current shapes, m) is called, in pair order, on each pair that neither its lower bound
-  /// nor the float clearance bound of its current shapes clears of its threshold
-  /// tol_m[a] + tol_m[b]. Returns the exact distance computations done (narrow_phase's calls).
+  /// nor the float clearance bound of its current shapes `shapes_W` (as last given to
+  /// FollowMoved or SetIndexed) clears of its threshold tol_m[a] + tol_m[b]; a batch of fewer
+  /// than kClearanceBatchMinPairs pairs skips the float bound. Returns the exact distance
+  /// computations done (narrow_phase's calls and new pairs' exact bounds).
   template <typename NarrowPhase>
-  std::uint32_t TestPairs(const std::vector<double>& tol_m, NarrowPhase&& narrow_phase);
+  std::uint32_t TestPairs(const std::vector<Shape>& shapes_W, const std::vector<double>& tol_m,
+                          NarrowPhase&& narrow_phase);
   /// The kept pairs, sorted.
   const std::vector<KeptPair>& pairs() const { return pairs_; }
 
@@ -92,7 +96,8 @@ class PairCache {
   }
 
   /// Checks `id`'s recorded displacement against its shape `shape_W` (as of its last
-  /// FollowMoved) and the slack, and its float copy against `shape_W`; and, unless stale, that the kept pairs are exactly `expected`
+  /// FollowMoved) and the slack, and its float copies (when made) against it and its indexed
+  /// copy; and, unless stale, that the kept pairs are exactly `expected`
   /// (sorted: the pairs whose indexed boxes overlap, by brute force), that each lower bound
   /// under-estimates its indexed copies' distance and each kinematics bound the distance of
   /// `shapes_W`. False with the first violation in `why`.
@@ -112,6 +117,16 @@ class PairCache {
     batch_a_[k] = pairs_[i].pair.a;
     batch_b_[k] = pairs_[i].pair.b;
   }
+  // The float copies, made when first needed after a change: of the indexed copy; of the
+  // current shape `shape_W`.
+  void MakeIndexedFloat(PrimitiveId id) {
+    if (!is_indexed_f_made_[id]) indexed_f_[id] = ToFloatPrimitive(indexed_W_[id]);
+    is_indexed_f_made_[id] = 1;
+  }
+  void MakeNowFloat(PrimitiveId id, const Shape& shape_W) {
+    if (!is_now_f_made_[id]) now_f_[id] = ToFloatPrimitive(shape_W);
+    is_now_f_made_[id] = 1;
+  }
   // The float clearance bounds of the first `count` batched pairs on `primitives` into
   // batch_bound_m_.
   void BoundBatch(const std::vector<FloatPrimitive>& primitives, std::size_t count) {
@@ -123,8 +138,10 @@ class PairCache {
   double world_edge_m_ = 0.0;
   std::vector<Shape> indexed_W_;     // per primitive: as last indexed
   std::vector<double> disp_m_;       // per primitive: farthest point motion since then
-  std::vector<FloatPrimitive> indexed_f_, now_f_;  // per primitive: float copies, indexed / now
-  std::vector<std::uint8_t> is_now_indexed_;       // per primitive: now_f_ is indexed_f_
+  // Per primitive: float copies of the indexed copy and of the current shape, whether each is
+  // up to date, and whether the current shape is the indexed copy.
+  std::vector<FloatPrimitive> indexed_f_, now_f_;
+  std::vector<std::uint8_t> is_indexed_f_made_, is_now_f_made_, is_now_indexed_;
   // TestPairs' scratch: the pairs to test (index into pairs_, in pair order); the batched pairs:
   // index into pairs_, primitives, float bound (m).
   std::vector<std::uint32_t> test_pairs_, batch_pairs_;
@@ -139,15 +156,29 @@ class PairCache {
 };
 
 template <typename NarrowPhase>
-std::uint32_t PairCache::TestPairs(const std::vector<double>& tol_m, NarrowPhase&& narrow_phase) {
+std::uint32_t PairCache::TestPairs(const std::vector<Shape>& shapes_W,
+                                   const std::vector<double>& tol_m, NarrowPhase&& narrow_phase) {
   // New pairs: a lower bound on the distance of their indexed copies, kept until either is
   // re-indexed.
+  // Few pairs take the exact distance directly (kClearanceBatchMinPairs).
+  std::uint32_t tests = 0;
   std::size_t count = 0;
   for (std::uint32_t i = 0; i < pairs_.size(); ++i) {
-    if (!std::isnan(pairs_[i].lower_bound_m)) continue;
-    AddToBatch(i, count++);
+    if (std::isnan(pairs_[i].lower_bound_m)) AddToBatch(i, count++);
   }
-  BoundBatch(indexed_f_, count);
+  if (count >= kClearanceBatchMinPairs) {
+    for (std::size_t k = 0; k < count; ++k) {
+      MakeIndexedFloat(batch_a_[k]);
+      MakeIndexedFloat(batch_b_[k]);
+    }
+    BoundBatch(indexed_f_, count);
+  } else {
+    for (std::size_t k = 0; k < count; ++k) {
+      batch_bound_m_[k] =
+          ShapeDistance(indexed_W_[batch_a_[k]], indexed_W_[batch_b_[k]]).distance_m;
+    }
+    tests += static_cast<std::uint32_t>(count);
+  }
   for (std::size_t k = 0; k < count; ++k) {
     KeptPair& kept = pairs_[batch_pairs_[k]];
     kept.lower_bound_m = batch_bound_m_[k];
@@ -166,8 +197,12 @@ std::uint32_t PairCache::TestPairs(const std::vector<double>& tol_m, NarrowPhase
     test_pairs_[test_count++] = i;
     if (!(is_now_indexed_[a] && is_now_indexed_[b])) AddToBatch(i, count++);
   }
+  if (count < kClearanceBatchMinPairs) count = 0;
+  for (std::size_t k = 0; k < count; ++k) {
+    MakeNowFloat(batch_a_[k], shapes_W[batch_a_[k]]);
+    MakeNowFloat(batch_b_[k], shapes_W[batch_b_[k]]);
+  }
   BoundBatch(now_f_, count);
-  std::uint32_t tests = 0;
   std::size_t k = 0;  // the next batched pair
   for (std::size_t t = 0; t < test_count; ++t) {
     const std::uint32_t i = test_pairs_[t];
