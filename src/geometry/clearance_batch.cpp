@@ -92,9 +92,9 @@ void BoundBlock(const FloatPrimitive* primitives, const PrimitiveId ia[kLanes],
 }
 
 
-// `shape_W` rounded to float, each number once.
-FloatPrimitive RoundToFloat(const Shape& shape_W) {
-  FloatPrimitive f;
+// `shape_W` rounded to float into `f`, each number once (written field by field in place: a
+// 64-byte copy read back right after scalar stores would stall on store forwarding).
+void RoundToFloat(const Shape& shape_W, FloatPrimitive* f) {
   if (const auto* capsule = std::get_if<Capsule>(&shape_W)) {
     const Eigen::Vector3d axis_W = capsule->p1_W - capsule->p0_W;
     const double length_m = axis_W.norm();
@@ -103,37 +103,39 @@ FloatPrimitive RoundToFloat(const Shape& shape_W) {
     const Eigen::Vector3d u_W =
         length_m > 0.0 ? Eigen::Vector3d(axis_W / length_m) : Eigen::Vector3d::Zero();
     for (int k = 0; k < 3; ++k) {
-      f.c_W[k] = static_cast<float>(centre_W[k]);
-      f.u_W[0][k] = static_cast<float>(u_W[k]);
+      f->c_W[k] = static_cast<float>(centre_W[k]);
+      f->u_W[0][k] = static_cast<float>(u_W[k]);
+      f->u_W[1][k] = 0.0f;
+      f->u_W[2][k] = 0.0f;
+      f->half_m[k] = 0.0f;
     }
-    f.half_m[0] = static_cast<float>(0.5 * length_m);
-    f.radius_m = static_cast<float>(capsule->radius_m);
-    return f;
+    f->half_m[0] = static_cast<float>(0.5 * length_m);
+    f->radius_m = static_cast<float>(capsule->radius_m);
+    return;
   }
   const Box& box = std::get<Box>(shape_W);
   for (int k = 0; k < 3; ++k) {
-    f.c_W[k] = static_cast<float>(box.X_WB.translation()[k]);
-    f.half_m[k] = static_cast<float>(box.half_extents_m[k]);
-    for (int i = 0; i < 3; ++i) f.u_W[i][k] = static_cast<float>(box.X_WB.linear()(k, i));
+    f->c_W[k] = static_cast<float>(box.X_WB.translation()[k]);
+    f->half_m[k] = static_cast<float>(box.half_extents_m[k]);
+    for (int i = 0; i < 3; ++i) f->u_W[i][k] = static_cast<float>(box.X_WB.linear()(k, i));
   }
-  return f;
+  f->radius_m = 0.0f;
 }
 
 }  // namespace
 
-FloatPrimitive ToFloatPrimitive(const Shape& shape_W) {
-  FloatPrimitive f = RoundToFloat(shape_W);
+void ToFloatPrimitive(const Shape& shape_W, FloatPrimitive* f) {
+  RoundToFloat(shape_W, f);
   // NaN, or beyond the float range the batch supports: a NaN radius makes every bound -inf. The
   // sum of magnitudes bounds each (and is NaN or inf with any of them).
-  float sum_m = std::abs(f.radius_m);
+  float sum_m = std::abs(f->radius_m);
   for (int k = 0; k < 3; ++k) {
-    sum_m += std::abs(f.c_W[k]) + std::abs(f.half_m[k]) + std::abs(f.u_W[0][k]) +
-             std::abs(f.u_W[1][k]) + std::abs(f.u_W[2][k]);
+    sum_m += std::abs(f->c_W[k]) + std::abs(f->half_m[k]) + std::abs(f->u_W[0][k]) +
+             std::abs(f->u_W[1][k]) + std::abs(f->u_W[2][k]);
   }
   if (!(sum_m <= static_cast<float>(kClearanceBatchMaxLength_m))) {
-    f.radius_m = std::numeric_limits<float>::quiet_NaN();
+    f->radius_m = std::numeric_limits<float>::quiet_NaN();
   }
-  return f;
 }
 
 void ComputeClearanceLowerBounds(const FloatPrimitive* primitives, const PrimitiveId* a,

@@ -110,8 +110,9 @@ void PairCache::UpdatePairs(BroadPhase* broad_phase, const CompatibilityMatrix& 
 
 bool PairCache::ValidatePrimitive(PrimitiveId id, const Shape& shape_W, std::string* why) const {
   const double d_m = MaxPointDisplacement_m(indexed_W_[id], shape_W);
-  const FloatPrimitive now_f = ToFloatPrimitive(shape_W);
-  const FloatPrimitive indexed_f = ToFloatPrimitive(indexed_W_[id]);
+  FloatPrimitive now_f, indexed_f;
+  ToFloatPrimitive(shape_W, &now_f);
+  ToFloatPrimitive(indexed_W_[id], &indexed_f);
   if ((is_now_f_made_[id] && std::memcmp(&now_f, &now_f_[id], sizeof now_f) != 0) ||
       (is_indexed_f_made_[id] && std::memcmp(&indexed_f, &indexed_f_[id], sizeof now_f) != 0)) {
     *why = "primitive " + std::to_string(id) + ": its float copy is not its shape's";

@@ -255,7 +255,7 @@ void BM_NarrowPhaseBatch(benchmark::State& state) {
   std::size_t close = 0, exact = 0;
   for (auto _ : state) {
     close = exact = 0;
-    for (std::size_t i = 0; i < s.shapes.size(); ++i) floats[i] = ToFloatPrimitive(s.shapes[i]);
+    for (std::size_t i = 0; i < s.shapes.size(); ++i) ToFloatPrimitive(s.shapes[i], &floats[i]);
     ComputeClearanceLowerBounds(floats.data(), s.a.data(), s.b.data(), s.a.size(),
                                 bound_m.data());
     for (std::size_t k = 0; k < s.a.size(); ++k) {

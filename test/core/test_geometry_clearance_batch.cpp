@@ -60,6 +60,12 @@ Box MakeBox(const Eigen::Vector3d& centre_W, const Eigen::Matrix3d& R_WB,
   return box;
 }
 
+FloatPrimitive ToFloat(const Shape& shape_W) {
+  FloatPrimitive f;
+  ToFloatPrimitive(shape_W, &f);
+  return f;
+}
+
 /// The length scale of a pair as the margin counts it (constants.h), in double.
 double MarginScale_m(const FloatPrimitive& a, const FloatPrimitive& b) {
   double s = 0.0;
@@ -77,9 +83,9 @@ std::vector<double> Bounds(const std::vector<std::pair<Shape, Shape>>& pairs,
   std::vector<PrimitiveId> a, b;
   for (const auto& [sa, sb] : pairs) {
     a.push_back(static_cast<PrimitiveId>(floats->size()));
-    floats->push_back(ToFloatPrimitive(sa));
+    floats->push_back(ToFloat(sa));
     b.push_back(static_cast<PrimitiveId>(floats->size()));
-    floats->push_back(ToFloatPrimitive(sb));
+    floats->push_back(ToFloat(sb));
   }
   std::vector<double> bounds(pairs.size());
   ComputeClearanceLowerBounds(floats->data(), a.data(), b.data(), pairs.size(), bounds.data());
@@ -300,7 +306,7 @@ TEST(ClearanceBatch, PartialBlocksMatchSinglePairs) {
   // 13 pairs: a full block of 8 and a partial one of 5; each bound as computed alone.
   Rng rng(kSeed + 3);
   std::vector<FloatPrimitive> floats;
-  for (int i = 0; i < 26; ++i) floats.push_back(ToFloatPrimitive(RandomShape(&rng, {}, i % 3 == 0)));
+  for (int i = 0; i < 26; ++i) floats.push_back(ToFloat(RandomShape(&rng, {}, i % 3 == 0)));
   std::vector<PrimitiveId> a, b;
   for (PrimitiveId k = 0; k < 13; ++k) {
     a.push_back(2 * k);
@@ -326,7 +332,7 @@ TEST(ClearanceBatch, NonFiniteAndHugeInputsSayNothing) {
       MakeCapsule({-1e17, 0.0, 0.0}, {1e17, 0.0, 0.0}, 0.01),
       MakeBox({5.0, 0.0, 0.0}, Eigen::Matrix3d::Identity(), {1e16, 0.1, 0.1})};
   for (std::size_t i = 0; i < bad.size(); ++i) {
-    const std::vector<FloatPrimitive> floats = {ToFloatPrimitive(ok), ToFloatPrimitive(bad[i])};
+    const std::vector<FloatPrimitive> floats = {ToFloat(ok), ToFloat(bad[i])};
     const PrimitiveId a[] = {0, 1}, b[] = {1, 0};
     double bounds[2];
     ComputeClearanceLowerBounds(floats.data(), a, b, 2, bounds);

@@ -42,9 +42,9 @@ struct alignas(64) FloatPrimitive {
 };
 static_assert(sizeof(FloatPrimitive) == 64, "one cache line per primitive");
 
-/// `shape_W` rounded to single precision (each number rounded once from its double value); NaN
-/// radius beyond the supported lengths (kClearanceBatchMaxLength_m).
-FloatPrimitive ToFloatPrimitive(const Shape& shape_W);
+/// `shape_W` rounded to single precision into `f` (each number rounded once from its double
+/// value); NaN radius beyond the supported lengths (kClearanceBatchMaxLength_m).
+void ToFloatPrimitive(const Shape& shape_W, FloatPrimitive* f);
 
 /// For each of the `count` pairs k, (primitives[a[k]], primitives[b[k]]): lower_bound_m[k] <=
 /// the exact distance of the double shapes the two were made from (ToFloatPrimitive), the

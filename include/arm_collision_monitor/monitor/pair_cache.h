@@ -120,11 +120,11 @@ class PairCache {
   // The float copies, made when first needed after a change: of the indexed copy; of the
   // current shape `shape_W`.
   void MakeIndexedFloat(PrimitiveId id) {
-    if (!is_indexed_f_made_[id]) indexed_f_[id] = ToFloatPrimitive(indexed_W_[id]);
+    if (!is_indexed_f_made_[id]) ToFloatPrimitive(indexed_W_[id], &indexed_f_[id]);
     is_indexed_f_made_[id] = 1;
   }
   void MakeNowFloat(PrimitiveId id, const Shape& shape_W) {
-    if (!is_now_f_made_[id]) now_f_[id] = ToFloatPrimitive(shape_W);
+    if (!is_now_f_made_[id]) ToFloatPrimitive(shape_W, &now_f_[id]);
     is_now_f_made_[id] = 1;
   }
   // The float clearance bounds of the first `count` batched pairs on `primitives` into
