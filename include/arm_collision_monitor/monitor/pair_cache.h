@@ -127,6 +127,10 @@ class PairCache {
     if (!is_now_f_made_[id]) ToFloatPrimitive(shape_W, &now_f_[id]);
     is_now_f_made_[id] = 1;
   }
+  // TestPairs without the float bound: one pass, the exact distance for every pair not cleared
+  // by its bound (new pairs: of their indexed copies first).
+  template <typename NarrowPhase>
+  std::uint32_t TestPairsExactly(const std::vector<double>& tol_m, NarrowPhase&& narrow_phase);
   // The float clearance bounds of the first `count` batched pairs on `primitives` into
   // batch_bound_m_.
   void BoundBatch(const std::vector<FloatPrimitive>& primitives, std::size_t count) {
@@ -156,8 +160,33 @@ class PairCache {
 };
 
 template <typename NarrowPhase>
+std::uint32_t PairCache::TestPairsExactly(const std::vector<double>& tol_m,
+                                          NarrowPhase&& narrow_phase) {
+  std::uint32_t tests = 0;
+  for (KeptPair& kept : pairs_) {
+    const PrimitiveId a = kept.pair.a;
+    const PrimitiveId b = kept.pair.b;
+    if (std::isnan(kept.lower_bound_m)) {
+      ++tests;
+      kept.lower_bound_m = ShapeDistance(indexed_W_[a], indexed_W_[b]).distance_m;
+      kept.kinematics_bound_m = KinematicsBound_m(kept);
+    }
+    const double motion_m = disp_m_[a] + disp_m_[b];
+    if (IsClear(kept.lower_bound_m, motion_m, tol_m[a] + tol_m[b])) continue;
+    ++tests;
+    const double distance_m = narrow_phase(a, b);
+    kept.lower_bound_m = std::max(kept.lower_bound_m, distance_m - motion_m);
+    kept.kinematics_bound_m = distance_m;
+    kept.is_exact = true;
+  }
+  return tests;
+}
+
+template <typename NarrowPhase>
 std::uint32_t PairCache::TestPairs(const std::vector<Shape>& shapes_W,
                                    const std::vector<double>& tol_m, NarrowPhase&& narrow_phase) {
+  // Too few pairs for any batch: the passes that pick the batches would cost more than nothing.
+  if (pairs_.size() < kClearanceBatchMinPairs) return TestPairsExactly(tol_m, narrow_phase);
   // New pairs: a lower bound on the distance of their indexed copies, kept until either is
   // re-indexed.
   // Few pairs take the exact distance directly (kClearanceBatchMinPairs).
