@@ -239,7 +239,7 @@ void Monitor::Impl::ComputeTolerances(const std::vector<Shape>& shapes,
 
 std::uint32_t Monitor::Impl::TestCandidatePairs() {
   report.warnings.clear();
-  return cache.TestPairs(tol_now, [this](PrimitiveId a, PrimitiveId b) {
+  return cache.TestPairs(shape_W, tol_now, [this](PrimitiveId a, PrimitiveId b) {
     return TestPair(a, b, shape_W, tol_now, &report.warnings);
   });
 }

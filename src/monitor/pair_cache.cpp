@@ -2,6 +2,7 @@
 #include "arm_collision_monitor/monitor/pair_cache.h"
 
 #include <algorithm>
+#include <cstring>
 #include <sstream>
 
 #include "arm_collision_monitor/monitor/motion_bounds.h"
@@ -14,6 +15,16 @@ PairCache::PairCache(std::uint32_t primitive_count, double slack_m, double world
   const std::size_t max_pairs = n * (n > 0 ? n - 1 : 0) / 2;
   indexed_W_.resize(n);
   disp_m_.assign(n, 0.0);
+  indexed_f_.resize(n);
+  now_f_.resize(n);
+  is_indexed_f_made_.assign(n, 0);
+  is_now_f_made_.assign(n, 0);
+  is_now_indexed_.assign(n, 1);
+  test_pairs_.resize(max_pairs);
+  batch_pairs_.resize(max_pairs);
+  batch_a_.resize(max_pairs);
+  batch_b_.resize(max_pairs);
+  batch_bound_m_.resize(max_pairs);
   pairs_.reserve(max_pairs);
   scratch_.reserve(max_pairs);
   found_.reserve(max_pairs);
@@ -25,6 +36,9 @@ PairCache::PairCache(std::uint32_t primitive_count, double slack_m, double world
 void PairCache::SetIndexed(PrimitiveId id, const Shape& shape_W) {
   indexed_W_[id] = shape_W;
   disp_m_[id] = 0.0;
+  is_indexed_f_made_[id] = 0;
+  is_now_f_made_[id] = 0;
+  is_now_indexed_[id] = 1;
   is_stale_ = true;
 }
 
@@ -32,8 +46,10 @@ bool PairCache::FollowMoved(PrimitiveId id, const Shape& shape_W) {
   // Every point of the shape lies within this of its indexed copy (the displacement of a point
   // of a capsule or box is a convex combination of its defining points').
   const double d_m = MaxPointDisplacement_m(indexed_W_[id], shape_W);
+  is_now_f_made_[id] = 0;
   if (d_m <= slack_m_) {
     disp_m_[id] = d_m;
+    is_now_indexed_[id] = 0;
     return false;
   }
   Reindex(id, shape_W);
@@ -42,6 +58,8 @@ bool PairCache::FollowMoved(PrimitiveId id, const Shape& shape_W) {
 
 void PairCache::Reindex(PrimitiveId id, const Shape& shape_W) {
   indexed_W_[id] = shape_W;
+  is_indexed_f_made_[id] = 0;
+  is_now_indexed_[id] = 1;
   disp_m_[id] = 0.0;
   reindexed_.push_back(id);
 }
@@ -96,6 +114,14 @@ void PairCache::UpdatePairs(BroadPhase* broad_phase, const CompatibilityMatrix& 
 
 bool PairCache::ValidatePrimitive(PrimitiveId id, const Shape& shape_W, std::string* why) const {
   const double d_m = MaxPointDisplacement_m(indexed_W_[id], shape_W);
+  FloatPrimitive now_f, indexed_f;
+  ToFloatPrimitive(shape_W, &now_f);
+  ToFloatPrimitive(indexed_W_[id], &indexed_f);
+  if ((is_now_f_made_[id] && std::memcmp(&now_f, &now_f_[id], sizeof now_f) != 0) ||
+      (is_indexed_f_made_[id] && std::memcmp(&indexed_f, &indexed_f_[id], sizeof now_f) != 0)) {
+    *why = "primitive " + std::to_string(id) + ": its float copy is not its shape's";
+    return false;
+  }
   if (d_m == disp_m_[id] && d_m <= slack_m_) return true;
   std::ostringstream msg;
   msg << "primitive " << id << " moved " << d_m << " m from its indexed copy, recorded "

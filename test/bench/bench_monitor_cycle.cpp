@@ -1,7 +1,9 @@
 // Per-cycle Monitor time on the bundled workcell with every joint of both arms moving smoothly
 // (seeded sinusoids at up to 80 % of each joint's velocity limit, 50 ms cycles), and the idle
 // cycle. Prints median / p99 / p99.9 of individually timed cycles (steady clock, preallocated
-// samples), then Google Benchmark's means. Run:
+// samples), first the every-cycle figures (issue 15 goal b: every Update a full kinematics
+// cycle), then per broad phase, then Google Benchmark's means, among them the narrow phase alone
+// on a sphere-robot-like scene (exact distances against the float batch, BM_NarrowPhase*). Run:
 //   build/ws_<name>/devel/lib/arm_collision_monitor/bench_monitor_cycle
 #include <algorithm>
 #include <chrono>
@@ -17,6 +19,8 @@
 #include <benchmark/benchmark.h>
 
 #include "arm_collision_monitor/core/timing_summary.h"
+#include "arm_collision_monitor/geometry/clearance_batch.h"
+#include "arm_collision_monitor/geometry/distance.h"
 #include "arm_collision_monitor/monitor/monitor.h"
 #include "arm_collision_monitor/scene/workcell.h"
 
@@ -116,6 +120,44 @@ void PrintPercentiles(BroadPhaseMethod method, bool speed_scaled) {
       static_cast<double>(warnings) / qs.size(), static_cast<double>(object_tests) / qs.size());
 }
 
+// Issue 15 goal (b): every Update a full kinematics cycle (forward kinematics, re-index, pair
+// upkeep, narrow phase, swept check). index_slack_m = 0 forces it: a moving primitive is then
+// re-indexed whenever it moves, and IsProvablyClear needs every motion bound within the slack,
+// so no cycle is bounded (the figures print how many were, to show it). The default options
+// (slack 0.1 m) run beside it for reference. Also printed: the exact double distances the
+// narrow phase computed per cycle (CycleReport::narrow_phase_tests).
+void PrintEveryCycle(const char* label, double index_slack_m) {
+  const auto wc = BundledWorkcell();
+  MonitorOptions options;
+  options.index_slack_m = index_slack_m;
+  Monitor monitor(wc, options);
+  const auto qs = SmoothTrajectory(*wc, monitor.options().cycle_period_s);
+  std::vector<double> ns(qs.size());
+  std::uint64_t bounded = 0, exact_tests = 0, candidates = 0, warnings = 0;
+  for (const auto& q : qs) monitor.Update(q);
+  for (std::size_t k = 0; k < qs.size(); ++k) {
+    const auto start = std::chrono::steady_clock::now();
+    const CycleReport& report = monitor.Update(qs[k]);
+    const auto stop = std::chrono::steady_clock::now();
+    benchmark::DoNotOptimize(report);
+    ns[k] = std::chrono::duration<double, std::nano>(stop - start).count();
+    bounded += report.bounded;
+    exact_tests += report.narrow_phase_tests;
+    candidates += report.candidate_pairs;
+    warnings += report.warnings.size();
+  }
+  const double n = static_cast<double>(qs.size());
+  std::sort(ns.begin(), ns.end());
+  const TimingSummary all = SummarizeTimings(ns);
+  std::printf(
+      "every-cycle %-22s %s: median %6.0f ns  p99 %6.0f ns  p99.9 %6.0f ns  max %7.0f ns | "
+      "%.0f%% bounded cycles, per cycle %.1f candidate pairs, %.2f exact distances, %.2f "
+      "warnings\n",
+      label, monitor.broad_phase_name().c_str(), all.median, all.p99,
+      NearestRankPercentile(ns, 0.999), all.max, 100.0 * bounded / n, candidates / n,
+      exact_tests / n, warnings / n);
+}
+
 void BM_MonitorCycle(benchmark::State& state) {
   const auto wc = BundledWorkcell();
   Monitor monitor(wc, Options(static_cast<BroadPhaseMethod>(state.range(0)), state.range(1)));
@@ -143,6 +185,93 @@ void BM_MonitorIdleCycle(benchmark::State& state) {
 }
 BENCHMARK(BM_MonitorIdleCycle);
 
+// The narrow phase alone on a sphere-robot-like scene: 75 spheres (zero-length capsules) and 15
+// boxes in a 1.5 m cube, the pairs whose boxes grown by 5 cm overlap (what a broad phase would
+// hand over), threshold 5 cm. Exact: ShapeDistance on every pair (the narrow phase before the
+// batch). Batch: float copies of all 90 shapes (all move in a sphere robot), the float bounds of
+// all pairs, then ShapeDistance on those they do not clear (counter settled_fraction).
+constexpr double kSphereRobotThreshold_m = 0.05;
+struct SphereRobotPairs {
+  std::vector<Shape> shapes;
+  std::vector<PrimitiveId> a, b;
+};
+const SphereRobotPairs& SphereRobotScene() {
+  static const SphereRobotPairs scene = [] {
+    SphereRobotPairs s;
+    std::mt19937_64 rng(kSeed);
+    std::uniform_real_distribution<double> coordinate(-0.75, 0.75);
+    auto point = [&] { return Eigen::Vector3d(coordinate(rng), coordinate(rng), coordinate(rng)); };
+    for (int i = 0; i < 75; ++i) {
+      Capsule sphere;
+      sphere.p0_W = sphere.p1_W = point();
+      sphere.radius_m = std::uniform_real_distribution<double>(0.04, 0.10)(rng);
+      s.shapes.push_back(sphere);
+    }
+    for (int i = 0; i < 15; ++i) {
+      Box box;
+      box.X_WB.translation() = point();
+      std::normal_distribution<double> normal;
+      box.X_WB.linear() =
+          Eigen::Quaterniond(normal(rng), normal(rng), normal(rng), normal(rng)).normalized()
+              .matrix();
+      std::uniform_real_distribution<double> half_m(0.02, 0.32);
+      box.half_extents_m = Eigen::Vector3d(half_m(rng), half_m(rng), half_m(rng));
+      s.shapes.push_back(box);
+    }
+    for (PrimitiveId i = 0; i < s.shapes.size(); ++i) {
+      for (PrimitiveId j = i + 1; j < s.shapes.size(); ++j) {
+        if (ComputeAabb(s.shapes[i]).Inflated(kSphereRobotThreshold_m)
+                .Overlaps(ComputeAabb(s.shapes[j]))) {
+          s.a.push_back(i);
+          s.b.push_back(j);
+        }
+      }
+    }
+    return s;
+  }();
+  return scene;
+}
+
+void BM_NarrowPhaseExact(benchmark::State& state) {
+  const SphereRobotPairs& s = SphereRobotScene();
+  std::size_t close = 0;
+  for (auto _ : state) {
+    close = 0;
+    for (std::size_t k = 0; k < s.a.size(); ++k) {
+      close += ShapeDistance(s.shapes[s.a[k]], s.shapes[s.b[k]]).distance_m <
+               kSphereRobotThreshold_m;
+    }
+    benchmark::DoNotOptimize(close);
+  }
+  state.counters["pairs"] = static_cast<double>(s.a.size());
+  state.counters["close"] = static_cast<double>(close);
+}
+BENCHMARK(BM_NarrowPhaseExact);
+
+void BM_NarrowPhaseBatch(benchmark::State& state) {
+  const SphereRobotPairs& s = SphereRobotScene();
+  std::vector<double> bound_m(s.a.size());
+  std::vector<FloatPrimitive> floats(s.shapes.size());
+  std::size_t close = 0, exact = 0;
+  for (auto _ : state) {
+    close = exact = 0;
+    for (std::size_t i = 0; i < s.shapes.size(); ++i) ToFloatPrimitive(s.shapes[i], &floats[i]);
+    ComputeClearanceLowerBounds(floats.data(), s.a.data(), s.b.data(), s.a.size(),
+                                bound_m.data());
+    for (std::size_t k = 0; k < s.a.size(); ++k) {
+      if (bound_m[k] > kSphereRobotThreshold_m) continue;
+      ++exact;
+      close += ShapeDistance(s.shapes[s.a[k]], s.shapes[s.b[k]]).distance_m <
+               kSphereRobotThreshold_m;
+    }
+    benchmark::DoNotOptimize(close);
+  }
+  state.counters["pairs"] = static_cast<double>(s.a.size());
+  state.counters["close"] = static_cast<double>(close);
+  state.counters["settled_fraction"] = 1.0 - static_cast<double>(exact) / s.a.size();
+}
+BENCHMARK(BM_NarrowPhaseBatch);
+
 }  // namespace
 }  // namespace arm_collision_monitor
 
@@ -157,6 +286,9 @@ int main(int argc, char** argv) {
               static_cast<unsigned long long>(arm_collision_monitor::kSeed),
               arm_collision_monitor::kTrajectoryCycles, 100 * arm_collision_monitor::kSpeedFraction,
               std::thread::hardware_concurrency());
+  arm_collision_monitor::PrintEveryCycle("(index_slack_m 0)", 0.0);
+  arm_collision_monitor::PrintEveryCycle("(default options)",
+                                         arm_collision_monitor::kDefaultIndexSlack_m);
   for (const auto method : {BroadPhaseMethod::kOctree, BroadPhaseMethod::kNaive,
                             BroadPhaseMethod::kGrid}) {
     for (const bool speed_scaled : {false, true}) {

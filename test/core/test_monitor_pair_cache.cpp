@@ -122,7 +122,7 @@ struct RandomScene {
     cache.Update(broad_phase.get(), compatible);
     kept_pair_visits += cache.pairs().size();
     std::set<std::pair<PrimitiveId, PrimitiveId>> close;
-    cache.TestPairs(tol_m, [&](PrimitiveId a, PrimitiveId b) {
+    cache.TestPairs(shapes_W, tol_m, [&](PrimitiveId a, PrimitiveId b) {
       ++narrow_phase_calls;
       const double d_m = ShapeDistance(shapes_W[a], shapes_W[b]).distance_m;
       if (d_m < tol_m[a] + tol_m[b] || d_m <= 0.0) close.insert({a, b});

@@ -3,6 +3,7 @@
 // dimensionless, multiplied by a length scale of the inputs) over absolute ones.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 
 namespace arm_collision_monitor {
@@ -43,6 +44,31 @@ constexpr double kDistanceErrorFloor_m = 1e-150;
 // Inputs are supported up to this magnitude (m; typical 1e60): products of four lengths (the
 // squared cross product of two directions) must stay below the double overflow at ~1.8e308.
 constexpr double kMaxSupportedCoordinate_m = 1e60;
+
+// The batched single-precision clearance bounds (geometry/clearance_batch.h): the margin taken
+// off each bound, in units of the float unit roundoff u = 2^-24 (~6e-8) times the pair's length
+// scale S = |c_A|_1 + |c_B|_1 + sum h_A + sum h_B + r_A + r_B (centres, half lengths, radii; m).
+// Worst cases, each a multiple of u S: rounding the double shape to float moves it by at most
+// u (|c| + 2 sum h + r) per primitive, 2; the sphere bound's difference, norm and sums, 12; the
+// direction bound's centre difference, its three-term dot products (each within 3u of the sum
+// of the terms' magnitudes), the nine-term reach sums and the direction's norm 1 +- 3u, 20;
+// taking the margin off and the larger bound, 2. 64 is over twice their sum, 24; in metres
+// 64 u S ~ 4e-6 S (23 um for S = 6 m, the bundled workcell). test_geometry_clearance_batch pins
+// that no bound exceeds the exact distance (random, touching, far and degenerate pairs).
+constexpr float kClearanceBatchMarginUlps = 64.0f;
+// Largest sum of a primitive's |coordinates|, half lengths and radius (m) the batch accepts
+// (typical 1e15): squares of lengths must stay far below the float overflow (~3.4e38). A
+// primitive beyond it (or with NaN) gets a NaN radius: its bounds are -inf, the exact distance
+// decides.
+constexpr double kClearanceBatchMaxLength_m = 1e15;
+// PairCache::TestPairs bounds a batch of pairs in float only from this many pairs up
+// (dimensionless); fewer take the exact double distance directly. Each batched pair pays for
+// float copies of its two shapes (~10 ns each) and a share of a 4-lane block (~20 ns per pair),
+// about what an exact capsule distance costs (~50 ns): on the bundled workcell, every joint
+// moving, batches of 3-14 pairs made the narrow phase slower (perf, every-cycle run: 11.3 % of
+// the cycle before, 13.9 % batched), while on 168 pairs of a sphere-robot-like scene the batch
+// was 1.3x faster (bench_monitor_cycle BM_NarrowPhase*). 16 lies between; not tuned further.
+constexpr std::size_t kClearanceBatchMinPairs = 16;
 
 // ---------------------------------------------------------------------------------------------
 // Broad phase (octree, grid)

@@ -6,6 +6,12 @@
 // apart less both primitives' motion since, so the narrow phase runs only on the pairs whose
 // bound no longer clears their threshold. The set is rebuilt after any change of the index or
 // of the compatibility (stale), and otherwise updated per re-indexed primitive.
+//
+// The narrow phase is batched (TestPairs): the pairs whose bound does not clear their threshold
+// get a single-precision certified lower bound first (geometry/clearance_batch.h, on float copies
+// of the shapes, made when a batch first needs them), and only those it cannot clear get the
+// exact double distance and its witness points. New pairs' bounds on their indexed copies come
+// from the same batch.
 #pragma once
 
 #include <cmath>
@@ -16,6 +22,7 @@
 
 #include "arm_collision_monitor/broadphase/broad_phase.h"
 #include "arm_collision_monitor/core/constants.h"
+#include "arm_collision_monitor/geometry/clearance_batch.h"
 #include "arm_collision_monitor/geometry/distance.h"
 
 namespace arm_collision_monitor {
@@ -25,7 +32,8 @@ struct KeptPair {
   CandidatePair pair;
   double lower_bound_m = 0.0;       ///< <= distance of the indexed copies; NaN: not yet known
   double kinematics_bound_m = 0.0;  ///< <= distance of the shapes at the last kinematics; NaN
-  /// kinematics_bound_m is that distance itself (the narrow phase ran on the pair this cycle).
+  /// kinematics_bound_m is that distance itself (the exact narrow phase ran on the pair this
+  /// cycle); false after a float clearance bound settled it (then it is that bound).
   bool is_exact = false;
 };
 
@@ -48,7 +56,9 @@ class PairCache {
   /// Starts a cycle's re-indexing: clears reindexed().
   void BeginReindex() { reindexed_.clear(); }
   /// Indexed primitive `id` moved to `shape_W`: true when it left its slack, then `shape_W` is
-  /// its new indexed copy and the caller moves it in the index (listed in reindexed()).
+  /// its new indexed copy and the caller moves it in the index (listed in reindexed()). Every
+  /// change of an indexed primitive's shape comes through here or SetIndexed (TestPairs' float
+  /// copies of the shapes follow these calls).
   bool FollowMoved(PrimitiveId id, const Shape& shape_W);
   /// Makes `shape_W`, where indexed primitive `id` is now, its indexed copy before it leaves its
   /// slack (the caller moves it in the index; listed in reindexed()).
@@ -65,12 +75,15 @@ class PairCache {
   /// replaced, their bounds unknown until TestPairs), and each pair's kinematics bound: its
   /// distance now is at least its indexed distance less both primitives' displacement.
   void Update(BroadPhase* broad_phase, const CompatibilityMatrix& compatible);
-  /// The narrow phase over the kept pairs: `narrow_phase(a, b)` (returning the distance of the
-  /// current shapes, m) is called on each pair whose lower bound does not clear its threshold
-  /// tol_m[a] + tol_m[b], in pair order. Returns the exact distance computations done (those of
-  /// new pairs' bounds included).
+  /// The narrow phase over the kept pairs: `narrow_phase(a, b)` (returning the exact distance of
+  /// the current shapes, m) is called, in pair order, on each pair that neither its lower bound
+  /// nor the float clearance bound of its current shapes `shapes_W` (as last given to
+  /// FollowMoved or SetIndexed) clears of its threshold tol_m[a] + tol_m[b]; a batch of fewer
+  /// than kClearanceBatchMinPairs pairs skips the float bound. Returns the exact distance
+  /// computations done (narrow_phase's calls and new pairs' exact bounds).
   template <typename NarrowPhase>
-  std::uint32_t TestPairs(const std::vector<double>& tol_m, NarrowPhase&& narrow_phase);
+  std::uint32_t TestPairs(const std::vector<Shape>& shapes_W, const std::vector<double>& tol_m,
+                          NarrowPhase&& narrow_phase);
   /// The kept pairs, sorted.
   const std::vector<KeptPair>& pairs() const { return pairs_; }
 
@@ -86,7 +99,8 @@ class PairCache {
   }
 
   /// Checks `id`'s recorded displacement against its shape `shape_W` (as of its last
-  /// FollowMoved) and the slack; and, unless stale, that the kept pairs are exactly `expected`
+  /// FollowMoved) and the slack, and its float copies (when made) against it and its indexed
+  /// copy; and, unless stale, that the kept pairs are exactly `expected`
   /// (sorted: the pairs whose indexed boxes overlap, by brute force), that each lower bound
   /// under-estimates its indexed copies' distance and each kinematics bound the distance of
   /// `shapes_W`. False with the first violation in `why`.
@@ -100,11 +114,46 @@ class PairCache {
   double KinematicsBound_m(const KeptPair& kept) const {
     return kept.lower_bound_m - disp_m_[kept.pair.a] - disp_m_[kept.pair.b];
   }
+  // Pair pairs_[i] as batched pair k.
+  void AddToBatch(std::uint32_t i, std::size_t k) {
+    batch_pairs_[k] = i;
+    batch_a_[k] = pairs_[i].pair.a;
+    batch_b_[k] = pairs_[i].pair.b;
+  }
+  // The float copies, made when first needed after a change: of the indexed copy; of the
+  // current shape `shape_W`.
+  void MakeIndexedFloat(PrimitiveId id) {
+    if (!is_indexed_f_made_[id]) ToFloatPrimitive(indexed_W_[id], &indexed_f_[id]);
+    is_indexed_f_made_[id] = 1;
+  }
+  void MakeNowFloat(PrimitiveId id, const Shape& shape_W) {
+    if (!is_now_f_made_[id]) ToFloatPrimitive(shape_W, &now_f_[id]);
+    is_now_f_made_[id] = 1;
+  }
+  // TestPairs without the float bound: one pass, the exact distance for every pair not cleared
+  // by its bound (new pairs: of their indexed copies first).
+  template <typename NarrowPhase>
+  std::uint32_t TestPairsExactly(const std::vector<double>& tol_m, NarrowPhase&& narrow_phase);
+  // The float clearance bounds of the first `count` batched pairs on `primitives` into
+  // batch_bound_m_.
+  void BoundBatch(const std::vector<FloatPrimitive>& primitives, std::size_t count) {
+    ComputeClearanceLowerBounds(primitives.data(), batch_a_.data(), batch_b_.data(), count,
+                                batch_bound_m_.data());
+  }
 
   double slack_m_ = 0.0;
   double world_edge_m_ = 0.0;
   std::vector<Shape> indexed_W_;     // per primitive: as last indexed
   std::vector<double> disp_m_;       // per primitive: farthest point motion since then
+  // Per primitive: float copies of the indexed copy and of the current shape, whether each is
+  // up to date, and whether the current shape is the indexed copy.
+  std::vector<FloatPrimitive> indexed_f_, now_f_;
+  std::vector<std::uint8_t> is_indexed_f_made_, is_now_f_made_, is_now_indexed_;
+  // TestPairs' scratch: the pairs to test (index into pairs_, in pair order); the batched pairs:
+  // index into pairs_, primitives, float bound (m).
+  std::vector<std::uint32_t> test_pairs_, batch_pairs_;
+  std::vector<PrimitiveId> batch_a_, batch_b_;
+  std::vector<double> batch_bound_m_;
   std::vector<KeptPair> pairs_;      // the broad phase's candidate pairs, sorted
   std::vector<KeptPair> scratch_;
   std::vector<CandidatePair> found_, new_pairs_;  // scratch for FindPairs / FindPairsOf
@@ -114,20 +163,93 @@ class PairCache {
 };
 
 template <typename NarrowPhase>
-std::uint32_t PairCache::TestPairs(const std::vector<double>& tol_m, NarrowPhase&& narrow_phase) {
+std::uint32_t PairCache::TestPairsExactly(const std::vector<double>& tol_m,
+                                          NarrowPhase&& narrow_phase) {
   std::uint32_t tests = 0;
   for (KeptPair& kept : pairs_) {
     const PrimitiveId a = kept.pair.a;
     const PrimitiveId b = kept.pair.b;
-    // A new pair: the distance of the indexed copies, exact until either is re-indexed.
     if (std::isnan(kept.lower_bound_m)) {
       ++tests;
       kept.lower_bound_m = ShapeDistance(indexed_W_[a], indexed_W_[b]).distance_m;
       kept.kinematics_bound_m = KinematicsBound_m(kept);
     }
-    // Triangle inequality: dist(now) >= dist(indexed) - motion of a - motion of b.
     const double motion_m = disp_m_[a] + disp_m_[b];
     if (IsClear(kept.lower_bound_m, motion_m, tol_m[a] + tol_m[b])) continue;
+    ++tests;
+    const double distance_m = narrow_phase(a, b);
+    kept.lower_bound_m = std::max(kept.lower_bound_m, distance_m - motion_m);
+    kept.kinematics_bound_m = distance_m;
+    kept.is_exact = true;
+  }
+  return tests;
+}
+
+template <typename NarrowPhase>
+std::uint32_t PairCache::TestPairs(const std::vector<Shape>& shapes_W,
+                                   const std::vector<double>& tol_m, NarrowPhase&& narrow_phase) {
+  // Too few pairs for any batch: the passes that pick the batches would cost more than nothing.
+  if (pairs_.size() < kClearanceBatchMinPairs) return TestPairsExactly(tol_m, narrow_phase);
+  // New pairs: a lower bound on the distance of their indexed copies, kept until either is
+  // re-indexed.
+  // Few pairs take the exact distance directly (kClearanceBatchMinPairs).
+  std::uint32_t tests = 0;
+  std::size_t count = 0;
+  for (std::uint32_t i = 0; i < pairs_.size(); ++i) {
+    if (std::isnan(pairs_[i].lower_bound_m)) AddToBatch(i, count++);
+  }
+  if (count >= kClearanceBatchMinPairs) {
+    for (std::size_t k = 0; k < count; ++k) {
+      MakeIndexedFloat(batch_a_[k]);
+      MakeIndexedFloat(batch_b_[k]);
+    }
+    BoundBatch(indexed_f_, count);
+  } else {
+    for (std::size_t k = 0; k < count; ++k) {
+      batch_bound_m_[k] =
+          ShapeDistance(indexed_W_[batch_a_[k]], indexed_W_[batch_b_[k]]).distance_m;
+    }
+    tests += static_cast<std::uint32_t>(count);
+  }
+  for (std::size_t k = 0; k < count; ++k) {
+    KeptPair& kept = pairs_[batch_pairs_[k]];
+    kept.lower_bound_m = batch_bound_m_[k];
+    kept.kinematics_bound_m = KinematicsBound_m(kept);
+  }
+  // Triangle inequality: dist(now) >= dist(indexed) - motion of a - motion of b. The pairs that
+  // bound does not clear get the float bound of their current shapes (unless both are their
+  // indexed copies: it was just computed), and those it does not clear either the exact distance.
+  std::size_t test_count = 0;
+  count = 0;
+  for (std::uint32_t i = 0; i < pairs_.size(); ++i) {
+    const KeptPair& kept = pairs_[i];
+    const PrimitiveId a = kept.pair.a;
+    const PrimitiveId b = kept.pair.b;
+    if (IsClear(kept.lower_bound_m, disp_m_[a] + disp_m_[b], tol_m[a] + tol_m[b])) continue;
+    test_pairs_[test_count++] = i;
+    if (!(is_now_indexed_[a] && is_now_indexed_[b])) AddToBatch(i, count++);
+  }
+  if (count < kClearanceBatchMinPairs) count = 0;
+  for (std::size_t k = 0; k < count; ++k) {
+    MakeNowFloat(batch_a_[k], shapes_W[batch_a_[k]]);
+    MakeNowFloat(batch_b_[k], shapes_W[batch_b_[k]]);
+  }
+  BoundBatch(now_f_, count);
+  std::size_t k = 0;  // the next batched pair
+  for (std::size_t t = 0; t < test_count; ++t) {
+    const std::uint32_t i = test_pairs_[t];
+    KeptPair& kept = pairs_[i];
+    const PrimitiveId a = kept.pair.a;
+    const PrimitiveId b = kept.pair.b;
+    const double motion_m = disp_m_[a] + disp_m_[b];
+    if (k < count && batch_pairs_[k] == i) {
+      const double now_bound_m = batch_bound_m_[k++];
+      if (IsClear(now_bound_m, 0.0, tol_m[a] + tol_m[b])) {
+        kept.lower_bound_m = std::max(kept.lower_bound_m, now_bound_m - motion_m);
+        kept.kinematics_bound_m = std::max(kept.kinematics_bound_m, now_bound_m);
+        continue;
+      }
+    }
     ++tests;
     const double distance_m = narrow_phase(a, b);
     kept.lower_bound_m = std::max(kept.lower_bound_m, distance_m - motion_m);
