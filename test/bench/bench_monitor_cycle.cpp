@@ -71,25 +71,35 @@ MonitorOptions Options(BroadPhaseMethod method, bool speed_scaled) {
   return options;
 }
 
-// Each Update timed on its own; two passes over the trajectory, the first one warms caches and
-// pools and is not recorded.
+// Each Update over `qs` timed on its own (ns), after a first pass that warms caches and pools
+// and is not recorded; `on_report` sees each timed report.
+template <typename OnReport>
+std::vector<double> TimeUpdates(Monitor* monitor, const std::vector<Eigen::VectorXd>& qs,
+                                OnReport&& on_report) {
+  for (const auto& q : qs) monitor->Update(q);
+  std::vector<double> ns(qs.size());
+  for (std::size_t k = 0; k < qs.size(); ++k) {
+    const auto start = std::chrono::steady_clock::now();
+    const CycleReport& report = monitor->Update(qs[k]);
+    const auto stop = std::chrono::steady_clock::now();
+    benchmark::DoNotOptimize(report);
+    ns[k] = std::chrono::duration<double, std::nano>(stop - start).count();
+    on_report(report);
+  }
+  return ns;
+}
+
+// The default trajectory's moving and idle cycles, with percentiles.
 void PrintPercentiles(BroadPhaseMethod method, bool speed_scaled) {
   const auto wc = BundledWorkcell();
   Monitor monitor(wc, Options(method, speed_scaled));
   const auto qs = SmoothTrajectory(*wc, monitor.options().cycle_period_s);
-  std::vector<double> ns(qs.size());
   std::uint64_t warnings = 0, moved = 0, object_tests = 0;
-  for (const auto& q : qs) monitor.Update(q);
-  for (std::size_t k = 0; k < qs.size(); ++k) {
-    const auto start = std::chrono::steady_clock::now();
-    const CycleReport& report = monitor.Update(qs[k]);
-    const auto stop = std::chrono::steady_clock::now();
-    benchmark::DoNotOptimize(report);
-    ns[k] = std::chrono::duration<double, std::nano>(stop - start).count();
+  std::vector<double> ns = TimeUpdates(&monitor, qs, [&](const CycleReport& report) {
     warnings += report.warnings.size();
     moved += report.moved_primitives;
     object_tests += report.counters.object_object_tests;
-  }
+  });
   // Idle: the same q again (each call returns the previous report).
   std::vector<double> idle_ns(qs.size());
   const Eigen::VectorXd& last = qs.back();
@@ -132,20 +142,13 @@ void PrintEveryCycle(const char* label, double index_slack_m) {
   options.index_slack_m = index_slack_m;
   Monitor monitor(wc, options);
   const auto qs = SmoothTrajectory(*wc, monitor.options().cycle_period_s);
-  std::vector<double> ns(qs.size());
   std::uint64_t bounded = 0, exact_tests = 0, candidates = 0, warnings = 0;
-  for (const auto& q : qs) monitor.Update(q);
-  for (std::size_t k = 0; k < qs.size(); ++k) {
-    const auto start = std::chrono::steady_clock::now();
-    const CycleReport& report = monitor.Update(qs[k]);
-    const auto stop = std::chrono::steady_clock::now();
-    benchmark::DoNotOptimize(report);
-    ns[k] = std::chrono::duration<double, std::nano>(stop - start).count();
+  std::vector<double> ns = TimeUpdates(&monitor, qs, [&](const CycleReport& report) {
     bounded += report.bounded;
     exact_tests += report.narrow_phase_tests;
     candidates += report.candidate_pairs;
     warnings += report.warnings.size();
-  }
+  });
   const double n = static_cast<double>(qs.size());
   std::sort(ns.begin(), ns.end());
   const TimingSummary all = SummarizeTimings(ns);

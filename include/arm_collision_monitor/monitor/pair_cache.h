@@ -134,6 +134,13 @@ class PairCache {
   // by its bound (new pairs: of their indexed copies first).
   template <typename NarrowPhase>
   std::uint32_t TestPairsExactly(const std::vector<double>& tol_m, NarrowPhase&& narrow_phase);
+  // The narrow phase's exact distance of `kept` now, its primitives `motion_m` from their indexed
+  // copies: the distance itself for the kinematics, less that motion for the indexed copies.
+  static void RecordExact(KeptPair* kept, double distance_m, double motion_m) {
+    kept->lower_bound_m = std::max(kept->lower_bound_m, distance_m - motion_m);
+    kept->kinematics_bound_m = distance_m;
+    kept->is_exact = true;
+  }
   // The float clearance bounds of the first `count` batched pairs on `primitives` into
   // batch_bound_m_.
   void BoundBatch(const std::vector<FloatPrimitive>& primitives, std::size_t count) {
@@ -177,10 +184,7 @@ std::uint32_t PairCache::TestPairsExactly(const std::vector<double>& tol_m,
     const double motion_m = disp_m_[a] + disp_m_[b];
     if (IsClear(kept.lower_bound_m, motion_m, tol_m[a] + tol_m[b])) continue;
     ++tests;
-    const double distance_m = narrow_phase(a, b);
-    kept.lower_bound_m = std::max(kept.lower_bound_m, distance_m - motion_m);
-    kept.kinematics_bound_m = distance_m;
-    kept.is_exact = true;
+    RecordExact(&kept, narrow_phase(a, b), motion_m);
   }
   return tests;
 }
@@ -191,8 +195,7 @@ std::uint32_t PairCache::TestPairs(const std::vector<Shape>& shapes_W,
   // Too few pairs for any batch: the passes that pick the batches would cost more than nothing.
   if (pairs_.size() < kClearanceBatchMinPairs) return TestPairsExactly(tol_m, narrow_phase);
   // New pairs: a lower bound on the distance of their indexed copies, kept until either is
-  // re-indexed.
-  // Few pairs take the exact distance directly (kClearanceBatchMinPairs).
+  // re-indexed (a few new pairs take the exact distance directly: kClearanceBatchMinPairs).
   std::uint32_t tests = 0;
   std::size_t count = 0;
   for (std::uint32_t i = 0; i < pairs_.size(); ++i) {
@@ -251,10 +254,7 @@ std::uint32_t PairCache::TestPairs(const std::vector<Shape>& shapes_W,
       }
     }
     ++tests;
-    const double distance_m = narrow_phase(a, b);
-    kept.lower_bound_m = std::max(kept.lower_bound_m, distance_m - motion_m);
-    kept.kinematics_bound_m = distance_m;
-    kept.is_exact = true;
+    RecordExact(&kept, narrow_phase(a, b), motion_m);
   }
   return tests;
 }
