@@ -1180,38 +1180,12 @@ def section_workloads(out_dir, md):
     def first(w, pred):
         return next((r for r in rows if r["workload"] == w and pred(r["impl"])), None)
 
-    def goal(label, w, row, key, peers, bound):
-        if row is None or any((w, p) not in by for p in peers):
-            return
-        ratios = [num(row[key]) / num(by[(w, p)][key]) for p in peers]
-        met = all(x <= bound for x in ratios)
-        md.append(f"- {label}: " + "; ".join(
-            f"{row['impl']} / {p} = {x:.2f}" for p, x in zip(peers, ratios)) +
-            f" (goal <= {bound}): **{'MET' if met else 'NOT MET'}**\n")
-
-    md.append("\n**Goals** (issue 15; a ratio to Bullet or FCL is MET only against both "
-              "variants):\n\n")
-    bullets = ["bullet_rounded", "bullet_sharp"]
-    fcls = ["fcl_rounded", "fcl_sharp"]
-    # (b) asks for cycles that are all full: the `(every cycle)` row; the default beside it.
-    full = first("tasks_every_cycle", lambda i: i.endswith("(every cycle)"))
-    dflt = first("tasks_every_cycle", lambda i: i.startswith("auto("))
-    goal("(b) tasks_every_cycle median", "tasks_every_cycle", full, "median_us", bullets, 0.25)
-    goal("(b) tasks_every_cycle p99", "tasks_every_cycle", full, "p99_us", bullets, 0.3)
-    goal("(b) for reference, the default as shipped, median", "tasks_every_cycle", dflt,
-         "median_us", bullets, 0.25)
-    sphere = first("sphere_robot", lambda i: i.startswith("auto(") and "(" not in i[5:-1])
-    for key, bound in (("mean_us", 0.1), ("p99_us", 0.2)):
-        goal(f"(c) sphere_robot {key[:-3]}", "sphere_robot", sphere, key, bullets + fcls, bound)
-    for w in ("large_steps", "outside_world"):
-        for impl in ("grid", "octree"):
-            goal(f"(d) {w} median", w, by.get((w, impl)), "median_us", ["naive"], 2.0)
-        goal(f"(d) {w} median", w, first(w, lambda i: i.startswith("auto(")), "median_us",
-             ["naive"], 2.0)
+    # The goals on these workloads are stated once, in the Goals table at the top.
     fair = first("tasks", lambda i: i.startswith("auto("))
     if fair is not None and any("(idle skip)" in r["impl"] for r in rows):
-        skip = {p: by.get(("tasks", p + " (idle skip)")) for p in bullets + fcls}
-        md.append(f"- Fairness, three tasks, {fair['impl']} median / peer with the idle skip: " +
+        peers = ["bullet_rounded", "bullet_sharp", "fcl_rounded", "fcl_sharp"]
+        skip = {p: by.get(("tasks", p + " (idle skip)")) for p in peers}
+        md.append(f"\n- Fairness, three tasks, {fair['impl']} median / peer with the idle skip: " +
                   "; ".join(f"{p} {num(fair['median_us']) / num(r['median_us']):.2f}"
                             for p, r in skip.items() if r is not None) + "\n")
 
