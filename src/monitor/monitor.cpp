@@ -193,17 +193,12 @@ std::uint32_t Monitor::Impl::ReindexMoved(bool is_step) {
     if (!moved[id] || !in_broad_phase[id]) continue;
     ++moved_count;
     bool is_reindexed = cache.FollowMoved(id, shape_W[id]);
-    // The swept check: a primitive that may have left its slack during the step (the test of
-    // CollectSweptPairs, with its displacements d0 at the start and d1 at q and its step bound
-    // B) would need its pairs with every primitive swept. Indexed at q instead, it is within
-    // B <= slack of its copy along the whole step, so the kept pairs cover it; it would be
-    // re-indexed a few cycles later anyway.
+    // The swept check: a primitive that may have left its slack during the step would need its
+    // pairs with every primitive swept (CollectSweptPairs). Indexed at q instead, it is within
+    // its step bound B <= slack of its copy along the whole step, so the kept pairs cover it;
+    // it would be re-indexed a few cycles later anyway.
     if (!is_reindexed && is_step && cache.displacement_m(id) + swept.largest_step_m > slack_m) {
-      const double d1_m = cache.displacement_m(id);
-      const double bound_m = StepBound_m(id);
-      is_reindexed = bound_m <= slack_m && !(d1_m + bound_m <= slack_m) &&
-                     !(swept.has_start_displacement &&
-                       0.5 * (StartDisplacement_m(id) + d1_m + bound_m) <= slack_m);
+      is_reindexed = StepBound_m(id) <= slack_m && MayLeaveSlack(id, true);
       if (is_reindexed) cache.Reindex(id, shape_W[id]);
     }
     if (is_reindexed) broad_phase->Move(id, ComputeAabb(shape_W[id]));

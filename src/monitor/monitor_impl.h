@@ -129,6 +129,10 @@ struct Monitor::Impl {
   // each primitive that may leave its slack during the step whose boxes at q are not apart by
   // more than threshold + both step bounds. False when no primitive may leave it (none).
   bool CollectSweptPairs();
+  // Whether `id` may leave its slack during the step: its displacement at q plus its step bound
+  // B exceeds the slack and, when `is_start_copy` (its indexed copy is the one it had at the
+  // step's start) and the start displacements are known, so does (d0 + d1 + B) / 2 (NaN: may).
+  bool MayLeaveSlack(PrimitiveId id, bool is_start_copy);
   // Appends (a, b), a < b, to swept.pairs unless compatible or clear by its boxes.
   void AddSweptPairIfNear(PrimitiveId a, PrimitiveId b);
   // Before the kinematics: what StartDisplacement_m needs, unless the index changed since the

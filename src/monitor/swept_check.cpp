@@ -157,6 +157,14 @@ double Monitor::Impl::StartDisplacement_m(PrimitiveId id) {
   return kinematics_m + motion.ComputeBound_m(id);
 }
 
+bool Monitor::Impl::MayLeaveSlack(PrimitiveId id, bool is_start_copy) {
+  const double slack_m = model.options.index_slack_m;
+  const double end_m = cache.displacement_m(id) + StepBound_m(id);
+  if (end_m <= slack_m) return false;  // NaN may leave
+  return !(is_start_copy && swept.has_start_displacement &&
+           0.5 * (StartDisplacement_m(id) + end_m) <= slack_m);
+}
+
 bool Monitor::Impl::CollectSweptPairs() {
   // Beside the kept pairs: any other pair's indexed boxes, grown by tolerance + slack, are
   // apart, so it is clear along the step while both primitives stay within their slack. At
@@ -180,12 +188,7 @@ bool Monitor::Impl::CollectSweptPairs() {
         step.lever_count(id) == 0) {
       continue;
     }
-    const double end_m = cache.displacement_m(id) + StepBound_m(id);
-    bool leaves = !(end_m <= slack_m);
-    if (leaves && swept.has_start_displacement && !is_reindexed(id)) {
-      leaves = !(0.5 * (StartDisplacement_m(id) + end_m) <= slack_m);
-    }
-    if (leaves) {
+    if (MayLeaveSlack(id, !is_reindexed(id))) {
       swept.leaves_slack[id] = 1;
       swept.leavers.push_back(id);
     }
