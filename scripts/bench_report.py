@@ -1067,37 +1067,37 @@ def section_tradeoffs(out_dir, md):
         md.append(f"\n![float]({save(fig, out_dir, 'float_double.png')})\n")
 
 
-def section_broadphase_workloads(out_dir, md):
-    """bench_broadphase_workloads' table as printed (issue 15 items 1 and 2)."""
-    path = os.path.join(out_dir, "broadphase_workloads.txt")
+def section_printed_table(out_dir, md, name, title, prose):
+    """A program's table as it printed it (out_dir/name), under `title` and `prose`."""
+    path = os.path.join(out_dir, name)
     if not os.path.exists(path):
         return
     with open(path) as f:
         text = f.read()
-    md.append("\n## Broad phases on hard inputs, and auto's choice\n\n")
-    md.append(
+    md.append(f"\n## {title}\n\n")
+    md.append(prose)
+    md.append("```\n" + text + "```\n")
+
+
+def section_broadphase_workloads(out_dir, md):
+    """bench_broadphase_workloads' table as printed (issue 15 items 1 and 2)."""
+    section_printed_table(
+        out_dir, md, "broadphase_workloads.txt", "Broad phases on hard inputs, and auto's choice",
         "Goals: every broad phase's cost bounded on every input (primitives outside the world "
         "cube, steps of many cells, inflated boxes larger than cells, crowds); `auto` (the "
         "default) within 10 % of the best of naive, grid and octree on every workload. Per "
         "cycle: Move of every mover + FindPairs, microseconds; rows flagged `> 1.10` miss the "
         "second goal (single medians on a shared machine: re-run before concluding).\n\n")
-    md.append("```\n" + text + "```\n")
 
 
 def section_latency(out_dir, md):
     """latency_probe's table as printed (launch/latency_benchmark.launch, issue 15 item 6)."""
-    path = os.path.join(out_dir, "latency.txt")
-    if not os.path.exists(path):
-        return
-    with open(path) as f:
-        text = f.read()
-    md.append("\n## Publish -> report latency: nodelet, TCP, echo\n\n")
-    md.append(
+    section_printed_table(
+        out_dir, md, "latency.txt", "Publish -> report latency: nodelet, TCP, echo",
         "JointState at 1 kHz from the latency_probe nodelet to, in the same run, the monitor "
         "nodelet in the same manager (in-process, no serialisation), monitor_node over TCP on "
         "loopback and a trivial TCP echo node (the reference). Goal: the nodelet path's p50 at "
         "most 0.15 x the echo's (column `p50/echo`, and the `aims` line).\n\n")
-    md.append("```\n" + text + "```\n")
 
 
 def main():

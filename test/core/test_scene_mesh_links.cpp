@@ -8,6 +8,7 @@
 #include "arm_collision_monitor/scene/workcell.h"
 #include "load_error_expect.h"
 #include "mesh_file_writers.h"
+#include "test_geometry_shapes.h"
 
 namespace arm_collision_monitor {
 namespace {
@@ -66,19 +67,6 @@ WorkcellLoadOptions CacheIn(const std::string& dir) {
   WorkcellLoadOptions options;
   options.mesh_fit_cache_dir = dir + "cache";
   return options;
-}
-
-// Independent of the loader's check: p lies in the closed capsule or box (exact double tests).
-bool InShape(const Shape& shape, const Eigen::Vector3d& p) {
-  if (const auto* c = std::get_if<Capsule>(&shape)) {
-    const Eigen::Vector3d d = c->p1_W - c->p0_W;
-    double s = d.squaredNorm() > 0.0 ? (p - c->p0_W).dot(d) / d.squaredNorm() : 0.0;
-    s = std::min(1.0, std::max(0.0, s));
-    return (p - c->p0_W - s * d).norm() <= c->radius_m;
-  }
-  const Box& b = std::get<Box>(shape);
-  const Eigen::Vector3d q = b.X_WB.inverse() * p;
-  return (q.cwiseAbs().array() <= b.half_extents_m.array()).all();
 }
 
 std::vector<Shape> ShapesOf(const Workcell& w, const std::string& owner) {

@@ -16,26 +16,13 @@
 #include <variant>
 #include <vector>
 
+#include "../core/test_geometry_shapes.h"
 #include "arm_collision_monitor/core/load_error.h"
 #include "mesh_file.h"
 #include "mesh_shapes.h"
 
 namespace arm_collision_monitor {
 namespace {
-
-// p lies in the closed capsule or box (exact double tests: the fit's margin, kMeshFitMarginRel
-// times the mesh's scale, is far above this test's rounding).
-bool InShape(const Shape& shape, const Eigen::Vector3d& p) {
-  if (const auto* c = std::get_if<Capsule>(&shape)) {
-    const Eigen::Vector3d d = c->p1_W - c->p0_W;
-    double s = d.squaredNorm() > 0.0 ? (p - c->p0_W).dot(d) / d.squaredNorm() : 0.0;
-    s = std::min(1.0, std::max(0.0, s));
-    return (p - c->p0_W - s * d).norm() <= c->radius_m;
-  }
-  const Box& b = std::get<Box>(shape);
-  const Eigen::Vector3d q = b.X_WB.inverse() * p;
-  return (q.cwiseAbs().array() <= b.half_extents_m.array()).all();
-}
 
 bool IsFinite(const Shape& shape) {
   if (const auto* c = std::get_if<Capsule>(&shape)) {
