@@ -250,6 +250,7 @@ class InputFaultsTest(unittest.TestCase):
         names = LEFT_JOINTS + RIGHT_JOINTS + ['', 'x' * 300, 'left_joint1 ']
         clear = c.go_clear()
         self.assertIsNotNone(clear)
+        garbage_start = c.report_count()
         sent = 0
         for _ in range(300):
             msg = JointState()
@@ -268,6 +269,17 @@ class InputFaultsTest(unittest.TestCase):
             rng.choice(c.publishers).publish(msg)
             sent += 1
             time.sleep(0.001)
+        # The node stamps an unstamped message with the time it reads it, so a sentinel stamped
+        # before the node read the last of the garbage would rightly be refused (stamp going
+        # backwards, or stale when the node lags by more than input_timeout_s). Wait until it
+        # has run one cycle per garbage message and gone quiet.
+        self.assertIsNotNone(
+            c.wait_report(garbage_start, lambda r: r.cycle - clear.cycle >= sent, timeout_s=20.0),
+            'the node did not work through the garbage')
+        count = -1
+        while count != c.report_count():
+            count = c.report_count()
+            time.sleep(0.3)
         # A good message after the garbage: its report proves the node alive and that every
         # message before it was processed (one cycle each; a few go_clear() messages may still
         # have been in flight).
