@@ -67,7 +67,8 @@ void Monitor::Impl::RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q) {
   // the model's start pose).
   swept.q_start = q_good;
   swept.is_behind = kinematics_behind;
-  swept.are_step_bounds_complete = false;
+  // Each primitive's step bound is computed when first needed (StepBound_m).
+  std::fill_n(swept.is_step_bound_known.begin(), live_end, std::uint8_t{0});
   // Scene changes may move the primitives without levers: their cached boxes go.
   if (scene_changed) swept.are_fixed_boxes_current = false;
   if (has_good) {
@@ -76,7 +77,7 @@ void Monitor::Impl::RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q) {
     work.step_m = step.ComputeLargestBound_m();
     work.is_jumped = !(work.step_m <= model.options.max_step_m);
   }
-  if (IsProvablyClear(q)) {
+  if (IsProvablyClear(q, work.step_m)) {
     // Every kept pair is clear, and every other pair's indexed boxes are apart while both
     // primitives stay within their slack: no warning, and the kinematics can wait.
     q_good = q;
@@ -87,13 +88,7 @@ void Monitor::Impl::RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q) {
   }
   const bool is_swept = model.options.swept_check && work.step_m > 0.0;
   if (model.options.swept_check) RecordStartDisplacements();
-  if (is_swept) {
-    // Each primitive's step bound is computed when first needed (StepBound_m).
-    swept.largest_step_m = work.step_m;
-    if (!swept.are_step_bounds_complete) {
-      std::fill_n(swept.is_step_bound_known.begin(), live_end, std::uint8_t{0});
-    }
-  }
+  if (is_swept) swept.largest_step_m = work.step_m;
   work.moved = FollowKinematics(q, is_swept);
   q_good = q;
   work.narrow_phase_tests = TestCandidatePairs();
@@ -115,7 +110,7 @@ InputStatus Monitor::Impl::CheckInput(const Eigen::Ref<const Eigen::VectorXd>& q
   return InputStatus::kOk;
 }
 
-bool Monitor::Impl::IsProvablyClear(const Eigen::Ref<const Eigen::VectorXd>& q) {
+bool Monitor::Impl::IsProvablyClear(const Eigen::Ref<const Eigen::VectorXd>& q, double step_m) {
   // Speed-scaled tolerances need the motion itself; a scene change re-plans the pairs.
   if (!has_good || scene_changed || cache.is_stale() || model.speed_tol_gain_s != 0.0 ||
       report.input != InputStatus::kOk) {
@@ -129,21 +124,36 @@ bool Monitor::Impl::IsProvablyClear(const Eigen::Ref<const Eigen::VectorXd>& q) 
   } else if (kinematics_behind) {
     motion.SetJointMotion(q, q_kinematics);
   }
+  // A primitive's own bound is computed only where the largest does not settle it. Without
+  // bounded cycles since the kinematics, `motion` is the step's (StepMotion), whose largest
+  // bound RunCycle has, and what is computed here serves StepBound_m too.
+  const double largest_m = kinematics_behind ? motion.ComputeLargestBound_m() : step_m;
+  std::vector<std::uint8_t>& known = kinematics_behind ? bound_known : swept.is_step_bound_known;
+  if (kinematics_behind) std::fill_n(known.begin(), live_end, std::uint8_t{0});
+  auto compute = [&](PrimitiveId id) {
+    if (!known[id]) motion.ComputeBound_m(id);
+    known[id] = 1;
+  };
   const double slack_m = model.options.index_slack_m;
   for (PrimitiveId id = 0; id < live_end; ++id) {
-    if (motion.lever_count(id) == 0) continue;
-    const double bound_m = motion.ComputeBound_m(id);
+    if (!in_broad_phase[id] || motion.lever_count(id) == 0) continue;
     // Motion since indexed <= motion until the kinematics + motion since; NaN fails.
-    if (in_broad_phase[id] && !(cache.displacement_m(id) + bound_m <= slack_m)) return false;
+    const double displacement_m = cache.displacement_m(id);
+    if (displacement_m + largest_m <= slack_m) continue;
+    compute(id);
+    if (!(displacement_m + motion.bound_m(id) <= slack_m)) return false;
   }
-  // Every step bound is known then (free live slots never move).
-  swept.are_step_bounds_complete = !kinematics_behind;
   for (const KeptPair& kept : cache.pairs()) {
     const PrimitiveId a = kept.pair.a;
     const PrimitiveId b = kept.pair.b;
-    // NaN (no bound) is not clear.
-    if (!cache.IsClear(kept.kinematics_bound_m, motion.PairBound_m(a, b),
-                       tol_now[a] + tol_now[b])) {
+    const double threshold_m = tol_now[a] + tol_now[b];
+    // The pair's bound is at most the sum of the two primitives' (NaN is not clear).
+    const double at_most_m = (motion.lever_count(a) > 0 ? largest_m : 0.0) +
+                             (motion.lever_count(b) > 0 ? largest_m : 0.0);
+    if (cache.IsClear(kept.kinematics_bound_m, at_most_m, threshold_m)) continue;
+    compute(a);
+    compute(b);
+    if (!cache.IsClear(kept.kinematics_bound_m, motion.PairBound_m(a, b), threshold_m)) {
       return false;
     }
   }
@@ -336,6 +346,7 @@ void Monitor::Impl::InitData() {
   X_WL = model.X_WL_start;
   X_WL_next = model.X_WL_start;
   link_changed.assign(link_count, 0);
+  bound_known.assign(n, 0);
   q_good = model.q_start;
   q_kinematics = model.q_start;
   shape_W = model.shape_W_start;

@@ -167,12 +167,15 @@ void Monitor::Impl::ValidateBoundedCycle(std::ostringstream* msg) const {
   model.kinematics->ComputeLinkPoses(q_good, &X);
   std::vector<Shape> now(shape_W);
   const double slack_m = model.options.index_slack_m;
+  // Every bound for the joint motion the bounded cycle was proved for (IsProvablyClear
+  // computed only those it needed).
+  MotionBounds bounds = motion;
   for (PrimitiveId id = 0; id < model.primitive_count; ++id) {
     if (carrier[id] < 0) continue;
     now[id] = TransformShape(X[carrier[id]], shape_C[id]);
+    const double bound_m = bounds.ComputeBound_m(id);
     if (motion.lever_count(id) == 0 || !in_broad_phase[id]) continue;
     const double moved_m = MaxPointDisplacement_m(shape_W[id], now[id]);
-    const double bound_m = motion.bound_m(id);
     const double from_ref_m = MaxPointDisplacement_m(cache.indexed_shape_W(id), now[id]);
     if (moved_m > bound_m + cache.BoundMargin_m(bound_m) ||
         from_ref_m > slack_m + cache.BoundMargin_m(slack_m)) {
@@ -187,7 +190,7 @@ void Monitor::Impl::ValidateBoundedCycle(std::ostringstream* msg) const {
     const PrimitiveId b = kept.pair.b;
     const double then_m = ShapeDistance(shape_W[a], shape_W[b]).distance_m;
     const double now_m = ShapeDistance(now[a], now[b]).distance_m;
-    const double motion_m = motion.PairBound_m(a, b);
+    const double motion_m = bounds.PairBound_m(a, b);
     if (now_m < then_m - motion_m - cache.BoundMargin_m(then_m) ||
         now_m <= tol_now[a] + tol_now[b]) {
       *msg << "bounded cycle: pair (" << a << "," << b << ") at " << now_m << " m, was "

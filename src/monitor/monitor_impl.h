@@ -60,6 +60,8 @@ struct Monitor::Impl {
   std::vector<double> tol_now;          // per primitive this cycle, m
   std::vector<Eigen::Isometry3d> X_WL, X_WL_next;  // at q_kinematics; scratch
   std::vector<std::uint8_t> link_changed;          // scratch
+  std::vector<std::uint8_t> bound_known;  // IsProvablyClear after bounded cycles: per primitive,
+                                          // its bound in `motion` computed this cycle
   Eigen::VectorXd q_good;               // the last accepted q
   Eigen::VectorXd q_kinematics;         // q of the last forward kinematics
   bool has_good = false;
@@ -100,8 +102,9 @@ struct Monitor::Impl {
   void RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q);
   // True when, without kinematics, every moving primitive's joint-space motion bound since
   // q_kinematics keeps it within its slack and every kept pair's bound, less those motions,
-  // still clears its threshold -- then no pair can warn. Changes nothing but bound scratch.
-  bool IsProvablyClear(const Eigen::Ref<const Eigen::VectorXd>& q);
+  // still clears its threshold -- then no pair can warn. `step_m`: the step's largest bound
+  // (RunCycle). Changes nothing but bound scratch.
+  bool IsProvablyClear(const Eigen::Ref<const Eigen::VectorXd>& q, double step_m);
   // Forward kinematics at q, the moved primitives re-indexed, the kept pairs brought up to
   // date: the shapes then follow q. Returns the number of primitives that moved. `is_step`:
   // q ends the step of this cycle (RunCycle), whose bounds StepBound_m gives.
@@ -150,7 +153,7 @@ struct Monitor::Impl {
   double StepBound_m(PrimitiveId id) {
     MotionBounds& step = StepMotion();
     if (step.lever_count(id) == 0) return 0.0;
-    if (swept.are_step_bounds_complete || swept.is_step_bound_known[id]) return step.bound_m(id);
+    if (swept.is_step_bound_known[id]) return step.bound_m(id);
     swept.is_step_bound_known[id] = 1;
     return step.ComputeBound_m(id);
   }

@@ -42,8 +42,7 @@ struct SweptScratch {
   // which the bounded-cycle test needs anyway). Same levers as Impl::motion.
   MotionBounds step;
   bool is_behind = false;            // kinematics_behind at the step's start: step is used
-  bool are_step_bounds_complete = false;  // every primitive's step bound computed this cycle
-  std::vector<std::uint8_t> is_step_bound_known;  // else: per primitive, computed this cycle
+  std::vector<std::uint8_t> is_step_bound_known;  // per primitive: computed this cycle
   double largest_step_m = 0.0;  // the largest step bound (CycleWork::step_m)
   // Per primitive, at q (CollectSweptPairs): its box, and that grown by its reach in the step.
   // Those without levers keep theirs until a scene change (are_fixed_boxes_current).
