@@ -6,6 +6,7 @@
 #include "arm_collision_monitor/monitor/monitor.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <utility>
 #include <variant>
@@ -103,11 +104,16 @@ void Monitor::Impl::RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q) {
 
 InputStatus Monitor::Impl::CheckInput(const Eigen::Ref<const Eigen::VectorXd>& q) const {
   if (q.size() != model.q_lower.size()) return InputStatus::kWrongSize;
-  if (!q.allFinite()) return InputStatus::kNonFinite;
-  if ((q.array() < model.q_lower.array()).any() || (q.array() > model.q_upper.array()).any()) {
-    return InputStatus::kOutOfLimits;
+  // One pass without early exits (every cycle that is not idle runs it).
+  bool is_finite = true;
+  bool is_within = true;
+  for (Eigen::Index i = 0; i < q.size(); ++i) {
+    const double x = q[i];
+    is_finite &= std::isfinite(x);
+    is_within &= (x >= model.q_lower[i]) & (x <= model.q_upper[i]);
   }
-  return InputStatus::kOk;
+  if (!is_finite) return InputStatus::kNonFinite;
+  return is_within ? InputStatus::kOk : InputStatus::kOutOfLimits;
 }
 
 bool Monitor::Impl::IsProvablyClear(const Eigen::Ref<const Eigen::VectorXd>& q, double step_m) {

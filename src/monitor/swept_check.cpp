@@ -39,6 +39,7 @@ void Monitor::Impl::InitSwept() {
   swept.box_W.assign(n, Aabb{});
   swept.grown_W.assign(n, Aabb{});
   swept.leaves_slack.assign(n, 0);
+  swept.is_reindexed.assign(n, 0);
   swept.is_step_bound_known.assign(n, 0);
   swept.leavers.reserve(n);
   swept.kinematics_displacement_m.assign(n, 0.0);
@@ -174,10 +175,8 @@ bool Monitor::Impl::CollectSweptPairs() {
   const std::uint32_t n = live_end;  // free live slots are not indexed
   const double slack_m = model.options.index_slack_m;
   const MotionBounds& step = StepMotion();
-  const std::vector<PrimitiveId>& reindexed = cache.reindexed();
-  auto is_reindexed = [&reindexed](PrimitiveId id) {
-    return std::find(reindexed.begin(), reindexed.end(), id) != reindexed.end();
-  };
+  // Flags of this cycle's re-indexed primitives, cleared again below.
+  for (const PrimitiveId id : cache.reindexed()) swept.is_reindexed[id] = 1;
   swept.leavers.clear();
   std::fill_n(swept.leaves_slack.begin(), n, std::uint8_t{0});
   // A primitive within the largest step bound of its slack at q stays in it (most do; those
@@ -188,11 +187,12 @@ bool Monitor::Impl::CollectSweptPairs() {
         step.lever_count(id) == 0) {
       continue;
     }
-    if (MayLeaveSlack(id, !is_reindexed(id))) {
+    if (MayLeaveSlack(id, !swept.is_reindexed[id])) {
       swept.leaves_slack[id] = 1;
       swept.leavers.push_back(id);
     }
   }
+  for (const PrimitiveId id : cache.reindexed()) swept.is_reindexed[id] = 0;
   swept.pairs.clear();
   if (swept.leavers.empty()) return false;
   // The pairs of a primitive that may leave its slack, generated in order (a < b); the kept

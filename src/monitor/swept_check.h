@@ -50,6 +50,7 @@ struct SweptScratch {
   std::vector<Aabb> grown_W;
   bool are_fixed_boxes_current = false;
   std::vector<std::uint8_t> leaves_slack;  // per primitive: may leave its slack in the step
+  std::vector<std::uint8_t> is_reindexed;  // CollectSweptPairs: re-indexed this cycle
   std::vector<PrimitiveId> leavers;        // those that may, in order
   // At the step's start, when has_start_displacement (the index unchanged since the last
   // kinematics): per primitive its displacement from its indexed copy as of the last
