@@ -163,8 +163,10 @@ struct Monitor::Impl {
     StepBound_m(b);
     return StepMotion().PairBound_m(a, b);
   }
-  // Link poses at fraction s of the step into swept.X_WL_s.
-  void ComputeStepPoses(double s, const Eigen::Ref<const Eigen::VectorXd>& q);
+  // Link poses at fraction s of the step: kept for the other pairs' samples of this cycle
+  // (swept.X_WL_at), or in swept.X_WL_s (valid until the next call) once the cache is full.
+  const std::vector<Eigen::Isometry3d>& StepPoses(double s,
+                                                  const Eigen::Ref<const Eigen::VectorXd>& q);
   // The world shape of `id` for link poses X_WL (the static and free ones: as they are).
   Shape ShapeAt(PrimitiveId id, const std::vector<Eigen::Isometry3d>& X_WL_at) const {
     return carrier[id] < 0 ? shape_W[id] : TransformShape(X_WL_at[carrier[id]], shape_C[id]);

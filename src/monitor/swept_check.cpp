@@ -36,6 +36,7 @@ void Monitor::Impl::InitSwept() {
   swept.q_s = model.q_start;
   swept.X_WL_start = model.X_WL_start;
   swept.X_WL_s = model.X_WL_start;
+  swept.X_WL_at.assign(kSweptPoseCacheSize, model.X_WL_start);
   swept.box_W.assign(n, Aabb{});
   swept.grown_W.assign(n, Aabb{});
   swept.leaves_slack.assign(n, 0);
@@ -87,6 +88,7 @@ void Monitor::Impl::CheckStepTolerance() {
 
 void Monitor::Impl::SweepStep(const Eigen::Ref<const Eigen::VectorXd>& q, CycleWork* work) {
   swept.has_start = false;
+  swept.pose_count = 0;
   const std::size_t discrete = report.warnings.size();
   std::size_t w = 0;
   auto sweep = [&](const CandidatePair& pair, double end_bound_m, bool is_exact) {
@@ -249,9 +251,19 @@ void Monitor::Impl::AddSweptPairIfNear(PrimitiveId a, PrimitiveId b) {
   swept.pairs.push_back({CandidatePair{a, b}, gap_m, false});
 }
 
-void Monitor::Impl::ComputeStepPoses(double s, const Eigen::Ref<const Eigen::VectorXd>& q) {
+const std::vector<Eigen::Isometry3d>& Monitor::Impl::StepPoses(
+    double s, const Eigen::Ref<const Eigen::VectorXd>& q) {
+  for (int i = 0; i < swept.pose_count; ++i) {
+    if (swept.pose_s[i] == s) return swept.X_WL_at[i];
+  }
+  std::vector<Eigen::Isometry3d>* X_WL_s = &swept.X_WL_s;  // once the cache is full
+  if (swept.pose_count < kSweptPoseCacheSize) {
+    swept.pose_s[swept.pose_count] = s;
+    X_WL_s = &swept.X_WL_at[swept.pose_count++];
+  }
   swept.q_s = swept.q_start + s * (q - swept.q_start);
-  model.kinematics->ComputeMovingLinkPoses(swept.q_s, &swept.X_WL_s);
+  model.kinematics->ComputeMovingLinkPoses(swept.q_s, X_WL_s);
+  return *X_WL_s;
 }
 
 void Monitor::Impl::SweepPair(PrimitiveId a, PrimitiveId b, double pair_motion_m, double d1_m,
@@ -289,17 +301,15 @@ void Monitor::Impl::SweepPair(PrimitiveId a, PrimitiveId b, double pair_motion_m
     if (motion_m <= 2.0 * resolution_m || iv.depth >= kMaxSweptBisections) {
       // Resolved: the nearer end is within threshold + motion / 2 <= threshold + resolution.
       const double s = iv.d0_m <= iv.d1_m ? iv.s0 : iv.s1;
-      ComputeStepPoses(s, q);
-      warn_at(s, swept.X_WL_s);
+      warn_at(s, StepPoses(s, q));
       return;
     }
     const double mid = 0.5 * (iv.s0 + iv.s1);
-    ComputeStepPoses(mid, q);
-    const double mid_m = ShapeDistance(ShapeAt(a, swept.X_WL_s), ShapeAt(b, swept.X_WL_s))
-                             .distance_m;
+    const std::vector<Eigen::Isometry3d>& X_WL_mid = StepPoses(mid, q);
+    const double mid_m = ShapeDistance(ShapeAt(a, X_WL_mid), ShapeAt(b, X_WL_mid)).distance_m;
     ++work->swept_tests;
     if (IsWarning(mid_m, threshold_m)) {
-      warn_at(mid, swept.X_WL_s);
+      warn_at(mid, X_WL_mid);
       return;
     }
     // The earlier half first: the first contact along the step is the one reported.

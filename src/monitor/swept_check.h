@@ -31,12 +31,20 @@ struct SweptInterval {
   int depth = 0;
 };
 
+/// How many samples of a step keep their link poses for the other pairs (SweepPair).
+inline constexpr int kSweptPoseCacheSize = 32;
+
 struct SweptScratch {
   Eigen::VectorXd q_start;                 // the step's start: the last accepted q
   Eigen::VectorXd q_s;                     // a sample along the step
   std::vector<Eigen::Isometry3d> X_WL_start;  // link poses at q_start (has_start)
   std::vector<Eigen::Isometry3d> X_WL_s;      // link poses at q_s
   bool has_start = false;
+  // Link poses at the first pose_count samples of this cycle's step, fraction pose_s[i] in
+  // X_WL_at[i]: every pair bisects the same dyadic fractions, so most samples are shared.
+  std::array<double, kSweptPoseCacheSize> pose_s{};
+  std::vector<std::vector<Eigen::Isometry3d>> X_WL_at;  // kSweptPoseCacheSize slots
+  int pose_count = 0;
   // The step's motion bounds when the step starts behind the last kinematics (after bounded
   // cycles; else Impl::motion holds them: the step is then the motion since the kinematics,
   // which the bounded-cycle test needs anyway). Same levers as Impl::motion.
