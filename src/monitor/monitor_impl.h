@@ -136,7 +136,8 @@ struct Monitor::Impl {
   // B exceeds the slack and, when `is_start_copy` (its indexed copy is the one it had at the
   // step's start) and the start displacements are known, so does (d0 + d1 + B) / 2 (NaN: may).
   bool MayLeaveSlack(PrimitiveId id, bool is_start_copy);
-  // Appends (a, b), a < b, to swept.pairs unless compatible or clear by its boxes.
+  // Appends (a, b), a < b, whose grown boxes meet (CollectSweptPairs), to swept.pairs unless
+  // compatible or clear by its boxes.
   void AddSweptPairIfNear(PrimitiveId a, PrimitiveId b);
   // Before the kinematics: what StartDisplacement_m needs, unless the index changed since the
   // last kinematics (swept.has_start_displacement).

@@ -236,7 +236,7 @@ bool Monitor::Impl::CollectSweptPairs() {
 }
 
 void Monitor::Impl::AddSweptPairIfNear(PrimitiveId a, PrimitiveId b) {
-  if (!swept.grown_W[a].Overlaps(swept.grown_W[b])) return;  // clear (CollectSweptPairs)
+  if (compatible.AreCompatible(a, b)) return;
   // The boxes' gap bounds the distance at q from below (they hold the shapes): a pair it clears
   // by more than the step's motion of both is clear along the step (SweepStep's test, with the
   // larger motion B_a + B_b).
@@ -244,10 +244,7 @@ void Monitor::Impl::AddSweptPairIfNear(PrimitiveId a, PrimitiveId b) {
   const Aabb& box_b = swept.box_W[b];
   const double gap_m =
       (box_b.min_W - box_a.max_W).cwiseMax(box_a.min_W - box_b.max_W).cwiseMax(0.0).norm();
-  if (cache.IsClear(gap_m, StepBound_m(a) + StepBound_m(b), tol_now[a] + tol_now[b]) ||
-      compatible.AreCompatible(a, b)) {
-    return;
-  }
+  if (cache.IsClear(gap_m, StepBound_m(a) + StepBound_m(b), tol_now[a] + tol_now[b])) return;
   swept.pairs.push_back({CandidatePair{a, b}, gap_m, false});
 }
 
