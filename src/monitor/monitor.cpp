@@ -141,7 +141,7 @@ bool Monitor::Impl::IsProvablyClear(const Eigen::Ref<const Eigen::VectorXd>& q, 
     known[id] = 1;
   };
   const double slack_m = model.options.index_slack_m;
-  for (PrimitiveId id = 0; id < live_end; ++id) {
+  for (const PrimitiveId id : carried) {
     if (!in_broad_phase[id] || motion.lever_count(id) == 0) continue;
     // Motion since indexed <= motion until the kinematics + motion since; NaN fails.
     const double displacement_m = cache.displacement_m(id);
@@ -177,12 +177,12 @@ std::uint32_t Monitor::Impl::FollowKinematics(const Eigen::Ref<const Eigen::Vect
   // Fixed tolerances: tol_now already equals tol_base (Attach / Detach keep both).
   const bool is_speed_scaled = model.speed_tol_gain_s != 0.0;
   if (is_speed_scaled) ComputeTolerances(shape_W, moved, &tol_now);
-  for (PrimitiveId id = 0; id < live_end; ++id) {
+  ForEachMayHaveMoved([&](PrimitiveId id) {
     if (moved[id]) {
       if (is_speed_scaled) shape_prev_W[id] = shape_W[id];  // only speed estimates read it
       moved[id] = 0;
     }
-  }
+  });
   cache.Update(broad_phase.get(), compatible);
   return moved_count;
 }
@@ -193,9 +193,9 @@ void Monitor::Impl::MoveCarried(const std::vector<Eigen::Isometry3d>& X_WL_new,
   for (std::size_t link = 0; link < X_WL_new.size(); ++link) {
     (*changed)[link] = IsSamePose(X_WL_new[link], X_WL[link]) ? 0 : 1;
   }
-  for (PrimitiveId id = 0; id < live_end; ++id) {
+  for (const PrimitiveId id : carried) {
     const int link = carrier[id];
-    if (link < 0 || !(*changed)[link]) continue;
+    if (!(*changed)[link]) continue;
     MoveShape(X_WL_new[link], shape_C[id], &(*shapes)[id]);
     (*moved_flags)[id] = 1;
   }
@@ -205,8 +205,8 @@ std::uint32_t Monitor::Impl::ReindexMoved(bool is_step) {
   std::uint32_t moved_count = 0;
   cache.BeginReindex();
   const double slack_m = model.options.index_slack_m;
-  for (PrimitiveId id = 0; id < live_end; ++id) {
-    if (!moved[id] || !in_broad_phase[id]) continue;
+  ForEachMayHaveMoved([&](PrimitiveId id) {
+    if (!moved[id] || !in_broad_phase[id]) return;
     ++moved_count;
     bool is_reindexed = cache.FollowMoved(id, shape_W[id]);
     // The swept check: a primitive that may have left its slack during the step would need its
@@ -218,7 +218,7 @@ std::uint32_t Monitor::Impl::ReindexMoved(bool is_step) {
       if (is_reindexed) cache.Reindex(id, shape_W[id]);
     }
     if (is_reindexed) broad_phase->Move(id, ComputeAabb(shape_W[id]));
-  }
+  });
   return moved_count;
 }
 
@@ -347,6 +347,7 @@ void Monitor::Impl::InitData() {
   }
   motion = MotionBounds(*model.kinematics, n);
   swept.step = MotionBounds(*model.kinematics, n);
+  carried.reserve(n);
   for (PrimitiveId id = 0; id < n; ++id) SetCarrierBounds(id);
   // The links fixed to the root keep their start poses in both (ComputeMovingLinkPoses).
   X_WL = model.X_WL_start;

@@ -6,6 +6,7 @@
 // SwitchModel and SetObjectPose change) and the per-cycle state.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <memory>
@@ -57,6 +58,9 @@ struct Monitor::Impl {
   std::vector<Shape> shape_W;           // at q_kinematics
   std::vector<Shape> shape_prev_W;      // at the last good cycle (speed-scaled tolerance only)
   std::vector<std::uint8_t> moved;      // pose changed since the last kinematics
+  // The primitives carried by a link (carrier >= 0), ascending: only they move with q, so the
+  // per-cycle loops visit them rather than every static (SetCarrierBounds keeps the list).
+  std::vector<PrimitiveId> carried;
   std::vector<double> tol_now;          // per primitive this cycle, m
   std::vector<Eigen::Isometry3d> X_WL, X_WL_next;  // at q_kinematics; scratch
   std::vector<std::uint8_t> link_changed;          // scratch
@@ -215,10 +219,24 @@ struct Monitor::Impl {
   void RemoveFromBroadPhase(PrimitiveId id);
   // Re-indexes `id` with its current motion and tolerance (Add fixes both).
   void Reindex(PrimitiveId id, bool moving);
-  // The motion bounds of primitive `id` for its current carrier.
+  // The motion bounds of primitive `id` for its current carrier, and its place in `carried`.
   void SetCarrierBounds(PrimitiveId id) {
     motion.SetCarrier(id, carrier[id], is_moving[id], shape_C[id]);
     swept.step.SetCarrier(id, carrier[id], is_moving[id], shape_C[id]);
+    const auto it = std::lower_bound(carried.begin(), carried.end(), id);
+    const bool is_listed = it != carried.end() && *it == id;
+    if (carrier[id] >= 0 && !is_listed) carried.insert(it, id);  // within its reserve
+    if (carrier[id] < 0 && is_listed) carried.erase(it);
+  }
+  // Calls f(id) for every primitive that may have moved since the last kinematics: the carried
+  // ones, and after a scene change every live one (SetObjectPose moves free objects).
+  template <typename F>
+  void ForEachMayHaveMoved(F&& f) {
+    if (scene_changed) {
+      for (PrimitiveId id = 0; id < live_end; ++id) f(id);
+    } else {
+      for (const PrimitiveId id : carried) f(id);
+    }
   }
   // A static left out as unreachable becomes active for good once `mover` (a frame-bound
   // object) comes within the sum of their indexed tolerances.

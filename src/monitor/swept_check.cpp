@@ -43,6 +43,7 @@ void Monitor::Impl::InitSwept() {
   swept.is_reindexed.assign(n, 0);
   swept.is_step_bound_known.assign(n, 0);
   swept.leavers.reserve(n);
+  swept.near.reserve(n);
   swept.kinematics_displacement_m.assign(n, 0.0);
   swept.q_kinematics = model.q_start;
   swept.pairs.reserve(static_cast<std::size_t>(n) * (n > 0 ? n - 1 : 0) / 2);
@@ -142,7 +143,7 @@ void Monitor::Impl::RecordStartDisplacements() {
   if (!swept.has_start_displacement) return;
   // The kinematics overwrites both; the motion bounds since are left to the few primitives
   // that need them (StartDisplacement_m).
-  for (PrimitiveId id = 0; id < live_end; ++id) {  // free live slots never move
+  for (const PrimitiveId id : carried) {  // only they have levers (StartDisplacement_m)
     swept.kinematics_displacement_m[id] = cache.displacement_m(id);
   }
   if (kinematics_behind) swept.q_kinematics = q_kinematics;
@@ -179,12 +180,12 @@ bool Monitor::Impl::CollectSweptPairs() {
   const MotionBounds& step = StepMotion();
   // Flags of this cycle's re-indexed primitives, cleared again below.
   for (const PrimitiveId id : cache.reindexed()) swept.is_reindexed[id] = 1;
+  for (const PrimitiveId id : swept.leavers) swept.leaves_slack[id] = 0;
   swept.leavers.clear();
-  std::fill_n(swept.leaves_slack.begin(), n, std::uint8_t{0});
   // A primitive within the largest step bound of its slack at q stays in it (most do; those
-  // not indexed or without levers have no displacement).
+  // not indexed or without levers, which are not carried, have no displacement).
   const double largest_m = swept.largest_step_m;
-  for (PrimitiveId id = 0; id < n; ++id) {
+  for (const PrimitiveId id : carried) {
     if (cache.displacement_m(id) + largest_m <= slack_m || !in_broad_phase[id] ||
         step.lever_count(id) == 0) {
       continue;
@@ -205,10 +206,10 @@ bool Monitor::Impl::CollectSweptPairs() {
   // NaN bound grows a box to everything. A leaver's B is its step bound, any other's the
   // largest (its own is needed only for the few pairs whose boxes meet).
   const double margin_m = cache.BoundMargin_m(0.0);
-  for (PrimitiveId id = 0; id < n; ++id) {
+  auto grow = [&](PrimitiveId id) {
     // Without levers a primitive moves only with the scene (Monitor::Impl::RunCycle).
     const bool is_fixed = step.lever_count(id) == 0;
-    if (!in_broad_phase[id] || (is_fixed && swept.are_fixed_boxes_current)) continue;
+    if (!in_broad_phase[id] || (is_fixed && swept.are_fixed_boxes_current)) return;
     swept.box_W[id] = ComputeAabb(shape_W[id]);
     double reach_m = swept.leaves_slack[id] ? StepBound_m(id) : largest_m;
     if (is_fixed) reach_m = 0.0;
@@ -216,14 +217,28 @@ bool Monitor::Impl::CollectSweptPairs() {
     swept.grown_W[id] =
         swept.box_W[id].Inflated(std::isnan(grow_m) ? std::numeric_limits<double>::infinity()
                                                     : grow_m);
+  };
+  if (swept.are_fixed_boxes_current) {
+    for (const PrimitiveId id : carried) grow(id);  // those with levers are carried
+  } else {
+    for (PrimitiveId id = 0; id < n; ++id) grow(id);
   }
   swept.are_fixed_boxes_current = true;
-  // Each leaver with every other indexed primitive (two leavers once), then in pair order.
+  // The indexed primitives whose boxes meet the leavers' hull: one pass over all of them,
+  // then each leaver with those (two leavers once), then in pair order.
+  Aabb hull_W = swept.grown_W[swept.leavers.front()];
+  for (const PrimitiveId leaver : swept.leavers) {
+    hull_W.min_W = hull_W.min_W.cwiseMin(swept.grown_W[leaver].min_W);
+    hull_W.max_W = hull_W.max_W.cwiseMax(swept.grown_W[leaver].max_W);
+  }
+  swept.near.clear();
+  for (PrimitiveId id = 0; id < n; ++id) {
+    if (in_broad_phase[id] && hull_W.Overlaps(swept.grown_W[id])) swept.near.push_back(id);
+  }
   for (const PrimitiveId leaver : swept.leavers) {
     const Aabb& grown_W = swept.grown_W[leaver];
-    for (PrimitiveId other = 0; other < n; ++other) {
-      if (!in_broad_phase[other] || other == leaver ||
-          (swept.leaves_slack[other] && other < leaver) ||
+    for (const PrimitiveId other : swept.near) {
+      if (other == leaver || (swept.leaves_slack[other] && other < leaver) ||
           !grown_W.Overlaps(swept.grown_W[other])) {
         continue;
       }

@@ -60,6 +60,7 @@ struct SweptScratch {
   std::vector<std::uint8_t> leaves_slack;  // per primitive: may leave its slack in the step
   std::vector<std::uint8_t> is_reindexed;  // CollectSweptPairs: re-indexed this cycle
   std::vector<PrimitiveId> leavers;        // those that may, in order
+  std::vector<PrimitiveId> near;           // the indexed ones whose boxes meet the leavers' hull
   // At the step's start, when has_start_displacement (the index unchanged since the last
   // kinematics): per primitive its displacement from its indexed copy as of the last
   // kinematics (m), and that kinematics' q; a bound on its displacement at q_start adds its
