@@ -87,6 +87,16 @@ void Monitor::ForceIndexStampsNearWrap(std::uint32_t steps_before_wrap) {
 }
 
 void Monitor::Impl::ValidatePrimitives(std::ostringstream* msg) const {
+  // The per-cycle loops visit `carried`: exactly the primitives with a carrier, ascending.
+  std::vector<PrimitiveId> expected_carried;
+  for (PrimitiveId id = 0; id < model.primitive_count; ++id) {
+    if (carrier[id] >= 0) expected_carried.push_back(id);
+  }
+  if (carried != expected_carried) {
+    *msg << "carried list has " << carried.size() << " primitives, expected "
+         << expected_carried.size() << " (or not in order)";
+    return;
+  }
   for (PrimitiveId id = 0; id < model.primitive_count; ++id) {
     const bool should = ShouldBeInBroadPhase(id);
     if (static_cast<bool>(in_broad_phase[id]) != should) {
