@@ -134,20 +134,15 @@ bool Monitor::Impl::IsProvablyClear(const Eigen::Ref<const Eigen::VectorXd>& q, 
   // bounded cycles since the kinematics, `motion` is the step's (StepMotion), whose largest
   // bound RunCycle has, and what is computed here serves StepBound_m too.
   const double largest_m = kinematics_behind ? motion.ComputeLargestBound_m() : step_m;
-  std::vector<std::uint8_t>& known = kinematics_behind ? bound_known : swept.is_step_bound_known;
-  if (kinematics_behind) std::fill_n(known.begin(), live_end, std::uint8_t{0});
-  auto compute = [&](PrimitiveId id) {
-    if (!known[id]) motion.ComputeBound_m(id);
-    known[id] = 1;
-  };
+  std::vector<std::uint8_t>* known = kinematics_behind ? &bound_known : &swept.is_step_bound_known;
+  if (kinematics_behind) std::fill_n(known->begin(), live_end, std::uint8_t{0});
   const double slack_m = model.options.index_slack_m;
   for (const PrimitiveId id : carried) {
     if (!in_broad_phase[id] || motion.lever_count(id) == 0) continue;
     // Motion since indexed <= motion until the kinematics + motion since; NaN fails.
     const double displacement_m = cache.displacement_m(id);
     if (displacement_m + largest_m <= slack_m) continue;
-    compute(id);
-    if (!(displacement_m + motion.bound_m(id) <= slack_m)) return false;
+    if (!(displacement_m + BoundOnce(&motion, known, id) <= slack_m)) return false;
   }
   for (const KeptPair& kept : cache.pairs()) {
     const PrimitiveId a = kept.pair.a;
@@ -157,8 +152,8 @@ bool Monitor::Impl::IsProvablyClear(const Eigen::Ref<const Eigen::VectorXd>& q, 
     const double at_most_m = (motion.lever_count(a) > 0 ? largest_m : 0.0) +
                              (motion.lever_count(b) > 0 ? largest_m : 0.0);
     if (cache.IsClear(kept.kinematics_bound_m, at_most_m, threshold_m)) continue;
-    compute(a);
-    compute(b);
+    BoundOnce(&motion, known, a);
+    BoundOnce(&motion, known, b);
     if (!cache.IsClear(kept.kinematics_bound_m, motion.PairBound_m(a, b), threshold_m)) {
       return false;
     }

@@ -156,11 +156,16 @@ struct Monitor::Impl {
                  const Eigen::Ref<const Eigen::VectorXd>& q, CycleWork* work);
   // The step bound of `id` (0 without levers), m; computed on first use in a SweepStep.
   double StepBound_m(PrimitiveId id) {
-    MotionBounds& step = StepMotion();
-    if (step.lever_count(id) == 0) return 0.0;
-    if (swept.is_step_bound_known[id]) return step.bound_m(id);
-    swept.is_step_bound_known[id] = 1;
-    return step.ComputeBound_m(id);
+    return BoundOnce(&StepMotion(), &swept.is_step_bound_known, id);
+  }
+  // The bound of `id` in `bounds` (0 without levers), computed at most once while `known[id]`
+  // stays set.
+  static double BoundOnce(MotionBounds* bounds, std::vector<std::uint8_t>* known,
+                          PrimitiveId id) {
+    if (bounds->lever_count(id) == 0) return 0.0;
+    if ((*known)[id]) return bounds->bound_m(id);
+    (*known)[id] = 1;
+    return bounds->ComputeBound_m(id);
   }
   // The relative motion bound of (a, b) over the step (MotionBounds::PairBound_m), m.
   double PairStepBound_m(PrimitiveId a, PrimitiveId b) {

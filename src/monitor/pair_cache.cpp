@@ -62,6 +62,7 @@ void PairCache::Reindex(PrimitiveId id, const Shape& shape_W) {
   is_now_indexed_[id] = 1;
   disp_m_[id] = 0.0;
   reindexed_.push_back(id);
+  is_reindexed_[id] = 1;
 }
 
 void PairCache::Update(BroadPhase* broad_phase, const CompatibilityMatrix& compatible) {
@@ -82,7 +83,6 @@ void PairCache::UpdatePairs(BroadPhase* broad_phase, const CompatibilityMatrix& 
     return;
   }
   if (reindexed_.empty()) return;
-  for (const PrimitiveId id : reindexed_) is_reindexed_[id] = 1;
   // The pairs of primitives that stayed within their slack keep their bounds ...
   pairs_.erase(std::remove_if(pairs_.begin(), pairs_.end(),
                               [&](const KeptPair& k) {
@@ -100,7 +100,6 @@ void PairCache::UpdatePairs(BroadPhase* broad_phase, const CompatibilityMatrix& 
       new_pairs_.push_back(p);
     }
   }
-  for (const PrimitiveId id : reindexed_) is_reindexed_[id] = 0;
   std::sort(new_pairs_.begin(), new_pairs_.end());
   scratch_.clear();
   auto old_it = pairs_.begin();

@@ -40,7 +40,6 @@ void Monitor::Impl::InitSwept() {
   swept.box_W.assign(n, Aabb{});
   swept.grown_W.assign(n, Aabb{});
   swept.leaves_slack.assign(n, 0);
-  swept.is_reindexed.assign(n, 0);
   swept.is_step_bound_known.assign(n, 0);
   swept.leavers.reserve(n);
   swept.near.reserve(n);
@@ -178,8 +177,6 @@ bool Monitor::Impl::CollectSweptPairs() {
   const std::uint32_t n = live_end;  // free live slots are not indexed
   const double slack_m = model.options.index_slack_m;
   const MotionBounds& step = StepMotion();
-  // Flags of this cycle's re-indexed primitives, cleared again below.
-  for (const PrimitiveId id : cache.reindexed()) swept.is_reindexed[id] = 1;
   for (const PrimitiveId id : swept.leavers) swept.leaves_slack[id] = 0;
   swept.leavers.clear();
   // A primitive within the largest step bound of its slack at q stays in it (most do; those
@@ -190,12 +187,11 @@ bool Monitor::Impl::CollectSweptPairs() {
         step.lever_count(id) == 0) {
       continue;
     }
-    if (MayLeaveSlack(id, !swept.is_reindexed[id])) {
+    if (MayLeaveSlack(id, !cache.is_reindexed(id))) {
       swept.leaves_slack[id] = 1;
       swept.leavers.push_back(id);
     }
   }
-  for (const PrimitiveId id : cache.reindexed()) swept.is_reindexed[id] = 0;
   swept.pairs.clear();
   if (swept.leavers.empty()) return false;
   // The pairs of a primitive that may leave its slack, generated in order (a < b); the kept

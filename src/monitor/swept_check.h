@@ -58,7 +58,6 @@ struct SweptScratch {
   std::vector<Aabb> grown_W;
   bool are_fixed_boxes_current = false;
   std::vector<std::uint8_t> leaves_slack;  // per primitive: may leave its slack in the step
-  std::vector<std::uint8_t> is_reindexed;  // CollectSweptPairs: re-indexed this cycle
   std::vector<PrimitiveId> leavers;        // those that may, in order
   std::vector<PrimitiveId> near;           // the indexed ones whose boxes meet the leavers' hull
   // At the step's start, when has_start_displacement (the index unchanged since the last

@@ -54,7 +54,10 @@ class PairCache {
   void MarkStale() { is_stale_ = true; }
   bool is_stale() const { return is_stale_; }
   /// Starts a cycle's re-indexing: clears reindexed().
-  void BeginReindex() { reindexed_.clear(); }
+  void BeginReindex() {
+    for (const PrimitiveId id : reindexed_) is_reindexed_[id] = 0;
+    reindexed_.clear();
+  }
   /// Indexed primitive `id` moved to `shape_W`: true when it left its slack, then `shape_W` is
   /// its new indexed copy and the caller moves it in the index (listed in reindexed()). Every
   /// change of an indexed primitive's shape comes through here or SetIndexed (TestPairs' float
@@ -65,6 +68,8 @@ class PairCache {
   void Reindex(PrimitiveId id, const Shape& shape_W);
   /// The primitives re-indexed since BeginReindex, in call order.
   const std::vector<PrimitiveId>& reindexed() const { return reindexed_; }
+  /// Whether `id` is in reindexed().
+  bool is_reindexed(PrimitiveId id) const { return is_reindexed_[id] != 0; }
   /// How far (m) a point of `id` has moved from its indexed copy, as of the last FollowMoved.
   double displacement_m(PrimitiveId id) const { return disp_m_[id]; }
   const Shape& indexed_shape_W(PrimitiveId id) const { return indexed_W_[id]; }
@@ -165,7 +170,7 @@ class PairCache {
   std::vector<KeptPair> scratch_;
   std::vector<CandidatePair> found_, new_pairs_;  // scratch for FindPairs / FindPairsOf
   std::vector<PrimitiveId> reindexed_;
-  std::vector<std::uint8_t> is_reindexed_;
+  std::vector<std::uint8_t> is_reindexed_;  // per primitive: in reindexed_
   bool is_stale_ = true;
 };
 
