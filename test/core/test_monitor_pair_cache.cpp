@@ -196,11 +196,11 @@ TEST(MonitorPairCache, SlackRuleAndReindexList) {
   EXPECT_TRUE(cache.is_stale());
   cache.BeginReindex();
   Capsule c1 = c0;
-  c1.p1_W.z() += 0.06;  // within the slack: only the displacement is recorded
+  c1.p1_W.z() += 0.04;  // within half the slack: only the displacement is recorded
   EXPECT_FALSE(cache.FollowMoved(0, c1));
-  EXPECT_NEAR(cache.displacement_m(0), 0.06, 1e-15);
+  EXPECT_NEAR(cache.displacement_m(0), 0.04, 1e-15);
   EXPECT_TRUE(cache.reindexed().empty());
-  c1.p0_W.x() -= 0.11;  // beyond: a new indexed copy
+  c1.p0_W.x() -= 0.06;  // beyond half the slack (still within it): a new indexed copy
   EXPECT_TRUE(cache.FollowMoved(0, c1));
   EXPECT_EQ(cache.displacement_m(0), 0.0);
   ASSERT_EQ(cache.reindexed().size(), 1u);
