@@ -1,6 +1,10 @@
 // The reference broad phase and the factory: hand-checked scenes.
 #include <gtest/gtest.h>
 
+#include <limits>
+#include <random>
+#include <vector>
+
 #include "arm_collision_monitor/broadphase/broad_phase_factory.h"
 #include "arm_collision_monitor/broadphase/naive_broad_phase.h"
 
@@ -45,6 +49,61 @@ TEST(NaiveBroadPhase, ClosedBoxesTouchingAtACornerAndToleranceInflation) {
   bp.Move(7, Cube(0, 0, 0, 1));  // unknown id: refused, no crash
   bp.FindPairs(CompatibilityMatrix(), &pairs);
   EXPECT_EQ(pairs, (std::vector<CandidatePair>{{0, 2}}));
+}
+
+TEST(NaiveBroadPhase, RandomAddRemoveMoveMatchesEveryBoxAgainstEvery) {
+  // Add, Remove and Move in random order against Aabb::Overlaps on every present pair, with
+  // NaN boxes (they overlap nothing) among them; FindPairsOf against FindPairs.
+  constexpr PrimitiveId kIds = 40;
+  std::mt19937_64 rng(20261124);
+  std::uniform_real_distribution<double> coord(-1.0, 1.0), half(0.05, 0.4), unit(0.0, 1.0);
+  auto random_box = [&] {
+    if (unit(rng) < 0.05) {
+      const double nan = std::numeric_limits<double>::quiet_NaN();
+      return Aabb{Eigen::Vector3d(nan, 0, 0), Eigen::Vector3d(nan, 0, 0)};
+    }
+    return Cube(coord(rng), coord(rng), coord(rng), half(rng));
+  };
+  NaiveBroadPhase bp;
+  std::vector<Aabb> box(kIds);
+  std::vector<std::uint8_t> present(kIds, 0), moving(kIds, 0);
+  CompatibilityMatrix compatible(kIds);
+  for (PrimitiveId a = 0; a < kIds; a += 3) compatible.Set(a, (a * 7 + 1) % kIds, true);
+  std::vector<CandidatePair> pairs, expected;
+  for (int round = 0; round < 300; ++round) {
+    const auto id = static_cast<PrimitiveId>(rng() % kIds);
+    const double op = unit(rng);
+    if (!present[id]) {
+      box[id] = random_box();
+      moving[id] = unit(rng) < 0.6 ? 1 : 0;
+      present[id] = 1;
+      bp.Add(id, box[id], 0.0, moving[id] ? Motion::kMoving : Motion::kStatic);
+    } else if (op < 0.3) {
+      bp.Remove(id);
+      present[id] = 0;
+    } else {
+      box[id] = random_box();
+      bp.Move(id, box[id]);
+    }
+    expected.clear();
+    for (PrimitiveId a = 0; a < kIds; ++a) {
+      for (PrimitiveId b = a + 1; b < kIds; ++b) {
+        if (present[a] && present[b] && (moving[a] || moving[b]) && box[a].Overlaps(box[b]) &&
+            !compatible.AreCompatible(a, b)) {
+          expected.push_back({a, b});
+        }
+      }
+    }
+    bp.FindPairs(compatible, &pairs);
+    ASSERT_EQ(pairs, expected) << "round " << round;
+    if (!present[id]) continue;
+    std::vector<CandidatePair> of_id;
+    for (const CandidatePair& p : expected) {
+      if (p.a == id || p.b == id) of_id.push_back(p);
+    }
+    bp.FindPairsOf(id, compatible, &pairs);
+    ASSERT_EQ(pairs, of_id) << "round " << round << " primitive " << id;
+  }
 }
 
 TEST(BroadPhaseFactory, NamesRoundTripAndUnknownIsRefused) {
