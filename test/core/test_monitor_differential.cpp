@@ -1,6 +1,8 @@
 // The Monitor against an independent brute force (all pairs, ShapeDistance, compatibility) on
 // seeded random configurations and random smooth trajectories, for every broad phase; and
 // Check() against Update().
+#include <limits>
+
 #include "test_monitor_util.h"
 
 namespace arm_collision_monitor {
@@ -114,6 +116,47 @@ TEST(MonitorBounds, BoundedStepsStayWithinTheirMotionBounds) {
   }
   // The bounds must be exercised: a fair share of the steps are decided without kinematics.
   EXPECT_GT(bounded, 1000);
+}
+
+// The bounded cycles after a kinematics cycle are decided at once by the summary its first
+// check made (IsProvablyClear), which must still count each primitive's displacement at that
+// kinematics. One joint (the first arm's wrist pitch) turns: its bound is tight for the
+// farthest primitive. The turn leaves that primitive 45 % of the slack from its indexed copy (under the
+// re-index rule's half), a refused message forces a kinematics cycle there, and the turn goes
+// on in small steps: Validate measures every primitive's distance from its indexed copy.
+TEST(MonitorBounds, BoundedCyclesCountTheDisplacementAtTheKinematics) {
+  const auto wc = LoadBundledWorkcell();
+  const test::JointLimits limits = LimitsOf(*wc);
+  constexpr int kJoint = 5;  // the first arm's wrist pitch: levers rigid beyond it, so tight
+  for (const BroadPhaseMethod method : {BroadPhaseMethod::kNaive, BroadPhaseMethod::kOctree}) {
+    for (const double slack_m : {0.02, 0.05}) {
+      MonitorOptions options = OptionsFor(method);
+      options.index_slack_m = slack_m;
+      Monitor monitor(wc, options);
+      const Eigen::VectorXd q0 = (limits.lower + limits.upper) / 2;
+      ASSERT_TRUE(monitor.Update(q0).warnings.empty());
+      Eigen::VectorXd q = q0;
+      q[kJoint] += 1e-3;
+      const double lever_m = monitor.Update(q).step_motion_m / 1e-3;  // the farthest's radius
+      ASSERT_GT(lever_m, 0.1);
+      q[kJoint] = q0[kJoint] + 0.45 * slack_m / lever_m;
+      monitor.Update(q);
+      Eigen::VectorXd bad = q;
+      bad[0] = std::numeric_limits<double>::quiet_NaN();
+      ASSERT_EQ(monitor.Update(bad).input, InputStatus::kNonFinite);
+      ASSERT_FALSE(monitor.Update(q).bounded);  // the kinematics, at 45 % of the slack
+      int bounded = 0;
+      for (int k = 1; k <= 150; ++k) {  // 1.5 slacks more, 1 % of the slack per step
+        q[kJoint] += 0.01 * slack_m / lever_m;
+        bounded += monitor.Update(q).bounded ? 1 : 0;
+        std::string error;
+        ASSERT_TRUE(monitor.Validate(&error))
+            << error << " (" << BroadPhaseMethodName(method) << ", slack " << slack_m
+            << ", step " << k << ")";
+      }
+      EXPECT_GT(bounded, 100) << BroadPhaseMethodName(method) << ", slack " << slack_m;
+    }
+  }
 }
 
 // The index slack changes the work, never the warnings: for slacks from 0 (the seed's loop) to
