@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <limits>
 #include <utility>
 #include <variant>
 
@@ -135,25 +134,13 @@ bool Monitor::Impl::IsProvablyClear(const Eigen::Ref<const Eigen::VectorXd>& q, 
   // bounded cycles since the kinematics, `motion` is the step's (StepMotion), whose largest
   // bound RunCycle has, and what is computed here serves StepBound_m too.
   const double largest_m = kinematics_behind ? motion.ComputeLargestBound_m() : step_m;
-  const double slack_m = model.options.index_slack_m;
-  // After bounded cycles, the first check's summary settles everything at once when the
-  // largest bound is below it (the pair test rearranged: bound - margin - threshold > sides x
-  // largest, within rounding that BoundMargin_m covers); else every pair is checked again.
-  ClearSummary& summary = clear_summary;
-  if (kinematics_behind && summary.is_valid &&
-      summary.largest_displacement_m + largest_m <= slack_m && largest_m < summary.pair_room_m) {
-    return true;
-  }
-  // The first check since the kinematics makes the summary (kept only when it proves clear).
-  const bool is_first = !kinematics_behind;
-  if (is_first) summary = ClearSummary{false, 0.0, std::numeric_limits<double>::infinity()};
   std::vector<std::uint8_t>* known = kinematics_behind ? &bound_known : &swept.is_step_bound_known;
   if (kinematics_behind) std::fill_n(known->begin(), live_end, std::uint8_t{0});
+  const double slack_m = model.options.index_slack_m;
   for (const PrimitiveId id : carried) {
     if (!in_broad_phase[id] || motion.lever_count(id) == 0) continue;
     // Motion since indexed <= motion until the kinematics + motion since; NaN fails.
     const double displacement_m = cache.displacement_m(id);
-    summary.largest_displacement_m = std::max(summary.largest_displacement_m, displacement_m);
     if (displacement_m + largest_m <= slack_m) continue;
     if (!(displacement_m + BoundOnce(&motion, known, id) <= slack_m)) return false;
   }
@@ -162,26 +149,16 @@ bool Monitor::Impl::IsProvablyClear(const Eigen::Ref<const Eigen::VectorXd>& q, 
     const PrimitiveId b = kept.pair.b;
     const double threshold_m = tol_now[a] + tol_now[b];
     // The pair's bound is at most the sum of the two primitives' (NaN is not clear).
-    const int sides = (motion.lever_count(a) > 0 ? 1 : 0) + (motion.lever_count(b) > 0 ? 1 : 0);
-    if (is_first) summary.pair_room_m = std::min(summary.pair_room_m, PairRoom_m(kept, sides));
-    if (cache.IsClear(kept.kinematics_bound_m, sides * largest_m, threshold_m)) continue;
+    const double at_most_m = (motion.lever_count(a) > 0 ? largest_m : 0.0) +
+                             (motion.lever_count(b) > 0 ? largest_m : 0.0);
+    if (cache.IsClear(kept.kinematics_bound_m, at_most_m, threshold_m)) continue;
     BoundOnce(&motion, known, a);
     BoundOnce(&motion, known, b);
     if (!cache.IsClear(kept.kinematics_bound_m, motion.PairBound_m(a, b), threshold_m)) {
       return false;
     }
   }
-  summary.is_valid = summary.is_valid || is_first;
   return true;
-}
-
-double Monitor::Impl::PairRoom_m(const KeptPair& kept, int sides) const {
-  const double bound_m = kept.kinematics_bound_m;
-  const double room_m = bound_m - cache.BoundMargin_m(bound_m) -
-                        (tol_now[kept.pair.a] + tol_now[kept.pair.b]);
-  // NaN settles nothing; a pair that does not move is settled by any bound or by none.
-  if (!(room_m > 0.0)) return -std::numeric_limits<double>::infinity();
-  return sides == 0 ? std::numeric_limits<double>::infinity() : room_m / sides;
 }
 
 std::uint32_t Monitor::Impl::FollowKinematics(const Eigen::Ref<const Eigen::VectorXd>& q,
@@ -191,7 +168,6 @@ std::uint32_t Monitor::Impl::FollowKinematics(const Eigen::Ref<const Eigen::Vect
   X_WL.swap(X_WL_next);
   q_kinematics = q;
   kinematics_behind = false;
-  clear_summary.is_valid = false;
   const std::uint32_t moved_count = ReindexMoved(is_step);
   // Fixed tolerances: tol_now already equals tol_base (Attach / Detach keep both).
   const bool is_speed_scaled = model.speed_tol_gain_s != 0.0;

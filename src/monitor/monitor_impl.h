@@ -66,14 +66,6 @@ struct Monitor::Impl {
   std::vector<std::uint8_t> link_changed;          // scratch
   std::vector<std::uint8_t> bound_known;  // IsProvablyClear after bounded cycles: per primitive,
                                           // its bound in `motion` computed this cycle
-  // What IsProvablyClear's first check since the kinematics found, for the bounded cycles after
-  // it: every kept pair and every carried primitive is settled at once by a largest bound below
-  // these (valid only when that check proved the cycle clear).
-  struct ClearSummary {
-    bool is_valid = false;
-    double largest_displacement_m = 0.0;  // over the carried primitives it checks
-    double pair_room_m = 0.0;  // min over kept pairs of (bound - margin - threshold) / sides
-  } clear_summary;
   Eigen::VectorXd q_good;               // the last accepted q
   Eigen::VectorXd q_kinematics;         // q of the last forward kinematics
   bool has_good = false;
@@ -117,9 +109,6 @@ struct Monitor::Impl {
   // still clears its threshold -- then no pair can warn. `step_m`: the step's largest bound
   // (RunCycle). Changes nothing but bound scratch.
   bool IsProvablyClear(const Eigen::Ref<const Eigen::VectorXd>& q, double step_m);
-  // A kept pair's room for motion in IsProvablyClear's summary: what its kinematics bound keeps
-  // beyond its threshold and margin, per moving side (`sides`: 0, 1 or 2 of them have levers).
-  double PairRoom_m(const KeptPair& kept, int sides) const;
   // Forward kinematics at q, the moved primitives re-indexed, the kept pairs brought up to
   // date: the shapes then follow q. Returns the number of primitives that moved. `is_step`:
   // q ends the step of this cycle (RunCycle), whose bounds StepBound_m gives.

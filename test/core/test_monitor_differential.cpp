@@ -118,12 +118,12 @@ TEST(MonitorBounds, BoundedStepsStayWithinTheirMotionBounds) {
   EXPECT_GT(bounded, 1000);
 }
 
-// The bounded cycles after a kinematics cycle are decided at once by the summary its first
-// check made (IsProvablyClear), which must still count each primitive's displacement at that
-// kinematics. One joint (the first arm's wrist pitch) turns: its bound is tight for the
-// farthest primitive. The turn leaves that primitive 45 % of the slack from its indexed copy (under the
-// re-index rule's half), a refused message forces a kinematics cycle there, and the turn goes
-// on in small steps: Validate measures every primitive's distance from its indexed copy.
+// Bounded cycles must count each primitive's displacement at the last kinematics, not only its
+// motion since (IsProvablyClear). One joint (the first arm's wrist pitch) turns: its bound is
+// tight for the farthest primitive. The turn leaves that primitive 45 % of the slack from its
+// indexed copy (under the re-index rule's half), a refused message forces a kinematics cycle
+// there, and the turn goes on in small steps: Validate measures every primitive's distance
+// from its indexed copy.
 TEST(MonitorBounds, BoundedCyclesCountTheDisplacementAtTheKinematics) {
   const auto wc = LoadBundledWorkcell();
   const test::JointLimits limits = LimitsOf(*wc);
