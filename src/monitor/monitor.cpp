@@ -87,6 +87,11 @@ void Monitor::Impl::RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q) {
     RecordCycle(CycleKind::kBounded, InputStatus::kOk, work);
     return;
   }
+  // Steps small enough for bounded cycles: the primitives past half their slack are re-indexed
+  // together, leaving the other half to the bounded cycles (pair_cache.h); a larger step would
+  // use it up at once, so only those past the slack are.
+  const double half_slack_m = PairCache::kReindexSlackFraction * model.options.index_slack_m;
+  reindex_at_m = work.step_m <= half_slack_m ? half_slack_m : model.options.index_slack_m;
   const bool is_swept = model.options.swept_check && work.step_m > 0.0;
   if (model.options.swept_check) RecordStartDisplacements();
   if (is_swept) swept.largest_step_m = work.step_m;
@@ -203,7 +208,7 @@ std::uint32_t Monitor::Impl::ReindexMoved(bool is_step) {
   ForEachMayHaveMoved([&](PrimitiveId id) {
     if (!moved[id] || !in_broad_phase[id]) return;
     ++moved_count;
-    bool is_reindexed = cache.FollowMoved(id, shape_W[id]);
+    bool is_reindexed = cache.FollowMoved(id, shape_W[id], reindex_at_m);
     // The swept check: a primitive that may have left its slack during the step would need its
     // pairs with every primitive swept (CollectSweptPairs). Indexed at q instead, it is within
     // its step bound B <= slack of its copy along the whole step, so the kept pairs cover it;

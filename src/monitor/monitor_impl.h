@@ -71,6 +71,7 @@ struct Monitor::Impl {
   bool has_good = false;
   bool scene_changed = true;
   bool kinematics_behind = false;       // bounded cycles since: q_kinematics != q_good
+  double reindex_at_m = 0.0;            // PairCache::FollowMoved's threshold (RunCycle sets it)
   CycleReport report;
   BroadPhaseCounters total;
   std::uint64_t refused = 0;

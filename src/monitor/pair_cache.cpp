@@ -42,12 +42,12 @@ void PairCache::SetIndexed(PrimitiveId id, const Shape& shape_W) {
   is_stale_ = true;
 }
 
-bool PairCache::FollowMoved(PrimitiveId id, const Shape& shape_W) {
+bool PairCache::FollowMoved(PrimitiveId id, const Shape& shape_W, double reindex_at_m) {
   // Every point of the shape lies within this of its indexed copy (the displacement of a point
   // of a capsule or box is a convex combination of its defining points').
   const double d_m = MaxPointDisplacement_m(indexed_W_[id], shape_W);
   is_now_f_made_[id] = 0;
-  if (d_m <= kReindexSlackFraction * slack_m_) {
+  if (d_m <= std::min(reindex_at_m, slack_m_)) {
     disp_m_[id] = d_m;
     is_now_indexed_[id] = 0;
     return false;
@@ -121,10 +121,10 @@ bool PairCache::ValidatePrimitive(PrimitiveId id, const Shape& shape_W, std::str
     *why = "primitive " + std::to_string(id) + ": its float copy is not its shape's";
     return false;
   }
-  if (d_m == disp_m_[id] && d_m <= kReindexSlackFraction * slack_m_) return true;
+  if (d_m == disp_m_[id] && d_m <= slack_m_) return true;
   std::ostringstream msg;
   msg << "primitive " << id << " moved " << d_m << " m from its indexed copy, recorded "
-      << disp_m_[id] << " m, re-indexed beyond " << kReindexSlackFraction * slack_m_ << " m";
+      << disp_m_[id] << " m, slack " << slack_m_ << " m";
   *why = msg.str();
   return false;
 }

@@ -101,6 +101,9 @@ struct RandomScene {
   // the pairs the narrow phase found closer than their threshold.
   std::set<std::pair<PrimitiveId, PrimitiveId>> Step(double step_m, std::mt19937_64* rng) {
     cache.BeginReindex();
+    // The Monitor's two re-index thresholds, at random: the slack and half of it.
+    const double reindex_at_m =
+        ((*rng)() % 2 == 0 ? PairCache::kReindexSlackFraction : 1.0) * slack_m;
     for (PrimitiveId id = 0; id < shapes_W.size(); ++id) {
       if (!is_moving[id]) continue;
       Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
@@ -116,7 +119,7 @@ struct RandomScene {
       } else {
         std::get<Box>(s).X_WB = X * std::get<Box>(s).X_WB;
       }
-      if (cache.FollowMoved(id, s)) broad_phase->Move(id, ComputeAabb(s));
+      if (cache.FollowMoved(id, s, reindex_at_m)) broad_phase->Move(id, ComputeAabb(s));
     }
     reindexed += cache.reindexed().size();
     cache.Update(broad_phase.get(), compatible);
@@ -196,14 +199,18 @@ TEST(MonitorPairCache, SlackRuleAndReindexList) {
   EXPECT_TRUE(cache.is_stale());
   cache.BeginReindex();
   Capsule c1 = c0;
-  c1.p1_W.z() += 0.04;  // within half the slack: only the displacement is recorded
-  EXPECT_FALSE(cache.FollowMoved(0, c1));
-  EXPECT_NEAR(cache.displacement_m(0), 0.04, 1e-15);
+  c1.p1_W.z() += 0.06;  // within the slack: only the displacement is recorded
+  EXPECT_FALSE(cache.FollowMoved(0, c1, 0.1));
+  EXPECT_NEAR(cache.displacement_m(0), 0.06, 1e-15);
   EXPECT_TRUE(cache.reindexed().empty());
-  c1.p0_W.x() -= 0.06;  // beyond half the slack (still within it): a new indexed copy
-  EXPECT_TRUE(cache.FollowMoved(0, c1));
+  EXPECT_FALSE(cache.FollowMoved(0, c1, 1.0));  // a threshold beyond the slack: the slack's
+  c1.p0_W.x() -= 0.11;
+  EXPECT_TRUE(cache.FollowMoved(0, c1, 1.0));
   EXPECT_EQ(cache.displacement_m(0), 0.0);
-  ASSERT_EQ(cache.reindexed().size(), 1u);
+  c1.p1_W.z() += 0.06;  // beyond a threshold of half the slack (still within it): re-indexed
+  EXPECT_TRUE(cache.FollowMoved(0, c1, 0.05));
+  EXPECT_EQ(cache.displacement_m(0), 0.0);
+  ASSERT_EQ(cache.reindexed().size(), 2u);
   EXPECT_EQ(cache.reindexed()[0], 0u);
   EXPECT_EQ(std::get<Capsule>(cache.indexed_shape_W(0)).p0_W, c1.p0_W);
   cache.BeginReindex();

@@ -1,12 +1,13 @@
 // The Monitor's index slack and its cache of candidate pairs (MonitorOptions::index_slack_m).
 // Each moving primitive is indexed by its shape as of its last re-index (its "indexed copy"),
-// grown by the slack. A kinematics cycle re-indexes it once a point of it has moved farther
-// than half the slack (kReindexSlackFraction): the other half is for the Monitor's bounded
-// cycles, which need every primitive's displacement plus its motion since the kinematics within
-// the slack. Re-indexed together at half, the primitives leave runs of bounded cycles; each
-// re-indexed only at the slack itself, some primitive is near it in nearly every cycle (the
-// sphere robot of bench_tasks_experiments' workloads: 1,148 instead of 370 of 1,572 cycles
-// bounded, 42 % fewer instructions).
+// grown by the slack, and re-indexed by a kinematics cycle once a point of it has moved
+// farther than the cycle asks (FollowMoved): at most the slack, and half of it
+// (kReindexSlackFraction) when the Monitor's steps are small enough for bounded cycles, which
+// need every primitive's displacement plus its motion since the kinematics within the slack.
+// Re-indexed together at half, the primitives leave runs of bounded cycles; each re-indexed
+// only at the slack itself, some primitive is near it in nearly every cycle (the sphere robot
+// of bench_tasks_experiments' workloads: 1,148 instead of 370 of 1,572 cycles bounded, 42 %
+// fewer instructions).
 // The broad phase's candidate pairs are kept between cycles, each with a lower bound on the
 // distance of the two indexed copies; by the triangle inequality a pair is at least that far
 // apart less both primitives' motion since, so the narrow phase runs only on the pairs whose
@@ -64,14 +65,14 @@ class PairCache {
     for (const PrimitiveId id : reindexed_) is_reindexed_[id] = 0;
     reindexed_.clear();
   }
-  /// A kinematics cycle re-indexes a primitive that moved farther than this part of the slack.
+  /// The part of the slack a kinematics cycle with small steps re-indexes beyond (FollowMoved).
   static constexpr double kReindexSlackFraction = 0.5;
-  /// Indexed primitive `id` moved to `shape_W`: true when it moved farther than
-  /// kReindexSlackFraction of its slack from its indexed copy, then `shape_W` is
+  /// Indexed primitive `id` moved to `shape_W`: true when it moved farther than `reindex_at_m`
+  /// (at most the slack) from its indexed copy, then `shape_W` is
   /// its new indexed copy and the caller moves it in the index (listed in reindexed()). Every
   /// change of an indexed primitive's shape comes through here or SetIndexed (TestPairs' float
   /// copies of the shapes follow these calls).
-  bool FollowMoved(PrimitiveId id, const Shape& shape_W);
+  bool FollowMoved(PrimitiveId id, const Shape& shape_W, double reindex_at_m);
   /// Makes `shape_W`, where indexed primitive `id` is now, its indexed copy before it leaves its
   /// slack (the caller moves it in the index; listed in reindexed()).
   void Reindex(PrimitiveId id, const Shape& shape_W);
@@ -113,8 +114,7 @@ class PairCache {
   }
 
   /// Checks `id`'s recorded displacement against its shape `shape_W` (as of its last
-  /// FollowMoved) and the re-index rule (within kReindexSlackFraction of the slack), and its
-  /// float copies (when made) against it and its indexed
+  /// FollowMoved) and the slack, and its float copies (when made) against it and its indexed
   /// copy; and, unless stale, that the kept pairs are exactly `expected`
   /// (sorted: the pairs whose indexed boxes overlap, by brute force), that each lower bound
   /// under-estimates its indexed copies' distance and each kinematics bound the distance of
