@@ -91,11 +91,12 @@ void Monitor::Impl::RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q) {
   // together, leaving the other half to the bounded cycles (pair_cache.h); a larger step would
   // use it up at once, so only those past the slack are.
   const double half_slack_m = PairCache::kReindexSlackFraction * model.options.index_slack_m;
-  reindex_at_m = work.step_m <= half_slack_m ? half_slack_m : model.options.index_slack_m;
+  const double reindex_at_m =
+      work.step_m <= half_slack_m ? half_slack_m : model.options.index_slack_m;
   const bool is_swept = model.options.swept_check && work.step_m > 0.0;
   if (model.options.swept_check) RecordStartDisplacements();
   if (is_swept) swept.largest_step_m = work.step_m;
-  work.moved = FollowKinematics(q, is_swept);
+  work.moved = FollowKinematics(q, is_swept, reindex_at_m);
   q_good = q;
   work.narrow_phase_tests = TestCandidatePairs();
   // A jump is swept too: its stop is requested anyway, and what its path meets is reported.
@@ -167,13 +168,13 @@ bool Monitor::Impl::IsProvablyClear(const Eigen::Ref<const Eigen::VectorXd>& q, 
 }
 
 std::uint32_t Monitor::Impl::FollowKinematics(const Eigen::Ref<const Eigen::VectorXd>& q,
-                                              bool is_step) {
+                                              bool is_step, double reindex_at_m) {
   model.kinematics->ComputeMovingLinkPoses(q, &X_WL_next);
   MoveCarried(X_WL_next, &link_changed, &shape_W, &moved);
   X_WL.swap(X_WL_next);
   q_kinematics = q;
   kinematics_behind = false;
-  const std::uint32_t moved_count = ReindexMoved(is_step);
+  const std::uint32_t moved_count = ReindexMoved(is_step, reindex_at_m);
   // Fixed tolerances: tol_now already equals tol_base (Attach / Detach keep both).
   const bool is_speed_scaled = model.speed_tol_gain_s != 0.0;
   if (is_speed_scaled) ComputeTolerances(shape_W, moved, &tol_now);
@@ -201,7 +202,7 @@ void Monitor::Impl::MoveCarried(const std::vector<Eigen::Isometry3d>& X_WL_new,
   }
 }
 
-std::uint32_t Monitor::Impl::ReindexMoved(bool is_step) {
+std::uint32_t Monitor::Impl::ReindexMoved(bool is_step, double reindex_at_m) {
   std::uint32_t moved_count = 0;
   cache.BeginReindex();
   const double slack_m = model.options.index_slack_m;

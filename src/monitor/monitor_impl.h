@@ -71,7 +71,6 @@ struct Monitor::Impl {
   bool has_good = false;
   bool scene_changed = true;
   bool kinematics_behind = false;       // bounded cycles since: q_kinematics != q_good
-  double reindex_at_m = 0.0;            // PairCache::FollowMoved's threshold (RunCycle sets it)
   CycleReport report;
   BroadPhaseCounters total;
   std::uint64_t refused = 0;
@@ -112,13 +111,15 @@ struct Monitor::Impl {
   bool IsProvablyClear(const Eigen::Ref<const Eigen::VectorXd>& q, double step_m);
   // Forward kinematics at q, the moved primitives re-indexed, the kept pairs brought up to
   // date: the shapes then follow q. Returns the number of primitives that moved. `is_step`:
-  // q ends the step of this cycle (RunCycle), whose bounds StepBound_m gives.
-  std::uint32_t FollowKinematics(const Eigen::Ref<const Eigen::VectorXd>& q,
-                                 bool is_step = false);
-  // Moves in the index the moved primitives that left their slack, and with `is_step` those
-  // that could leave it if the step were run again from q (the swept check then needs no pairs
-  // beyond the kept ones for them); counts the moved ones.
-  std::uint32_t ReindexMoved(bool is_step);
+  // q ends the step of this cycle (RunCycle), whose bounds StepBound_m gives. `reindex_at_m`:
+  // how far a moved primitive may be from its indexed copy and stay (PairCache::FollowMoved).
+  std::uint32_t FollowKinematics(const Eigen::Ref<const Eigen::VectorXd>& q, bool is_step,
+                                 double reindex_at_m);
+  // Moves in the index the moved primitives farther than `reindex_at_m` from their indexed
+  // copies, and with `is_step` those that could leave their slack if the step were run again
+  // from q (the swept check then needs no pairs beyond the kept ones for them); counts the
+  // moved ones.
+  std::uint32_t ReindexMoved(bool is_step, double reindex_at_m);
   // The narrow phase over the kept pairs into report.warnings; returns the tests done.
   std::uint32_t TestCandidatePairs();
   // --- the swept check (swept_check.cpp) -----------------------------------------------------
@@ -186,9 +187,10 @@ struct Monitor::Impl {
   // The one place the report is written (the narrow phase fills its warnings).
   void RecordCycle(CycleKind kind, InputStatus input, const CycleWork& work);
   // After bounded cycles: the kinematics (shapes, index, kept pairs) brought to q_good, for
-  // SyncShapes and the scene changes that read or re-express shapes.
+  // SyncShapes and the scene changes that read or re-express shapes (no bounded cycle follows
+  // a scene change at once: re-indexed only past the slack).
   void SyncKinematics() {
-    if (kinematics_behind) FollowKinematics(q_good);
+    if (kinematics_behind) FollowKinematics(q_good, false, model.options.index_slack_m);
   }
   // Writes into `shapes` the primitives carried by links whose pose differs between X_WL and
   // `X_WL_new`, and flags them in `moved_flags`; `changed` is per-link scratch.

@@ -84,8 +84,8 @@ struct CycleReport {
 /// - broad_phase auto (the default): naive, grid or octree, chosen at start-up from the active
 ///   moving and static primitives (ChooseBroadPhaseMethod).
 /// - Index slack (MonitorOptions::index_slack_m): moving primitives are indexed by boxes grown
-///   by the slack and re-indexed once moved farther than half of it (the rest is for the
-///   bounded cycles below); the candidate pairs are kept with a
+///   by the slack and re-indexed once moved farther (farther than half of it after steps small
+///   enough for the bounded cycles below); the candidate pairs are kept with a
 ///   lower bound on their distance, and a pair is tested exactly only when that bound, less both
 ///   primitives' motion since, no longer clears its threshold (PairCache, pair_cache.h). When
 ///   bounds on the motion taken from the joint deltas alone (lever arms from the URDF chain;

@@ -33,8 +33,8 @@ struct MonitorOptions {
   double reaction_time_s = 0.1;
   double stopping_time_s = 0.02;
   /// Slack of the index (m): a moving primitive is indexed by its box grown by this much, and
-  /// re-indexed once a point of it has moved farther than half of this since it was last
-  /// indexed (PairCache::kReindexSlackFraction; the rest is for the bounded cycles);
+  /// re-indexed once a point of it has moved farther than this since it was last indexed, or
+  /// than half of this after steps small enough for bounded cycles (PairCache);
   /// candidate pairs whose last distance, less both primitives' motion since, still exceeds
   /// their threshold skip the narrow phase. 0: every moved primitive is re-indexed and every
   /// candidate pair tested each cycle (the seed's loop). The warnings are the same either way.
