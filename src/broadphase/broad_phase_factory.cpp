@@ -48,13 +48,10 @@ std::unique_ptr<BroadPhase> MakeOctree(const BroadPhaseOptions& options,
 }  // namespace
 
 BroadPhaseMethod ChooseBroadPhaseMethod(std::uint32_t moving, std::uint32_t statics) {
-  if (moving >= kAutoGridMinMoving || statics >= kAutoGridMinStatics) {
-    return BroadPhaseMethod::kGrid;
-  }
-  const bool octree_wins =
-      statics >= kAutoOctreeMinStatics ||
-      (statics >= kAutoOctreeMinStaticsCrowded && moving >= kAutoOctreeMinMovingCrowded);
-  return octree_wins ? BroadPhaseMethod::kOctree : BroadPhaseMethod::kNaive;
+  const bool grid_wins =
+      statics >= kAutoGridMinStatics || moving >= kAutoGridMinMoving ||
+      (statics >= kAutoGridMinStaticsCrowded && moving >= kAutoGridMinMovingCrowded);
+  return grid_wins ? BroadPhaseMethod::kGrid : BroadPhaseMethod::kNaive;
 }
 
 int GridCellsFor(double world_edge_m, double box_edge_m, int configured) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <sstream>
 
@@ -47,6 +48,7 @@ void CellBroadPhase::ReserveShared(std::uint32_t max_primitives, std::uint32_t m
   present_ids_.reserve(max_primitives);
   moving_ids_.reserve(max_primitives);
   outside_ids_.reserve(max_primitives);
+  outside_boxes_.Reserve(max_primitives);
   links_.reserve(max_links);
   scratch_cells_.reserve(max_links);
 }
@@ -267,7 +269,9 @@ void CellBroadPhase::SetOutside(PrimitiveId id, bool outside) {
   r.outside = outside;
   if (outside) {
     AddToList(&outside_ids_, &Record::outside_slot, id);
+    outside_boxes_.PushBack(r.box_W);
   } else {
+    outside_boxes_.SwapRemove(r.outside_slot);
     RemoveFromList(&outside_ids_, &Record::outside_slot, id);
   }
 }
@@ -317,6 +321,7 @@ void CellBroadPhase::Move(PrimitiveId id, const Aabb& box_W) {
   const bool inside = world_W_.Contains(r.box_W);
   if (!inside) ++counters_.outside_world;
   SetOutside(id, !inside);
+  if (!inside) outside_boxes_.Set(r.outside_slot, r.box_W);
   if (strategy_ == CellUpdateStrategy::kRebuild) {
     needs_rebuild_ = true;
     return;
@@ -378,18 +383,18 @@ void CellBroadPhase::ScanPartners(PrimitiveId m, bool from_smaller_only,
     }
   }
   if (!rm.outside) return;
-  for (const PrimitiveId x : outside_ids_) {
-    if (x == m) continue;
-    const Record& rx = records_[x];
-    if (rx.motion == Motion::kMoving ? from_smaller_only && x < m
-                                     : rm.motion == Motion::kStatic) {
-      continue;
+  outside_boxes_.MarkOverlaps(rm.box_W);
+  counters_.object_object_tests += outside_boxes_.size();
+  outside_boxes_.ForEachHit([&](std::uint32_t slot) {
+    const PrimitiveId x = outside_ids_[slot];
+    if (x == m) return;
+    if (records_[x].motion == Motion::kMoving ? from_smaller_only && x < m
+                                              : rm.motion == Motion::kStatic) {
+      return;
     }
-    ++counters_.object_object_tests;
-    if (!rm.box_W.Overlaps(rx.box_W)) continue;
-    if (IsCompatiblePair(compatible, m, x)) continue;
+    if (IsCompatiblePair(compatible, m, x)) return;
     pairs->push_back(MakeOrderedPair(m, x));
-  }
+  });
 }
 
 void CellBroadPhase::FindPairs(const CompatibilityMatrix& compatible,
@@ -459,6 +464,12 @@ bool CellBroadPhase::ValidateRecord(PrimitiveId id, ListCounts* counts, std::str
       msg << "primitive " << id << " not at its slot of the outside list";
       return FailValidation(why, msg.str());
     }
+    const Aabb listed_W = outside_boxes_.Get(r.outside_slot);
+    if (std::memcmp(listed_W.min_W.data(), r.box_W.min_W.data(), 3 * sizeof(double)) != 0 ||
+        std::memcmp(listed_W.max_W.data(), r.box_W.max_W.data(), 3 * sizeof(double)) != 0) {
+      msg << "primitive " << id << ": the outside list's box is not its box";
+      return FailValidation(why, msg.str());
+    }
   }
   if (!needs_rebuild_) {
     if (r.outside == world_W_.Contains(r.box_W)) {
@@ -499,7 +510,7 @@ bool CellBroadPhase::ValidateRecords(std::uint64_t* prim_links, std::string* why
     *prim_links += count;
   }
   if (counts.present != present_ids_.size() || counts.moving != moving_ids_.size() ||
-      counts.outside != outside_ids_.size()) {
+      counts.outside != outside_ids_.size() || outside_boxes_.size() != outside_ids_.size()) {
     return FailValidation(why, "present/moving/outside list sizes disagree with the records");
   }
   return true;

@@ -32,22 +32,19 @@ TEST(BroadPhaseFactory, NamesRoundTrip) {
 }
 
 TEST(BroadPhaseAuto, CrossoversOnBothSides) {
-  const std::uint32_t few_moving = kAutoGridMinMoving - 1;
-  // No statics, or few: all pairs, up to the moving crossover.
+  // Few statics: all pairs, up to the moving crossover.
   EXPECT_EQ(ChooseBroadPhaseMethod(14, 0), BroadPhaseMethod::kNaive);
-  EXPECT_EQ(ChooseBroadPhaseMethod(few_moving, kAutoOctreeMinStaticsCrowded - 1),
-            BroadPhaseMethod::kNaive);
-  EXPECT_EQ(ChooseBroadPhaseMethod(kAutoOctreeMinMovingCrowded - 1, kAutoOctreeMinStatics - 1),
+  EXPECT_EQ(ChooseBroadPhaseMethod(kAutoGridMinMoving - 1, kAutoGridMinStaticsCrowded - 1),
             BroadPhaseMethod::kNaive);
   EXPECT_EQ(ChooseBroadPhaseMethod(kAutoGridMinMoving, 0), BroadPhaseMethod::kGrid);
-  // Statics: the octree from its crossovers (fewer statics with many movers), the grid from the
-  // next.
-  EXPECT_EQ(ChooseBroadPhaseMethod(14, kAutoOctreeMinStatics), BroadPhaseMethod::kOctree);
-  EXPECT_EQ(ChooseBroadPhaseMethod(kAutoOctreeMinMovingCrowded, kAutoOctreeMinStaticsCrowded),
-            BroadPhaseMethod::kOctree);
-  EXPECT_EQ(ChooseBroadPhaseMethod(few_moving, kAutoGridMinStatics - 1),
-            BroadPhaseMethod::kOctree);
+  // More statics: the grid from its crossover, earlier with many movers.
+  EXPECT_EQ(ChooseBroadPhaseMethod(kAutoGridMinMovingCrowded - 1, kAutoGridMinStatics - 1),
+            BroadPhaseMethod::kNaive);
   EXPECT_EQ(ChooseBroadPhaseMethod(14, kAutoGridMinStatics), BroadPhaseMethod::kGrid);
+  EXPECT_EQ(ChooseBroadPhaseMethod(kAutoGridMinMovingCrowded, kAutoGridMinStaticsCrowded),
+            BroadPhaseMethod::kGrid);
+  EXPECT_EQ(ChooseBroadPhaseMethod(kAutoGridMinMovingCrowded, kAutoGridMinStaticsCrowded - 1),
+            BroadPhaseMethod::kNaive);
   EXPECT_EQ(ChooseBroadPhaseMethod(1, 100000), BroadPhaseMethod::kGrid);
   EXPECT_EQ(ChooseBroadPhaseMethod(0xffffffffu, 0xffffffffu), BroadPhaseMethod::kGrid);
   // An empty scene still gets a structure.

@@ -32,7 +32,8 @@ struct BroadPhaseTechniques {
 
 /// auto's rule: the fastest of naive, grid and octree per cycle for `moving` moving and
 /// `statics` static primitives in the broad phase, by the crossovers that
-/// bench_broadphase_workloads measures (its sweep prints the method this picks per point).
+/// bench_broadphase_workloads measures (its sweep prints the method this picks per point);
+/// naive or the grid, as the octree was best at no point of the sweep (core/constants.h).
 BroadPhaseMethod ChooseBroadPhaseMethod(std::uint32_t moving, std::uint32_t statics);
 
 /// auto's grid resolution: the `configured` cells per axis, made coarser where the boxes are

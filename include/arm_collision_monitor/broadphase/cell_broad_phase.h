@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "arm_collision_monitor/broadphase/box_array.h"
 #include "arm_collision_monitor/broadphase/broad_phase.h"
 #include "arm_collision_monitor/broadphase/broad_phase_factory.h"
 
@@ -173,6 +174,7 @@ class CellBroadPhase : public BroadPhase {
   std::vector<PrimitiveId> present_ids_;
   std::vector<PrimitiveId> moving_ids_;
   std::vector<PrimitiveId> outside_ids_;
+  BoxArray outside_boxes_;  // per slot of outside_ids_: its record's box, for the brute force
   std::vector<std::uint32_t> scratch_cells_;  // merge candidates, reserved at start-up
 
   Aabb world_W_;  // the cube the cells span: octree root, whole grid; lattice origin at min_W

@@ -1,13 +1,12 @@
 // The reference broad phase: every moving primitive against every present primitive. No
 // spatial structure, so nothing to get wrong; every other broad phase is tested against it.
-// The present boxes are also kept as six arrays of their bounds (structure of arrays), which a
-// query scans without branches, one overlap flag per box, before it looks at the few that meet.
+// The present boxes are a BoxArray, scanned without branches per query.
 #pragma once
 
-#include <array>
 #include <string>
 #include <vector>
 
+#include "arm_collision_monitor/broadphase/box_array.h"
 #include "arm_collision_monitor/broadphase/broad_phase.h"
 
 namespace arm_collision_monitor {
@@ -36,21 +35,11 @@ class NaiveBroadPhase final : public BroadPhase {
     Motion motion = Motion::kStatic;
     bool present = false;
   };
-  // Sets slot `slot`'s bounds to `inflated_W` (the tight box grown by the tolerance: what
-  // pairs are decided on).
-  void SetSlotBox(std::uint32_t slot, const Aabb& inflated_W);
-  // hits_[s] = whether slot s's box overlaps `box_W` (Aabb::Overlaps; NaN: no), for every slot.
-  void MarkOverlaps(const Aabb& box_W);
-  // The box of slot `slot`.
-  Aabb SlotBox(std::uint32_t slot) const;
-
   std::vector<Entry> entries_;             // indexed by id
   std::vector<PrimitiveId> present_ids_;   // dense list of present ids (order irrelevant)
   std::vector<std::uint32_t> slot_;        // id -> index in present_ids_
-  // Per slot (index in present_ids_): the inflated box's lower and upper bounds per axis, and
-  // a query's overlap flags.
-  std::array<std::vector<double>, 3> lo_W_, hi_W_;
-  std::vector<std::int64_t> hits_;
+  // Per slot of present_ids_: the tight box grown by the tolerance (what pairs are decided on).
+  BoxArray boxes_;
   std::vector<PrimitiveId> moving_ids_;    // dense list of present moving ids
   std::vector<std::uint32_t> moving_slot_; // id -> index in moving_ids_
 };

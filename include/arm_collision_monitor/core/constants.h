@@ -150,21 +150,21 @@ constexpr std::uint64_t kAlwaysOverlappingSeed = 20260521;
 inline constexpr double kJointLimitMargin = 0.01;
 
 /// auto's rule (ChooseBroadPhaseMethod), from the sweep of bench_broadphase_workloads (moving
-/// 7..150 x static 0..3,000 primitives; counts, dimensionless): the uniform grid from
-/// kAutoGridMinMoving moving or kAutoGridMinStatics static primitives up; otherwise the octree
-/// from kAutoOctreeMinStatics statics up, or from kAutoOctreeMinStaticsCrowded statics with at
-/// least kAutoOctreeMinMovingCrowded moving; otherwise all pairs (naive), whose moving x present
-/// box tests beat any index's upkeep on small scenes. Measured 2026-11-23 on this 2-core
-/// machine (medians per cycle): naive best up to 50 statics below 50 movers (0.52 against the
-/// octree's 0.98 us at 7+50) and up to 20 statics at 75 movers; the octree best at 100 statics
-/// below 100 movers (0.67 against naive 0.99 and grid 0.94 us at 7+100) and at 75+50; the grid
-/// best, or within 5 %, from 200 statics and at 150 movers (27.3 against octree 40.6 us at
-/// 150+200).
-inline constexpr std::uint32_t kAutoGridMinMoving = 100;
-inline constexpr std::uint32_t kAutoGridMinStatics = 200;
-inline constexpr std::uint32_t kAutoOctreeMinStatics = 100;
-inline constexpr std::uint32_t kAutoOctreeMinStaticsCrowded = 50;
-inline constexpr std::uint32_t kAutoOctreeMinMovingCrowded = 50;
+/// 7..300 x static 0..3,000 primitives; counts, dimensionless): the uniform grid from
+/// kAutoGridMinStatics statics, from kAutoGridMinStaticsCrowded statics with at least
+/// kAutoGridMinMovingCrowded moving, or from kAutoGridMinMoving moving up; otherwise all pairs
+/// (naive), whose branch-free scan of every box (BoxArray) beats any index's upkeep below that.
+/// The octree was best nowhere in the sweep, so auto does not pick it. Measured 2026-11-24 on
+/// this 2-core machine (medians per cycle): naive best up to 100 statics below 300 movers (7.0
+/// against the octree's 10.4 us at 75+100, 18.9 against the grid's 22.2 us at 150+100) and up
+/// to 200 statics below 50 movers (1.49 against the grid's 1.78 us at 14+200, within 3 % of it
+/// at 28+200); the grid best from 300 statics (0.90 against naive 1.14 us at 7+300), from 200
+/// statics at 75 movers (10.5 against 11.6 us) and level with naive at 300+0 (48.5 against 48.0
+/// us).
+inline constexpr std::uint32_t kAutoGridMinStatics = 300;
+inline constexpr std::uint32_t kAutoGridMinStaticsCrowded = 200;
+inline constexpr std::uint32_t kAutoGridMinMovingCrowded = 50;
+inline constexpr std::uint32_t kAutoGridMinMoving = 300;
 /// Bounds on auto's grid resolution (GridCellsFor; cells per axis). 4: coarser and the grid is
 /// all pairs in a few cells; 64: 262,144 cells, 3 MB of per-cell arrays. bench_broadphase_workloads, 14 movers among 200
 /// statics with boxes inflated by up to 0.6 m: 6 cells per axis (about the movers' mean box

@@ -81,7 +81,7 @@ struct CycleReport {
 ///   joint above it (see MonitorModel, monitor_model.cpp). A frame-bound object brings the
 ///   statics near its pose back in (SetObjectPose).
 /// - A held object gets at least its holder's tolerance and is compatible with its holder link.
-/// - broad_phase auto (the default): naive, grid or octree, chosen at start-up from the active
+/// - broad_phase auto (the default): naive or the grid, chosen at start-up from the active
 ///   moving and static primitives (ChooseBroadPhaseMethod).
 /// - Index slack (MonitorOptions::index_slack_m): moving primitives are indexed by boxes grown
 ///   by the slack and re-indexed once moved farther (farther than half of it after steps small

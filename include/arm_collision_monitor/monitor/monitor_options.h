@@ -21,8 +21,8 @@ struct LiveObjectOptions {
 /// The Monitor's options (LoadMonitorOptions; format: config/monitor.yaml).
 struct MonitorOptions {
   /// The broad phase; world_W and min_cell_size_m are filled in by the Monitor from the
-  /// workcell and from MinCellSize_m(). method kAuto (the default): the Monitor picks naive,
-  /// grid or octree at start-up from its active moving and static primitives
+  /// workcell and from MinCellSize_m(). method kAuto (the default): the Monitor picks naive
+  /// or the grid at start-up from its active moving and static primitives
   /// (ChooseBroadPhaseMethod).
   BroadPhaseOptions broad_phase;
   double max_speed_mps = 0.61;   ///< 24 in/s: bounds the per-cycle motion
