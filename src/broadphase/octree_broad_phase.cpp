@@ -172,19 +172,44 @@ void OctreeBroadPhase::InsertIntoLeaf(PrimitiveId id, std::uint32_t leaf) {
   }
 }
 
-// The seed's InsertObject.
-void OctreeBroadPhase::InsertFrom(PrimitiveId id, std::uint32_t node) {
-  ++counters_.object_node_tests;
-  if (!records_[id].box_W.Overlaps(CellBox(node))) return;
-  if (nodes_[node].is_split) {
-    const std::uint32_t first = nodes_[node].first_child;
-    for (std::uint32_t c = 0; c < 8; ++c) InsertFrom(id, first + c);
+// A child's cell is its parent's with one bound per axis moved to the split plane, which
+// LatticeCoordinate gives bit for bit as CellBox(child) does; with the parent's cell overlapped,
+// the child's is overlapped iff the box reaches the split plane from the child's side.
+void OctreeBroadPhase::InsertFrom(PrimitiveId id, std::uint32_t node, const Aabb& cell_W) {
+  if (!nodes_[node].is_split) {
+    InsertIntoLeaf(id, node);
     return;
   }
-  InsertIntoLeaf(id, node);
+  // Splits below may reallocate nodes_: what the loop needs is copied first.
+  const Node n = nodes_[node];
+  const std::uint32_t half = SizeUnits(node) / 2;
+  const std::uint32_t u[3] = {n.x + half, n.y + half, n.z + half};
+  double mid[3];
+  for (int a = 0; a < 3; ++a) mid[a] = LatticeCoordinate(world_W_.min_W[a], u[a], min_leaf_m_);
+  const Aabb box_W = records_[id].box_W;
+  for (std::uint32_t c = 0; c < 8; ++c) {
+    ++counters_.object_node_tests;
+    Aabb child_W = cell_W;
+    bool overlaps = true;
+    for (int a = 0; a < 3; ++a) {
+      if (c & (1u << a)) {
+        child_W.min_W[a] = mid[a];
+        overlaps = overlaps && box_W.max_W[a] >= mid[a];
+      } else {
+        child_W.max_W[a] = mid[a];
+        overlaps = overlaps && box_W.min_W[a] <= mid[a];
+      }
+    }
+    if (overlaps) InsertFrom(id, n.first_child + c, child_W);
+  }
 }
 
-void OctreeBroadPhase::InsertIntoCells(PrimitiveId id) { InsertFrom(id, 0); }
+// The seed's InsertObject from the root.
+void OctreeBroadPhase::InsertIntoCells(PrimitiveId id) {
+  ++counters_.object_node_tests;
+  const Aabb root_W = CellBox(0);
+  if (records_[id].box_W.Overlaps(root_W)) InsertFrom(id, 0, root_W);
+}
 
 // Samet, "Neighbor finding in images represented by octrees" (CVGIP 46, 1989): ascend to the
 // nearest ancestor containing the adjacent cell, then descend toward it, stopping at a leaf or
@@ -291,7 +316,12 @@ void OctreeBroadPhase::RemoveFromCells(PrimitiveId id) {
 }
 
 void OctreeBroadPhase::MergeQueuedParents() {
-  for (std::size_t i = 0; i < scratch_cells_.size(); ++i) TryMergeUpward(scratch_cells_[i]);
+  // A primitive's links to sibling leaves lie next to each other (inserted depth first): their
+  // parent, queued once per link, is tried once per run (a second try would find what the
+  // first left).
+  for (std::size_t i = 0; i < scratch_cells_.size(); ++i) {
+    if (i == 0 || scratch_cells_[i] != scratch_cells_[i - 1]) TryMergeUpward(scratch_cells_[i]);
+  }
   scratch_cells_.clear();
 }
 
