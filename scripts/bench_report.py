@@ -727,14 +727,15 @@ def section_scaling(out_dir, md):
                     num(r["median_us"]), int(num(r["active"])), num(r["mean_us"]))
         # Where naive / octree (medians, near placement) crosses 1, interpolated in log(active
         # primitives) between the last size naive wins and the next: on the seed's loop, and for
-        # the default Monitor (index slack), one crossover auto's rule is checked against.
+        # the default Monitor (index slack), where auto's rule (which never picks the octree,
+        # core/constants.h) would have to reconsider it.
         # The default Monitor's medians are bounded cycles, which skip the index: its means
         # carry the index work, so its crossing is taken on means.
         for suffix, stat, what in (
                 ("", 0, "on the seed's loop (index slack 0), medians"),
                 (" (default slack)", 2, "for the default Monitor (index slack), means (its "
-                 "medians are bounded cycles that skip the index, equal for both) - beside "
-                 "auto's rule (ChooseBroadPhaseMethod)")):
+                 "medians are bounded cycles that skip the index, equal for both); auto's rule "
+                 "(ChooseBroadPhaseMethod) picks naive or the grid, never the octree,")):
             octree, naive = "octree" + suffix, "naive" + suffix
             pts = [(d[octree][1], d[naive][stat] / d[octree][stat])
                    for _, d in sorted(near.items()) if octree in d and naive in d]
