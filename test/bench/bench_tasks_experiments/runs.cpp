@@ -38,6 +38,24 @@ std::vector<PeerPrimitive> PeerPrimitives(const Workcell& wc, const WorkcellShap
 }
 #endif
 
+// The Monitor of one task: `variant` switched to where a link has it, the grasp targets set.
+void SetUpTask(const Scenario& s, const TaskRun& task, const std::string& variant,
+               Monitor* monitor) {
+  for (const ModelVariantSpec& v : s.workcell->variants) {
+    std::string error;
+    if (!variant.empty() && v.name == variant && !monitor->SwitchModel(v.link, v.name, &error)) {
+      std::fprintf(stderr, "SwitchModel: %s\n", error.c_str());
+      std::exit(1);
+    }
+  }
+  for (const TaskGraspTarget& g : task.grasp_targets) {
+    std::string error;
+    if (!monitor->SetGraspTarget(g.link, g.object, true, &error)) {
+      std::fprintf(stderr, "SetGraspTarget: %s\n", error.c_str());
+    }
+  }
+}
+
 }  // namespace
 
 RunResult RunMonitor(const Scenario& s, const MonitorOptions& options, const Reference* ref,
@@ -46,21 +64,15 @@ RunResult RunMonitor(const Scenario& s, const MonitorOptions& options, const Ref
   r.impl = impl;
   for (std::size_t ti = 0; ti < s.tasks.size(); ++ti) {
     const TaskRun& task = s.tasks[ti];
+    {
+      Monitor warm_up(s.workcell, options);
+      SetUpTask(s, task, variant, &warm_up);
+      for (std::size_t c = 0; c < std::min(task.q.size(), kWarmUpCycles); ++c) {
+        benchmark::DoNotOptimize(warm_up.Update(task.q[c]).stop);
+      }
+    }
     Monitor monitor(s.workcell, options);
-    for (const ModelVariantSpec& v : s.workcell->variants) {
-      std::string error;
-      if (!variant.empty() && v.name == variant &&
-          !monitor.SwitchModel(v.link, v.name, &error)) {
-        std::fprintf(stderr, "SwitchModel: %s\n", error.c_str());
-        std::exit(1);
-      }
-    }
-    for (const TaskGraspTarget& g : task.grasp_targets) {
-      std::string error;
-      if (!monitor.SetGraspTarget(g.link, g.object, true, &error)) {
-        std::fprintf(stderr, "SetGraspTarget: %s\n", error.c_str());
-      }
-    }
+    SetUpTask(s, task, variant, &monitor);
     r.chosen = monitor.broad_phase_name();
     r.active_primitives = 0;
     for (PrimitiveId id = 0; id < monitor.primitive_count(); ++id) {
@@ -129,6 +141,16 @@ RunResult RunPeer(const Scenario& s, const PeerFactory& factory, const Reference
   const Workcell& wc = *s.workcell;
   for (std::size_t ti = 0; ti < s.tasks.size(); ++ti) {
     const TaskRun& task = s.tasks[ti];
+    {
+      WorkcellShapes eval(wc);
+      auto warm_up = factory(PeerPrimitives(wc, eval), TaskCompatibility(wc, task));
+      PairSet w;
+      for (std::size_t c = 0; c < std::min(task.q.size(), kWarmUpCycles); ++c) {
+        eval.Evaluate(task.q[c]);
+        for (const PrimitiveId id : eval.moving()) warm_up->SetShape(id, eval.shape_W(id));
+        warm_up->FindWarnings(&w);
+      }
+    }
     WorkcellShapes eval(wc);
     auto peer = factory(PeerPrimitives(wc, eval), TaskCompatibility(wc, task));
     r.impl = peer->name() + (idle_skip ? " (idle skip)" : "");
