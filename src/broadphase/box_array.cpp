@@ -70,9 +70,10 @@ void BoxArray::SwapRemove(std::uint32_t slot) {
   hits_[size_] = 0;
 }
 
-void BoxArray::MarkOverlaps(const Aabb& box_W) {
+std::uint32_t BoxArray::MarkOverlaps(const Aabb& box_W) {
   MarkOverlapsOf(lo_W_[0].data(), hi_W_[0].data(), lo_W_[1].data(), hi_W_[1].data(),
                  lo_W_[2].data(), hi_W_[2].data(), box_W, size_, hits_.data());
+  return size_;
 }
 
 }  // namespace arm_collision_monitor

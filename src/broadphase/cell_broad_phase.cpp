@@ -265,7 +265,10 @@ void CellBroadPhase::RemoveFromList(std::vector<PrimitiveId>* list,
 
 void CellBroadPhase::SetOutside(PrimitiveId id, bool outside) {
   Record& r = records_[id];
-  if (r.outside == outside) return;
+  if (r.outside == outside) {
+    if (outside) outside_boxes_.Set(r.outside_slot, r.box_W);  // its box may have moved
+    return;
+  }
   r.outside = outside;
   if (outside) {
     AddToList(&outside_ids_, &Record::outside_slot, id);
@@ -321,7 +324,6 @@ void CellBroadPhase::Move(PrimitiveId id, const Aabb& box_W) {
   const bool inside = world_W_.Contains(r.box_W);
   if (!inside) ++counters_.outside_world;
   SetOutside(id, !inside);
-  if (!inside) outside_boxes_.Set(r.outside_slot, r.box_W);
   if (strategy_ == CellUpdateStrategy::kRebuild) {
     needs_rebuild_ = true;
     return;
@@ -383,8 +385,7 @@ void CellBroadPhase::ScanPartners(PrimitiveId m, bool from_smaller_only,
     }
   }
   if (!rm.outside) return;
-  outside_boxes_.MarkOverlaps(rm.box_W);
-  counters_.object_object_tests += outside_boxes_.size();
+  counters_.object_object_tests += outside_boxes_.MarkOverlaps(rm.box_W);
   outside_boxes_.ForEachHit([&](std::uint32_t slot) {
     const PrimitiveId x = outside_ids_[slot];
     if (x == m) return;

@@ -52,8 +52,7 @@ void NaiveBroadPhase::FindPairs(const CompatibilityMatrix& compatible,
                                 std::vector<CandidatePair>* pairs) {
   pairs->clear();
   for (const PrimitiveId a : moving_ids_) {
-    boxes_.MarkOverlaps(boxes_.Get(slot_[a]));
-    counters_.object_object_tests += boxes_.size();
+    counters_.object_object_tests += boxes_.MarkOverlaps(boxes_.Get(slot_[a]));
     boxes_.ForEachHit([&](std::uint32_t s) {
       const PrimitiveId b = present_ids_[s];
       // A moving-moving pair is met twice; keep it from the smaller id's side only.
@@ -70,8 +69,7 @@ void NaiveBroadPhase::FindPairsOf(PrimitiveId id, const CompatibilityMatrix& com
   pairs->clear();
   if (id >= entries_.size() || !entries_[id].present) return;
   const bool is_static = entries_[id].motion == Motion::kStatic;
-  boxes_.MarkOverlaps(boxes_.Get(slot_[id]));
-  counters_.object_object_tests += boxes_.size();
+  counters_.object_object_tests += boxes_.MarkOverlaps(boxes_.Get(slot_[id]));
   boxes_.ForEachHit([&](std::uint32_t s) {
     const PrimitiveId b = present_ids_[s];
     if (b == id || (is_static && entries_[b].motion == Motion::kStatic)) return;

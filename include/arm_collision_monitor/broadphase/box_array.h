@@ -25,8 +25,8 @@ class BoxArray {
   void SwapRemove(std::uint32_t slot);
 
   /// Flags every box that overlaps `box_W` as closed boxes (Aabb::Overlaps: a NaN bound on
-  /// either side overlaps nothing), for ForEachHit.
-  void MarkOverlaps(const Aabb& box_W);
+  /// either side overlaps nothing), for ForEachHit; returns the boxes tested (size()).
+  std::uint32_t MarkOverlaps(const Aabb& box_W);
   /// Calls f(slot) for every box flagged by the last MarkOverlaps, in slot order (the boxes
   /// must not change in between).
   template <typename F>

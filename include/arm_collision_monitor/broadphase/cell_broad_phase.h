@@ -190,6 +190,7 @@ class CellBroadPhase : public BroadPhase {
   void AddToList(std::vector<PrimitiveId>* list, std::uint32_t Record::*slot, PrimitiveId id);
   void RemoveFromList(std::vector<PrimitiveId>* list, std::uint32_t Record::*slot,
                       PrimitiveId id);
+  // Puts `id` on or off the outside list by `outside`; on it, its listed box is its record's.
   void SetOutside(PrimitiveId id, bool outside);
   // The wrap handling of each kind of stamp (the seed's lastCheckNo reset): every stored stamp
   // of that kind and its counter back to 0.

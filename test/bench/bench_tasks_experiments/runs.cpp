@@ -36,6 +36,14 @@ std::vector<PeerPrimitive> PeerPrimitives(const Workcell& wc, const WorkcellShap
   }
   return out;
 }
+
+// A peer's cycle at q: the forward kinematics, the moving shapes handed over, its query.
+void RunPeerCycle(const Eigen::VectorXd& q, WorkcellShapes* eval, PeerChecker* peer,
+                  PairSet* warnings) {
+  eval->Evaluate(q);
+  for (const PrimitiveId id : eval->moving()) peer->SetShape(id, eval->shape_W(id));
+  peer->FindWarnings(warnings);
+}
 #endif
 
 // The Monitor of one task: `variant` switched to where a link has it, the grasp targets set.
@@ -146,9 +154,7 @@ RunResult RunPeer(const Scenario& s, const PeerFactory& factory, const Reference
       auto warm_up = factory(PeerPrimitives(wc, eval), TaskCompatibility(wc, task));
       PairSet w;
       for (std::size_t c = 0; c < std::min(task.q.size(), kWarmUpCycles); ++c) {
-        eval.Evaluate(task.q[c]);
-        for (const PrimitiveId id : eval.moving()) warm_up->SetShape(id, eval.shape_W(id));
-        warm_up->FindWarnings(&w);
+        RunPeerCycle(task.q[c], &eval, warm_up.get(), &w);
       }
     }
     WorkcellShapes eval(wc);
@@ -161,11 +167,7 @@ RunResult RunPeer(const Scenario& s, const PeerFactory& factory, const Reference
       const bool idle = idle_skip && c > 0 &&
                         std::memcmp(task.q[c].data(), task.q[c - 1].data(),
                                     sizeof(double) * task.q[c].size()) == 0;
-      if (!idle) {
-        eval.Evaluate(task.q[c]);
-        for (const PrimitiveId id : eval.moving()) peer->SetShape(id, eval.shape_W(id));
-        peer->FindWarnings(&w);
-      }
+      if (!idle) RunPeerCycle(task.q[c], &eval, peer.get(), &w);
       const double dt = MicrosSince(t0);
       if (c > 0) {
         r.t_us.push_back(dt);
