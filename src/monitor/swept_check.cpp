@@ -91,16 +91,19 @@ void Monitor::Impl::SweepStep(const Eigen::Ref<const Eigen::VectorXd>& q, CycleW
   swept.pose_count = 0;
   const std::size_t discrete = report.warnings.size();
   std::size_t w = 0;
+  // Every point of the step is within the pair's relative motion bound of its end, which is
+  // at most twice the largest step bound: the one test most pairs need, made before `sweep`.
+  const double two_largest_m = 2.0 * swept.largest_step_m;
+  auto is_near = [&](const CandidatePair& pair, double end_bound_m) {
+    return !cache.IsClear(end_bound_m, two_largest_m, tol_now[pair.a] + tol_now[pair.b]);
+  };
   auto sweep = [&](const CandidatePair& pair, double end_bound_m, bool is_exact) {
     const PrimitiveId a = pair.a;
     const PrimitiveId b = pair.b;
     // A pair warned at q already stops the arm.
     while (w < discrete && IsBefore(report.warnings[w], pair)) ++w;
     if (w < discrete && report.warnings[w].a == a && report.warnings[w].b == b) return;
-    // Every point of the step is within the pair's relative motion bound of its end, which is
-    // at most twice the largest step bound (the one test most pairs need).
     const double threshold_m = tol_now[a] + tol_now[b];
-    if (cache.IsClear(end_bound_m, 2.0 * swept.largest_step_m, threshold_m)) return;
     const double pair_motion_m = PairStepBound_m(a, b);
     if (cache.IsClear(end_bound_m, pair_motion_m, threshold_m)) return;
     // The exact distance at q (unless the narrow phase just computed it, a kept pair's bound
@@ -121,12 +124,15 @@ void Monitor::Impl::SweepStep(const Eigen::Ref<const Eigen::VectorXd>& q, CycleW
   for (const KeptPair& k : cache.pairs()) {
     for (; extra < others.size() && !(k.pair < others[extra].pair); ++extra) {
       const SweptPair& o = others[extra];
-      if (!(o.pair == k.pair)) sweep(o.pair, o.end_bound_m, false);
+      if (!(o.pair == k.pair) && is_near(o.pair, o.end_bound_m)) {
+        sweep(o.pair, o.end_bound_m, false);
+      }
     }
-    sweep(k.pair, k.kinematics_bound_m, k.is_exact);
+    if (is_near(k.pair, k.kinematics_bound_m)) sweep(k.pair, k.kinematics_bound_m, k.is_exact);
   }
   for (; extra < others.size(); ++extra) {
-    sweep(others[extra].pair, others[extra].end_bound_m, false);
+    const SweptPair& o = others[extra];
+    if (is_near(o.pair, o.end_bound_m)) sweep(o.pair, o.end_bound_m, false);
   }
   if (report.warnings.size() > discrete) {
     std::sort(report.warnings.begin(), report.warnings.end(),
