@@ -1,6 +1,6 @@
 // Boxes kept as six arrays of their bounds (structure of arrays), scanned against one query box
-// without branches: one 64-bit overlap flag per box, then only the few boxes that meet it are
-// looked at. The brute-force lists of the broad phases use it: NaiveBroadPhase's every present
+// without branches: one overlap bit per box, 64 boxes to a word, then only the few boxes whose
+// bits are set are looked at (one count-trailing-zeros each). The brute-force lists of the broad phases use it: NaiveBroadPhase's every present
 // primitive, CellBroadPhase's primitives outside the world cube.
 #pragma once
 
@@ -33,26 +33,17 @@ class BoxArray {
   void ForEachHit(F&& f) const;
 
  private:
-  // Flags come in blocks of this many: a block without a hit is skipped at once.
-  static constexpr std::uint32_t kHitBlock = 8;
-  static std::size_t RoundUpToBlock(std::size_t count) {
-    return (count + kHitBlock - 1) / kHitBlock * kHitBlock;
-  }
-
   std::array<std::vector<double>, 3> lo_W_, hi_W_;  // per slot and axis: min, max
-  std::vector<std::int64_t> hits_;  // per slot, zero from size_ to the next block boundary
+  std::vector<std::uint64_t> hit_words_;  // MarkOverlaps' flags: bit k of word w for slot 64 w + k
   std::uint32_t size_ = 0;
 };
 
 template <typename F>
 void BoxArray::ForEachHit(F&& f) const {
-  const std::int64_t* hits = hits_.data();
-  for (std::uint32_t block = 0; block < size_; block += kHitBlock) {
-    std::int64_t any = 0;
-    for (std::uint32_t s = block; s < block + kHitBlock; ++s) any |= hits[s];
-    if (any == 0) continue;
-    for (std::uint32_t s = block; s < block + kHitBlock; ++s) {
-      if (hits[s] != 0) f(s);
+  const std::uint32_t word_count = (size_ + 63) / 64;
+  for (std::uint32_t w = 0; w < word_count; ++w) {
+    for (std::uint64_t bits = hit_words_[w]; bits != 0; bits &= bits - 1) {
+      f(64 * w + static_cast<std::uint32_t>(__builtin_ctzll(bits)));
     }
   }
 }
