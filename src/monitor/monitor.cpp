@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <utility>
 #include <variant>
 
@@ -143,12 +144,15 @@ bool Monitor::Impl::IsProvablyClear(const Eigen::Ref<const Eigen::VectorXd>& q, 
   std::vector<std::uint8_t>* known = kinematics_behind ? &bound_known : &swept.is_step_bound_known;
   if (kinematics_behind) std::fill_n(known->begin(), live_end, std::uint8_t{0});
   const double slack_m = model.options.index_slack_m;
-  for (const PrimitiveId id : carried) {
-    if (!in_broad_phase[id] || motion.lever_count(id) == 0) continue;
-    // Motion since indexed <= motion until the kinematics + motion since; NaN fails.
-    const double displacement_m = cache.displacement_m(id);
-    if (displacement_m + largest_m <= slack_m) continue;
-    if (!(displacement_m + BoundOnce(&motion, known, id) <= slack_m)) return false;
+  // Motion since indexed <= motion until the kinematics + motion since; NaN fails. All at once
+  // by the largest of both (most bounded cycles), else one by one.
+  if (!(largest_displacement_m + largest_m <= slack_m)) {
+    for (const PrimitiveId id : carried) {
+      if (!in_broad_phase[id] || motion.lever_count(id) == 0) continue;
+      const double displacement_m = cache.displacement_m(id);
+      if (displacement_m + largest_m <= slack_m) continue;
+      if (!(displacement_m + BoundOnce(&motion, known, id) <= slack_m)) return false;
+    }
   }
   for (const KeptPair& kept : cache.pairs()) {
     const PrimitiveId a = kept.pair.a;
@@ -206,20 +210,28 @@ std::uint32_t Monitor::Impl::ReindexMoved(bool is_step, double reindex_at_m) {
   std::uint32_t moved_count = 0;
   cache.BeginReindex();
   const double slack_m = model.options.index_slack_m;
+  double largest_m = 0.0;
+  bool is_any_nan = false;
   ForEachMayHaveMoved([&](PrimitiveId id) {
-    if (!moved[id] || !in_broad_phase[id]) return;
-    ++moved_count;
-    bool is_reindexed = cache.FollowMoved(id, shape_W[id], reindex_at_m);
-    // The swept check: a primitive that may have left its slack during the step would need its
-    // pairs with every primitive swept (CollectSweptPairs). Indexed at q instead, it is within
-    // its step bound B <= slack of its copy along the whole step, so the kept pairs cover it;
-    // it would be re-indexed a few cycles later anyway.
-    if (!is_reindexed && is_step && cache.displacement_m(id) + swept.largest_step_m > slack_m) {
-      is_reindexed = StepBound_m(id) <= slack_m && MayLeaveSlack(id, true);
-      if (is_reindexed) cache.Reindex(id, shape_W[id]);
+    if (!in_broad_phase[id]) return;
+    if (moved[id]) {
+      ++moved_count;
+      bool is_reindexed = cache.FollowMoved(id, shape_W[id], reindex_at_m);
+      // The swept check: a primitive that may have left its slack during the step would need
+      // its pairs with every primitive swept (CollectSweptPairs). Indexed at q instead, it is
+      // within its step bound B <= slack of its copy along the whole step, so the kept pairs
+      // cover it; it would be re-indexed a few cycles later anyway.
+      if (!is_reindexed && is_step && cache.displacement_m(id) + swept.largest_step_m > slack_m) {
+        is_reindexed = StepBound_m(id) <= slack_m && MayLeaveSlack(id, true);
+        if (is_reindexed) cache.Reindex(id, shape_W[id]);
+      }
+      if (is_reindexed) broad_phase->Move(id, ComputeAabb(shape_W[id]));
     }
-    if (is_reindexed) broad_phase->Move(id, ComputeAabb(shape_W[id]));
+    const double displacement_m = cache.displacement_m(id);
+    largest_m = std::max(largest_m, displacement_m);
+    is_any_nan |= std::isnan(displacement_m);
   });
+  largest_displacement_m = is_any_nan ? std::numeric_limits<double>::quiet_NaN() : largest_m;
   return moved_count;
 }
 

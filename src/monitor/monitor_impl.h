@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -66,6 +67,9 @@ struct Monitor::Impl {
   std::vector<std::uint8_t> link_changed;          // scratch
   std::vector<std::uint8_t> bound_known;  // IsProvablyClear after bounded cycles: per primitive,
                                           // its bound in `motion` computed this cycle
+  // The largest displacement from its indexed copy of an indexed primitive that may move, as of
+  // the last kinematics (ReindexMoved; NaN if any is), for IsProvablyClear's test of all at once.
+  double largest_displacement_m = std::numeric_limits<double>::quiet_NaN();
   Eigen::VectorXd q_good;               // the last accepted q
   Eigen::VectorXd q_kinematics;         // q of the last forward kinematics
   bool has_good = false;
