@@ -150,21 +150,22 @@ constexpr std::uint64_t kAlwaysOverlappingSeed = 20260521;
 inline constexpr double kJointLimitMargin = 0.01;
 
 /// auto's rule (ChooseBroadPhaseMethod), from the sweep of bench_broadphase_workloads (moving
-/// 7..300 x static 0..3,000 primitives; counts, dimensionless): the uniform grid from
+/// 7..600 x static 0..3,000 primitives; counts, dimensionless): the uniform grid from
 /// kAutoGridMinStatics statics, from kAutoGridMinStaticsCrowded statics with at least
 /// kAutoGridMinMovingCrowded moving, or from kAutoGridMinMoving moving up; otherwise all pairs
 /// (naive), whose branch-free scan of every box (BoxArray) beats any index's upkeep below that.
 /// The octree was best nowhere in the sweep, so auto does not pick it. Measured 2026-11-24 on
-/// this 2-core machine (medians per cycle): naive best up to 100 statics below 300 movers (7.0
-/// against the octree's 10.4 us at 75+100, 18.9 against the grid's 22.2 us at 150+100) and up
-/// to 200 statics below 50 movers (1.49 against the grid's 1.78 us at 14+200, within 3 % of it
-/// at 28+200); the grid best from 300 statics (0.90 against naive 1.14 us at 7+300), from 200
-/// statics at 75 movers (10.5 against 11.6 us) and level with naive at 300+0 (48.5 against 48.0
-/// us).
-inline constexpr std::uint32_t kAutoGridMinStatics = 300;
-inline constexpr std::uint32_t kAutoGridMinStaticsCrowded = 200;
+/// this 2-core machine (medians per cycle): naive best up to 300 statics below 75 movers (0.94
+/// against the grid's 1.04 us at 7+300, 3.92 against 4.05 at 28+300) and up to 200 statics
+/// below 450 movers (9.45 against 11.8 at 75+200, 23.5 against 26.4 at 150+200, 41.3 against
+/// 53.6 at 300+0; within 8 % of the grid at 300+200); the grid best from 1,000 statics (1.52
+/// against naive 4.81 us at 7+1000), from 300 statics at 75 movers (12.1 against 13.2 us) and
+/// from 450 movers with 100 statics (99.7 against 114 us; within 5 % of naive at 450+0, 142
+/// against 162 us at 600+0).
+inline constexpr std::uint32_t kAutoGridMinStatics = 1000;
+inline constexpr std::uint32_t kAutoGridMinStaticsCrowded = 300;
 inline constexpr std::uint32_t kAutoGridMinMovingCrowded = 50;
-inline constexpr std::uint32_t kAutoGridMinMoving = 300;
+inline constexpr std::uint32_t kAutoGridMinMoving = 450;
 /// Bounds on auto's grid resolution (GridCellsFor; cells per axis). 4: coarser and the grid is
 /// all pairs in a few cells; 64: 262,144 cells, 3 MB of per-cell arrays. bench_broadphase_workloads, 14 movers among 200
 /// statics with boxes inflated by up to 0.6 m: 6 cells per axis (about the movers' mean box
