@@ -44,6 +44,7 @@ void GridBroadPhase::Reserve(std::uint32_t max_primitives) {
   ReserveShared(max_primitives,
                 max_primitives * static_cast<std::uint32_t>(kReservedLinksPerPrimitive),
                 static_cast<std::uint32_t>(cell_head_.size()));
+  if (ranges_.size() < max_primitives) ranges_.resize(max_primitives);
 }
 
 Aabb GridBroadPhase::CellBox(int i, int j, int k) const {
@@ -101,7 +102,9 @@ void GridBroadPhase::OverlapRange(const Aabb& box_W, int lo[3], int hi[3]) const
 }
 
 void GridBroadPhase::InsertIntoCells(PrimitiveId id) {
-  int lo[3], hi[3];
+  if (id >= ranges_.size()) ranges_.resize(records_.size());
+  int* lo = ranges_[id].lo;
+  int* hi = ranges_[id].hi;
   OverlapRange(records_[id].box_W, lo, hi);
   for (int i = lo[0]; i <= hi[0]; ++i) {
     for (int j = lo[1]; j <= hi[1]; ++j) {
@@ -114,11 +117,15 @@ void GridBroadPhase::InsertIntoCells(PrimitiveId id) {
 // Range difference: unlink the old cells outside the new range, link the new cells outside the
 // old range. Exact for any step, as both ranges are exact (the links of a box are always its
 // OverlapRange). The octree's neighbour techniques have nothing to skip here.
-void GridBroadPhase::UpdateCells(PrimitiveId id, const Aabb& old_box_W) {
-  int old_lo[3], old_hi[3], lo[3], hi[3];
-  OverlapRange(old_box_W, old_lo, old_hi);
+void GridBroadPhase::UpdateCells(PrimitiveId id, const Aabb& /*old_box_W*/) {
+  // The old box's range is the one its links were made from.
+  const CellRange old = ranges_[id];
+  const int* old_lo = old.lo;
+  const int* old_hi = old.hi;
+  int* lo = ranges_[id].lo;
+  int* hi = ranges_[id].hi;
   OverlapRange(records_[id].box_W, lo, hi);
-  counters_.object_node_tests += 12;
+  counters_.object_node_tests += 6;
   auto inside = [](const int u[3], const int l[3], const int h[3]) {
     return l[0] <= u[0] && u[0] <= h[0] && l[1] <= u[1] && u[1] <= h[1] && l[2] <= u[2] &&
            u[2] <= h[2];
@@ -182,6 +189,14 @@ bool GridBroadPhase::ValidateCells(std::string* why) const {
       }
     }
     if (!LinkedCellsEqual(id, expected, &actual, why)) return false;
+    // The kept range is the box's (UpdateCells' old range).
+    OverlapRange(r.box_W, lo, hi);
+    for (int a = 0; a < 3; ++a) {
+      if (ranges_[id].lo[a] != lo[a] || ranges_[id].hi[a] != hi[a]) {
+        if (why != nullptr) *why = "a primitive's kept cell range is not its box's";
+        return false;
+      }
+    }
   }
   return true;
 }

@@ -172,43 +172,40 @@ void OctreeBroadPhase::InsertIntoLeaf(PrimitiveId id, std::uint32_t leaf) {
   }
 }
 
-// A child's cell is its parent's with one bound per axis moved to the split plane, which
-// LatticeCoordinate gives bit for bit as CellBox(child) does; with the parent's cell overlapped,
-// the child's is overlapped iff the box reaches the split plane from the child's side.
-void OctreeBroadPhase::InsertFrom(PrimitiveId id, std::uint32_t node, const Aabb& cell_W) {
+// A child's cell is its parent's with one bound per axis moved to the split plane
+// (LatticeCoordinate, bit for bit as CellBox(child)); with the parent's cell overlapped, the
+// child's is overlapped iff on each axis the box reaches the split plane from the child's side.
+void OctreeBroadPhase::InsertFrom(PrimitiveId id, std::uint32_t node) {
   if (!nodes_[node].is_split) {
     InsertIntoLeaf(id, node);
     return;
   }
   // Splits below may reallocate nodes_: what the loop needs is copied first.
-  const Node n = nodes_[node];
+  const Node& n = nodes_[node];
+  const std::uint32_t first_child = n.first_child;
   const std::uint32_t half = SizeUnits(node) / 2;
   const std::uint32_t u[3] = {n.x + half, n.y + half, n.z + half};
-  double mid[3];
-  for (int a = 0; a < 3; ++a) mid[a] = LatticeCoordinate(world_W_.min_W[a], u[a], min_leaf_m_);
-  const Aabb box_W = records_[id].box_W;
+  const Aabb& box_W = records_[id].box_W;
+  bool reaches_low[3], reaches_high[3];  // per axis: the box meets the lower / upper child
+  for (int a = 0; a < 3; ++a) {
+    const double mid_m = LatticeCoordinate(world_W_.min_W[a], u[a], min_leaf_m_);
+    reaches_low[a] = box_W.min_W[a] <= mid_m;
+    reaches_high[a] = box_W.max_W[a] >= mid_m;
+  }
   for (std::uint32_t c = 0; c < 8; ++c) {
     ++counters_.object_node_tests;
-    Aabb child_W = cell_W;
-    bool overlaps = true;
-    for (int a = 0; a < 3; ++a) {
-      if (c & (1u << a)) {
-        child_W.min_W[a] = mid[a];
-        overlaps = overlaps && box_W.max_W[a] >= mid[a];
-      } else {
-        child_W.max_W[a] = mid[a];
-        overlaps = overlaps && box_W.min_W[a] <= mid[a];
-      }
+    if ((c & 1u ? reaches_high[0] : reaches_low[0]) &&
+        (c & 2u ? reaches_high[1] : reaches_low[1]) &&
+        (c & 4u ? reaches_high[2] : reaches_low[2])) {
+      InsertFrom(id, first_child + c);
     }
-    if (overlaps) InsertFrom(id, n.first_child + c, child_W);
   }
 }
 
 // The seed's InsertObject from the root.
 void OctreeBroadPhase::InsertIntoCells(PrimitiveId id) {
   ++counters_.object_node_tests;
-  const Aabb root_W = CellBox(0);
-  if (records_[id].box_W.Overlaps(root_W)) InsertFrom(id, 0, root_W);
+  if (records_[id].box_W.Overlaps(CellBox(0))) InsertFrom(id, 0);
 }
 
 // Samet, "Neighbor finding in images represented by octrees" (CVGIP 46, 1989): ascend to the

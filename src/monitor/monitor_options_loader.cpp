@@ -29,8 +29,9 @@ MonitorOptions LoadMonitorOptions(const std::string& path) {
     const std::string name = yaml_fields::ReadName(root["broad_phase"], top.Child("broad_phase"));
     if (!ParseBroadPhaseMethod(name, &options.broad_phase.method)) {
       top.Child("broad_phase")
-          .Fail(root["broad_phase"], "unknown method '" + name +
-                                         "' (expected auto, octree, naive, grid, rebuild or reinsert)");
+          .Fail(root["broad_phase"],
+                "unknown method '" + name +
+                    "' (expected auto, octree, naive, grid, rebuild or reinsert)");
     }
   }
   using yaml_fields::ReadIfPresent;

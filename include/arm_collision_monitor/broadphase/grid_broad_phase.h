@@ -48,6 +48,13 @@ class GridBroadPhase final : public CellBroadPhase {
   /// Aabb::Overlaps against CellBox, done per axis). Precondition: the box meets the grid cube.
   void OverlapRange(const Aabb& box_W, int lo[3], int hi[3]) const;
 
+  // Per primitive: the OverlapRange of its box as last linked (InsertIntoCells, UpdateCells),
+  // the old range of its next UpdateCells.
+  struct CellRange {
+    int lo[3] = {0, 0, 0};
+    int hi[3] = {-1, -1, -1};
+  };
+  std::vector<CellRange> ranges_;
   int g_;
   double cell_m_;
 };

@@ -66,9 +66,9 @@ class OctreeBroadPhase final : public CellBroadPhase {
   std::uint32_t SizeUnits(std::uint32_t node) const {
     return 1u << (max_depth_ - nodes_[node].level);
   }
-  /// The seed's InsertObject below `node`, whose cell `cell_W` (CellBox(node)) `id`'s box
-  /// overlaps: the children's cells are derived from it, split plane by split plane.
-  void InsertFrom(PrimitiveId id, std::uint32_t node, const Aabb& cell_W);
+  /// The seed's InsertObject below `node`, whose cell `id`'s box overlaps: a child is entered
+  /// where the box reaches its side of the node's split planes.
+  void InsertFrom(PrimitiveId id, std::uint32_t node);
   void InsertIntoLeaf(PrimitiveId id, std::uint32_t leaf);
   bool SplitSeparates(std::uint32_t leaf, PrimitiveId id) const;
   void SplitLeaf(std::uint32_t leaf);

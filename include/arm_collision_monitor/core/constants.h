@@ -167,10 +167,10 @@ inline constexpr std::uint32_t kAutoGridMinStaticsCrowded = 300;
 inline constexpr std::uint32_t kAutoGridMinMovingCrowded = 50;
 inline constexpr std::uint32_t kAutoGridMinMoving = 450;
 /// Bounds on auto's grid resolution (GridCellsFor; cells per axis). 4: coarser and the grid is
-/// all pairs in a few cells; 64: 262,144 cells, 3 MB of per-cell arrays. bench_broadphase_workloads, 14 movers among 200
-/// statics with boxes inflated by up to 0.6 m: 6 cells per axis (about the movers' mean box
-/// edge) 6.5 us per cycle against 14.7 us with 16, and 16 against 32 cells 4.7 against 7.1 us
-/// with 2,000 statics.
+/// all pairs in a few cells; 64: 262,144 cells, 3 MB of per-cell arrays.
+/// bench_broadphase_workloads, 14 movers among 200 statics with boxes inflated by up to 0.6 m:
+/// 6 cells per axis (about the movers' mean box edge) 6.5 us per cycle against 14.7 us with 16,
+/// and 16 against 32 cells 4.7 against 7.1 us with 2,000 statics.
 inline constexpr int kAutoGridMinCellsPerAxis = 4;
 inline constexpr int kAutoGridMaxCellsPerAxis = 64;
 
