@@ -155,16 +155,15 @@ inline constexpr double kJointLimitMargin = 0.01;
 /// kAutoGridMinMovingCrowded moving, or from kAutoGridMinMoving moving up; otherwise all pairs
 /// (naive), whose branch-free scan of every box (BoxArray) beats any index's upkeep below that.
 /// The octree was best nowhere in the sweep, so auto does not pick it. Measured 2026-11-24 on
-/// this 2-core machine (medians per cycle): naive best up to 300 statics below 75 movers (0.94
-/// against the grid's 1.04 us at 7+300, 3.92 against 4.05 at 28+300) and up to 200 statics
-/// below 450 movers (9.45 against 11.8 at 75+200, 23.5 against 26.4 at 150+200, 41.3 against
-/// 53.6 at 300+0; within 8 % of the grid at 300+200); the grid best from 1,000 statics (1.52
-/// against naive 4.81 us at 7+1000), from 300 statics at 75 movers (12.1 against 13.2 us) and
-/// from 450 movers with 100 statics (99.7 against 114 us; within 5 % of naive at 450+0, 142
-/// against 162 us at 600+0).
-inline constexpr std::uint32_t kAutoGridMinStatics = 1000;
-inline constexpr std::uint32_t kAutoGridMinStaticsCrowded = 300;
-inline constexpr std::uint32_t kAutoGridMinMovingCrowded = 50;
+/// this 2-core machine (medians per cycle, scripts/bench on c04586b): naive best up to 200
+/// statics below 150 movers (0.72 against the grid's 0.84 us at 7+200, 9.11 against 10.05 at
+/// 75+200) and up to 100 statics below 450 movers (40.2 against 46.2 at 300+0; within 6 % of
+/// the grid at 300+100); the grid best from 300 statics (0.85 against naive 0.93 us at 7+300,
+/// 1.62 against 1.84 at 14+300), from 200 statics at 150 movers (22.5 against 23.3; 52.3
+/// against 64.4 at 300+200) and from 450 movers (81.1 against 91.0 us at 450+0).
+inline constexpr std::uint32_t kAutoGridMinStatics = 300;
+inline constexpr std::uint32_t kAutoGridMinStaticsCrowded = 200;
+inline constexpr std::uint32_t kAutoGridMinMovingCrowded = 150;
 inline constexpr std::uint32_t kAutoGridMinMoving = 450;
 /// Bounds on auto's grid resolution (GridCellsFor; cells per axis). 4: coarser and the grid is
 /// all pairs in a few cells; 64: 262,144 cells, 3 MB of per-cell arrays.
