@@ -4,8 +4,9 @@
 // on a sweep of scene sizes that sets auto's crossovers (ChooseBroadPhaseMethod). For each
 // workload it prints the median, p99 and max per cycle of each method (the grid with its
 // configured 16 cells per axis), auto's choice (gridG: the grid with G cells per axis, sized to
-// the movers' boxes, timed on its own) and auto's median over the best of the three. Seeded (std::mt19937_64, seed printed); each trajectory is
-// recorded once and replayed forward and backward.
+// the movers' boxes, timed as a fourth method) and auto's median over the best of the three;
+// the methods are timed in turns, kPasses times each. Seeded (std::mt19937_64, seed printed);
+// each trajectory is recorded once and replayed forward and backward.
 //
 //   $ACM_WS/devel/lib/arm_collision_monitor/bench_broadphase_workloads [--sweep-only|--workloads-only]
 #include <benchmark/benchmark.h>
@@ -21,6 +22,7 @@
 #include "../core/test_broadphase_scene.h"
 #include "arm_collision_monitor/broadphase/broad_phase_factory.h"
 #include "arm_collision_monitor/broadphase/broad_phase_util.h"
+#include "arm_collision_monitor/core/timing_summary.h"
 
 namespace arm_collision_monitor {
 namespace {
@@ -34,14 +36,16 @@ struct Workload {
   int timed_cycles = 600;
 };
 
-struct Timing {
-  double median_us = 0.0, p99_us = 0.0, max_us = 0.0;
-};
+// Timed passes per method, taken in turns (naive, grid, octree, auto's grid, then again), so a
+// slow spell of the shared machine falls on every method alike instead of on one column.
+constexpr int kPasses = 3;
 
-// Times `timed_cycles` cycles of `method` on the recording (after one warm-up pass).
-Timing TimeMethod(const Workload& w, const std::vector<test::SceneOp>& initial,
-                  const std::vector<std::vector<test::SceneOp>>& cycles,
-                  const CompatibilityMatrix& compatible, BroadPhaseOptions options) {
+// Appends the times of `count` cycles of `method` on the recording to `us` (after one
+// warm-up pass over the recording).
+void TimeMethod(const std::vector<test::SceneOp>& initial,
+                const std::vector<std::vector<test::SceneOp>>& cycles,
+                const CompatibilityMatrix& compatible, BroadPhaseOptions options, int count,
+                std::vector<double>* us) {
   std::unique_ptr<BroadPhase> bp = MakeBroadPhase(options);
   test::RandomScene::Apply(initial, bp.get());
   std::vector<CandidatePair> pairs;
@@ -56,23 +60,17 @@ Timing TimeMethod(const Workload& w, const std::vector<test::SceneOp>& initial,
     bp->FindPairs(compatible, &pairs);
     advance();
   }
-  std::vector<double> us(static_cast<std::size_t>(w.timed_cycles));
-  for (double& t : us) {
+  for (int c = 0; c < count; ++c) {
     const auto start = std::chrono::steady_clock::now();
     for (const test::SceneOp& op : cycles[frame]) bp->Move(op.id, op.box_W);
     bp->FindPairs(compatible, &pairs);
     benchmark::DoNotOptimize(pairs.data());
     benchmark::ClobberMemory();
-    t = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start)
-            .count();
+    us->push_back(
+        std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start)
+            .count());
     advance();
   }
-  std::sort(us.begin(), us.end());
-  Timing timing;
-  timing.median_us = us[us.size() / 2];
-  timing.p99_us = us[std::min(us.size() - 1, us.size() * 99 / 100)];
-  timing.max_us = us.back();
-  return timing;
 }
 
 // Runs one workload; returns auto's median over the best median of naive, grid and octree.
@@ -82,29 +80,39 @@ double RunWorkload(const Workload& w) {
   scene.Initial(&initial);
   std::vector<std::vector<test::SceneOp>> cycles(kRecordedCycles);
   for (auto& ops : cycles) scene.Step(&ops);
-  static constexpr BroadPhaseMethod kMethods[] = {BroadPhaseMethod::kNaive,
-                                                  BroadPhaseMethod::kGrid,
-                                                  BroadPhaseMethod::kOctree};
   std::printf("%-26s %5d %5d", w.name.c_str(), w.config.movers, w.config.statics);
   // auto builds the method it chooses: naive and octree as configured (their time is the
-  // column's), the grid with cells sized to the movers' boxes (timed on its own).
+  // column's), the grid with cells sized to the movers' boxes (timed as a fourth method).
   const BroadPhaseOptions auto_options = scene.Options(BroadPhaseMethod::kAuto);
   const BroadPhaseMethod chosen =
       ChooseBroadPhaseMethod(auto_options.auto_moving, auto_options.auto_statics);
-  double best_us = 1e300, chosen_us = 0.0;
-  for (const BroadPhaseMethod m : kMethods) {
-    const Timing t = TimeMethod(w, initial, cycles, scene.compatible(), scene.Options(m));
-    best_us = std::min(best_us, t.median_us);
-    if (m == chosen) chosen_us = t.median_us;
-    std::printf(" | %8.2f %8.2f %9.2f", t.median_us, t.p99_us, t.max_us);
+  std::vector<BroadPhaseOptions> runs = {scene.Options(BroadPhaseMethod::kNaive),
+                                         scene.Options(BroadPhaseMethod::kGrid),
+                                         scene.Options(BroadPhaseMethod::kOctree)};
+  if (chosen == BroadPhaseMethod::kGrid) runs.push_back(auto_options);
+  std::vector<std::vector<double>> us(runs.size());
+  for (int pass = 0; pass < kPasses; ++pass) {
+    for (std::size_t r = 0; r < runs.size(); ++r) {
+      TimeMethod(initial, cycles, scene.compatible(), runs[r], w.timed_cycles / kPasses, &us[r]);
+    }
+  }
+  std::vector<TimingSummary> t(runs.size());
+  double best_us = 1e300;
+  for (std::size_t r = 0; r < runs.size(); ++r) {
+    t[r] = SummarizeTimings(us[r]);
+    if (r < 3) {
+      best_us = std::min(best_us, t[r].median);
+      std::printf(" | %8.2f %8.2f %9.2f", t[r].median, t[r].p99, t[r].max);
+    }
   }
   std::string label = BroadPhaseMethodName(chosen);
+  double chosen_us = t[chosen == BroadPhaseMethod::kNaive ? 0 : 2].median;
   if (chosen == BroadPhaseMethod::kGrid) {
     const int cells = GridCellsFor(WorldCubeEdge(auto_options.world_W),
                                    auto_options.auto_moving_box_edge_m,
                                    auto_options.grid_cells_per_axis);
     label += std::to_string(cells);
-    chosen_us = TimeMethod(w, initial, cycles, scene.compatible(), auto_options).median_us;
+    chosen_us = t[3].median;
   }
   const double ratio = chosen_us / best_us;
   std::printf(" | %-6s %8.2f %5.2f%s\n", label.c_str(), chosen_us, ratio,
