@@ -1,7 +1,8 @@
 // Boxes kept as six arrays of their bounds (structure of arrays), scanned against one query box
 // without branches: one overlap bit per box, 64 boxes to a word, then only the few boxes whose
-// bits are set are looked at (one count-trailing-zeros each). The brute-force lists of the broad phases use it: NaiveBroadPhase's every present
-// primitive, CellBroadPhase's primitives outside the world cube.
+// bits are set are looked at (one count-trailing-zeros each). The brute-force lists of the
+// broad phases use it: NaiveBroadPhase's every present primitive, CellBroadPhase's primitives
+// outside the world cube.
 #pragma once
 
 #include <array>
