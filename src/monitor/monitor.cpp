@@ -95,8 +95,7 @@ void Monitor::Impl::RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q) {
   const double reindex_at_m =
       work.step_m <= half_slack_m ? half_slack_m : model.options.index_slack_m;
   const bool is_swept = model.options.swept_check && work.step_m > 0.0;
-  if (model.options.swept_check) RecordStartDisplacements();
-  if (is_swept) swept.largest_step_m = work.step_m;
+  if (is_swept) BeginStep(work.step_m);
   work.moved = FollowKinematics(q, is_swept, reindex_at_m);
   q_good = q;
   work.narrow_phase_tests = TestCandidatePairs();
@@ -214,18 +213,17 @@ std::uint32_t Monitor::Impl::ReindexMoved(bool is_step, double reindex_at_m) {
   bool is_any_nan = false;
   ForEachMayHaveMoved([&](PrimitiveId id) {
     if (!in_broad_phase[id]) return;
+    const double kinematics_m = cache.displacement_m(id);  // as of the last kinematics
     if (moved[id]) {
       ++moved_count;
-      bool is_reindexed = cache.FollowMoved(id, shape_W[id], reindex_at_m);
-      // The swept check: a primitive that may have left its slack during the step would need
-      // its pairs with every primitive swept (CollectSweptPairs). Indexed at q instead, it is
-      // within its step bound B <= slack of its copy along the whole step, so the kept pairs
-      // cover it; it would be re-indexed a few cycles later anyway.
-      if (!is_reindexed && is_step && cache.displacement_m(id) + swept.largest_step_m > slack_m) {
-        is_reindexed = StepBound_m(id) <= slack_m && MayLeaveSlack(id, true);
-        if (is_reindexed) cache.Reindex(id, shape_W[id]);
+      if (cache.FollowMoved(id, shape_W[id], reindex_at_m)) {
+        broad_phase->Move(id, ComputeAabb(shape_W[id]));
       }
-      if (is_reindexed) broad_phase->Move(id, ComputeAabb(shape_W[id]));
+    }
+    // The swept check: most stay within the largest step bound of their slack at q, and so
+    // in it all along the step.
+    if (is_step && !(cache.displacement_m(id) + swept.largest_step_m <= slack_m)) {
+      FollowStep(id, moved[id] != 0, kinematics_m);
     }
     const double displacement_m = cache.displacement_m(id);
     largest_m = std::max(largest_m, displacement_m);

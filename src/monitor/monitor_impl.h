@@ -63,7 +63,8 @@ struct Monitor::Impl {
   // per-cycle loops visit them rather than every static (SetCarrierBounds keeps the list).
   std::vector<PrimitiveId> carried;
   std::vector<double> tol_now;          // per primitive this cycle, m
-  std::vector<Eigen::Isometry3d> X_WL, X_WL_next;  // at q_kinematics; scratch
+  // At q_kinematics; scratch, which FollowKinematics leaves at the kinematics before.
+  std::vector<Eigen::Isometry3d> X_WL, X_WL_next;
   std::vector<std::uint8_t> link_changed;          // scratch
   std::vector<std::uint8_t> bound_known;  // IsProvablyClear after bounded cycles: per primitive,
                                           // its bound in `motion` computed this cycle
@@ -120,9 +121,7 @@ struct Monitor::Impl {
   std::uint32_t FollowKinematics(const Eigen::Ref<const Eigen::VectorXd>& q, bool is_step,
                                  double reindex_at_m);
   // Moves in the index the moved primitives farther than `reindex_at_m` from their indexed
-  // copies, and with `is_step` those that could leave their slack if the step were run again
-  // from q (the swept check then needs no pairs beyond the kept ones for them); counts the
-  // moved ones.
+  // copies and, with `is_step`, follows the step (FollowStep); counts the moved ones.
   std::uint32_t ReindexMoved(bool is_step, double reindex_at_m);
   // The narrow phase over the kept pairs into report.warnings; returns the tests done.
   std::uint32_t TestCandidatePairs();
@@ -144,18 +143,25 @@ struct Monitor::Impl {
   bool CollectSweptPairs();
   // Whether `id` may leave its slack during the step: its displacement at q plus its step bound
   // B exceeds the slack and, when `is_start_copy` (its indexed copy is the one it had at the
-  // step's start) and the start displacements are known, so does (d0 + d1 + B) / 2 (NaN: may).
-  bool MayLeaveSlack(PrimitiveId id, bool is_start_copy);
+  // step's start) and the start displacements are known, so does (d0 + d1 + B) / 2 (NaN: may;
+  // d0 from `kinematics_m`, its displacement as of the last kinematics: StartDisplacement_m).
+  bool MayLeaveSlack(PrimitiveId id, bool is_start_copy, double kinematics_m);
   // Appends (a, b), a < b, whose grown boxes meet (CollectSweptPairs), to swept.pairs unless
   // compatible or clear by its boxes.
   void AddSweptPairIfNear(PrimitiveId a, PrimitiveId b);
-  // Before the kinematics: what StartDisplacement_m needs, unless the index changed since the
-  // last kinematics (swept.has_start_displacement).
-  void RecordStartDisplacements();
+  // Before the kinematics of a step whose largest bound is `step_m`: the step's scratch reset,
+  // and what StartDisplacement_m needs besides a primitive's displacement, unless the index
+  // changed since the last kinematics (swept.has_start_displacement).
+  void BeginStep(double step_m);
+  // In ReindexMoved, once `id` (indexed; `is_moved` this cycle; `kinematics_m` its displacement
+  // before) has its displacement at q, if that is not within the largest step bound of its
+  // slack: if it may leave the slack during the step (MayLeaveSlack), re-indexed at q when that
+  // keeps it within the slack all along, else into swept.leavers.
+  void FollowStep(PrimitiveId id, bool is_moved, double kinematics_m);
   // After the kinematics, when swept.has_start_displacement: a bound on the displacement of
-  // `id` from its indexed copy at the step's start (its displacement at the last kinematics
-  // plus its motion bound since), m.
-  double StartDisplacement_m(PrimitiveId id);
+  // `id` from its indexed copy at the step's start (its displacement `kinematics_m` at the last
+  // kinematics plus its motion bound since), m.
+  double StartDisplacement_m(PrimitiveId id, double kinematics_m);
   // Bisects one pair along the step (conservative advancement) from its distance d1_m at q;
   // appends its warning if any.
   void SweepPair(PrimitiveId a, PrimitiveId b, double pair_motion_m, double d1_m,
@@ -175,9 +181,18 @@ struct Monitor::Impl {
   }
   // The relative motion bound of (a, b) over the step (MotionBounds::PairBound_m), m.
   double PairStepBound_m(PrimitiveId a, PrimitiveId b) {
-    StepBound_m(a);
-    StepBound_m(b);
-    return StepMotion().PairBound_m(a, b);
+    MotionBounds& step = StepMotion();
+    std::uint8_t* known = swept.is_step_bound_known.data();
+    // (Without levers ComputeBound_m only gives 0 m.)
+    if (!known[a]) {
+      known[a] = 1;
+      step.ComputeBound_m(a);
+    }
+    if (!known[b]) {
+      known[b] = 1;
+      step.ComputeBound_m(b);
+    }
+    return step.PairBound_m(a, b);
   }
   // Link poses at fraction s of the step: kept for the other pairs' samples of this cycle
   // (swept.X_WL_at), or in swept.X_WL_s (valid until the next call) once the cache is full.

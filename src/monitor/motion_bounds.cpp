@@ -110,7 +110,7 @@ double MotionBounds::ComputeLargestBound_m() {
 }
 
 void MotionBounds::SetCarrier(PrimitiveId id, int link, bool is_moving, const Shape& shape_L) {
-  carrier_[id] = link;
+  carrier_[id] = is_moving ? link : -1;
   lever_count_[id] = 0;
   is_undominated_stale_ = true;
   if (link < 0 || !is_moving) return;

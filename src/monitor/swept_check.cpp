@@ -43,7 +43,6 @@ void Monitor::Impl::InitSwept() {
   swept.is_step_bound_known.assign(n, 0);
   swept.leavers.reserve(n);
   swept.near.reserve(n);
-  swept.kinematics_displacement_m.assign(n, 0.0);
   swept.q_kinematics = model.q_start;
   swept.pairs.reserve(static_cast<std::size_t>(n) * (n > 0 ? n - 1 : 0) / 2);
   CheckStepTolerance();
@@ -92,10 +91,15 @@ void Monitor::Impl::SweepStep(const Eigen::Ref<const Eigen::VectorXd>& q, CycleW
   const std::size_t discrete = report.warnings.size();
   std::size_t w = 0;
   // Every point of the step is within the pair's relative motion bound of its end, which is
-  // at most twice the largest step bound: the one test most pairs need, made before `sweep`.
+  // at most twice the largest step bound: the one test most pairs need, then the pair's own
+  // bound (kept in pair_motion_m for `sweep`), both made before `sweep`.
   const double two_largest_m = 2.0 * swept.largest_step_m;
+  double pair_motion_m = 0.0;
   auto is_near = [&](const CandidatePair& pair, double end_bound_m) {
-    return !cache.IsClear(end_bound_m, two_largest_m, tol_now[pair.a] + tol_now[pair.b]);
+    const double threshold_m = tol_now[pair.a] + tol_now[pair.b];
+    if (cache.IsClear(end_bound_m, two_largest_m, threshold_m)) return false;
+    pair_motion_m = PairStepBound_m(pair.a, pair.b);
+    return !cache.IsClear(end_bound_m, pair_motion_m, threshold_m);
   };
   auto sweep = [&](const CandidatePair& pair, double end_bound_m, bool is_exact) {
     const PrimitiveId a = pair.a;
@@ -104,8 +108,6 @@ void Monitor::Impl::SweepStep(const Eigen::Ref<const Eigen::VectorXd>& q, CycleW
     while (w < discrete && IsBefore(report.warnings[w], pair)) ++w;
     if (w < discrete && report.warnings[w].a == a && report.warnings[w].b == b) return;
     const double threshold_m = tol_now[a] + tol_now[b];
-    const double pair_motion_m = PairStepBound_m(a, b);
-    if (cache.IsClear(end_bound_m, pair_motion_m, threshold_m)) return;
     // The exact distance at q (unless the narrow phase just computed it, a kept pair's bound
     // is its indexed copies' distance less their displacements).
     double end_m = end_bound_m;
@@ -142,20 +144,36 @@ void Monitor::Impl::SweepStep(const Eigen::Ref<const Eigen::VectorXd>& q, CycleW
   }
 }
 
-void Monitor::Impl::RecordStartDisplacements() {
+void Monitor::Impl::BeginStep(double step_m) {
+  swept.largest_step_m = step_m;
   swept.has_start_displacement = has_good && !cache.is_stale();
   swept.is_since_kinematics_set = false;
-  if (!swept.has_start_displacement) return;
-  // The kinematics overwrites both; the motion bounds since are left to the few primitives
-  // that need them (StartDisplacement_m).
-  for (const PrimitiveId id : carried) {  // only they have levers (StartDisplacement_m)
-    swept.kinematics_displacement_m[id] = cache.displacement_m(id);
-  }
-  if (kinematics_behind) swept.q_kinematics = q_kinematics;
+  // The kinematics overwrites it; the motion bounds since are left to the few primitives that
+  // need them (StartDisplacement_m).
+  if (swept.has_start_displacement && kinematics_behind) swept.q_kinematics = q_kinematics;
+  for (const PrimitiveId id : swept.leavers) swept.leaves_slack[id] = 0;
+  swept.leavers.clear();
 }
 
-double Monitor::Impl::StartDisplacement_m(PrimitiveId id) {
-  const double kinematics_m = swept.kinematics_displacement_m[id];
+void Monitor::Impl::FollowStep(PrimitiveId id, bool is_moved, double kinematics_m) {
+  // Those without levers have no displacement.
+  if (StepMotion().lever_count(id) == 0) return;
+  const bool is_start_copy = !cache.is_reindexed(id);
+  if (!MayLeaveSlack(id, is_start_copy, kinematics_m)) return;
+  // A primitive that may leave its slack during the step needs its pairs with every primitive
+  // swept (CollectSweptPairs). A moved one indexed at q instead is within its step bound
+  // B <= slack of its copy all along the step, so the kept pairs cover it; it would be
+  // re-indexed a few cycles later anyway.
+  if (is_moved && is_start_copy && StepBound_m(id) <= model.options.index_slack_m) {
+    cache.Reindex(id, shape_W[id]);
+    broad_phase->Move(id, ComputeAabb(shape_W[id]));
+    return;
+  }
+  swept.leaves_slack[id] = 1;
+  swept.leavers.push_back(id);
+}
+
+double Monitor::Impl::StartDisplacement_m(PrimitiveId id, double kinematics_m) {
   // Without bounded cycles since, the last kinematics was at q_start.
   if (!swept.is_behind || motion.lever_count(id) == 0) return kinematics_m;
   // After the kinematics `motion` is free (the step's bounds are in swept.step then).
@@ -166,12 +184,12 @@ double Monitor::Impl::StartDisplacement_m(PrimitiveId id) {
   return kinematics_m + motion.ComputeBound_m(id);
 }
 
-bool Monitor::Impl::MayLeaveSlack(PrimitiveId id, bool is_start_copy) {
+bool Monitor::Impl::MayLeaveSlack(PrimitiveId id, bool is_start_copy, double kinematics_m) {
   const double slack_m = model.options.index_slack_m;
   const double end_m = cache.displacement_m(id) + StepBound_m(id);
   if (end_m <= slack_m) return false;  // NaN may leave
   return !(is_start_copy && swept.has_start_displacement &&
-           0.5 * (StartDisplacement_m(id) + end_m) <= slack_m);
+           0.5 * (StartDisplacement_m(id, kinematics_m) + end_m) <= slack_m);
 }
 
 bool Monitor::Impl::CollectSweptPairs() {
@@ -180,24 +198,10 @@ bool Monitor::Impl::CollectSweptPairs() {
   // fraction s a primitive is within d1 + (1 - s) B of its indexed copy (d1: its displacement
   // at q, B: its step bound) and, when its copy is the one it had at the start, within
   // d0 + s B too (d0: its displacement there); the larger of the smaller is (d0 + d1 + B) / 2.
+  // The leavers are those ReindexMoved found (FollowStep).
   const std::uint32_t n = live_end;  // free live slots are not indexed
-  const double slack_m = model.options.index_slack_m;
   const MotionBounds& step = StepMotion();
-  for (const PrimitiveId id : swept.leavers) swept.leaves_slack[id] = 0;
-  swept.leavers.clear();
-  // A primitive within the largest step bound of its slack at q stays in it (most do; those
-  // not indexed or without levers, which are not carried, have no displacement).
   const double largest_m = swept.largest_step_m;
-  for (const PrimitiveId id : carried) {
-    if (cache.displacement_m(id) + largest_m <= slack_m || !in_broad_phase[id] ||
-        step.lever_count(id) == 0) {
-      continue;
-    }
-    if (MayLeaveSlack(id, !cache.is_reindexed(id))) {
-      swept.leaves_slack[id] = 1;
-      swept.leavers.push_back(id);
-    }
-  }
   swept.pairs.clear();
   if (swept.leavers.empty()) return false;
   // The pairs of a primitive that may leave its slack, generated in order (a < b); the kept
@@ -283,10 +287,14 @@ const std::vector<Eigen::Isometry3d>& Monitor::Impl::StepPoses(
 void Monitor::Impl::SweepPair(PrimitiveId a, PrimitiveId b, double pair_motion_m, double d1_m,
                               const Eigen::Ref<const Eigen::VectorXd>& q, CycleWork* work) {
   const double threshold_m = tol_now[a] + tol_now[b];
-  if (!swept.has_start) {
+  // Without bounded cycles since, the last kinematics was at q_start: FollowKinematics swapped
+  // its poses into X_WL_next.
+  if (swept.is_behind && !swept.has_start) {
     model.kinematics->ComputeMovingLinkPoses(swept.q_start, &swept.X_WL_start);
     swept.has_start = true;
   }
+  const std::vector<Eigen::Isometry3d>& X_WL_start =
+      swept.is_behind ? swept.X_WL_start : X_WL_next;
   // Appends the pair's warning at fraction s of the step, for the link poses X there.
   auto warn_at = [&](double s, const std::vector<Eigen::Isometry3d>& X) {
     Warning warning =
@@ -295,11 +303,11 @@ void Monitor::Impl::SweepPair(PrimitiveId a, PrimitiveId b, double pair_motion_m
     warning.step_fraction = s;
     report.warnings.push_back(warning);
   };
-  const double d0_m = ShapeDistance(ShapeAt(a, swept.X_WL_start), ShapeAt(b, swept.X_WL_start))
+  const double d0_m = ShapeDistance(ShapeAt(a, X_WL_start), ShapeAt(b, X_WL_start))
                           .distance_m;
   ++work->swept_tests;
   if (IsWarning(d0_m, threshold_m)) {  // the step starts in the tolerance zone
-    warn_at(0.0, swept.X_WL_start);
+    warn_at(0.0, X_WL_start);
     return;
   }
   const double resolution_m = model.options.swept_resolution_m;

@@ -37,7 +37,8 @@ inline constexpr int kSweptPoseCacheSize = 32;
 struct SweptScratch {
   Eigen::VectorXd q_start;                 // the step's start: the last accepted q
   Eigen::VectorXd q_s;                     // a sample along the step
-  std::vector<Eigen::Isometry3d> X_WL_start;  // link poses at q_start (has_start)
+  // Link poses at q_start (has_start), when is_behind (else Impl::X_WL_next holds them).
+  std::vector<Eigen::Isometry3d> X_WL_start;
   std::vector<Eigen::Isometry3d> X_WL_s;      // link poses at q_s
   bool has_start = false;
   // Link poses at the first pose_count samples of this cycle's step, fraction pose_s[i] in
@@ -61,10 +62,9 @@ struct SweptScratch {
   std::vector<PrimitiveId> leavers;        // those that may, in order
   std::vector<PrimitiveId> near;           // the indexed ones whose boxes meet the leavers' hull
   // At the step's start, when has_start_displacement (the index unchanged since the last
-  // kinematics): per primitive its displacement from its indexed copy as of the last
-  // kinematics (m), and that kinematics' q; a bound on its displacement at q_start adds its
-  // motion since (Impl::StartDisplacement_m, only for the few primitives that need it).
-  std::vector<double> kinematics_displacement_m;
+  // kinematics): the last kinematics' q. A bound on a primitive's displacement at q_start adds
+  // its motion since to its displacement then (Impl::StartDisplacement_m, only for the few
+  // primitives that need it).
   Eigen::VectorXd q_kinematics;
   bool has_start_displacement = false;
   bool is_since_kinematics_set = false;  // Impl::motion holds q_kinematics -> q_start

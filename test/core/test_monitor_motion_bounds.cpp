@@ -179,6 +179,8 @@ TEST(MonitorMotionBounds, LeversOfTheThreeLinkChain) {
   EXPECT_NEAR(bounds.ComputeBound_m(0), 0.1 + 0.5 * l[3].m_per_unit, 1e-12);
   EXPECT_EQ(bounds.ComputeBound_m(1), 0.0);
   EXPECT_EQ(bounds.PairBound_m(1, 2), 0.0);
+  // One that does not move shares no joint with one that does, whose whole motion counts.
+  EXPECT_EQ(bounds.PairBound_m(1, 0), bounds.bound_m(0));
   q1[0] = std::numeric_limits<double>::quiet_NaN();
   bounds.SetJointMotion(q1, q0);
   EXPECT_TRUE(std::isnan(bounds.ComputeBound_m(0)));

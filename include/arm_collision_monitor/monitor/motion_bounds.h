@@ -86,10 +86,11 @@ class MotionBounds {
   /// both alike and leave their distance unchanged, so they are left out.
   double PairBound_m(PrimitiveId a, PrimitiveId b) const {
     const int la = carrier_[a], lb = carrier_[b];
+    // Slot 0 (0 m) for one without levers: its link is -1 or fixed to the root, which shares
+    // no moving joint with any other.
     const int shared =
         la >= 0 && lb >= 0 ? shared_levers_[static_cast<std::size_t>(la) * link_count_ + lb] : 0;
-    return (lever_count_[a] > 0 ? LeverSums(a)[lever_count_[a] - shared] : 0.0) +
-           (lever_count_[b] > 0 ? LeverSums(b)[lever_count_[b] - shared] : 0.0);
+    return LeverSums(a)[lever_count_[a] - shared] + LeverSums(b)[lever_count_[b] - shared];
   }
 
   /// Checks the invariants: every carrier is a link or -1; a primitive has either no levers or
@@ -116,7 +117,7 @@ class MotionBounds {
   std::vector<int> link_depth_;               // per link: moving joints from it up to the root
   std::vector<std::uint8_t> shared_levers_;   // link x link: link_depth_ of their lowest
                                               // common ancestor
-  std::vector<int> carrier_;                  // per primitive, -1 for none
+  std::vector<int> carrier_;                  // per primitive, -1 for none or when not moving
   std::vector<Lever> levers_;                 // per primitive, max_levers_ slots
   std::vector<int> lever_count_;              // per primitive
   std::vector<double> lever_sums_m_;          // per primitive, max_levers_ + 1 slots
