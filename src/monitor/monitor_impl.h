@@ -181,18 +181,9 @@ struct Monitor::Impl {
   }
   // The relative motion bound of (a, b) over the step (MotionBounds::PairBound_m), m.
   double PairStepBound_m(PrimitiveId a, PrimitiveId b) {
-    MotionBounds& step = StepMotion();
-    std::uint8_t* known = swept.is_step_bound_known.data();
-    // (Without levers ComputeBound_m only gives 0 m.)
-    if (!known[a]) {
-      known[a] = 1;
-      step.ComputeBound_m(a);
-    }
-    if (!known[b]) {
-      known[b] = 1;
-      step.ComputeBound_m(b);
-    }
-    return step.PairBound_m(a, b);
+    StepBound_m(a);
+    StepBound_m(b);
+    return StepMotion().PairBound_m(a, b);
   }
   // Link poses at fraction s of the step: kept for the other pairs' samples of this cycle
   // (swept.X_WL_at), or in swept.X_WL_s (valid until the next call) once the cache is full.
