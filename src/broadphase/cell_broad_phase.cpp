@@ -27,11 +27,13 @@ namespace arm_collision_monitor {
 // Floating point: boundaries are spaced s within rounding, hence the margin in jump_limit_m_.
 
 CellBroadPhase::CellBroadPhase(const Aabb& world_W, const BroadPhaseTechniques& techniques,
-                               CellUpdateStrategy strategy, double cell_spacing_m)
+                               CellUpdateStrategy strategy, double cell_spacing_m,
+                               double oversize_spacing_m)
     : world_W_(world_W),
       techniques_(techniques),
       strategy_(strategy),
-      jump_limit_m_(cell_spacing_m * (1.0 - kCellSpacingMarginRel)) {}
+      jump_limit_m_(cell_spacing_m * (1.0 - kCellSpacingMarginRel)),
+      inv_oversize_spacing_(1.0 / oversize_spacing_m) {}
 
 void CellBroadPhase::ResizeCells(std::size_t cell_count) {
   cell_head_.resize(cell_count, kNone);
@@ -46,9 +48,12 @@ void CellBroadPhase::ReserveShared(std::uint32_t max_primitives, std::uint32_t m
   cell_visit_.reserve(max_cells);
   if (records_.size() < max_primitives) records_.resize(max_primitives);
   present_ids_.reserve(max_primitives);
+  present_boxes_.Reserve(max_primitives);
   moving_ids_.reserve(max_primitives);
   outside_ids_.reserve(max_primitives);
   outside_boxes_.Reserve(max_primitives);
+  oversize_ids_.reserve(max_primitives);
+  oversize_boxes_.Reserve(max_primitives);
   links_.reserve(max_links);
   scratch_cells_.reserve(max_links);
 }
@@ -279,6 +284,44 @@ void CellBroadPhase::SetOutside(PrimitiveId id, bool outside) {
   }
 }
 
+bool CellBroadPhase::IsOversize(const Aabb& box_W) const {
+  double cells = 1.0;
+  for (int a = 0; a < 3; ++a) {
+    cells *= (box_W.max_W[a] - box_W.min_W[a]) * inv_oversize_spacing_ + 1.0;
+  }
+  return cells > kOversizeCells;
+}
+
+void CellBroadPhase::SetOversize(PrimitiveId id, bool oversize) {
+  Record& r = records_[id];
+  if (r.oversize == oversize) {
+    if (oversize) oversize_boxes_.Set(r.oversize_slot, r.box_W);  // its box may have moved
+    return;
+  }
+  r.oversize = oversize;
+  ++counters_.oversize_changes;
+  if (oversize) {
+    AddToList(&oversize_ids_, &Record::oversize_slot, id);
+    oversize_boxes_.PushBack(r.box_W);
+  } else {
+    oversize_boxes_.SwapRemove(r.oversize_slot);
+    RemoveFromList(&oversize_ids_, &Record::oversize_slot, id);
+  }
+}
+
+void CellBroadPhase::Place(PrimitiveId id) {
+  const Record& r = records_[id];
+  const bool oversize = IsOversize(r.box_W);
+  SetOversize(id, oversize);
+  SetOutside(id, !oversize && !world_W_.Contains(r.box_W));
+  if (oversize) return;
+  if (strategy_ == CellUpdateStrategy::kRebuild) {
+    needs_rebuild_ = true;
+  } else if (world_W_.Overlaps(r.box_W)) {
+    InsertIntoCells(id);
+  }
+}
+
 void CellBroadPhase::Add(PrimitiveId id, const Aabb& box_W, double tolerance_m, Motion motion) {
   if (id >= records_.size()) records_.resize(static_cast<std::size_t>(id) + 1);
   if (records_[id].present) return;  // precondition violated: keep the first registration
@@ -288,17 +331,12 @@ void CellBroadPhase::Add(PrimitiveId id, const Aabb& box_W, double tolerance_m, 
   r.motion = motion;
   r.present = true;
   r.outside = false;
+  r.oversize = false;
   AddToList(&present_ids_, &Record::present_slot, id);
+  present_boxes_.PushBack(r.box_W);
   if (motion == Motion::kMoving) AddToList(&moving_ids_, &Record::moving_slot, id);
-  if (!world_W_.Contains(r.box_W)) {
-    ++counters_.outside_world;
-    SetOutside(id, true);
-  }
-  if (strategy_ == CellUpdateStrategy::kRebuild) {
-    needs_rebuild_ = true;
-  } else if (world_W_.Overlaps(r.box_W)) {
-    InsertIntoCells(id);
-  }
+  if (!world_W_.Contains(r.box_W)) ++counters_.outside_world;
+  Place(id);
 }
 
 void CellBroadPhase::Remove(PrimitiveId id) {
@@ -306,6 +344,8 @@ void CellBroadPhase::Remove(PrimitiveId id) {
   Record& r = records_[id];
   if (r.link_count > 0) RemoveFromCells(id);
   if (r.outside) SetOutside(id, false);
+  if (r.oversize) SetOversize(id, false);
+  present_boxes_.SwapRemove(r.present_slot);
   RemoveFromList(&present_ids_, &Record::present_slot, id);
   if (r.motion == Motion::kMoving) RemoveFromList(&moving_ids_, &Record::moving_slot, id);
   r.present = false;
@@ -317,12 +357,19 @@ void CellBroadPhase::Move(PrimitiveId id, const Aabb& box_W) {
   Record& r = records_[id];
   const Aabb old_box_W = r.box_W;
   r.box_W = box_W.Inflated(r.tolerance_m);
+  present_boxes_.Set(r.present_slot, r.box_W);
   // A box not inside the world cube joins the outside list (pairs between two such boxes are
   // found by brute force); whatever part of it overlaps the cube stays indexed in the cells, so
   // pairs with primitives inside are found there. Contains() and Overlaps() are false for NaN
   // coordinates: a corrupt box is parked outside, unindexed, overlapping nothing; no crash.
   const bool inside = world_W_.Contains(r.box_W);
   if (!inside) ++counters_.outside_world;
+  if (r.oversize || IsOversize(r.box_W)) {
+    // Into, within or out of the oversize list: Place decides anew from no cells.
+    if (r.link_count > 0) RemoveFromCells(id);
+    Place(id);
+    return;
+  }
   SetOutside(id, !inside);
   if (strategy_ == CellUpdateStrategy::kRebuild) {
     needs_rebuild_ = true;
@@ -346,14 +393,35 @@ void CellBroadPhase::Move(PrimitiveId id, const Aabb& box_W) {
 void CellBroadPhase::Rebuild() {
   ClearCells();
   for (const PrimitiveId id : present_ids_) {
-    if (world_W_.Overlaps(records_[id].box_W)) InsertIntoCells(id);
+    if (!records_[id].oversize && world_W_.Overlaps(records_[id].box_W)) InsertIntoCells(id);
   }
+}
+
+void CellBroadPhase::ScanAll(PrimitiveId m, bool from_smaller_only,
+                             const CompatibilityMatrix& compatible,
+                             std::vector<CandidatePair>* pairs) {
+  const Record& rm = records_[m];
+  counters_.object_object_tests += present_boxes_.MarkOverlaps(rm.box_W);
+  present_boxes_.ForEachHit([&](std::uint32_t slot) {
+    const PrimitiveId q = present_ids_[slot];
+    if (q == m) return;
+    if (records_[q].motion == Motion::kMoving ? from_smaller_only && q < m
+                                              : rm.motion == Motion::kStatic) {
+      return;
+    }
+    if (IsCompatiblePair(compatible, m, q)) return;
+    pairs->push_back(MakeOrderedPair(m, q));
+  });
 }
 
 void CellBroadPhase::ScanPartners(PrimitiveId m, bool from_smaller_only,
                                   const CompatibilityMatrix& compatible,
                                   std::vector<CandidatePair>* pairs) {
   const Record& rm = records_[m];
+  if (rm.oversize) {
+    ScanAll(m, from_smaller_only, compatible, pairs);
+    return;
+  }
   const bool dedup = techniques_.pair_deduplication;
   // Every partner with an overlap inside the world cube shares a cell with m (the two closed
   // boxes share a point of the cube, and it lies in some closed cell). An overlap can lie wholly
@@ -384,10 +452,8 @@ void CellBroadPhase::ScanPartners(PrimitiveId m, bool from_smaller_only,
       }
     }
   }
-  if (!rm.outside) return;
-  counters_.object_object_tests += outside_boxes_.MarkOverlaps(rm.box_W);
-  outside_boxes_.ForEachHit([&](std::uint32_t slot) {
-    const PrimitiveId x = outside_ids_[slot];
+  // A partner from a brute-force list (never m's cells' members): the same rules as above.
+  auto take = [&](PrimitiveId x) {
     if (x == m) return;
     if (records_[x].motion == Motion::kMoving ? from_smaller_only && x < m
                                               : rm.motion == Motion::kStatic) {
@@ -395,7 +461,15 @@ void CellBroadPhase::ScanPartners(PrimitiveId m, bool from_smaller_only,
     }
     if (IsCompatiblePair(compatible, m, x)) return;
     pairs->push_back(MakeOrderedPair(m, x));
-  });
+  };
+  // The oversize primitives are in no cell (an oversize m scans everything: ScanAll).
+  if (oversize_boxes_.size() > 0) {
+    counters_.object_object_tests += oversize_boxes_.MarkOverlaps(rm.box_W);
+    oversize_boxes_.ForEachHit([&](std::uint32_t slot) { take(oversize_ids_[slot]); });
+  }
+  if (!rm.outside) return;
+  counters_.object_object_tests += outside_boxes_.MarkOverlaps(rm.box_W);
+  outside_boxes_.ForEachHit([&](std::uint32_t slot) { take(outside_ids_[slot]); });
 }
 
 void CellBroadPhase::FindPairs(const CompatibilityMatrix& compatible,
@@ -433,6 +507,15 @@ bool CellBroadPhase::Validate(std::string* why) const {
   return ValidateCells(why);
 }
 
+bool CellBroadPhase::IsListedWithBox(PrimitiveId id, const std::vector<PrimitiveId>& ids,
+                                     const BoxArray& boxes, std::uint32_t slot) const {
+  if (ids.size() <= slot || ids[slot] != id) return false;
+  const Aabb listed_W = boxes.Get(slot);
+  const Aabb& box_W = records_[id].box_W;
+  return std::memcmp(listed_W.min_W.data(), box_W.min_W.data(), 3 * sizeof(double)) == 0 &&
+         std::memcmp(listed_W.max_W.data(), box_W.max_W.data(), 3 * sizeof(double)) == 0;
+}
+
 bool CellBroadPhase::ValidateRecord(PrimitiveId id, ListCounts* counts, std::string* why) const {
   std::ostringstream msg;
   const Record& r = records_[id];
@@ -448,8 +531,8 @@ bool CellBroadPhase::ValidateRecord(PrimitiveId id, ListCounts* counts, std::str
     return true;
   }
   ++counts->present;
-  if (present_ids_.size() <= r.present_slot || present_ids_[r.present_slot] != id) {
-    msg << "primitive " << id << " not at its slot of the present list";
+  if (!IsListedWithBox(id, present_ids_, present_boxes_, r.present_slot)) {
+    msg << "primitive " << id << " not at its slot of the present list with its box";
     return FailValidation(why, msg.str());
   }
   if (r.motion == Motion::kMoving) {
@@ -461,16 +544,26 @@ bool CellBroadPhase::ValidateRecord(PrimitiveId id, ListCounts* counts, std::str
   }
   if (r.outside) {
     ++counts->outside;
-    if (outside_ids_.size() <= r.outside_slot || outside_ids_[r.outside_slot] != id) {
-      msg << "primitive " << id << " not at its slot of the outside list";
+    if (!IsListedWithBox(id, outside_ids_, outside_boxes_, r.outside_slot)) {
+      msg << "primitive " << id << " not at its slot of the outside list with its box";
       return FailValidation(why, msg.str());
     }
-    const Aabb listed_W = outside_boxes_.Get(r.outside_slot);
-    if (std::memcmp(listed_W.min_W.data(), r.box_W.min_W.data(), 3 * sizeof(double)) != 0 ||
-        std::memcmp(listed_W.max_W.data(), r.box_W.max_W.data(), 3 * sizeof(double)) != 0) {
-      msg << "primitive " << id << ": the outside list's box is not its box";
+  }
+  if (r.oversize != IsOversize(r.box_W)) {
+    msg << "primitive " << id << " oversize flag " << r.oversize << " disagrees with its box";
+    return FailValidation(why, msg.str());
+  }
+  if (r.oversize) {
+    ++counts->oversize;
+    if (!IsListedWithBox(id, oversize_ids_, oversize_boxes_, r.oversize_slot)) {
+      msg << "primitive " << id << " not at its slot of the oversize list with its box";
       return FailValidation(why, msg.str());
     }
+    if (r.outside || r.link_count != 0) {
+      msg << "oversize primitive " << id << " is on the outside list or has links";
+      return FailValidation(why, msg.str());
+    }
+    return true;
   }
   if (!needs_rebuild_) {
     if (r.outside == world_W_.Contains(r.box_W)) {
@@ -511,8 +604,11 @@ bool CellBroadPhase::ValidateRecords(std::uint64_t* prim_links, std::string* why
     *prim_links += count;
   }
   if (counts.present != present_ids_.size() || counts.moving != moving_ids_.size() ||
-      counts.outside != outside_ids_.size() || outside_boxes_.size() != outside_ids_.size()) {
-    return FailValidation(why, "present/moving/outside list sizes disagree with the records");
+      counts.outside != outside_ids_.size() || outside_boxes_.size() != outside_ids_.size() ||
+      counts.oversize != oversize_ids_.size() || oversize_boxes_.size() != oversize_ids_.size() ||
+      present_boxes_.size() != present_ids_.size()) {
+    return FailValidation(why,
+                          "present/moving/outside/oversize list sizes disagree with the records");
   }
   return true;
 }

@@ -34,7 +34,7 @@ Aabb GridCube(const BroadPhaseOptions& options) {
 GridBroadPhase::GridBroadPhase(const BroadPhaseOptions& options)
     // Range differences are exact for steps of any size: no jump limit (an infinite spacing).
     : CellBroadPhase(GridCube(options), options.techniques, CellUpdateStrategy::kIncremental,
-                     std::numeric_limits<double>::infinity()),
+                     std::numeric_limits<double>::infinity(), CellSize(options)),
       g_(CellsPerAxis(options)),
       cell_m_(CellSize(options)) {
   ResizeCells(static_cast<std::size_t>(g_) * g_ * g_);
@@ -162,7 +162,7 @@ bool GridBroadPhase::ValidateCells(std::string* why) const {
   std::vector<std::uint32_t> expected, actual;
   for (PrimitiveId id = 0; id < records_.size(); ++id) {
     const Record& r = records_[id];
-    if (!r.present) continue;
+    if (!r.present || r.oversize) continue;  // an oversize one has no links (ValidateShared)
     expected.clear();
     // Cells two or more away from the box's cell quotient cannot touch it (a wider window
     // than CandidateRange's, computed independently of it).

@@ -12,6 +12,13 @@ namespace {
 
 // The seed's minimum cell: the deepest level whose cells are still at least min_cell_size_m
 // (250 in / 2^7 = 1.95 in for 1.2 in of motion per cycle).
+// The octree counts a box's cells for the oversize list (kOversizeCells) in cells of this many
+// minimum leaves per edge: leaves are split only where more than N boxes crowd, so a box meets
+// far fewer leaves than minimum cells; an arm link's box (under a metre long) stays indexed,
+// while a box grown by a large tolerance (over about 1.2 m at the default's leaves of 2 in)
+// goes to the list.
+constexpr double kOversizeLeaves = 8.0;
+
 int DepthFor(double edge_m, double min_cell_size_m) {
   int depth = 0;
   while (depth < kOctreeMaxDepth &&
@@ -42,7 +49,8 @@ Aabb RootCube(const BroadPhaseOptions& options) {
 }  // namespace
 
 OctreeBroadPhase::OctreeBroadPhase(const BroadPhaseOptions& options, CellUpdateStrategy strategy)
-    : CellBroadPhase(RootCube(options), options.techniques, strategy, LeafSize(options)),
+    : CellBroadPhase(RootCube(options), options.techniques, strategy, LeafSize(options),
+                     kOversizeLeaves * LeafSize(options)),
       min_leaf_m_(LeafSize(options)),
       max_depth_(DepthFor(WorldCubeEdge(options.world_W), options.min_cell_size_m)),
       max_objects_per_leaf_(static_cast<std::uint32_t>(std::max(1, options.max_objects_per_leaf))) {
@@ -493,7 +501,7 @@ bool OctreeBroadPhase::ValidateCells(std::string* why) const {
   std::vector<std::uint32_t> expected, actual;
   for (PrimitiveId id = 0; id < records_.size(); ++id) {
     const Record& r = records_[id];
-    if (!r.present) continue;
+    if (!r.present || r.oversize) continue;  // an oversize one has no links (ValidateShared)
     expected.clear();
     CollectOverlappedLeaves(r.box_W, 0, &expected);
     std::sort(expected.begin(), expected.end());

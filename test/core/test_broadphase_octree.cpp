@@ -1,6 +1,7 @@
 // The N-objects octree and the grid on hand-built scenes: minimum cell size, split and merge,
 // location links, the update techniques' effect on work (never on answers), the outside list,
-// jumps, stamp wrap-around and the canonical shape shared with the rebuild scheme.
+// jumps, the oversize list, stamp wrap-around and the canonical shape shared with the rebuild
+// scheme.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -295,6 +296,39 @@ TEST(Octree, IncrementalShapeEqualsTheRebuiltShape) {
   }
   EXPECT_GT(incremental.counters().splits, 0u);
   EXPECT_GT(incremental.counters().merges, 0u);
+}
+
+TEST(Grid, BoxesSpanningManyCellsAreListedOversizeAndTestedAgainstAll) {
+  BroadPhaseOptions options = SmallWorld();
+  options.grid_cells_per_axis = 8;  // 1 m cells: a box over 27 cells (a cube over 2 m) is listed
+  GridBroadPhase grid(options);
+  const CompatibilityMatrix none(3);
+  std::vector<CandidatePair> pairs;
+  grid.Add(0, Box(1, 1, 1, 5, 5, 5), 0.0, Motion::kStatic);            // 125 cells
+  grid.Add(1, Box(4.5, 4.5, 4.5, 5.5, 5.5, 5.5), 0.0, Motion::kMoving);  // 8 cells
+  grid.Add(2, Box(0, 0, 0, 3, 3, 3), 0.0, Motion::kMoving);            // 64 cells
+  EXPECT_EQ(grid.oversize_count(), 2u);
+  ExpectValid(grid);
+  grid.FindPairs(none, &pairs);
+  EXPECT_EQ(pairs, (std::vector<CandidatePair>{{0, 1}, {0, 2}}));
+  grid.Move(2, Box(4, 4, 4, 5, 5, 5));  // back into the cells
+  EXPECT_EQ(grid.oversize_count(), 1u);
+  EXPECT_EQ(grid.counters().oversize_changes, 3u);
+  ExpectValid(grid);
+  grid.FindPairs(none, &pairs);
+  EXPECT_EQ(pairs, (std::vector<CandidatePair>{{0, 1}, {0, 2}, {1, 2}}));
+  grid.Move(1, Box(0, 0, 0, 6, 1, 1));  // 7 x 2 x 2 cells: long and thin, listed too
+  EXPECT_EQ(grid.oversize_count(), 2u);
+  ExpectValid(grid);
+  grid.FindPairs(none, &pairs);
+  EXPECT_EQ(pairs, (std::vector<CandidatePair>{{0, 1}, {0, 2}}));  // touching faces overlap
+  grid.FindPairsOf(1, none, &pairs);
+  EXPECT_EQ(pairs, (std::vector<CandidatePair>{{0, 1}}));
+  grid.Remove(0);
+  EXPECT_EQ(grid.oversize_count(), 1u);
+  ExpectValid(grid);
+  grid.FindPairs(none, &pairs);
+  EXPECT_TRUE(pairs.empty());
 }
 
 TEST(Grid, CellsFollowTheBoxAndOnlyNonEmptyCellsAreCollected) {

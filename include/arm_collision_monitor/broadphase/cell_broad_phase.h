@@ -1,6 +1,7 @@
 // What the octree and the uniform grid share: the primitive table, the location links between
 // primitives and cells (the seed's Figure 4), the list of primitives outside the world cube,
-// the visit and pair stamps, and the per-cycle pair scan. The cell structure itself (which
+// the oversize list of boxes too large for the cells, the visit and pair stamps, and the
+// per-cycle pair scan. The cell structure itself (which
 // cells exist, where a box goes, how cells split and merge) is left to the derived class.
 #pragma once
 
@@ -46,8 +47,11 @@ class CellBroadPhase : public BroadPhase {
   /// after that many more stamps.
   void ForceStampsNearWrap(std::uint32_t steps_before_wrap) override;
 
-  /// Number of present primitives whose inflated box is not inside the world cube.
+  /// Number of present primitives whose inflated box is not inside the world cube (oversize
+  /// ones not counted).
   std::size_t outside_count() const { return outside_ids_.size(); }
+  /// Number of present primitives kept in the oversize list instead of the cells (IsOversize).
+  std::size_t oversize_count() const { return oversize_ids_.size(); }
 
  protected:
   static constexpr std::uint32_t kNone = 0xffffffffu;
@@ -57,12 +61,13 @@ class CellBroadPhase : public BroadPhase {
     double tolerance_m = 0.0;
     Motion motion = Motion::kStatic;
     bool present = false;
-    bool outside = false;  // box not inside the world cube: also kept in outside_ids_
+    bool outside = false;   // box not inside the world cube: also kept in outside_ids_
+    bool oversize = false;  // IsOversize(box): in oversize_ids_ only, linked to no cell
     std::uint32_t first_link = kNone;
     std::uint32_t link_count = 0;
     std::uint32_t pair_stamp = 0;   // scan stamp of the last pair test in this cycle
     std::uint32_t union_stamp = 0;  // distinct-primitive counting (merges, splits' bookkeeping)
-    std::uint32_t present_slot = 0, moving_slot = 0, outside_slot = 0;
+    std::uint32_t present_slot = 0, moving_slot = 0, outside_slot = 0, oversize_slot = 0;
   };
   // A location link: primitive `prim` lies in cell `cell`. Each link is on two doubly linked
   // lists, the cell's and the primitive's, so it is added and removed in O(1).
@@ -73,8 +78,10 @@ class CellBroadPhase : public BroadPhase {
     std::uint32_t next_of_prim = kNone, prev_of_prim = kNone;
   };
 
+  /// `cell_spacing_m`: the jump limit of UpdateCells (see there); `oversize_spacing_m`: the
+  /// lattice spacing IsOversize counts cells in.
   CellBroadPhase(const Aabb& world_W, const BroadPhaseTechniques& techniques,
-                 CellUpdateStrategy strategy, double cell_spacing_m);
+                 CellUpdateStrategy strategy, double cell_spacing_m, double oversize_spacing_m);
 
   // --- Hooks of the cell structure (one virtual call per primitive update, none per cell) ---
   /// Links `id` (its box meets the world cube) into every cell its box overlaps, splitting as
@@ -172,15 +179,19 @@ class CellBroadPhase : public BroadPhase {
   std::vector<std::uint32_t> cell_visit_;  // lastCheckNo
 
   std::vector<PrimitiveId> present_ids_;
+  BoxArray present_boxes_;  // per slot of present_ids_: its record's box (ScanAll)
   std::vector<PrimitiveId> moving_ids_;
   std::vector<PrimitiveId> outside_ids_;
   BoxArray outside_boxes_;  // per slot of outside_ids_: its record's box, for the brute force
+  std::vector<PrimitiveId> oversize_ids_;
+  BoxArray oversize_boxes_;  // per slot of oversize_ids_: its record's box
   std::vector<std::uint32_t> scratch_cells_;  // merge candidates, reserved at start-up
 
   Aabb world_W_;  // the cube the cells span: octree root, whole grid; lattice origin at min_W
   BroadPhaseTechniques techniques_;
   CellUpdateStrategy strategy_;
   double jump_limit_m_;  // cell spacing * (1 - margin)
+  double inv_oversize_spacing_;  // 1 / the spacing IsOversize counts cells in
   std::uint32_t visit_stamp_ = 0;
   std::uint32_t scan_stamp_ = 0;
   std::uint32_t union_stamp_ = 0;
@@ -192,14 +203,26 @@ class CellBroadPhase : public BroadPhase {
                       PrimitiveId id);
   // Puts `id` on or off the outside list by `outside`; on it, its listed box is its record's.
   void SetOutside(PrimitiveId id, bool outside);
+  // True when the box spans more than kOversizeCells lattice cells (false for NaN bounds).
+  bool IsOversize(const Aabb& box_W) const;
+  // Puts `id` (linked to no cell, on no outside list) on or off the oversize list.
+  void SetOversize(PrimitiveId id, bool oversize);
+  // Links `id` into the cells of its box, or lists it as oversize, and sets its outside flag
+  // (it is linked to no cell and on neither list).
+  void Place(PrimitiveId id);
+  // Appends the pairs of an oversize primitive `m`: every present primitive's box tested (the
+  // present list's structure of arrays, as the all-pairs broad phase).
+  void ScanAll(PrimitiveId m, bool from_smaller_only, const CompatibilityMatrix& compatible,
+               std::vector<CandidatePair>* pairs);
   // The wrap handling of each kind of stamp (the seed's lastCheckNo reset): every stored stamp
   // of that kind and its counter back to 0.
   void ResetVisitStamps();
   void ResetScanStamps();
   void ResetUnionStamps();
   void Rebuild();
-  /// Appends the candidate pairs of `m` found through its cells and, when its box is outside
-  /// the world cube, through the outside list; moving partners with a smaller id are left to
+  /// Appends the candidate pairs of `m` found through its cells, the oversize list and, when
+  /// its box is outside the world cube, the outside list (ScanAll for an oversize `m`); moving
+  /// partners with a smaller id are left to
   /// their own scan when `from_smaller_only` (FindPairs meets such a pair from both sides).
   void ScanPartners(PrimitiveId m, bool from_smaller_only, const CompatibilityMatrix& compatible,
                     std::vector<CandidatePair>* pairs);
@@ -213,8 +236,11 @@ class CellBroadPhase : public BroadPhase {
   // lists (their links summed in cell_links). ValidateShared then checks the totals and the
   // free link list.
   struct ListCounts {
-    std::size_t present = 0, moving = 0, outside = 0;
+    std::size_t present = 0, moving = 0, outside = 0, oversize = 0;
   };
+  // Whether `id` is at `slot` of `ids` and `boxes` holds its box there, bit for bit.
+  bool IsListedWithBox(PrimitiveId id, const std::vector<PrimitiveId>& ids, const BoxArray& boxes,
+                       std::uint32_t slot) const;
   bool ValidateRecord(PrimitiveId id, ListCounts* counts, std::string* why) const;
   bool ValidateRecords(std::uint64_t* prim_links, std::string* why) const;
   bool ValidateCellLists(std::uint64_t* cell_links, std::string* why) const;

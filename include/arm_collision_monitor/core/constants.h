@@ -91,6 +91,13 @@ constexpr double kCellSpacingMarginRel = 1e-6;
 /// pool once, during warm-up.
 constexpr int kReservedLinksPerPrimitive = 8;
 
+/// Lattice cells (dimensionless) a box may span, counted as the product over the axes of
+/// edge / spacing + 1, before a cell broad phase keeps it in its oversize list instead of its
+/// cells (3 x 3 x 3 for a cube of two spacings). Such a box would be linked to many cells
+/// and met in many of them, and boxes that large overlap most others anyway: one
+/// structure-of-arrays test each, as the all-pairs broad phase, costs less.
+constexpr double kOversizeCells = 27.0;
+
 // ---------------------------------------------------------------------------------------------
 // Kinematics and scene loading
 // ---------------------------------------------------------------------------------------------
