@@ -268,20 +268,27 @@ void CellBroadPhase::RemoveFromList(std::vector<PrimitiveId>* list,
   list->pop_back();
 }
 
-void CellBroadPhase::SetOutside(PrimitiveId id, bool outside) {
+bool CellBroadPhase::SetListed(PrimitiveId id, bool on, bool Record::*flag,
+                               std::uint32_t Record::*slot, std::vector<PrimitiveId>* ids,
+                               BoxArray* boxes) {
   Record& r = records_[id];
-  if (r.outside == outside) {
-    if (outside) outside_boxes_.Set(r.outside_slot, r.box_W);  // its box may have moved
-    return;
+  if (r.*flag == on) {
+    if (on) boxes->Set(r.*slot, r.box_W);  // its box may have moved
+    return false;
   }
-  r.outside = outside;
-  if (outside) {
-    AddToList(&outside_ids_, &Record::outside_slot, id);
-    outside_boxes_.PushBack(r.box_W);
+  r.*flag = on;
+  if (on) {
+    AddToList(ids, slot, id);
+    boxes->PushBack(r.box_W);
   } else {
-    outside_boxes_.SwapRemove(r.outside_slot);
-    RemoveFromList(&outside_ids_, &Record::outside_slot, id);
+    boxes->SwapRemove(r.*slot);
+    RemoveFromList(ids, slot, id);
   }
+  return true;
+}
+
+void CellBroadPhase::SetOutside(PrimitiveId id, bool outside) {
+  SetListed(id, outside, &Record::outside, &Record::outside_slot, &outside_ids_, &outside_boxes_);
 }
 
 bool CellBroadPhase::IsOversize(const Aabb& box_W) const {
@@ -293,19 +300,9 @@ bool CellBroadPhase::IsOversize(const Aabb& box_W) const {
 }
 
 void CellBroadPhase::SetOversize(PrimitiveId id, bool oversize) {
-  Record& r = records_[id];
-  if (r.oversize == oversize) {
-    if (oversize) oversize_boxes_.Set(r.oversize_slot, r.box_W);  // its box may have moved
-    return;
-  }
-  r.oversize = oversize;
-  ++counters_.oversize_changes;
-  if (oversize) {
-    AddToList(&oversize_ids_, &Record::oversize_slot, id);
-    oversize_boxes_.PushBack(r.box_W);
-  } else {
-    oversize_boxes_.SwapRemove(r.oversize_slot);
-    RemoveFromList(&oversize_ids_, &Record::oversize_slot, id);
+  if (SetListed(id, oversize, &Record::oversize, &Record::oversize_slot, &oversize_ids_,
+                &oversize_boxes_)) {
+    ++counters_.oversize_changes;
   }
 }
 
@@ -400,18 +397,22 @@ void CellBroadPhase::Rebuild() {
 void CellBroadPhase::ScanAll(PrimitiveId m, bool from_smaller_only,
                              const CompatibilityMatrix& compatible,
                              std::vector<CandidatePair>* pairs) {
-  const Record& rm = records_[m];
-  counters_.object_object_tests += present_boxes_.MarkOverlaps(rm.box_W);
+  counters_.object_object_tests += present_boxes_.MarkOverlaps(records_[m].box_W);
   present_boxes_.ForEachHit([&](std::uint32_t slot) {
-    const PrimitiveId q = present_ids_[slot];
-    if (q == m) return;
-    if (records_[q].motion == Motion::kMoving ? from_smaller_only && q < m
-                                              : rm.motion == Motion::kStatic) {
-      return;
-    }
-    if (IsCompatiblePair(compatible, m, q)) return;
-    pairs->push_back(MakeOrderedPair(m, q));
+    TakeListed(m, present_ids_[slot], from_smaller_only, compatible, pairs);
   });
+}
+
+void CellBroadPhase::TakeListed(PrimitiveId m, PrimitiveId x, bool from_smaller_only,
+                                const CompatibilityMatrix& compatible,
+                                std::vector<CandidatePair>* pairs) const {
+  if (x == m) return;
+  if (records_[x].motion == Motion::kMoving ? from_smaller_only && x < m
+                                            : records_[m].motion == Motion::kStatic) {
+    return;
+  }
+  if (IsCompatiblePair(compatible, m, x)) return;
+  pairs->push_back(MakeOrderedPair(m, x));
 }
 
 void CellBroadPhase::ScanPartners(PrimitiveId m, bool from_smaller_only,
@@ -453,15 +454,7 @@ void CellBroadPhase::ScanPartners(PrimitiveId m, bool from_smaller_only,
     }
   }
   // A partner from a brute-force list (never m's cells' members): the same rules as above.
-  auto take = [&](PrimitiveId x) {
-    if (x == m) return;
-    if (records_[x].motion == Motion::kMoving ? from_smaller_only && x < m
-                                              : rm.motion == Motion::kStatic) {
-      return;
-    }
-    if (IsCompatiblePair(compatible, m, x)) return;
-    pairs->push_back(MakeOrderedPair(m, x));
-  };
+  auto take = [&](PrimitiveId x) { TakeListed(m, x, from_smaller_only, compatible, pairs); };
   // The oversize primitives are in no cell (an oversize m scans everything: ScanAll).
   if (oversize_boxes_.size() > 0) {
     counters_.object_object_tests += oversize_boxes_.MarkOverlaps(rm.box_W);

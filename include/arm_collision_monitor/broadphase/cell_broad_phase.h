@@ -201,7 +201,11 @@ class CellBroadPhase : public BroadPhase {
   void AddToList(std::vector<PrimitiveId>* list, std::uint32_t Record::*slot, PrimitiveId id);
   void RemoveFromList(std::vector<PrimitiveId>* list, std::uint32_t Record::*slot,
                       PrimitiveId id);
-  // Puts `id` on or off the outside list by `outside`; on it, its listed box is its record's.
+  // Puts `id` on or off a brute-force list (`flag`: its membership, `slot`: its place there);
+  // on it, its listed box is its record's. True when the membership changed.
+  bool SetListed(PrimitiveId id, bool on, bool Record::*flag, std::uint32_t Record::*slot,
+                 std::vector<PrimitiveId>* ids, BoxArray* boxes);
+  // Puts `id` on or off the outside list by `outside` (SetListed).
   void SetOutside(PrimitiveId id, bool outside);
   // True when the box spans more than kOversizeCells lattice cells (false for NaN bounds).
   bool IsOversize(const Aabb& box_W) const;
@@ -214,6 +218,11 @@ class CellBroadPhase : public BroadPhase {
   // present list's structure of arrays, as the all-pairs broad phase).
   void ScanAll(PrimitiveId m, bool from_smaller_only, const CompatibilityMatrix& compatible,
                std::vector<CandidatePair>* pairs);
+  // Appends the pair of `m` and `x`, whose boxes overlap (a brute-force list's hit), unless it
+  // is m with itself, left to x's own scan (from_smaller_only, x < m, both moving), of two
+  // statics, or compatible.
+  void TakeListed(PrimitiveId m, PrimitiveId x, bool from_smaller_only,
+                  const CompatibilityMatrix& compatible, std::vector<CandidatePair>* pairs) const;
   // The wrap handling of each kind of stamp (the seed's lastCheckNo reset): every stored stamp
   // of that kind and its counter back to 0.
   void ResetVisitStamps();
