@@ -1,8 +1,9 @@
 // What the octree and the uniform grid share: the primitive table, the location links between
 // primitives and cells (the seed's Figure 4), the list of primitives outside the world cube,
 // the oversize list of boxes too large for the cells, the visit and pair stamps, and the
-// per-cycle pair scan. The cell structure itself (which
-// cells exist, where a box goes, how cells split and merge) is left to the derived class.
+// per-cycle pair scan (cell_broad_phase.cpp; the self-checks in cell_broad_phase_validate.cpp).
+// The cell structure itself (which cells exist, where a box goes, how cells split and merge) is
+// left to the derived class.
 #pragma once
 
 #include <array>
