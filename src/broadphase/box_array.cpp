@@ -2,49 +2,119 @@
 #include "arm_collision_monitor/broadphase/box_array.h"
 
 #include <algorithm>
+#include <limits>
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#endif
 
 namespace arm_collision_monitor {
 namespace {
 
-// An AVX2 copy of a function beside the portable one, picked at load time by the CPU (GCC and
-// clang function multi-versioning); elsewhere than x86-64 only the portable one.
-#if defined(__x86_64__) && defined(__GNUC__)
-#define ACM_AVX2_CLONE __attribute__((target_clones("avx2", "default")))
-#else
-#define ACM_AVX2_CLONE
-#endif
+/// The float bounds of the scan: per axis the slots' min and max, and the query's.
+struct FloatScan {
+  const float* lo[3];
+  const float* hi[3];
+  float q_lo[3], q_hi[3];
+};
 
-// Bit k of hit_words[w] set when box 64 w + k (bounds lo_*[s], hi_*[s]) and `box_W` overlap as
-// closed boxes, as Aabb::Overlaps (NaN: clear), for the `count` boxes; the bits past `count`
-// clear. With AVX2 the compiler runs the compares and the packing four boxes at a time (SSE2
-// alone cannot pack double compares into 64-bit lanes, and leaves the loop scalar).
-ACM_AVX2_CLONE void MarkOverlapsOf(
-    const double* __restrict lo_x, const double* __restrict hi_x, const double* __restrict lo_y,
-    const double* __restrict hi_y, const double* __restrict lo_z, const double* __restrict hi_z,
-    const Aabb& box_W, std::size_t count, std::uint64_t* __restrict hit_words) {
-  const double x0 = box_W.min_W.x(), y0 = box_W.min_W.y(), z0 = box_W.min_W.z();
-  const double x1 = box_W.max_W.x(), y1 = box_W.max_W.y(), z1 = box_W.max_W.z();
+// Bits of `count` slots into hit_words, one slot at a time: any CPU.
+void ScanPortable(const FloatScan& s, std::size_t count, std::uint64_t* hit_words) {
   for (std::size_t first = 0; first < count; first += 64) {
-    const std::size_t n = std::min<std::size_t>(64, count - first);
+    const std::size_t end = std::min(first + 64, count);
     std::uint64_t word = 0;
-    for (std::size_t k = 0; k < n; ++k) {
-      const std::size_t s = first + k;
-      const std::uint64_t in_x = (lo_x[s] <= x1) & (x0 <= hi_x[s]);
-      const std::uint64_t in_y = (lo_y[s] <= y1) & (y0 <= hi_y[s]);
-      const std::uint64_t in_z = (lo_z[s] <= z1) & (z0 <= hi_z[s]);
-      word |= (in_x & in_y & in_z) << k;
+    for (std::size_t k = first; k < end; ++k) {
+      bool in = true;
+      for (int a = 0; a < 3; ++a) in = in && s.lo[a][k] <= s.q_hi[a] && s.q_lo[a] <= s.hi[a][k];
+      word |= static_cast<std::uint64_t>(in) << (k - first);
     }
     hit_words[first / 64] = word;
   }
 }
 
+BoxArray::ScanPath forced_scan_path = BoxArray::ScanPath::kBest;  // ForceScanPath's
+
+#if defined(__x86_64__) && defined(__GNUC__)
+// Bits of `count` slots (a multiple of 8 is read) into hit_words, x86-64: four slots per SSE2
+// compare, or eight per AVX2 compare on a CPU that has it (picked once at load time).
+void ScanSse2(const FloatScan& s, std::size_t count, std::uint64_t* hit_words) {
+  __m128 q_lo[3], q_hi[3];
+  for (int a = 0; a < 3; ++a) {
+    q_lo[a] = _mm_set1_ps(s.q_lo[a]);
+    q_hi[a] = _mm_set1_ps(s.q_hi[a]);
+  }
+  for (std::size_t first = 0; first < count; first += 64) {
+    const std::size_t end = std::min(first + 64, count);
+    std::uint64_t word = 0;
+    for (std::size_t k = first; k < end; k += 4) {
+      __m128 in = _mm_and_ps(_mm_cmple_ps(_mm_loadu_ps(s.lo[0] + k), q_hi[0]),
+                             _mm_cmple_ps(q_lo[0], _mm_loadu_ps(s.hi[0] + k)));
+      for (int a = 1; a < 3; ++a) {
+        in = _mm_and_ps(in, _mm_and_ps(_mm_cmple_ps(_mm_loadu_ps(s.lo[a] + k), q_hi[a]),
+                                       _mm_cmple_ps(q_lo[a], _mm_loadu_ps(s.hi[a] + k))));
+      }
+      word |= static_cast<std::uint64_t>(_mm_movemask_ps(in)) << (k - first);
+    }
+    hit_words[first / 64] = word;
+  }
+}
+
+__attribute__((target("avx2"))) void ScanAvx2(const FloatScan& s, std::size_t count,
+                                              std::uint64_t* hit_words) {
+  __m256 q_lo[3], q_hi[3];
+  for (int a = 0; a < 3; ++a) {
+    q_lo[a] = _mm256_set1_ps(s.q_lo[a]);
+    q_hi[a] = _mm256_set1_ps(s.q_hi[a]);
+  }
+  for (std::size_t first = 0; first < count; first += 64) {
+    const std::size_t end = std::min(first + 64, count);
+    std::uint64_t word = 0;
+    for (std::size_t k = first; k < end; k += 8) {
+      __m256 in = _mm256_and_ps(_mm256_cmp_ps(_mm256_loadu_ps(s.lo[0] + k), q_hi[0], _CMP_LE_OQ),
+                                _mm256_cmp_ps(q_lo[0], _mm256_loadu_ps(s.hi[0] + k), _CMP_LE_OQ));
+      for (int a = 1; a < 3; ++a) {
+        in = _mm256_and_ps(
+            in, _mm256_and_ps(_mm256_cmp_ps(_mm256_loadu_ps(s.lo[a] + k), q_hi[a], _CMP_LE_OQ),
+                              _mm256_cmp_ps(q_lo[a], _mm256_loadu_ps(s.hi[a] + k), _CMP_LE_OQ)));
+      }
+      word |= static_cast<std::uint64_t>(_mm256_movemask_ps(in)) << (k - first);
+    }
+    hit_words[first / 64] = word;
+  }
+}
+
+void Scan(const FloatScan& s, std::size_t count, std::uint64_t* hit_words) {
+  static const bool kHasAvx2 = __builtin_cpu_supports("avx2");
+  switch (forced_scan_path) {
+    case BoxArray::ScanPath::kPortable:
+      return ScanPortable(s, count, hit_words);
+    case BoxArray::ScanPath::kSse2:
+      return ScanSse2(s, count, hit_words);
+    case BoxArray::ScanPath::kBest:
+    case BoxArray::ScanPath::kAvx2:
+      break;
+  }
+  if (kHasAvx2) return ScanAvx2(s, count, hit_words);
+  ScanSse2(s, count, hit_words);
+}
+#else
+void Scan(const FloatScan& s, std::size_t count, std::uint64_t* hit_words) {
+  ScanPortable(s, count, hit_words);
+}
+#endif
+
 }  // namespace
 
 void BoxArray::Reserve(std::size_t capacity) {
   if (lo_W_[0].size() >= capacity) return;
+  // The scan reads whole groups of 8 float slots (MarkOverlaps clears the bits past size_).
+  const std::size_t padded = (capacity + 7) / 8 * 8;
+  const float nan_f = std::numeric_limits<float>::quiet_NaN();
   for (int axis = 0; axis < 3; ++axis) {
     lo_W_[axis].resize(capacity, 0.0);
     hi_W_[axis].resize(capacity, 0.0);
+    lo_f_[axis].resize(padded, nan_f);
+    hi_f_[axis].resize(padded, nan_f);
   }
   hit_words_.resize((capacity + 63) / 64, 0);
 }
@@ -59,6 +129,8 @@ void BoxArray::Set(std::uint32_t slot, const Aabb& box_W) {
   for (int axis = 0; axis < 3; ++axis) {
     lo_W_[axis][slot] = box_W.min_W[axis];
     hi_W_[axis][slot] = box_W.max_W[axis];
+    lo_f_[axis][slot] = static_cast<float>(box_W.min_W[axis]);
+    hi_f_[axis][slot] = static_cast<float>(box_W.max_W[axis]);
   }
 }
 
@@ -73,12 +145,23 @@ Aabb BoxArray::Get(std::uint32_t slot) const {
 
 void BoxArray::SwapRemove(std::uint32_t slot) {
   Set(slot, Get(size_ - 1));
-  --size_;
+  PopBack();
 }
 
+void BoxArray::ForceScanPath(ScanPath path) { forced_scan_path = path; }
+
 std::uint32_t BoxArray::MarkOverlaps(const Aabb& box_W) {
-  MarkOverlapsOf(lo_W_[0].data(), hi_W_[0].data(), lo_W_[1].data(), hi_W_[1].data(),
-                 lo_W_[2].data(), hi_W_[2].data(), box_W, size_, hit_words_.data());
+  query_W_ = box_W;
+  FloatScan s;
+  for (int axis = 0; axis < 3; ++axis) {
+    s.lo[axis] = lo_f_[axis].data();
+    s.hi[axis] = hi_f_[axis].data();
+    s.q_lo[axis] = static_cast<float>(box_W.min_W[axis]);
+    s.q_hi[axis] = static_cast<float>(box_W.max_W[axis]);
+  }
+  Scan(s, size_, hit_words_.data());
+  // The scan's last group reads past size_: those slots are no boxes.
+  if (size_ % 64 != 0) hit_words_[size_ / 64] &= (std::uint64_t{1} << (size_ % 64)) - 1;
   return size_;
 }
 

@@ -48,9 +48,7 @@ std::unique_ptr<BroadPhase> MakeOctree(const BroadPhaseOptions& options,
 }  // namespace
 
 BroadPhaseMethod ChooseBroadPhaseMethod(std::uint32_t moving, std::uint32_t statics) {
-  const bool grid_wins =
-      statics >= kAutoGridMinStatics || moving >= kAutoGridMinMoving ||
-      (statics >= kAutoGridMinStaticsCrowded && moving >= kAutoGridMinMovingCrowded);
+  const bool grid_wins = statics >= kAutoGridMinStatics || moving >= kAutoGridMinMoving;
   return grid_wins ? BroadPhaseMethod::kGrid : BroadPhaseMethod::kNaive;
 }
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstring>
 #include <sstream>
+#include <string>
 
 #include "arm_collision_monitor/broadphase/broad_phase_util.h"
 
@@ -34,13 +35,19 @@ bool CellBroadPhase::Validate(std::string* why) const {
   return ValidateCells(why);
 }
 
-bool CellBroadPhase::IsListedWithBox(PrimitiveId id, const std::vector<PrimitiveId>& ids,
-                                     const BoxArray& boxes, std::uint32_t slot) const {
-  if (ids.size() <= slot || ids[slot] != id) return false;
-  const Aabb listed_W = boxes.Get(slot);
-  const Aabb& box_W = records_[id].box_W;
-  return std::memcmp(listed_W.min_W.data(), box_W.min_W.data(), 3 * sizeof(double)) == 0 &&
-         std::memcmp(listed_W.max_W.data(), box_W.max_W.data(), 3 * sizeof(double)) == 0;
+bool CellBroadPhase::ValidateListed(PrimitiveId id, const char* list,
+                                    const std::vector<PrimitiveId>& ids, const BoxArray& boxes,
+                                    std::uint32_t slot, std::string* why) const {
+  if (ids.size() > slot && ids[slot] == id) {
+    const Aabb listed_W = boxes.Get(slot);
+    const Aabb& box_W = records_[id].box_W;
+    if (std::memcmp(listed_W.min_W.data(), box_W.min_W.data(), 3 * sizeof(double)) == 0 &&
+        std::memcmp(listed_W.max_W.data(), box_W.max_W.data(), 3 * sizeof(double)) == 0) {
+      return true;
+    }
+  }
+  return FailValidation(why, "primitive " + std::to_string(id) + " not at its slot of the " +
+                                 list + " list with its box");
 }
 
 bool CellBroadPhase::ValidateRecord(PrimitiveId id, ListCounts* counts, std::string* why) const {
@@ -58,9 +65,8 @@ bool CellBroadPhase::ValidateRecord(PrimitiveId id, ListCounts* counts, std::str
     return true;
   }
   ++counts->present;
-  if (!IsListedWithBox(id, present_ids_, present_boxes_, r.present_slot)) {
-    msg << "primitive " << id << " not at its slot of the present list with its box";
-    return FailValidation(why, msg.str());
+  if (!ValidateListed(id, "present", present_ids_, present_boxes_, r.present_slot, why)) {
+    return false;
   }
   if (r.motion == Motion::kMoving) {
     ++counts->moving;
@@ -71,9 +77,8 @@ bool CellBroadPhase::ValidateRecord(PrimitiveId id, ListCounts* counts, std::str
   }
   if (r.outside) {
     ++counts->outside;
-    if (!IsListedWithBox(id, outside_ids_, outside_boxes_, r.outside_slot)) {
-      msg << "primitive " << id << " not at its slot of the outside list with its box";
-      return FailValidation(why, msg.str());
+    if (!ValidateListed(id, "outside", outside_ids_, outside_boxes_, r.outside_slot, why)) {
+      return false;
     }
   }
   if (r.oversize != IsOversize(r.box_W)) {
@@ -82,9 +87,8 @@ bool CellBroadPhase::ValidateRecord(PrimitiveId id, ListCounts* counts, std::str
   }
   if (r.oversize) {
     ++counts->oversize;
-    if (!IsListedWithBox(id, oversize_ids_, oversize_boxes_, r.oversize_slot)) {
-      msg << "primitive " << id << " not at its slot of the oversize list with its box";
-      return FailValidation(why, msg.str());
+    if (!ValidateListed(id, "oversize", oversize_ids_, oversize_boxes_, r.oversize_slot, why)) {
+      return false;
     }
     if (r.outside || r.link_count != 0) {
       msg << "oversize primitive " << id << " is on the outside list or has links";

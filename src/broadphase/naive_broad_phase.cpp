@@ -1,20 +1,39 @@
 #include "arm_collision_monitor/broadphase/naive_broad_phase.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
 
 #include "arm_collision_monitor/broadphase/broad_phase_util.h"
 
 namespace arm_collision_monitor {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+const Aabb kAbsentBox{Eigen::Vector3d::Constant(kNaN), Eigen::Vector3d::Constant(kNaN)};
+
+/// The bits of word `w` for ids at most `id`.
+std::uint64_t UpToMask(PrimitiveId id, std::uint32_t w) {
+  if (w < id / 64) return ~std::uint64_t{0};
+  if (w > id / 64) return 0;
+  return ~std::uint64_t{0} >> (63 - id % 64);
+}
+
+void SetBit(std::vector<std::uint64_t>* words, PrimitiveId id, bool value) {
+  const std::uint64_t bit = std::uint64_t{1} << (id % 64);
+  std::uint64_t& word = (*words)[id / 64];
+  word = value ? word | bit : word & ~bit;
+}
+
+}  // namespace
 
 void NaiveBroadPhase::Reserve(std::uint32_t max_primitives) {
-  if (entries_.size() < max_primitives) {
-    entries_.resize(max_primitives);
-    slot_.resize(max_primitives, 0);
-    moving_slot_.resize(max_primitives, 0);
-  }
-  boxes_.Reserve(max_primitives);
-  present_ids_.reserve(max_primitives);
-  moving_ids_.reserve(max_primitives);
+  if (entries_.size() < max_primitives) entries_.resize(max_primitives);
+  const std::size_t words = (entries_.size() + 63) / 64;
+  static_bits_.resize(words, 0);
+  moving_bits_.resize(words, 0);
+  boxes_.Reserve(entries_.size());
 }
 
 void NaiveBroadPhase::Add(PrimitiveId id, const Aabb& box_W, double tolerance_m,
@@ -25,41 +44,53 @@ void NaiveBroadPhase::Add(PrimitiveId id, const Aabb& box_W, double tolerance_m,
   e.tolerance_m = tolerance_m;
   e.motion = motion;
   e.present = true;
-  slot_[id] = static_cast<std::uint32_t>(present_ids_.size());
-  present_ids_.push_back(id);
-  boxes_.PushBack(box_W.Inflated(tolerance_m));
-  if (motion == Motion::kMoving) {
-    moving_slot_[id] = static_cast<std::uint32_t>(moving_ids_.size());
-    moving_ids_.push_back(id);
-  }
+  ++present_count_;
+  while (boxes_.size() <= id) boxes_.PushBack(kAbsentBox);
+  boxes_.Set(id, box_W.Inflated(tolerance_m));
+  SetBit(motion == Motion::kMoving ? &moving_bits_ : &static_bits_, id, true);
 }
 
 void NaiveBroadPhase::Remove(PrimitiveId id) {
   if (id >= entries_.size() || !entries_[id].present) return;
-  Entry& e = entries_[id];
-  boxes_.SwapRemove(slot_[id]);
-  SwapRemove(&present_ids_, &slot_, slot_[id]);
-  if (e.motion == Motion::kMoving) SwapRemove(&moving_ids_, &moving_slot_, moving_slot_[id]);
-  e.present = false;
+  entries_[id].present = false;
+  --present_count_;
+  SetBit(&moving_bits_, id, false);
+  SetBit(&static_bits_, id, false);
+  boxes_.Set(id, kAbsentBox);
+  // The scan ends past the highest present id.
+  while (boxes_.size() > 0 && !entries_[boxes_.size() - 1].present) boxes_.PopBack();
 }
 
 void NaiveBroadPhase::Move(PrimitiveId id, const Aabb& box_W) {
   if (id >= entries_.size() || !entries_[id].present) return;
-  boxes_.Set(slot_[id], box_W.Inflated(entries_[id].tolerance_m));
+  boxes_.Set(id, box_W.Inflated(entries_[id].tolerance_m));
+}
+
+template <typename Keep>
+void NaiveBroadPhase::TakeHits(PrimitiveId id, const CompatibilityMatrix& compatible,
+                               Keep&& keep, std::vector<CandidatePair>* pairs) const {
+  const std::uint64_t* compatible_row = compatible.RowWords(id);
+  const std::uint32_t row_words = compatible_row != nullptr ? compatible.words_per_row() : 0;
+  boxes_.ForEachHit(
+      [&](std::uint32_t w) {
+        return keep(w) & ~(w < row_words ? compatible_row[w] : std::uint64_t{0});
+      },
+      [&](std::uint32_t b) { pairs->push_back(MakeOrderedPair(id, b)); });
 }
 
 void NaiveBroadPhase::FindPairs(const CompatibilityMatrix& compatible,
                                 std::vector<CandidatePair>* pairs) {
   pairs->clear();
-  for (const PrimitiveId a : moving_ids_) {
-    counters_.object_object_tests += boxes_.MarkOverlaps(boxes_.Get(slot_[a]));
-    boxes_.ForEachHit([&](std::uint32_t s) {
-      const PrimitiveId b = present_ids_[s];
-      // A moving-moving pair is met twice; keep it from the smaller id's side only.
-      if (b == a || (entries_[b].motion == Motion::kMoving && b < a)) return;
-      if (IsCompatiblePair(compatible, a, b)) return;
-      pairs->push_back(MakeOrderedPair(a, b));
-    });
+  for (std::uint32_t word = 0; word < moving_bits_.size(); ++word) {
+    for (std::uint64_t bits = moving_bits_[word]; bits != 0; bits &= bits - 1) {
+      const PrimitiveId a = 64 * word + static_cast<PrimitiveId>(__builtin_ctzll(bits));
+      counters_.object_object_tests += present_count_;
+      boxes_.MarkOverlaps(boxes_.Get(a));
+      // A moving-moving pair is met twice: kept from the smaller id's side only (which also
+      // leaves out a itself).
+      TakeHits(a, compatible,
+               [&](std::uint32_t w) { return ~(moving_bits_[w] & UpToMask(a, w)); }, pairs);
+    }
   }
   std::sort(pairs->begin(), pairs->end());
 }
@@ -68,15 +99,49 @@ void NaiveBroadPhase::FindPairsOf(PrimitiveId id, const CompatibilityMatrix& com
                                   std::vector<CandidatePair>* pairs) {
   pairs->clear();
   if (id >= entries_.size() || !entries_[id].present) return;
-  const bool is_static = entries_[id].motion == Motion::kStatic;
-  counters_.object_object_tests += boxes_.MarkOverlaps(boxes_.Get(slot_[id]));
-  boxes_.ForEachHit([&](std::uint32_t s) {
-    const PrimitiveId b = present_ids_[s];
-    if (b == id || (is_static && entries_[b].motion == Motion::kStatic)) return;
-    if (IsCompatiblePair(compatible, id, b)) return;
-    pairs->push_back(MakeOrderedPair(id, b));
-  });
-  std::sort(pairs->begin(), pairs->end());
+  counters_.object_object_tests += present_count_;
+  boxes_.MarkOverlaps(boxes_.Get(id));
+  // Ascending b: the pairs (b, id) with b < id, then (id, b), already sorted.
+  if (entries_[id].motion == Motion::kStatic) {
+    // Static-static pairs are never reported (id is among the static ones).
+    TakeHits(id, compatible, [&](std::uint32_t w) { return ~static_bits_[w]; }, pairs);
+  } else {
+    const std::uint32_t self_word = id / 64;
+    const std::uint64_t not_self = ~(std::uint64_t{1} << (id % 64));
+    TakeHits(id, compatible,
+             [&](std::uint32_t w) { return w == self_word ? not_self : ~std::uint64_t{0}; },
+             pairs);
+  }
+}
+
+bool NaiveBroadPhase::Validate(std::string* why) const {
+  std::uint32_t present = 0;
+  std::uint32_t end = 0;
+  for (PrimitiveId id = 0; id < entries_.size(); ++id) {
+    const Entry& e = entries_[id];
+    const bool is_moving = (moving_bits_[id / 64] >> (id % 64)) & 1;
+    const bool is_static = (static_bits_[id / 64] >> (id % 64)) & 1;
+    if (is_moving != (e.present && e.motion == Motion::kMoving) ||
+        is_static != (e.present && e.motion == Motion::kStatic)) {
+      return FailValidation(why, "naive: the flag words of id " + std::to_string(id) +
+                                     " disagree with its entry");
+    }
+    if (!e.present) continue;
+    ++present;
+    end = id + 1;
+  }
+  if (present != present_count_ || end != boxes_.size()) {
+    return FailValidation(why, "naive: " + std::to_string(present_count_) + " counted present, " +
+                                   std::to_string(present) + " found; scan end " +
+                                   std::to_string(boxes_.size()) + ", expected " +
+                                   std::to_string(end));
+  }
+  for (PrimitiveId id = 0; id < end; ++id) {
+    if (!entries_[id].present && !std::isnan(boxes_.Get(id).min_W.x())) {
+      return FailValidation(why, "naive: absent id " + std::to_string(id) + " has a box");
+    }
+  }
+  return true;
 }
 
 }  // namespace arm_collision_monitor

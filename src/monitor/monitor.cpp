@@ -25,8 +25,10 @@ bool IsSamePose(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
 }
 
 /// *shape_W = TransformShape(X_WL, shape_C), a capsule written in place (no temporary shape
-/// assigned through the variant: the arms' capsules, moved every kinematics cycle).
-void MoveShape(const Eigen::Isometry3d& X_WL, const Shape& shape_C, Shape* shape_W) {
+/// assigned through the variant: the arms' capsules, moved every kinematics cycle); a sphere
+/// (`is_sphere`: a capsule whose endpoints are bit-identical) is transformed once.
+[[gnu::always_inline]] inline void MoveShape(const Eigen::Isometry3d& X_WL, const Shape& shape_C,
+                                             bool is_sphere, Shape* shape_W) {
   const auto* capsule_C = std::get_if<Capsule>(&shape_C);
   auto* capsule_W = std::get_if<Capsule>(shape_W);
   if (capsule_C == nullptr || capsule_W == nullptr) {
@@ -34,8 +36,17 @@ void MoveShape(const Eigen::Isometry3d& X_WL, const Shape& shape_C, Shape* shape
     return;
   }
   capsule_W->p0_W = X_WL * capsule_C->p0_W;
-  capsule_W->p1_W = X_WL * capsule_C->p1_W;
+  capsule_W->p1_W = is_sphere ? capsule_W->p0_W : X_WL * capsule_C->p1_W;
   capsule_W->radius_m = capsule_C->radius_m;
+}
+
+/// changed[link]: whether the pose of `link` differs between X_WL and X_WL_new.
+void MarkChangedLinks(const std::vector<Eigen::Isometry3d>& X_WL,
+                      const std::vector<Eigen::Isometry3d>& X_WL_new,
+                      std::vector<std::uint8_t>* changed) {
+  for (std::size_t link = 0; link < X_WL_new.size(); ++link) {
+    (*changed)[link] = IsSamePose(X_WL_new[link], X_WL[link]) ? 0 : 1;
+  }
 }
 
 }  // namespace
@@ -173,7 +184,7 @@ bool Monitor::Impl::IsProvablyClear(const Eigen::Ref<const Eigen::VectorXd>& q, 
 std::uint32_t Monitor::Impl::FollowKinematics(const Eigen::Ref<const Eigen::VectorXd>& q,
                                               bool is_step, double reindex_at_m) {
   model.kinematics->ComputeMovingLinkPoses(q, &X_WL_next);
-  MoveCarried(X_WL_next, &link_changed, &shape_W, &moved);
+  MarkChangedLinks(X_WL, X_WL_next, &link_changed);
   X_WL.swap(X_WL_next);
   q_kinematics = q;
   kinematics_behind = false;
@@ -181,12 +192,13 @@ std::uint32_t Monitor::Impl::FollowKinematics(const Eigen::Ref<const Eigen::Vect
   // Fixed tolerances: tol_now already equals tol_base (Attach / Detach keep both).
   const bool is_speed_scaled = model.speed_tol_gain_s != 0.0;
   if (is_speed_scaled) ComputeTolerances(shape_W, moved, &tol_now);
-  ForEachMayHaveMoved([&](PrimitiveId id) {
-    if (moved[id]) {
-      if (is_speed_scaled) shape_prev_W[id] = shape_W[id];  // only speed estimates read it
+  // Only speed estimates read shape_prev_W (ReindexMoved cleared the moved flags without them).
+  if (is_speed_scaled) {
+    ForEachMayHaveMoved([&](PrimitiveId id) {
+      if (moved[id]) shape_prev_W[id] = shape_W[id];
       moved[id] = 0;
-    }
-  });
+    });
+  }
   cache.Update(broad_phase.get(), compatible);
   return moved_count;
 }
@@ -194,13 +206,11 @@ std::uint32_t Monitor::Impl::FollowKinematics(const Eigen::Ref<const Eigen::Vect
 void Monitor::Impl::MoveCarried(const std::vector<Eigen::Isometry3d>& X_WL_new,
                                 std::vector<std::uint8_t>* changed, std::vector<Shape>* shapes,
                                 std::vector<std::uint8_t>* moved_flags) const {
-  for (std::size_t link = 0; link < X_WL_new.size(); ++link) {
-    (*changed)[link] = IsSamePose(X_WL_new[link], X_WL[link]) ? 0 : 1;
-  }
+  MarkChangedLinks(X_WL, X_WL_new, changed);
   for (const PrimitiveId id : carried) {
     const int link = carrier[id];
     if (!(*changed)[link]) continue;
-    MoveShape(X_WL_new[link], shape_C[id], &(*shapes)[id]);
+    MoveShape(X_WL_new[link], shape_C[id], is_sphere_C[id] != 0, &(*shapes)[id]);
     (*moved_flags)[id] = 1;
   }
 }
@@ -209,26 +219,53 @@ std::uint32_t Monitor::Impl::ReindexMoved(bool is_step, double reindex_at_m) {
   std::uint32_t moved_count = 0;
   cache.BeginReindex();
   const double slack_m = model.options.index_slack_m;
+  // Speed-scaled tolerances read the moved flags afterwards (FollowKinematics clears them).
+  const bool is_clearing_moved = model.speed_tol_gain_s == 0.0;
   double largest_m = 0.0;
   bool is_any_nan = false;
-  ForEachMayHaveMoved([&](PrimitiveId id) {
-    if (!in_broad_phase[id]) return;
+  // The arrays through local pointers: each byte flag stored below could otherwise alias every
+  // member, and the compiler would reload their data pointers after it.
+  const int* const carrier_of = carrier.data();
+  const std::uint8_t* const is_link_changed = link_changed.data();
+  const std::uint8_t* const is_indexed = in_broad_phase.data();
+  const std::uint8_t* const is_sphere = is_sphere_C.data();
+  const Shape* const shapes_C = shape_C.data();
+  Shape* const shapes_W = shape_W.data();
+  std::uint8_t* const moved_flags = moved.data();
+  const Eigen::Isometry3d* const X = X_WL.data();
+  // The primitives that may have moved (ForEachMayHaveMoved), in one loop.
+  const std::size_t count = scene_changed ? live_end : carried.size();
+  for (std::size_t i = 0; i < count; ++i) {
+    const PrimitiveId id = scene_changed ? static_cast<PrimitiveId>(i) : carried[i];
+    // The shape follows its link (one pass with its re-indexing: its shape is at hand).
+    const int link = carrier_of[id];
+    const bool is_link_moved = link >= 0 && is_link_changed[link];
+    if (is_link_moved) MoveShape(X[link], shapes_C[id], is_sphere[id] != 0, &shapes_W[id]);
+    const bool is_moved = is_link_moved || moved_flags[id] != 0;
+    moved_flags[id] = is_moved && !is_clearing_moved ? 1 : 0;
+    if (!is_indexed[id]) continue;
     const double kinematics_m = cache.displacement_m(id);  // as of the last kinematics
-    if (moved[id]) {
+    if (is_moved) {
       ++moved_count;
-      if (cache.FollowMoved(id, shape_W[id], reindex_at_m)) {
-        broad_phase->Move(id, ComputeAabb(shape_W[id]));
+      // A sphere's displacement is its centre's (MaxPointDisplacement_m for one point).
+      const Shape& now = shapes_W[id];
+      const Shape& indexed = cache.indexed_shape_W(id);
+      const double d_m = is_sphere[id] && is_link_moved
+                             ? (std::get<Capsule>(now).p0_W - std::get<Capsule>(indexed).p0_W).norm()
+                             : MaxPointDisplacement_m(indexed, now);
+      if (cache.FollowMovedBy(id, d_m, now, reindex_at_m)) {
+        broad_phase->Move(id, ComputeAabb(now));
       }
     }
     // The swept check: most stay within the largest step bound of their slack at q, and so
     // in it all along the step.
     if (is_step && !(cache.displacement_m(id) + swept.largest_step_m <= slack_m)) {
-      FollowStep(id, moved[id] != 0, kinematics_m);
+      FollowStep(id, is_moved, kinematics_m);
     }
     const double displacement_m = cache.displacement_m(id);
     largest_m = std::max(largest_m, displacement_m);
     is_any_nan |= std::isnan(displacement_m);
-  });
+  }
   largest_displacement_m = is_any_nan ? std::numeric_limits<double>::quiet_NaN() : largest_m;
   return moved_count;
 }
@@ -359,6 +396,7 @@ void Monitor::Impl::InitData() {
   motion = MotionBounds(*model.kinematics, n);
   swept.step = MotionBounds(*model.kinematics, n);
   carried.reserve(n);
+  is_sphere_C.assign(n, 0);
   for (PrimitiveId id = 0; id < n; ++id) SetCarrierBounds(id);
   // The links fixed to the root keep their start poses in both (ComputeMovingLinkPoses).
   X_WL = model.X_WL_start;

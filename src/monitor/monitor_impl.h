@@ -62,10 +62,13 @@ struct Monitor::Impl {
   // The primitives carried by a link (carrier >= 0), ascending: only they move with q, so the
   // per-cycle loops visit them rather than every static (SetCarrierBounds keeps the list).
   std::vector<PrimitiveId> carried;
+  // Per primitive: a capsule whose endpoints in its carrier's frame are bit-identical (a sphere:
+  // ReindexMoved transforms and compares one point; SetCarrierBounds keeps it).
+  std::vector<std::uint8_t> is_sphere_C;
   std::vector<double> tol_now;          // per primitive this cycle, m
   // At q_kinematics; scratch, which FollowKinematics leaves at the kinematics before.
   std::vector<Eigen::Isometry3d> X_WL, X_WL_next;
-  std::vector<std::uint8_t> link_changed;          // scratch
+  std::vector<std::uint8_t> link_changed;  // scratch: per link, moved by the kinematics
   std::vector<std::uint8_t> bound_known;  // IsProvablyClear after bounded cycles: per primitive,
                                           // its bound in `motion` computed this cycle
   // The largest displacement from its indexed copy of an indexed primitive that may move, as of
@@ -120,8 +123,10 @@ struct Monitor::Impl {
   // how far a moved primitive may be from its indexed copy and stay (PairCache::FollowMoved).
   std::uint32_t FollowKinematics(const Eigen::Ref<const Eigen::VectorXd>& q, bool is_step,
                                  double reindex_at_m);
-  // Moves in the index the moved primitives farther than `reindex_at_m` from their indexed
-  // copies and, with `is_step`, follows the step (FollowStep); counts the moved ones.
+  // In one pass over the primitives that may have moved: moves the shapes carried by the links
+  // flagged in link_changed (X_WL: the new poses), moves in the index the moved primitives
+  // farther than `reindex_at_m` from their indexed copies and, with `is_step`, follows the step
+  // (FollowStep); counts the moved ones.
   std::uint32_t ReindexMoved(bool is_step, double reindex_at_m);
   // The narrow phase over the kept pairs into report.warnings; returns the tests done.
   std::uint32_t TestCandidatePairs();
@@ -203,7 +208,8 @@ struct Monitor::Impl {
     if (kinematics_behind) FollowKinematics(q_good, false, model.options.index_slack_m);
   }
   // Writes into `shapes` the primitives carried by links whose pose differs between X_WL and
-  // `X_WL_new`, and flags them in `moved_flags`; `changed` is per-link scratch.
+  // `X_WL_new`, and flags them in `moved_flags`; `changed` is per-link scratch (Check: the
+  // cycle moves them in ReindexMoved).
   void MoveCarried(const std::vector<Eigen::Isometry3d>& X_WL_new,
                    std::vector<std::uint8_t>* changed, std::vector<Shape>* shapes,
                    std::vector<std::uint8_t>* moved_flags) const;
@@ -237,7 +243,8 @@ struct Monitor::Impl {
   void RemoveFromBroadPhase(PrimitiveId id);
   // Re-indexes `id` with its current motion and tolerance (Add fixes both).
   void Reindex(PrimitiveId id, bool moving);
-  // The motion bounds of primitive `id` for its current carrier, and its place in `carried`.
+  // The motion bounds of primitive `id` for its current carrier, its place in `carried` and its
+  // is_sphere_C (after any change of its carrier or shape_C).
   void SetCarrierBounds(PrimitiveId id) {
     motion.SetCarrier(id, carrier[id], is_moving[id], shape_C[id]);
     swept.step.SetCarrier(id, carrier[id], is_moving[id], shape_C[id]);
@@ -245,6 +252,10 @@ struct Monitor::Impl {
     const bool is_listed = it != carried.end() && *it == id;
     if (carrier[id] >= 0 && !is_listed) carried.insert(it, id);  // within its reserve
     if (carrier[id] < 0 && is_listed) carried.erase(it);
+    const auto* capsule_C = std::get_if<Capsule>(&shape_C[id]);
+    is_sphere_C[id] = capsule_C != nullptr && std::memcmp(capsule_C->p0_W.data(),
+                                                          capsule_C->p1_W.data(),
+                                                          sizeof(double) * 3) == 0;
   }
   // Calls f(id) for every primitive that may have moved since the last kinematics: the carried
   // ones, and after a scene change every live one (SetObjectPose moves free objects).

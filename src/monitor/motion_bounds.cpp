@@ -7,14 +7,7 @@
 
 namespace arm_collision_monitor {
 
-double MaxPointDisplacement_m(const Shape& before, const Shape& after) {
-  if (const auto* c0 = std::get_if<Capsule>(&before)) {
-    const Capsule& c1 = std::get<Capsule>(after);
-    return std::sqrt(std::max((c1.p0_W - c0->p0_W).squaredNorm(),
-                              (c1.p1_W - c0->p1_W).squaredNorm()));
-  }
-  const Box& b0 = std::get<Box>(before);
-  const Box& b1 = std::get<Box>(after);
+double MaxBoxVertexDisplacement_m(const Box& b0, const Box& b1) {
   double max_sq = 0.0;
   for (int corner = 0; corner < 8; ++corner) {
     const Eigen::Vector3d v_B((corner & 1) ? b0.half_extents_m.x() : -b0.half_extents_m.x(),

@@ -5,7 +5,6 @@
 #include <cstring>
 #include <sstream>
 
-#include "arm_collision_monitor/monitor/motion_bounds.h"
 
 namespace arm_collision_monitor {
 
@@ -40,20 +39,6 @@ void PairCache::SetIndexed(PrimitiveId id, const Shape& shape_W) {
   is_now_f_made_[id] = 0;
   is_now_indexed_[id] = 1;
   is_stale_ = true;
-}
-
-bool PairCache::FollowMoved(PrimitiveId id, const Shape& shape_W, double reindex_at_m) {
-  // Every point of the shape lies within this of its indexed copy (the displacement of a point
-  // of a capsule or box is a convex combination of its defining points').
-  const double d_m = MaxPointDisplacement_m(indexed_W_[id], shape_W);
-  is_now_f_made_[id] = 0;
-  if (d_m <= std::min(reindex_at_m, slack_m_)) {
-    disp_m_[id] = d_m;
-    is_now_indexed_[id] = 0;
-    return false;
-  }
-  Reindex(id, shape_W);
-  return true;
 }
 
 void PairCache::Reindex(PrimitiveId id, const Shape& shape_W) {

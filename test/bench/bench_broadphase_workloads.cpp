@@ -182,8 +182,8 @@ std::vector<Workload> PathologyWorkloads() {
 
 std::vector<Workload> SweepWorkloads() {
   std::vector<Workload> out;
-  for (const int movers : {7, 14, 28, 75, 150, 300, 450, 600}) {
-    for (const int statics : {0, 20, 50, 100, 200, 300, 1000, 3000}) {
+  for (const int movers : {7, 14, 28, 75, 150, 300, 450, 600, 1200}) {
+    for (const int statics : {0, 20, 50, 100, 200, 300, 500, 700, 1000, 3000}) {
       Workload w{"sweep", Base(movers, statics), statics >= 1000 ? 150 : 400};
       w.name = "sweep " + std::to_string(movers) + "+" + std::to_string(statics);
       out.push_back(w);

@@ -2,6 +2,7 @@
 // reserve, swap-removal and NaN bounds.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
 #include <random>
 #include <vector>
@@ -11,7 +12,14 @@
 namespace arm_collision_monitor {
 namespace {
 
-TEST(BoxArray, ScanFlagsExactlyTheOverlappingBoxesInSlotOrder) {
+// Every scan path (the portable one, SSE2, AVX2 where the CPU has it) gives the same answers.
+class BoxArrayScan : public ::testing::TestWithParam<BoxArray::ScanPath> {
+ protected:
+  void SetUp() override { BoxArray::ForceScanPath(GetParam()); }
+  void TearDown() override { BoxArray::ForceScanPath(BoxArray::ScanPath::kBest); }
+};
+
+TEST_P(BoxArrayScan, ScanFlagsExactlyTheOverlappingBoxesInSlotOrder) {
   std::mt19937_64 rng(20261124);
   std::uniform_real_distribution<double> coord(-1.0, 1.0), half(0.0, 0.5), unit(0.0, 1.0);
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -63,6 +71,46 @@ TEST(BoxArray, ScanFlagsExactlyTheOverlappingBoxesInSlotOrder) {
   }
   EXPECT_GT(hits_seen, 1000u);  // the scan met boxes, not only empty sets
 }
+
+TEST_P(BoxArrayScan, BoundsBetweenFloatsAndBeyondTheirRangeAreDecidedExactly) {
+  // The scan runs on float copies (rounded to nearest); the answer must still be the exact
+  // double test's. Boxes and queries that touch or miss by one double ulp at coordinates no float
+  // represents, at zero and denormals, and beyond the float range.
+  const double inf = std::numeric_limits<double>::infinity();
+  const double coords[] = {0.1, -0.1, 1.0 / 3.0, 1e-300, -1e-300, 0.0, 1e300, -1e300, 5e-324,
+                           3.4028235677973366e38, 16777217.0};
+  std::vector<Aabb> expected;
+  BoxArray boxes;
+  for (const double c : coords) {
+    for (const double d : {std::nextafter(c, -inf), c, std::nextafter(c, inf)}) {
+      // A box ending at d on every axis, and one starting there.
+      expected.push_back(Aabb{Eigen::Vector3d::Constant(d - std::abs(d) - 1.0),
+                              Eigen::Vector3d::Constant(d)});
+      expected.push_back(Aabb{Eigen::Vector3d::Constant(d),
+                              Eigen::Vector3d::Constant(d + std::abs(d) + 1.0)});
+    }
+  }
+  for (const Aabb& b : expected) boxes.PushBack(b);
+  std::size_t hits_seen = 0, misses_seen = 0;
+  for (const Aabb& query : expected) {
+    boxes.MarkOverlaps(query);
+    std::vector<std::uint32_t> hits, brute;
+    boxes.ForEachHit([&](std::uint32_t slot) { hits.push_back(slot); });
+    for (std::uint32_t s = 0; s < expected.size(); ++s) {
+      if (query.Overlaps(expected[s])) brute.push_back(s);
+    }
+    ASSERT_EQ(hits, brute);
+    hits_seen += hits.size();
+    misses_seen += expected.size() - hits.size();
+  }
+  // Both answers occur, also between boxes one double ulp apart.
+  EXPECT_GT(hits_seen, 0u);
+  EXPECT_GT(misses_seen, 0u);
+}
+
+INSTANTIATE_TEST_SUITE_P(AllPaths, BoxArrayScan,
+                         ::testing::Values(BoxArray::ScanPath::kBest, BoxArray::ScanPath::kPortable,
+                                           BoxArray::ScanPath::kSse2, BoxArray::ScanPath::kAvx2));
 
 }  // namespace
 }  // namespace arm_collision_monitor

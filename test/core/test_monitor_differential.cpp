@@ -2,6 +2,8 @@
 // seeded random configurations and random smooth trajectories, for every broad phase; and
 // Check() against Update().
 #include <limits>
+#include <string>
+#include <vector>
 
 #include "test_monitor_util.h"
 
@@ -76,6 +78,68 @@ TEST_P(MonitorDifferential, SmoothTrajectoriesMatchBruteForce) {
     }
   }
   EXPECT_GT(cycles_with_warnings, 0);
+}
+
+// Links modelled by spheres (capsules whose endpoints coincide, as a sphere-tree robot's), which
+// the cycle transforms and follows by one point: the bundled scene with a variant "spheres" of
+// three spheres and one capsule for links 2 to 6 of both arms, switched in.
+std::shared_ptr<const Workcell> LoadSphereLinkedWorkcell(std::vector<std::string>* links) {
+  std::string variants;
+  for (const char* arm : {"left", "right"}) {
+    for (int k = 2; k <= 6; ++k) {
+      const std::string link = std::string(arm) + "_link" + std::to_string(k);
+      links->push_back(link);
+      variants += "  - link: " + link + "\n    name: spheres\n    capsules:\n";
+      for (int s = 0; s < 3; ++s) {
+        const std::string z = std::to_string(0.08 * s);
+        variants += "      - {name: s" + std::to_string(s) + ", p0_m: [0.0, 0.0, " + z +
+                    "], p1_m: [0.0, 0.0, " + z + "], radius_m: 0.07}\n";
+      }
+      variants += "      - {name: c, p0_m: [0.0, 0.03, 0.0], p1_m: [0.0, 0.03, 0.16], "
+                  "radius_m: 0.03}\n";
+    }
+  }
+  return test::LoadBundledSceneEdited("differential_spheres", [&](std::string* scene) {
+    const std::size_t at = scene->find("\nvariants:\n");
+    EXPECT_NE(at, std::string::npos);
+    scene->insert(at + 11, variants);
+  });
+}
+
+TEST_P(MonitorDifferential, SphereModelledLinksMatchBruteForce) {
+  std::vector<std::string> links;
+  const auto wc = LoadSphereLinkedWorkcell(&links);
+  std::mt19937_64 rng(test::PrintSeed(kSeed + 2));
+  const test::JointLimits limits = LimitsOf(*wc);
+  test::ReferenceScene reference;
+  for (const std::string& link : links) {
+    reference.variant_of_link[wc->kinematics.FindLink(link)] = "spheres";
+  }
+  int cycles_with_warnings = 0, bounded_cycles = 0;
+  for (int trajectory = 0; trajectory < 6; ++trajectory) {
+    Monitor monitor(wc, OptionsFor(GetParam()));
+    std::string error;
+    for (const std::string& link : links) {
+      ASSERT_TRUE(monitor.SwitchModel(link, "spheres", &error)) << error;
+    }
+    const test::SmoothTrajectory path(limits, 0.8, &rng);
+    Eigen::VectorXd q;
+    // Sampled at four times the cycle rate: small steps, so that bounded cycles occur.
+    for (int k = 0; k < 800; ++k) {
+      path.At(0.25 * k * monitor.options().cycle_period_s, &q);
+      const CycleReport& report = monitor.Update(q);
+      const auto expected = ReferenceWarnings(*wc, q, reference);
+      ExpectSameWarnings(*wc, expected, report.warnings,
+                         BroadPhaseMethodName(GetParam()) + " trajectory " +
+                             std::to_string(trajectory) + " cycle " + std::to_string(k));
+      cycles_with_warnings += expected.empty() ? 0 : 1;
+      bounded_cycles += report.bounded ? 1 : 0;
+      ASSERT_TRUE(monitor.Validate(&error)) << error;
+      if (::testing::Test::HasFailure()) return;
+    }
+  }
+  EXPECT_GT(cycles_with_warnings, 0);
+  EXPECT_GT(bounded_cycles, 0);  // the kinematics cycles between follow slack kept by bounds
 }
 
 INSTANTIATE_TEST_SUITE_P(AllBroadPhases, MonitorDifferential, ::testing::ValuesIn(AllMethods()),

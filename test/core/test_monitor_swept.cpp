@@ -4,7 +4,6 @@
 // all pairs): no contact the sampler finds is missed, and every between-samples warning is
 // checked at its own fraction to lie within threshold + resolution. Also: jumps beyond
 // max_step_m, the start-up tolerance check, and how rarely the path is needed.
-#include <fstream>
 #include <map>
 #include <sstream>
 
@@ -29,17 +28,11 @@ MonitorOptions Unlimited() {
 /// The bundled scene with `object_line` (one YAML list entry) added to its objects.
 std::shared_ptr<const Workcell> LoadSceneWith(const std::string& name,
                                               const std::string& object_line) {
-  std::ifstream in(ACM_SOURCE_DIR "/config/scene.yaml");
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string scene = text.str();
-  const std::size_t at = scene.find("\nobjects:\n");
-  EXPECT_NE(at, std::string::npos);
-  scene.insert(at + 10, "  " + object_line + "\n");
-  const std::string path = ::testing::TempDir() + "/swept_" + name + ".yaml";
-  std::ofstream(path) << scene;
-  return std::make_shared<const Workcell>(
-      LoadWorkcell(ACM_SOURCE_DIR "/urdf/workcell.urdf", path));
+  return test::LoadBundledSceneEdited("swept_" + name, [&](std::string* scene) {
+    const std::size_t at = scene->find("\nobjects:\n");
+    EXPECT_NE(at, std::string::npos);
+    scene->insert(at + 10, "  " + object_line + "\n");
+  });
 }
 
 /// The straight joint-space path of a step.

@@ -7,11 +7,13 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <limits>
 #include <map>
 #include <memory>
 #include <random>
 #include <set>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -29,6 +31,20 @@ inline std::shared_ptr<const Workcell> LoadBundledWorkcell() {
   static const std::shared_ptr<const Workcell> workcell = std::make_shared<const Workcell>(
       LoadWorkcell(ACM_SOURCE_DIR "/urdf/workcell.urdf", ACM_SOURCE_DIR "/config/scene.yaml"));
   return workcell;
+}
+
+/// The bundled URDF with the bundled scene file's text after `edit` (written as `name`.yaml in
+/// the test's temporary directory): scenes that differ from the bundled one in a few lines.
+template <typename Edit>
+std::shared_ptr<const Workcell> LoadBundledSceneEdited(const std::string& name, Edit&& edit) {
+  std::ifstream in(ACM_SOURCE_DIR "/config/scene.yaml");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string scene = text.str();
+  edit(&scene);
+  const std::string path = ::testing::TempDir() + "/" + name + ".yaml";
+  std::ofstream(path) << scene;
+  return std::make_shared<const Workcell>(LoadWorkcell(ACM_SOURCE_DIR "/urdf/workcell.urdf", path));
 }
 
 inline MonitorOptions OptionsFor(BroadPhaseMethod method) {

@@ -1,8 +1,11 @@
-// Boxes kept as six arrays of their bounds (structure of arrays), scanned against one query box
+// Boxes kept as arrays of their bounds (structure of arrays), scanned against one query box
 // without branches: one overlap bit per box, 64 boxes to a word, then only the few boxes whose
-// bits are set are looked at (one count-trailing-zeros each). The brute-force lists of the
-// broad phases use it: NaiveBroadPhase's every present primitive, CellBroadPhase's primitives
-// outside the world cube.
+// bits are set are looked at (one count-trailing-zeros each). The scan runs on float copies of
+// the bounds, four or eight boxes per instruction: rounding to nearest is monotone (x <= y gives
+// float(x) <= float(y)), so it flags every box the exact test would, and a few more; each
+// flagged box is then decided by the exact double test before it is handed out. The brute-force lists of the broad phases use it:
+// NaiveBroadPhase's every present primitive, CellBroadPhase's primitives outside the world cube
+// and too large for its cells.
 #pragma once
 
 #include <array>
@@ -24,27 +27,54 @@ class BoxArray {
   Aabb Get(std::uint32_t slot) const;
   /// Moves the last box into `slot` and drops the last (as SwapRemove on the ids' list).
   void SwapRemove(std::uint32_t slot);
+  /// Drops the last box.
+  void PopBack() { --size_; }
 
-  /// Flags every box that overlaps `box_W` as closed boxes (Aabb::Overlaps: a NaN bound on
-  /// either side overlaps nothing), for ForEachHit; returns the boxes tested (size()).
+  /// The scan's code: the best the CPU has (the default: AVX2, else SSE2 on x86-64; elsewhere
+  /// the portable one), or one forced for every BoxArray (tests; kAvx2 only where the CPU has
+  /// it, as kBest).
+  enum class ScanPath : std::uint8_t { kBest, kPortable, kSse2, kAvx2 };
+  static void ForceScanPath(ScanPath path);
+
+  /// Flags every box that may overlap `box_W`, for ForEachHit (which decides them exactly, as
+  /// Aabb::Overlaps on closed boxes: a NaN bound on either side overlaps nothing); returns the
+  /// boxes tested (size()).
   std::uint32_t MarkOverlaps(const Aabb& box_W);
-  /// Calls f(slot) for every box flagged by the last MarkOverlaps, in slot order (the boxes
-  /// must not change in between).
+  /// Calls f(slot) for every box that overlaps the last MarkOverlaps' box, in slot order (the
+  /// boxes must not change in between).
   template <typename F>
-  void ForEachHit(F&& f) const;
+  void ForEachHit(F&& f) const {
+    ForEachHit([](std::uint32_t) { return ~std::uint64_t{0}; }, f);
+  }
+  /// The same for the boxes whose bits survive `keep(w)`, a mask for word w (slots 64 w ..
+  /// 64 w + 63): only those are decided exactly.
+  template <typename Keep, typename F>
+  void ForEachHit(Keep&& keep, F&& f) const;
 
  private:
+  bool OverlapsQuery(std::uint32_t slot) const {
+    return lo_W_[0][slot] <= query_W_.max_W.x() && query_W_.min_W.x() <= hi_W_[0][slot] &&
+           lo_W_[1][slot] <= query_W_.max_W.y() && query_W_.min_W.y() <= hi_W_[1][slot] &&
+           lo_W_[2][slot] <= query_W_.max_W.z() && query_W_.min_W.z() <= hi_W_[2][slot];
+  }
+
   std::array<std::vector<double>, 3> lo_W_, hi_W_;  // per slot and axis: min, max
+  // The same rounded to float (NaN stays NaN), padded to a multiple of 8 slots.
+  std::array<std::vector<float>, 3> lo_f_, hi_f_;
   std::vector<std::uint64_t> hit_words_;  // MarkOverlaps' flags: bit k of word w for slot 64 w + k
+  Aabb query_W_;                          // MarkOverlaps' box
   std::uint32_t size_ = 0;
 };
 
-template <typename F>
-void BoxArray::ForEachHit(F&& f) const {
+template <typename Keep, typename F>
+void BoxArray::ForEachHit(Keep&& keep, F&& f) const {
   const std::uint32_t word_count = (size_ + 63) / 64;
   for (std::uint32_t w = 0; w < word_count; ++w) {
-    for (std::uint64_t bits = hit_words_[w]; bits != 0; bits &= bits - 1) {
-      f(64 * w + static_cast<std::uint32_t>(__builtin_ctzll(bits)));
+    const std::uint64_t hits = hit_words_[w];
+    if (hits == 0) continue;
+    for (std::uint64_t bits = hits & keep(w); bits != 0; bits &= bits - 1) {
+      const std::uint32_t slot = 64 * w + static_cast<std::uint32_t>(__builtin_ctzll(bits));
+      if (OverlapsQuery(slot)) f(slot);
     }
   }
 }

@@ -248,9 +248,10 @@ class CellBroadPhase : public BroadPhase {
   struct ListCounts {
     std::size_t present = 0, moving = 0, outside = 0, oversize = 0;
   };
-  // Whether `id` is at `slot` of `ids` and `boxes` holds its box there, bit for bit.
-  bool IsListedWithBox(PrimitiveId id, const std::vector<PrimitiveId>& ids, const BoxArray& boxes,
-                       std::uint32_t slot) const;
+  // Whether `id` is at `slot` of `ids` and `boxes` holds its box there, bit for bit; false with
+  // the violation, naming the `list`, in `why`.
+  bool ValidateListed(PrimitiveId id, const char* list, const std::vector<PrimitiveId>& ids,
+                      const BoxArray& boxes, std::uint32_t slot, std::string* why) const;
   bool ValidateRecord(PrimitiveId id, ListCounts* counts, std::string* why) const;
   bool ValidateRecords(std::uint64_t* prim_links, std::string* why) const;
   bool ValidateCellLists(std::uint64_t* cell_links, std::string* why) const;

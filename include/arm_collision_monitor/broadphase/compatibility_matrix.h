@@ -20,6 +20,12 @@ class CompatibilityMatrix {
   bool AreCompatible(std::uint32_t a, std::uint32_t b) const {
     return (bits_[Index(a, b)] >> (b % 64)) & 1u;
   }
+  /// Row `a` as words_per_row() words, bit b % 64 of word b / 64 for column b (the bits past
+  /// size() clear); nullptr when a >= size().
+  const std::uint64_t* RowWords(std::uint32_t a) const {
+    return a < size_ ? &bits_[Index(a, 0)] : nullptr;
+  }
+  std::uint32_t words_per_row() const { return words_per_row_; }
   void Set(std::uint32_t a, std::uint32_t b, bool compatible) {
     SetBit(a, b, compatible);
     SetBit(b, a, compatible);

@@ -1,8 +1,12 @@
 // The reference broad phase: every moving primitive against every present primitive. No
 // spatial structure, so nothing to get wrong; every other broad phase is tested against it.
-// The present boxes are a BoxArray, scanned without branches per query.
+// The boxes are a BoxArray whose slot is the primitive id (an absent id's box is NaN, which
+// overlaps nothing), scanned without branches per query; the scan's hit words are then masked
+// a word at a time by the compatibility matrix's row, which is in id order too, so no hit is
+// looked at only to be dropped as compatible, static-static or the query itself.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -12,7 +16,7 @@
 namespace arm_collision_monitor {
 
 /// All pairs (Jolt keeps a brute-force broad phase as its reference the same way). Work per
-/// cycle is (moving primitives) x (present primitives): linear in the scene size.
+/// cycle is (moving primitives) x (highest present id + 1): linear in the scene size.
 class NaiveBroadPhase final : public BroadPhase {
  public:
   NaiveBroadPhase() = default;
@@ -25,6 +29,9 @@ class NaiveBroadPhase final : public BroadPhase {
                  std::vector<CandidatePair>* pairs) override;
   void FindPairsOf(PrimitiveId id, const CompatibilityMatrix& compatible,
                    std::vector<CandidatePair>* pairs) override;
+  /// Every present box is at its slot, every other slot NaN; the flag words agree with the
+  /// entries; the scan ends just past the highest present id.
+  bool Validate(std::string* why) const override;
 
   /// Sizes the per-id arrays for ids < max_primitives so that Add() does not allocate.
   void Reserve(std::uint32_t max_primitives);
@@ -35,13 +42,19 @@ class NaiveBroadPhase final : public BroadPhase {
     Motion motion = Motion::kStatic;
     bool present = false;
   };
-  std::vector<Entry> entries_;             // indexed by id
-  std::vector<PrimitiveId> present_ids_;   // dense list of present ids (order irrelevant)
-  std::vector<std::uint32_t> slot_;        // id -> index in present_ids_
-  // Per slot of present_ids_: the tight box grown by the tolerance (what pairs are decided on).
+  // Appends the pairs of `id` (its box marked in boxes_ last) whose bits survive
+  // keep(word index) (and `compatible`'s row of id), for b ascending.
+  template <typename Keep>
+  void TakeHits(PrimitiveId id, const CompatibilityMatrix& compatible, Keep&& keep,
+                std::vector<CandidatePair>* pairs) const;
+
+  std::vector<Entry> entries_;              // indexed by id
+  // Slot = id, the tight box grown by the tolerance (what pairs are decided on); NaN for an
+  // absent id. size(): the highest present id + 1, so the scan ends there.
   BoxArray boxes_;
-  std::vector<PrimitiveId> moving_ids_;    // dense list of present moving ids
-  std::vector<std::uint32_t> moving_slot_; // id -> index in moving_ids_
+  // Bit id % 64 of word id / 64: present and static; present and moving.
+  std::vector<std::uint64_t> static_bits_, moving_bits_;
+  std::uint32_t present_count_ = 0;
 };
 
 }  // namespace arm_collision_monitor

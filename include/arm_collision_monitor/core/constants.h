@@ -157,21 +157,20 @@ constexpr std::uint64_t kAlwaysOverlappingSeed = 20260521;
 inline constexpr double kJointLimitMargin = 0.01;
 
 /// auto's rule (ChooseBroadPhaseMethod), from the sweep of bench_broadphase_workloads (moving
-/// 7..600 x static 0..3,000 primitives; counts, dimensionless): the uniform grid from
-/// kAutoGridMinStatics statics, from kAutoGridMinStaticsCrowded statics with at least
-/// kAutoGridMinMovingCrowded moving, or from kAutoGridMinMoving moving up; otherwise all pairs
-/// (naive), whose branch-free scan of every box (BoxArray) beats any index's upkeep below that.
-/// The octree was best nowhere in the sweep, so auto does not pick it. Measured 2026-11-24 on
-/// this 2-core machine (medians per cycle, scripts/bench on c04586b): naive best up to 200
-/// statics below 150 movers (0.72 against the grid's 0.84 us at 7+200, 9.11 against 10.05 at
-/// 75+200) and up to 100 statics below 450 movers (40.2 against 46.2 at 300+0; within 6 % of
-/// the grid at 300+100); the grid best from 300 statics (0.85 against naive 0.93 us at 7+300,
-/// 1.62 against 1.84 at 14+300), from 200 statics at 150 movers (22.5 against 23.3; 52.3
-/// against 64.4 at 300+200) and from 450 movers (81.1 against 91.0 us at 450+0).
-inline constexpr std::uint32_t kAutoGridMinStatics = 300;
-inline constexpr std::uint32_t kAutoGridMinStaticsCrowded = 200;
-inline constexpr std::uint32_t kAutoGridMinMovingCrowded = 150;
-inline constexpr std::uint32_t kAutoGridMinMoving = 450;
+/// 7..1,200 x static 0..3,000 primitives; counts, dimensionless): the uniform grid from
+/// kAutoGridMinStatics statics or from kAutoGridMinMoving moving up; otherwise all pairs
+/// (naive), whose branch-free scan of every box (BoxArray, float, masked by the compatibility
+/// words) beats any index's upkeep below that. The octree was best nowhere in the sweep, so auto
+/// does not pick it. Measured 2026-11-25 on this 2-core machine (medians per cycle,
+/// bench_broadphase_workloads --sweep-only): the crossover lies at about 700 statics for every
+/// mover count: naive best at 500 statics (0.79 against the grid's 0.85 us at 7+500, 53.9
+/// against 62.0 at 300+500, 565 against 593 at 1,200+500), the grid within 5 % or better from
+/// 700 (0.96 against 1.02 at 7+700, 65.1 against 65.3 at 300+700, 668 against 635 at
+/// 1,200+700) and best from 1,000. Naive leads at 0 statics up to the sweep's 1,200 movers
+/// (340 against 469 us), the grid's ratio to it falling about 9 % per doubling (1.52 at 600,
+/// 1.38 at 1,200): kAutoGridMinMoving extrapolates that to where it reaches 1.
+inline constexpr std::uint32_t kAutoGridMinStatics = 700;
+inline constexpr std::uint32_t kAutoGridMinMoving = 12000;
 /// Bounds on auto's grid resolution (GridCellsFor; cells per axis). 4: coarser and the grid is
 /// all pairs in a few cells; 64: 262,144 cells, 3 MB of per-cell arrays.
 /// bench_broadphase_workloads, 14 movers among 200 statics with boxes inflated by up to 0.6 m:

@@ -6,8 +6,11 @@
 // change only when Attach / Detach change an object's carrier.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include <Eigen/Core>
@@ -20,8 +23,15 @@ namespace arm_collision_monitor {
 
 /// Largest displacement (m) of a defining point between two poses of the same primitive: the
 /// endpoints of a capsule, the vertices of a box. The displacement of a rigid motion is affine
-/// in the point, so this bounds the displacement of every point of the shape.
-double MaxPointDisplacement_m(const Shape& before, const Shape& after);
+/// in the point, so this bounds the displacement of every point of the shape. Capsules (every
+/// moving link's, every kinematics cycle) inline.
+double MaxBoxVertexDisplacement_m(const Box& before, const Box& after);
+inline double MaxPointDisplacement_m(const Shape& before, const Shape& after) {
+  const auto* c0 = std::get_if<Capsule>(&before);
+  if (c0 == nullptr) return MaxBoxVertexDisplacement_m(std::get<Box>(before), std::get<Box>(after));
+  const Capsule& c1 = std::get<Capsule>(after);
+  return std::sqrt(std::max((c1.p0_W - c0->p0_W).squaredNorm(), (c1.p1_W - c0->p1_W).squaredNorm()));
+}
 
 /// The index into q that drives `joint` (its own, or the one it mimics); -1 if it does not move.
 int DrivingQIndex(const JointSpec& joint);

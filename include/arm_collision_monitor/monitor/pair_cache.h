@@ -21,6 +21,7 @@
 // from the same batch.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -31,6 +32,7 @@
 #include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/geometry/clearance_batch.h"
 #include "arm_collision_monitor/geometry/distance.h"
+#include "arm_collision_monitor/monitor/motion_bounds.h"
 
 namespace arm_collision_monitor {
 
@@ -72,7 +74,24 @@ class PairCache {
   /// its new indexed copy and the caller moves it in the index (listed in reindexed()). Every
   /// change of an indexed primitive's shape comes through here or SetIndexed (TestPairs' float
   /// copies of the shapes follow these calls).
-  bool FollowMoved(PrimitiveId id, const Shape& shape_W, double reindex_at_m);
+  bool FollowMoved(PrimitiveId id, const Shape& shape_W, double reindex_at_m) {
+    // Every point of the shape lies within this of its indexed copy (the displacement of a
+    // point of a capsule or box is a convex combination of its defining points').
+    return FollowMovedBy(id, MaxPointDisplacement_m(indexed_W_[id], shape_W), shape_W,
+                         reindex_at_m);
+  }
+  /// FollowMoved when the caller has MaxPointDisplacement_m(indexed_shape_W(id), shape_W) at
+  /// hand: `d_m`.
+  bool FollowMovedBy(PrimitiveId id, double d_m, const Shape& shape_W, double reindex_at_m) {
+    is_now_f_made_[id] = 0;
+    if (d_m <= std::min(reindex_at_m, slack_m_)) {
+      disp_m_[id] = d_m;
+      is_now_indexed_[id] = 0;
+      return false;
+    }
+    Reindex(id, shape_W);
+    return true;
+  }
   /// Makes `shape_W`, where indexed primitive `id` is now, its indexed copy before it leaves its
   /// slack (the caller moves it in the index; listed in reindexed()).
   void Reindex(PrimitiveId id, const Shape& shape_W);
