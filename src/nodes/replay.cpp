@@ -13,6 +13,7 @@
 #include <chrono>
 #include <cstdio>
 #include <exception>
+#include <iterator>
 #include <map>
 #include <memory>
 #include <string>
@@ -355,6 +356,17 @@ std::unique_ptr<Checker> MakeChecker(const Options& options,
 }
 
 // What both output formats report about the whole run.
+// The broad-phase counters, by the names both outputs print them under.
+constexpr std::pair<const char*, std::uint64_t BroadPhaseCounters::*> kCounters[] = {
+    {"object_node_tests", &BroadPhaseCounters::object_node_tests},
+    {"object_object_tests", &BroadPhaseCounters::object_object_tests},
+    {"neighbours_visited", &BroadPhaseCounters::neighbours_visited},
+    {"splits", &BroadPhaseCounters::splits},
+    {"merges", &BroadPhaseCounters::merges},
+    {"reinsert_fallbacks", &BroadPhaseCounters::reinsert_fallbacks},
+    {"outside_world", &BroadPhaseCounters::outside_world},
+    {"oversize_changes", &BroadPhaseCounters::oversize_changes}};
+
 struct RunSummary {
   std::uint64_t warning_cycles = 0, refused_cycles = 0;
   int first = -1;  ///< the first cycle with a warning at its q, -1 if none
@@ -436,17 +448,12 @@ void PrintJson(const Options& options, const Workcell& wc, const Input& input,
   std::printf("  \"cycle_time_s\": {\"p50\": %.9g, \"p99\": %.9g, \"max\": %.9g, "
               "\"mean\": %.9g},\n",
               t.median, t.p99, t.max, t.mean);
-  const BroadPhaseCounters& c = summary.counters;
-  std::printf("  \"counters\": {\"object_node_tests\": %llu, \"object_object_tests\": %llu, "
-              "\"neighbours_visited\": %llu, \"splits\": %llu, \"merges\": %llu, "
-              "\"reinsert_fallbacks\": %llu, \"outside_world\": %llu},\n",
-              static_cast<unsigned long long>(c.object_node_tests),
-              static_cast<unsigned long long>(c.object_object_tests),
-              static_cast<unsigned long long>(c.neighbours_visited),
-              static_cast<unsigned long long>(c.splits),
-              static_cast<unsigned long long>(c.merges),
-              static_cast<unsigned long long>(c.reinsert_fallbacks),
-              static_cast<unsigned long long>(c.outside_world));
+  std::printf("  \"counters\": {");
+  for (std::size_t i = 0; i < std::size(kCounters); ++i) {
+    std::printf("%s\"%s\": %llu", i ? ", " : "", kCounters[i].first,
+                static_cast<unsigned long long>(summary.counters.*kCounters[i].second));
+  }
+  std::printf("},\n");
   // One entry per cycle: [[a, b, distance_m], ...] at its q (empty when clear), and the swept
   // check's [[a, b, distance_m, step_fraction], ...] between the previous cycle's q and this.
   std::printf("  \"per_cycle\": [");
@@ -554,15 +561,15 @@ void PrintText(const Options& options, const Workcell& wc, const Input& input,
   const TimingSummary& t = summary.time_s;
   std::printf("cycle time: p50 %.1f us, p99 %.1f us, max %.1f us, mean %.1f us\n",
               t.median * 1e6, t.p99 * 1e6, t.max * 1e6, t.mean * 1e6);
-  const BroadPhaseCounters& c = summary.counters;
-  std::printf("broad phase: %llu object-node tests, %llu object-object tests, %llu neighbours "
-              "visited, %llu splits, %llu merges, %llu re-insert fallbacks\n",
-              static_cast<unsigned long long>(c.object_node_tests),
-              static_cast<unsigned long long>(c.object_object_tests),
-              static_cast<unsigned long long>(c.neighbours_visited),
-              static_cast<unsigned long long>(c.splits),
-              static_cast<unsigned long long>(c.merges),
-              static_cast<unsigned long long>(c.reinsert_fallbacks));
+  std::printf("broad phase:");
+  for (std::size_t i = 0; i < std::size(kCounters); ++i) {
+    std::string label = kCounters[i].first;
+    std::replace(label.begin(), label.end(), '_', ' ');
+    std::printf("%s %llu %s", i ? "," : "",
+                static_cast<unsigned long long>(summary.counters.*kCounters[i].second),
+                label.c_str());
+  }
+  std::printf("\n");
 }
 
 int Run(const Options& options) {
