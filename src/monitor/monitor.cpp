@@ -233,29 +233,28 @@ std::uint32_t Monitor::Impl::ReindexMoved(bool is_step, double reindex_at_m) {
   Shape* const shapes_W = shape_W.data();
   std::uint8_t* const moved_flags = moved.data();
   const Eigen::Isometry3d* const X = X_WL.data();
-  // The primitives that may have moved (ForEachMayHaveMoved), in one loop.
-  const std::size_t count = scene_changed ? live_end : carried.size();
-  for (std::size_t i = 0; i < count; ++i) {
-    const PrimitiveId id = scene_changed ? static_cast<PrimitiveId>(i) : carried[i];
+  ForEachMayHaveMoved([&](PrimitiveId id) {
     // The shape follows its link (one pass with its re-indexing: its shape is at hand).
     const int link = carrier_of[id];
     const bool is_link_moved = link >= 0 && is_link_changed[link];
     if (is_link_moved) MoveShape(X[link], shapes_C[id], is_sphere[id] != 0, &shapes_W[id]);
     const bool is_moved = is_link_moved || moved_flags[id] != 0;
     moved_flags[id] = is_moved && !is_clearing_moved ? 1 : 0;
-    if (!is_indexed[id]) continue;
+    if (!is_indexed[id]) return;
     const double kinematics_m = cache.displacement_m(id);  // as of the last kinematics
     if (is_moved) {
       ++moved_count;
       // A sphere's displacement is its centre's (MaxPointDisplacement_m for one point).
       const Shape& now = shapes_W[id];
-      const Shape& indexed = cache.indexed_shape_W(id);
-      const double d_m = is_sphere[id] && is_link_moved
-                             ? (std::get<Capsule>(now).p0_W - std::get<Capsule>(indexed).p0_W).norm()
-                             : MaxPointDisplacement_m(indexed, now);
-      if (cache.FollowMovedBy(id, d_m, now, reindex_at_m)) {
-        broad_phase->Move(id, ComputeAabb(now));
-      }
+      const bool is_reindexed =
+          is_sphere[id] && is_link_moved
+              ? cache.FollowMovedBy(id,
+                                    (std::get<Capsule>(now).p0_W -
+                                     std::get<Capsule>(cache.indexed_shape_W(id)).p0_W)
+                                        .norm(),
+                                    now, reindex_at_m)
+              : cache.FollowMoved(id, now, reindex_at_m);
+      if (is_reindexed) broad_phase->Move(id, ComputeAabb(now));
     }
     // The swept check: most stay within the largest step bound of their slack at q, and so
     // in it all along the step.
@@ -265,7 +264,7 @@ std::uint32_t Monitor::Impl::ReindexMoved(bool is_step, double reindex_at_m) {
     const double displacement_m = cache.displacement_m(id);
     largest_m = std::max(largest_m, displacement_m);
     is_any_nan |= std::isnan(displacement_m);
-  }
+  });
   largest_displacement_m = is_any_nan ? std::numeric_limits<double>::quiet_NaN() : largest_m;
   return moved_count;
 }

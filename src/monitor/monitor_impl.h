@@ -258,13 +258,13 @@ struct Monitor::Impl {
                                                           sizeof(double) * 3) == 0;
   }
   // Calls f(id) for every primitive that may have moved since the last kinematics: the carried
-  // ones, and after a scene change every live one (SetObjectPose moves free objects).
+  // ones, and after a scene change every live one (SetObjectPose moves free objects). One loop,
+  // so that f is inlined once (ReindexMoved's per-primitive pass).
   template <typename F>
   void ForEachMayHaveMoved(F&& f) {
-    if (scene_changed) {
-      for (PrimitiveId id = 0; id < live_end; ++id) f(id);
-    } else {
-      for (const PrimitiveId id : carried) f(id);
+    const std::size_t count = scene_changed ? live_end : carried.size();
+    for (std::size_t i = 0; i < count; ++i) {
+      f(scene_changed ? static_cast<PrimitiveId>(i) : carried[i]);
     }
   }
   // A static left out as unreachable becomes active for good once `mover` (a frame-bound

@@ -3,9 +3,9 @@
 // bits are set are looked at (one count-trailing-zeros each). The scan runs on float copies of
 // the bounds, four or eight boxes per instruction: rounding to nearest is monotone (x <= y gives
 // float(x) <= float(y)), so it flags every box the exact test would, and a few more; each
-// flagged box is then decided by the exact double test before it is handed out. The brute-force lists of the broad phases use it:
-// NaiveBroadPhase's every present primitive, CellBroadPhase's primitives outside the world cube
-// and too large for its cells.
+// flagged box is then decided by the exact double test before it is handed out. The brute-force
+// lists of the broad phases use it: NaiveBroadPhase's every present primitive, CellBroadPhase's
+// primitives outside the world cube and too large for its cells.
 #pragma once
 
 #include <array>

@@ -29,8 +29,8 @@ class NaiveBroadPhase final : public BroadPhase {
                  std::vector<CandidatePair>* pairs) override;
   void FindPairsOf(PrimitiveId id, const CompatibilityMatrix& compatible,
                    std::vector<CandidatePair>* pairs) override;
-  /// Every present box is at its slot, every other slot NaN; the flag words agree with the
-  /// entries; the scan ends just past the highest present id.
+  /// The flag words and the present count agree with the entries, every absent id's slot below
+  /// the scan's end is NaN, and the scan ends just past the highest present id.
   bool Validate(std::string* why) const override;
 
   /// Sizes the per-id arrays for ids < max_primitives so that Add() does not allocate.

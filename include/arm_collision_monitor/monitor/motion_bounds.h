@@ -30,7 +30,8 @@ inline double MaxPointDisplacement_m(const Shape& before, const Shape& after) {
   const auto* c0 = std::get_if<Capsule>(&before);
   if (c0 == nullptr) return MaxBoxVertexDisplacement_m(std::get<Box>(before), std::get<Box>(after));
   const Capsule& c1 = std::get<Capsule>(after);
-  return std::sqrt(std::max((c1.p0_W - c0->p0_W).squaredNorm(), (c1.p1_W - c0->p1_W).squaredNorm()));
+  return std::sqrt(
+      std::max((c1.p0_W - c0->p0_W).squaredNorm(), (c1.p1_W - c0->p1_W).squaredNorm()));
 }
 
 /// The index into q that drives `joint` (its own, or the one it mimics); -1 if it does not move.
