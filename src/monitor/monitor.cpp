@@ -164,6 +164,18 @@ bool Monitor::Impl::IsProvablyClear(const Eigen::Ref<const Eigen::VectorXd>& q, 
       if (!(displacement_m + BoundOnce(&motion, known, id) <= slack_m)) return false;
     }
   }
+  // Every kept pair at once when its smallest gap (kinematics bound less margin and threshold:
+  // fixed until the next kinematics) clears twice the largest bound, else one by one.
+  if (!is_pair_gap_known) {
+    smallest_pair_gap_m = std::numeric_limits<double>::infinity();
+    for (const KeptPair& kept : cache.pairs()) {
+      const double gap_m = kept.kinematics_bound_m - cache.BoundMargin_m(kept.kinematics_bound_m) -
+                           (tol_now[kept.pair.a] + tol_now[kept.pair.b]);
+      if (!(gap_m >= smallest_pair_gap_m)) smallest_pair_gap_m = gap_m;  // NaN stays
+    }
+    is_pair_gap_known = true;
+  }
+  if (smallest_pair_gap_m > 2.0 * largest_m) return true;
   for (const KeptPair& kept : cache.pairs()) {
     const PrimitiveId a = kept.pair.a;
     const PrimitiveId b = kept.pair.b;
@@ -186,6 +198,7 @@ std::uint32_t Monitor::Impl::FollowKinematics(const Eigen::Ref<const Eigen::Vect
   model.kinematics->ComputeMovingLinkPoses(q, &X_WL_next);
   MarkChangedLinks(X_WL, X_WL_next, &link_changed);
   X_WL.swap(X_WL_next);
+  is_pair_gap_known = false;
   q_kinematics = q;
   kinematics_behind = false;
   const std::uint32_t moved_count = ReindexMoved(is_step, reindex_at_m);
@@ -397,6 +410,7 @@ void Monitor::Impl::InitData() {
   carried.reserve(n);
   is_sphere_C.assign(n, 0);
   for (PrimitiveId id = 0; id < n; ++id) SetCarrierBounds(id);
+  PrepareBounds();
   // The links fixed to the root keep their start poses in both (ComputeMovingLinkPoses).
   X_WL = model.X_WL_start;
   X_WL_next = model.X_WL_start;

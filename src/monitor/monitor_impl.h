@@ -69,6 +69,9 @@ struct Monitor::Impl {
   // At q_kinematics; scratch, which FollowKinematics leaves at the kinematics before.
   std::vector<Eigen::Isometry3d> X_WL, X_WL_next;
   std::vector<std::uint8_t> link_changed;  // scratch: per link, moved by the kinematics
+  // IsProvablyClear: the smallest gap over the kept pairs since the last kinematics.
+  bool is_pair_gap_known = false;
+  double smallest_pair_gap_m = 0.0;
   std::vector<std::uint8_t> bound_known;  // IsProvablyClear after bounded cycles: per primitive,
                                           // its bound in `motion` computed this cycle
   // The largest displacement from its indexed copy of an indexed primitive that may move, as of
@@ -241,6 +244,12 @@ struct Monitor::Impl {
   }
   void AddToBroadPhase(PrimitiveId id);
   void RemoveFromBroadPhase(PrimitiveId id);
+  // After SetCarrierBounds calls: the motion bounds' undominated sets found now, in the scene
+  // change, rather than in the next cycle.
+  void PrepareBounds() {
+    motion.PrepareLargestBound();
+    swept.step.PrepareLargestBound();
+  }
   // Re-indexes `id` with its current motion and tolerance (Add fixes both).
   void Reindex(PrimitiveId id, bool moving);
   // The motion bounds of primitive `id` for its current carrier, its place in `carried` and its

@@ -234,6 +234,7 @@ bool Monitor::AddObject(const std::string& name, const std::vector<Shape>& shape
     // Its own primitives (a mesh's capsules overlap) never warn against each other when held.
     for (PrimitiveId other = first; other < id; ++other) m.compatible.Set(other, id, true);
   }
+  m.PrepareBounds();
   ++m.live.count;
   m.live_end = std::max(m.live_end, first + k_max);
   m.scene_changed = true;

@@ -110,6 +110,7 @@ bool Monitor::Attach(const std::string& object, const std::string& link, std::st
     m.Reindex(id, true);
     m.SetCarrierBounds(id);
   }
+  m.PrepareBounds();
   m.holder[o] = l;
   if (previous >= 0 && previous != l) m.RefreshCompatibility(previous, o);
   m.RefreshCompatibility(l, o);
@@ -140,6 +141,7 @@ bool Monitor::Detach(const std::string& object, std::string* error) {
     m.Reindex(id, stays_moving);
     m.SetCarrierBounds(id);
   }
+  m.PrepareBounds();
   m.holder[o] = -1;
   m.RefreshCompatibility(l, o);
   m.scene_changed = true;

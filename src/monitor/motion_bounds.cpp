@@ -104,8 +104,9 @@ double MotionBounds::ComputeLargestBound_m() {
 
 void MotionBounds::SetCarrier(PrimitiveId id, int link, bool is_moving, const Shape& shape_L) {
   carrier_[id] = is_moving ? link : -1;
+  // Only a primitive with levers, before or after, can change the undominated set.
+  if (lever_count_[id] > 0 || (link >= 0 && is_moving)) is_undominated_stale_ = true;
   lever_count_[id] = 0;
-  is_undominated_stale_ = true;
   if (link < 0 || !is_moving) return;
   // The primitive reaches at most `extent` from its link's origin, and a joint's origin at
   // most the chain of joint offsets (plus prismatic travel) below it from there; a point's

@@ -85,6 +85,11 @@ class MotionBounds {
     for (int k = 0; k < count; ++k) sums[k + 1] = sums[k] + dq_abs_[l[k].q_index] * l[k].m_per_unit;
     return sums[count];
   }
+  /// After SetCarrier calls: finds the undominated primitives now (a scene change), not in the
+  /// cycle whose ComputeLargestBound_m would otherwise (O(moving x all) Covers tests).
+  void PrepareLargestBound() {
+    if (is_undominated_stale_) FindUndominated();
+  }
   /// The largest ComputeBound_m over all primitives for the joint motion set last (m; 0 when
   /// none has levers), computed over the undominated ones only: a primitive each of whose
   /// levers another matches on the same joint with one no smaller never has the larger bound.
