@@ -225,9 +225,8 @@ TEST(MonitorBounds, BoundedCyclesCountTheDisplacementAtTheKinematics) {
 
 // Bounded cycles must stop at a pair's first warning: with a slack longer than an arm, only
 // the kept pairs' gaps end a run of bounded cycles. One joint at a time turns in steps of about
-// 2 mm at its farthest primitive, from
-// seeded warning-free configurations (back at a limit) until a warning or 1,500 steps; every cycle's warnings must
-// equal the brute force's.
+// 2 mm at its farthest primitive, from seeded warning-free configurations (back at a limit)
+// until a warning or 1,500 steps; every cycle's warnings must equal the brute force's.
 TEST(MonitorBounds, BoundedCyclesStopAtTheFirstWarningOfAClosingPair) {
   const auto wc = LoadBundledWorkcell();
   const test::JointLimits limits = LimitsOf(*wc);
