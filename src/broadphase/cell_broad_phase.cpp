@@ -30,7 +30,8 @@ CellBroadPhase::CellBroadPhase(const Aabb& world_W, const BroadPhaseTechniques& 
       techniques_(techniques),
       strategy_(strategy),
       jump_limit_m_(cell_spacing_m * (1.0 - kCellSpacingMarginRel)),
-      inv_oversize_spacing_(1.0 / oversize_spacing_m) {}
+      inv_oversize_spacing_(1.0 / oversize_spacing_m),
+      jump_step_m_(kJumpSpacingFraction * oversize_spacing_m) {}
 
 void CellBroadPhase::ResizeCells(std::size_t cell_count) {
   cell_head_.resize(cell_count, kNone);
@@ -49,8 +50,8 @@ void CellBroadPhase::ReserveShared(std::uint32_t max_primitives, std::uint32_t m
   moving_ids_.reserve(max_primitives);
   outside_ids_.reserve(max_primitives);
   outside_boxes_.Reserve(max_primitives);
-  oversize_ids_.reserve(max_primitives);
-  oversize_boxes_.Reserve(max_primitives);
+  unlinked_ids_.reserve(max_primitives);
+  unlinked_boxes_.Reserve(max_primitives);
   links_.reserve(max_links);
   scratch_cells_.reserve(max_links);
 }
@@ -278,19 +279,24 @@ bool CellBroadPhase::IsOversize(const Aabb& box_W) const {
   return cells > kOversizeCells;
 }
 
-void CellBroadPhase::SetOversize(PrimitiveId id, bool oversize) {
-  if (SetListed(id, oversize, &Record::oversize, &Record::oversize_slot, &oversize_ids_,
-                &oversize_boxes_)) {
-    ++counters_.oversize_changes;
+bool CellBroadPhase::IsJump(const Aabb& old_box_W, const Aabb& new_box_W) const {
+  return !(((new_box_W.min_W - old_box_W.min_W).array().abs() < jump_step_m_).all() &&
+           ((new_box_W.max_W - old_box_W.max_W).array().abs() < jump_step_m_).all());
+}
+
+void CellBroadPhase::SetUnlinked(PrimitiveId id, bool unlinked) {
+  if (SetListed(id, unlinked, &Record::unlinked, &Record::unlinked_slot, &unlinked_ids_,
+                &unlinked_boxes_)) {
+    ++counters_.unlinked_changes;
   }
 }
 
 void CellBroadPhase::Place(PrimitiveId id) {
   const Record& r = records_[id];
-  const bool oversize = IsOversize(r.box_W);
-  SetOversize(id, oversize);
-  SetOutside(id, !oversize && !world_W_.Contains(r.box_W));
-  if (oversize) return;
+  const bool unlinked = r.jumped || IsOversize(r.box_W);
+  SetUnlinked(id, unlinked);
+  SetOutside(id, !unlinked && !world_W_.Contains(r.box_W));
+  if (unlinked) return;
   if (strategy_ == CellUpdateStrategy::kRebuild) {
     needs_rebuild_ = true;
   } else if (world_W_.Overlaps(r.box_W)) {
@@ -307,7 +313,8 @@ void CellBroadPhase::Add(PrimitiveId id, const Aabb& box_W, double tolerance_m, 
   r.motion = motion;
   r.present = true;
   r.outside = false;
-  r.oversize = false;
+  r.jumped = false;
+  r.unlinked = false;
   AddToList(&present_ids_, &Record::present_slot, id);
   present_boxes_.PushBack(r.box_W);
   if (motion == Motion::kMoving) AddToList(&moving_ids_, &Record::moving_slot, id);
@@ -320,7 +327,7 @@ void CellBroadPhase::Remove(PrimitiveId id) {
   Record& r = records_[id];
   if (r.link_count > 0) RemoveFromCells(id);
   if (r.outside) SetOutside(id, false);
-  if (r.oversize) SetOversize(id, false);
+  if (r.unlinked) SetUnlinked(id, false);
   present_boxes_.SwapRemove(r.present_slot);
   RemoveFromList(&present_ids_, &Record::present_slot, id);
   if (r.motion == Motion::kMoving) RemoveFromList(&moving_ids_, &Record::moving_slot, id);
@@ -337,11 +344,17 @@ void CellBroadPhase::Move(PrimitiveId id, const Aabb& box_W) {
   // A box not inside the world cube joins the outside list (pairs between two such boxes are
   // found by brute force); whatever part of it overlaps the cube stays indexed in the cells, so
   // pairs with primitives inside are found there. Contains() and Overlaps() are false for NaN
-  // coordinates: a corrupt box is parked outside, unindexed, overlapping nothing; no crash.
+  // coordinates: a corrupt box overlaps nothing and is linked to no cell; no crash.
   const bool inside = world_W_.Contains(r.box_W);
   if (!inside) ++counters_.outside_world;
-  if (r.oversize || IsOversize(r.box_W)) {
-    // Into, within or out of the oversize list: Place decides anew from no cells.
+  // A jump (a step of kJumpSpacingFraction oversize spacings or more) leaves and enters more
+  // cells than testing the box against every box costs: the box waits in the unlinked list,
+  // scanned as the all-pairs broad phase does, until a shorter step (the reference strategies
+  // keep the seed's updates). A NaN bound counts as a jump: the corrupt box is unlinked,
+  // overlapping nothing, until a valid box follows it.
+  r.jumped = strategy_ == CellUpdateStrategy::kIncremental && IsJump(old_box_W, r.box_W);
+  if (r.unlinked || r.jumped || IsOversize(r.box_W)) {
+    // Into, within or out of the unlinked list: Place decides anew from no cells.
     if (r.link_count > 0) RemoveFromCells(id);
     Place(id);
     return;
@@ -369,7 +382,7 @@ void CellBroadPhase::Move(PrimitiveId id, const Aabb& box_W) {
 void CellBroadPhase::Rebuild() {
   ClearCells();
   for (const PrimitiveId id : present_ids_) {
-    if (!records_[id].oversize && world_W_.Overlaps(records_[id].box_W)) InsertIntoCells(id);
+    if (!records_[id].unlinked && world_W_.Overlaps(records_[id].box_W)) InsertIntoCells(id);
   }
 }
 
@@ -398,7 +411,7 @@ void CellBroadPhase::ScanPartners(PrimitiveId m, bool from_smaller_only,
                                   const CompatibilityMatrix& compatible,
                                   std::vector<CandidatePair>* pairs) {
   const Record& rm = records_[m];
-  if (rm.oversize) {
+  if (rm.unlinked) {
     ScanAll(m, from_smaller_only, compatible, pairs);
     return;
   }
@@ -433,11 +446,11 @@ void CellBroadPhase::ScanPartners(PrimitiveId m, bool from_smaller_only,
     }
   }
   // A partner from a brute-force list (never m's cells' members): the same rules as above.
-  // The oversize primitives are in no cell (an oversize m scans everything: ScanAll).
-  if (oversize_boxes_.size() > 0) {
-    counters_.object_object_tests += oversize_boxes_.MarkOverlaps(rm.box_W);
-    oversize_boxes_.ForEachHit([&](std::uint32_t slot) {
-      TakeListed(m, oversize_ids_[slot], from_smaller_only, compatible, pairs);
+  // The unlinked primitives are in no cell (an unlinked m scans everything: ScanAll).
+  if (unlinked_boxes_.size() > 0) {
+    counters_.object_object_tests += unlinked_boxes_.MarkOverlaps(rm.box_W);
+    unlinked_boxes_.ForEachHit([&](std::uint32_t slot) {
+      TakeListed(m, unlinked_ids_[slot], from_smaller_only, compatible, pairs);
     });
   }
   if (!rm.outside) return;

@@ -81,17 +81,22 @@ bool CellBroadPhase::ValidateRecord(PrimitiveId id, ListCounts* counts, std::str
       return false;
     }
   }
-  if (r.oversize != IsOversize(r.box_W)) {
-    msg << "primitive " << id << " oversize flag " << r.oversize << " disagrees with its box";
+  if (r.jumped && strategy_ != CellUpdateStrategy::kIncremental) {
+    msg << "primitive " << id << " jumped under a reference strategy";
     return FailValidation(why, msg.str());
   }
-  if (r.oversize) {
-    ++counts->oversize;
-    if (!ValidateListed(id, "oversize", oversize_ids_, oversize_boxes_, r.oversize_slot, why)) {
+  if (r.unlinked != (r.jumped || IsOversize(r.box_W))) {
+    msg << "primitive " << id << " unlinked flag " << r.unlinked
+        << " disagrees with its box and its last move";
+    return FailValidation(why, msg.str());
+  }
+  if (r.unlinked) {
+    ++counts->unlinked;
+    if (!ValidateListed(id, "unlinked", unlinked_ids_, unlinked_boxes_, r.unlinked_slot, why)) {
       return false;
     }
     if (r.outside || r.link_count != 0) {
-      msg << "oversize primitive " << id << " is on the outside list or has links";
+      msg << "unlinked primitive " << id << " is on the outside list or has links";
       return FailValidation(why, msg.str());
     }
     return true;
@@ -136,10 +141,10 @@ bool CellBroadPhase::ValidateRecords(std::uint64_t* prim_links, std::string* why
   }
   if (counts.present != present_ids_.size() || counts.moving != moving_ids_.size() ||
       counts.outside != outside_ids_.size() || outside_boxes_.size() != outside_ids_.size() ||
-      counts.oversize != oversize_ids_.size() || oversize_boxes_.size() != oversize_ids_.size() ||
+      counts.unlinked != unlinked_ids_.size() || unlinked_boxes_.size() != unlinked_ids_.size() ||
       present_boxes_.size() != present_ids_.size()) {
     return FailValidation(why,
-                          "present/moving/outside/oversize list sizes disagree with the records");
+                          "present/moving/outside/unlinked list sizes disagree with the records");
   }
   return true;
 }

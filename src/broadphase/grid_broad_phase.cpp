@@ -162,7 +162,7 @@ bool GridBroadPhase::ValidateCells(std::string* why) const {
   std::vector<std::uint32_t> expected, actual;
   for (PrimitiveId id = 0; id < records_.size(); ++id) {
     const Record& r = records_[id];
-    if (!r.present || r.oversize) continue;  // an oversize one has no links (ValidateShared)
+    if (!r.present || r.unlinked) continue;  // an unlinked one has no links (ValidateShared)
     expected.clear();
     // Cells two or more away from the box's cell quotient cannot touch it (a wider window
     // than CandidateRange's, computed independently of it).

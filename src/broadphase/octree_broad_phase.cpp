@@ -12,7 +12,7 @@ namespace {
 
 // The seed's minimum cell: the deepest level whose cells are still at least min_cell_size_m
 // (250 in / 2^7 = 1.95 in for 1.2 in of motion per cycle).
-// The octree counts a box's cells for the oversize list (kOversizeCells) in cells of this many
+// The octree counts a box's cells for the unlinked list (kOversizeCells) in cells of this many
 // minimum leaves per edge: leaves are split only where more than N boxes crowd, so a box meets
 // far fewer leaves than minimum cells; an arm link's box (under a metre long) stays indexed,
 // while a box grown by a large tolerance (over about 1.2 m at the default's leaves of 2 in)
@@ -501,7 +501,7 @@ bool OctreeBroadPhase::ValidateCells(std::string* why) const {
   std::vector<std::uint32_t> expected, actual;
   for (PrimitiveId id = 0; id < records_.size(); ++id) {
     const Record& r = records_[id];
-    if (!r.present || r.oversize) continue;  // an oversize one has no links (ValidateShared)
+    if (!r.present || r.unlinked) continue;  // an unlinked one has no links (ValidateShared)
     expected.clear();
     CollectOverlappedLeaves(r.box_W, 0, &expected);
     std::sort(expected.begin(), expected.end());

@@ -365,7 +365,7 @@ constexpr std::pair<const char*, std::uint64_t BroadPhaseCounters::*> kCounters[
     {"merges", &BroadPhaseCounters::merges},
     {"reinsert_fallbacks", &BroadPhaseCounters::reinsert_fallbacks},
     {"outside_world", &BroadPhaseCounters::outside_world},
-    {"oversize_changes", &BroadPhaseCounters::oversize_changes}};
+    {"unlinked_changes", &BroadPhaseCounters::unlinked_changes}};
 
 struct RunSummary {
   std::uint64_t warning_cycles = 0, refused_cycles = 0;

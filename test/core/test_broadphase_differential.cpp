@@ -148,14 +148,14 @@ BroadPhaseCounters RunDifferential(const SceneConfig& config, int cycles, int le
   const BroadPhaseCounters& c = candidates[0].bp->counters();
   std::printf(
       "[ octree ] node tests %llu, object tests %llu, neighbours %llu, splits %llu, "
-      "merges %llu, fallbacks %llu, outside %llu, oversize changes %llu\n",
+      "merges %llu, fallbacks %llu, outside %llu, unlinked changes %llu\n",
       static_cast<unsigned long long>(c.object_node_tests),
       static_cast<unsigned long long>(c.object_object_tests),
       static_cast<unsigned long long>(c.neighbours_visited),
       static_cast<unsigned long long>(c.splits), static_cast<unsigned long long>(c.merges),
       static_cast<unsigned long long>(c.reinsert_fallbacks),
       static_cast<unsigned long long>(c.outside_world),
-      static_cast<unsigned long long>(c.oversize_changes));
+      static_cast<unsigned long long>(c.unlinked_changes));
   return c;
 }
 
@@ -294,9 +294,9 @@ TEST(BroadPhaseDifferential, InflatedBoxesLargerThanCells) {
   config.statics = 80;
   config.tolerance_max_m = 0.6;  // up to 1.2 m more per box: many grid cells and leaves
   config.world_edge_m = 3.0;
-  // The largest boxes go to the oversize list and, as the capsules turn, in and out of it.
+  // The largest boxes go to the unlinked list and, as the capsules turn, in and out of it.
   const BroadPhaseCounters c = RunDifferential(config, 300, 3);
-  EXPECT_GT(c.oversize_changes, 10u);
+  EXPECT_GT(c.unlinked_changes, 10u);
 }
 
 TEST(BroadPhaseDifferential, ManyPrimitivesCrowdedTogether) {

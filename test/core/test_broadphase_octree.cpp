@@ -1,6 +1,6 @@
 // The N-objects octree and the grid on hand-built scenes: minimum cell size, split and merge,
 // location links, the update techniques' effect on work (never on answers), the outside list,
-// jumps, the oversize list, stamp wrap-around and the canonical shape shared with the rebuild
+// jumps, the unlinked list, stamp wrap-around and the canonical shape shared with the rebuild
 // scheme.
 #include <gtest/gtest.h>
 
@@ -12,6 +12,7 @@
 
 #include "arm_collision_monitor/broadphase/grid_broad_phase.h"
 #include "arm_collision_monitor/broadphase/octree_broad_phase.h"
+#include "arm_collision_monitor/core/constants.h"
 #include "test_broadphase_scene.h"
 
 namespace arm_collision_monitor {
@@ -197,7 +198,10 @@ TEST(Octree, InsideExitAndDirectionCutTheWorkButNotTheAnswer) {
   EXPECT_GT(total_off, total_on);
 }
 
-TEST(Octree, JumpsTakeTheFallbackAndOutsidePrimitivesAreNeverLost) {
+TEST(Octree, JumpsTakeTheFallbackOrTheUnlinkedListAndOutsidePrimitivesAreNeverLost) {
+  // Leaves of 1 m: steps of 1 m or more take the fallback; steps of 2 m (kJumpSpacingFraction
+  // of the 8 m oversize spacing) or more unlink the box until a shorter step.
+  static_assert(kJumpSpacingFraction == 0.25, "the steps below assume a 2 m jump step");
   OctreeBroadPhase octree(SmallWorld(2), CellUpdateStrategy::kIncremental);
   const CompatibilityMatrix none(2);
   std::vector<CandidatePair> pairs;
@@ -207,12 +211,24 @@ TEST(Octree, JumpsTakeTheFallbackAndOutsidePrimitivesAreNeverLost) {
   EXPECT_EQ(octree.outside_count(), 1u);
   EXPECT_EQ(octree.counters().outside_world, 1u);
   ExpectValid(octree);
-  octree.Move(1, Box(6.5, 1, 1, 7.6, 2, 2));  // a jump of 5.5 m > the 1 m leaf
+  octree.Move(1, Box(2.5, 1, 1, 3.5, 2, 2));  // a step of 1.5 m: the fallback, still linked
   EXPECT_EQ(octree.counters().reinsert_fallbacks, 1u);
+  EXPECT_EQ(octree.unlinked_count(), 0u);
+  ExpectValid(octree);
+  octree.Move(1, Box(6.5, 1, 1, 7.6, 2, 2));  // a jump of 4 m: unlinked, tested against all
+  EXPECT_EQ(octree.counters().reinsert_fallbacks, 1u);
+  EXPECT_EQ(octree.unlinked_count(), 1u);
+  EXPECT_EQ(octree.outside_count(), 1u);
+  ExpectValid(octree);
+  octree.FindPairs(none, &pairs);
+  EXPECT_EQ(pairs, both);
+  octree.Move(1, Box(7.3, 1, 1, 8.3, 2, 2));  // a short step: back into the cells
+  EXPECT_EQ(octree.unlinked_count(), 0u);
+  EXPECT_EQ(octree.counters().unlinked_changes, 2u);
   ExpectValid(octree);
   octree.FindPairs(none, &pairs);
   EXPECT_EQ(pairs, both);                     // the straddler's part inside the cube is indexed
-  octree.Move(1, Box(7.3, 1, 1, 8.3, 2, 2));  // straddles too: still the incremental update
+  octree.Move(1, Box(7.4, 1, 1, 8.4, 2, 2));  // straddles too: the incremental update
   EXPECT_EQ(octree.outside_count(), 2u);
   EXPECT_EQ(octree.counters().reinsert_fallbacks, 1u);
   ExpectValid(octree);
@@ -227,13 +243,21 @@ TEST(Octree, JumpsTakeTheFallbackAndOutsidePrimitivesAreNeverLost) {
   ExpectValid(octree);
   octree.FindPairs(none, &pairs);
   EXPECT_EQ(pairs, both);
-  // A corrupt (NaN) box is parked outside, pairs with nothing, and recovers.
+  // A corrupt (NaN) box is unlinked, pairs with nothing, and recovers: the step from NaN is a
+  // jump too, then a short step links it again.
   octree.Move(1, Box(std::numeric_limits<double>::quiet_NaN(), 1, 1, 7.9, 2, 2));
+  EXPECT_EQ(octree.unlinked_count(), 1u);
   ExpectValid(octree);
   octree.FindPairs(none, &pairs);
   EXPECT_TRUE(pairs.empty());
   octree.Move(1, Box(7.2, 1, 1, 7.9, 2, 2));
-  EXPECT_EQ(octree.counters().reinsert_fallbacks, 3u);
+  EXPECT_EQ(octree.unlinked_count(), 1u);
+  ExpectValid(octree);
+  octree.FindPairs(none, &pairs);
+  EXPECT_EQ(pairs, both);
+  octree.Move(1, Box(7.3, 1, 1, 7.9, 2, 2));
+  EXPECT_EQ(octree.unlinked_count(), 0u);
+  EXPECT_EQ(octree.counters().reinsert_fallbacks, 2u);
   ExpectValid(octree);
   octree.FindPairs(none, &pairs);
   EXPECT_EQ(pairs, both);
@@ -278,6 +302,7 @@ TEST(Octree, IncrementalShapeEqualsTheRebuiltShape) {
                            c.box_W.max_W.x(), c.primitive_count);
   };
   auto less = [&](const IndexCell& x, const IndexCell& y) { return key(x) < key(y); };
+  int unlinked_cycles = 0;
   scene.Initial(&ops);
   for (int cycle = 0; cycle < 300; ++cycle) {
     if (cycle > 0) scene.Step(&ops);
@@ -285,6 +310,12 @@ TEST(Octree, IncrementalShapeEqualsTheRebuiltShape) {
     test::RandomScene::Apply(ops, &rebuilt);
     incremental.FindPairs(scene.compatible(), &pairs);
     rebuilt.FindPairs(scene.compatible(), &pairs);
+    // A box unlinked after a jump is in no cell of the incremental octree but in the rebuilt
+    // one's: compare the cycles where every box is linked.
+    if (incremental.unlinked_count() > 0) {
+      ++unlinked_cycles;
+      continue;
+    }
     incremental.CollectCells(&a);
     rebuilt.CollectCells(&b);
     std::sort(a.begin(), a.end(), less);
@@ -296,6 +327,8 @@ TEST(Octree, IncrementalShapeEqualsTheRebuiltShape) {
   }
   EXPECT_GT(incremental.counters().splits, 0u);
   EXPECT_GT(incremental.counters().merges, 0u);
+  EXPECT_GT(unlinked_cycles, 0);    // the jumps were unlinked ...
+  EXPECT_LT(unlinked_cycles, 100);  // ... and linked again: most cycles compared
 }
 
 TEST(Grid, BoxesSpanningManyCellsAreListedOversizeAndTestedAgainstAll) {
@@ -307,25 +340,30 @@ TEST(Grid, BoxesSpanningManyCellsAreListedOversizeAndTestedAgainstAll) {
   grid.Add(0, Box(1, 1, 1, 5, 5, 5), 0.0, Motion::kStatic);            // 125 cells
   grid.Add(1, Box(4.5, 4.5, 4.5, 5.5, 5.5, 5.5), 0.0, Motion::kMoving);  // 8 cells
   grid.Add(2, Box(0, 0, 0, 3, 3, 3), 0.0, Motion::kMoving);            // 64 cells
-  EXPECT_EQ(grid.oversize_count(), 2u);
+  EXPECT_EQ(grid.unlinked_count(), 2u);
   ExpectValid(grid);
   grid.FindPairs(none, &pairs);
   EXPECT_EQ(pairs, (std::vector<CandidatePair>{{0, 1}, {0, 2}}));
-  grid.Move(2, Box(4, 4, 4, 5, 5, 5));  // back into the cells
-  EXPECT_EQ(grid.oversize_count(), 1u);
-  EXPECT_EQ(grid.counters().oversize_changes, 3u);
+  grid.Move(2, Box(4, 4, 4, 5, 5, 5));  // small now, but a jump: still unlinked
+  EXPECT_EQ(grid.unlinked_count(), 2u);
+  ExpectValid(grid);
+  grid.FindPairs(none, &pairs);
+  EXPECT_EQ(pairs, (std::vector<CandidatePair>{{0, 1}, {0, 2}, {1, 2}}));
+  grid.Move(2, Box(4.1, 4, 4, 5.1, 5, 5));  // a short step: back into the cells
+  EXPECT_EQ(grid.unlinked_count(), 1u);
+  EXPECT_EQ(grid.counters().unlinked_changes, 3u);
   ExpectValid(grid);
   grid.FindPairs(none, &pairs);
   EXPECT_EQ(pairs, (std::vector<CandidatePair>{{0, 1}, {0, 2}, {1, 2}}));
   grid.Move(1, Box(0, 0, 0, 6, 1, 1));  // 7 x 2 x 2 cells: long and thin, listed too
-  EXPECT_EQ(grid.oversize_count(), 2u);
+  EXPECT_EQ(grid.unlinked_count(), 2u);
   ExpectValid(grid);
   grid.FindPairs(none, &pairs);
   EXPECT_EQ(pairs, (std::vector<CandidatePair>{{0, 1}, {0, 2}}));  // touching faces overlap
   grid.FindPairsOf(1, none, &pairs);
   EXPECT_EQ(pairs, (std::vector<CandidatePair>{{0, 1}}));
   grid.Remove(0);
-  EXPECT_EQ(grid.oversize_count(), 1u);
+  EXPECT_EQ(grid.unlinked_count(), 1u);
   ExpectValid(grid);
   grid.FindPairs(none, &pairs);
   EXPECT_TRUE(pairs.empty());

@@ -31,7 +31,7 @@ struct BroadPhaseCounters {
   std::uint64_t merges = 0;
   std::uint64_t reinsert_fallbacks = 0;   ///< moves too large for the incremental update
   std::uint64_t outside_world = 0;        ///< moves that left (part of) the box outside the world
-  std::uint64_t oversize_changes = 0;     ///< boxes into or out of a cell index's oversize list
+  std::uint64_t unlinked_changes = 0;     ///< boxes into or out of a cell index's unlinked list
   BroadPhaseCounters& operator+=(const BroadPhaseCounters& o) {
     object_node_tests += o.object_node_tests;
     object_object_tests += o.object_object_tests;
@@ -40,7 +40,7 @@ struct BroadPhaseCounters {
     merges += o.merges;
     reinsert_fallbacks += o.reinsert_fallbacks;
     outside_world += o.outside_world;
-    oversize_changes += o.oversize_changes;
+    unlinked_changes += o.unlinked_changes;
     return *this;
   }
 };

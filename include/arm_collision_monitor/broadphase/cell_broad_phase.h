@@ -1,6 +1,7 @@
 // What the octree and the uniform grid share: the primitive table, the location links between
 // primitives and cells (the seed's Figure 4), the list of primitives outside the world cube,
-// the oversize list of boxes too large for the cells, the visit and pair stamps, and the
+// the unlinked list of boxes too large for the cells or jumping across them, the visit and
+// pair stamps, and the
 // per-cycle pair scan (cell_broad_phase.cpp; the self-checks in cell_broad_phase_validate.cpp).
 // The cell structure itself (which cells exist, where a box goes, how cells split and merge) is
 // left to the derived class.
@@ -48,11 +49,12 @@ class CellBroadPhase : public BroadPhase {
   /// after that many more stamps.
   void ForceStampsNearWrap(std::uint32_t steps_before_wrap) override;
 
-  /// Number of present primitives whose inflated box is not inside the world cube (oversize
+  /// Number of present primitives whose inflated box is not inside the world cube (unlinked
   /// ones not counted).
   std::size_t outside_count() const { return outside_ids_.size(); }
-  /// Number of present primitives kept in the oversize list instead of the cells (IsOversize).
-  std::size_t oversize_count() const { return oversize_ids_.size(); }
+  /// Number of present primitives kept in the unlinked list instead of the cells: an oversize
+  /// box (IsOversize), or one whose last move was a jump (Record::jumped).
+  std::size_t unlinked_count() const { return unlinked_ids_.size(); }
 
  protected:
   static constexpr std::uint32_t kNone = 0xffffffffu;
@@ -63,12 +65,13 @@ class CellBroadPhase : public BroadPhase {
     Motion motion = Motion::kStatic;
     bool present = false;
     bool outside = false;   // box not inside the world cube: also kept in outside_ids_
-    bool oversize = false;  // IsOversize(box): in oversize_ids_ only, linked to no cell
+    bool jumped = false;    // its last move was IsJump (incremental strategy only)
+    bool unlinked = false;  // IsOversize(box) or jumped: in unlinked_ids_ only, in no cell
     std::uint32_t first_link = kNone;
     std::uint32_t link_count = 0;
     std::uint32_t pair_stamp = 0;   // scan stamp of the last pair test in this cycle
     std::uint32_t union_stamp = 0;  // distinct-primitive counting (merges, splits' bookkeeping)
-    std::uint32_t present_slot = 0, moving_slot = 0, outside_slot = 0, oversize_slot = 0;
+    std::uint32_t present_slot = 0, moving_slot = 0, outside_slot = 0, unlinked_slot = 0;
   };
   // A location link: primitive `prim` lies in cell `cell`. Each link is on two doubly linked
   // lists, the cell's and the primitive's, so it is added and removed in O(1).
@@ -80,7 +83,7 @@ class CellBroadPhase : public BroadPhase {
   };
 
   /// `cell_spacing_m`: the jump limit of UpdateCells (see there); `oversize_spacing_m`: the
-  /// lattice spacing IsOversize counts cells in.
+  /// lattice spacing IsOversize counts cells in (and IsJump's step, a fraction of it).
   CellBroadPhase(const Aabb& world_W, const BroadPhaseTechniques& techniques,
                  CellUpdateStrategy strategy, double cell_spacing_m, double oversize_spacing_m);
 
@@ -184,8 +187,8 @@ class CellBroadPhase : public BroadPhase {
   std::vector<PrimitiveId> moving_ids_;
   std::vector<PrimitiveId> outside_ids_;
   BoxArray outside_boxes_;  // per slot of outside_ids_: its record's box, for the brute force
-  std::vector<PrimitiveId> oversize_ids_;
-  BoxArray oversize_boxes_;  // per slot of oversize_ids_: its record's box
+  std::vector<PrimitiveId> unlinked_ids_;
+  BoxArray unlinked_boxes_;  // per slot of unlinked_ids_: its record's box
   std::vector<std::uint32_t> scratch_cells_;  // merge candidates, reserved at start-up
 
   Aabb world_W_;  // the cube the cells span: octree root, whole grid; lattice origin at min_W
@@ -193,6 +196,7 @@ class CellBroadPhase : public BroadPhase {
   CellUpdateStrategy strategy_;
   double jump_limit_m_;  // cell spacing * (1 - margin)
   double inv_oversize_spacing_;  // 1 / the spacing IsOversize counts cells in
+  double jump_step_m_;  // IsJump's step: that spacing * kJumpSpacingFraction
   std::uint32_t visit_stamp_ = 0;
   std::uint32_t scan_stamp_ = 0;
   std::uint32_t union_stamp_ = 0;
@@ -210,12 +214,16 @@ class CellBroadPhase : public BroadPhase {
   void SetOutside(PrimitiveId id, bool outside);
   // True when the box spans more than kOversizeCells lattice cells (false for NaN bounds).
   bool IsOversize(const Aabb& box_W) const;
-  // Puts `id` (linked to no cell, on no outside list) on or off the oversize list.
-  void SetOversize(PrimitiveId id, bool oversize);
-  // Links `id` into the cells of its box, or lists it as oversize, and sets its outside flag
+  // True when a face of the box moved by jump_step_m_ or more (or a bound is NaN): the cells
+  // left and entered would cost more than testing the box against every box.
+  bool IsJump(const Aabb& old_box_W, const Aabb& new_box_W) const;
+  // Puts `id` (linked to no cell, on no outside list) on or off the unlinked list.
+  void SetUnlinked(PrimitiveId id, bool unlinked);
+  // Links `id` into the cells of its box, or lists it as unlinked (oversize or jumped: its
+  // record's flag), and sets its outside flag
   // (it is linked to no cell and on neither list).
   void Place(PrimitiveId id);
-  // Appends the pairs of an oversize primitive `m`: every present primitive's box tested (the
+  // Appends the pairs of an unlinked primitive `m`: every present primitive's box tested (the
   // present list's structure of arrays, as the all-pairs broad phase).
   void ScanAll(PrimitiveId m, bool from_smaller_only, const CompatibilityMatrix& compatible,
                std::vector<CandidatePair>* pairs);
@@ -230,8 +238,8 @@ class CellBroadPhase : public BroadPhase {
   void ResetScanStamps();
   void ResetUnionStamps();
   void Rebuild();
-  /// Appends the candidate pairs of `m` found through its cells, the oversize list and, when
-  /// its box is outside the world cube, the outside list (ScanAll for an oversize `m`); moving
+  /// Appends the candidate pairs of `m` found through its cells, the unlinked list and, when
+  /// its box is outside the world cube, the outside list (ScanAll for an unlinked `m`); moving
   /// partners with a smaller id are left to
   /// their own scan when `from_smaller_only` (FindPairs meets such a pair from both sides).
   void ScanPartners(PrimitiveId m, bool from_smaller_only, const CompatibilityMatrix& compatible,
@@ -246,7 +254,7 @@ class CellBroadPhase : public BroadPhase {
   // lists (their links summed in cell_links). ValidateShared then checks the totals and the
   // free link list.
   struct ListCounts {
-    std::size_t present = 0, moving = 0, outside = 0, oversize = 0;
+    std::size_t present = 0, moving = 0, outside = 0, unlinked = 0;
   };
   // Whether `id` is at `slot` of `ids` and `boxes` holds its box there, bit for bit; false with
   // the violation, naming the `list`, in `why`.
