@@ -60,7 +60,8 @@ const char* kUsage =
     "  file.csv: a header row of joint names (optionally 'time_s' first), one row per cycle.\n"
     "options:\n"
     "  --urdf F --scene F --config F   workcell and monitor options (default: the package's\n"
-    "                                  urdf/workcell.urdf, config/scene.yaml, config/monitor.yaml)\n"
+    "                                  urdf/workcell.urdf, config/scene.yaml,\n"
+    "                                  config/monitor.yaml)\n"
     "  --method M     auto | octree | naive | grid | rebuild | reinsert"
 #ifdef ACM_HAVE_PEERS
     " | fcl | bullet"
@@ -133,7 +134,8 @@ bool ParseOptions(int argc, char** argv, Options* options, std::string* error) {
 }
 
 bool EndsWith(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+  return s.size() >= suffix.size() &&
+         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 // The input as one q per cycle (model order) with its time, plus what was refused on the way.
@@ -619,7 +621,8 @@ int main(int argc, char** argv) {
       const std::string package = ros::package::getPath("arm_collision_monitor");
       if (package.empty()) {
         throw LoadError("cannot find the package arm_collision_monitor (source its "
-                        "devel/setup.bash) for the default workcell; pass --urdf, --scene, --config");
+                        "devel/setup.bash) for the default workcell; pass --urdf, --scene, "
+                        "--config");
       }
       if (options.urdf.empty()) options.urdf = package + "/urdf/workcell.urdf";
       if (options.scene.empty()) options.scene = package + "/config/scene.yaml";

@@ -73,8 +73,9 @@ struct PlanningSceneInput {
 /// planning_scene: (optional), planning_scene_acm and planning_scene_tolerance_m: appends each
 /// world collision object of the file as a static object of `workcell` (whose world_W and
 /// kinematics must be read). Its frame must be the fixed frame ("" or one of `root_aliases`
-/// means it) or a URDF link fixed to it. Box -> Box; sphere -> zero-length capsule; cylinder, and a cone's bounding
-/// cylinder -> per options.cylinder_model; inline mesh -> the primitives `meshes` fits to it.
+/// means it) or a URDF link fixed to it. Box -> Box; sphere -> zero-length capsule; cylinder,
+/// and a cone's bounding cylinder -> per options.cylinder_model; inline mesh -> the primitives
+/// `meshes` fits to it.
 /// The file is read through `fetch`; its notices are added to workcell->warnings.
 PlanningSceneInput ReadPlanningScene(const YAML::Node& scene, const std::string& scene_path,
                                      const ShapeOptions& options, const ResourceFetcher& fetch,

@@ -33,11 +33,12 @@ struct SrdfVirtualJoint {
   int line = 0;
 };
 
-/// The collision rules of an SRDF, and its virtual joints, in file order. MoveIt applies them as: a link listed in
-/// default_disabled_links may touch anything by default; enabled_pairs re-enable checking for
-/// their pairs (overriding that default); disabled_pairs excuse their pairs. Link names are not
-/// checked against any URDF here (the caller knows the model). Pairs are returned as written:
-/// repeats and link1 == link2 are kept, link1/link2 order is the file's.
+/// The collision rules of an SRDF, and its virtual joints, in file order. MoveIt applies them
+/// as: a link listed in default_disabled_links may touch anything by default; enabled_pairs
+/// re-enable checking for their pairs (overriding that default); disabled_pairs excuse their
+/// pairs. Link names are not checked against any URDF here (the caller knows the model). Pairs
+/// are returned as written: repeats and link1 == link2 are kept, link1/link2 order is the
+/// file's.
 struct SrdfCollisionRules {
   std::string robot_name;  ///< <robot name=...>, "" when absent
   std::vector<SrdfLinkPair> disabled_pairs;
