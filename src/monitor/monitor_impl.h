@@ -149,6 +149,10 @@ struct Monitor::Impl {
   // each primitive that may leave its slack during the step whose boxes at q are not apart by
   // more than threshold + both step bounds. False when no primitive may leave it (none).
   bool CollectSweptPairs();
+  // CollectSweptPairs' search when leavers x near boxes reach kSweptScanMinTests: each leaver's
+  // grown box against every grown box at once (BoxArray by id), the hits masked by its
+  // compatibility row and by the leavers that take the pair themselves.
+  void ScanSweptPairs();
   // Whether `id` may leave its slack during the step: its displacement at q plus its step bound
   // B exceeds the slack and, when `is_start_copy` (its indexed copy is the one it had at the
   // step's start) and the start displacements are known, so does (d0 + d1 + B) / 2 (NaN: may;

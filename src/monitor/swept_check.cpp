@@ -43,6 +43,8 @@ void Monitor::Impl::InitSwept() {
   swept.is_step_bound_known.assign(n, 0);
   swept.leavers.reserve(n);
   swept.near.reserve(n);
+  swept.grown_by_id_W.Reserve(n);
+  swept.leaver_words.assign((n + 63) / 64, 0);
   swept.q_kinematics = model.q_start;
   swept.pairs.reserve(static_cast<std::size_t>(n) * (n > 0 ? n - 1 : 0) / 2);
   CheckStepTolerance();
@@ -241,19 +243,59 @@ bool Monitor::Impl::CollectSweptPairs() {
   for (PrimitiveId id = 0; id < n; ++id) {
     if (in_broad_phase[id] && hull_W.Overlaps(swept.grown_W[id])) swept.near.push_back(id);
   }
-  for (const PrimitiveId leaver : swept.leavers) {
-    const Aabb& grown_W = swept.grown_W[leaver];
-    for (const PrimitiveId other : swept.near) {
-      if (other == leaver || (swept.leaves_slack[other] && other < leaver) ||
-          !grown_W.Overlaps(swept.grown_W[other])) {
-        continue;
+  if (swept.leavers.size() * swept.near.size() >= kSweptScanMinTests) {
+    ScanSweptPairs();
+  } else {
+    for (const PrimitiveId leaver : swept.leavers) {
+      const Aabb& grown_W = swept.grown_W[leaver];
+      for (const PrimitiveId other : swept.near) {
+        // A pair of two leavers is taken from the smaller id's side.
+        if (other == leaver || (swept.leaves_slack[other] && other < leaver) ||
+            !grown_W.Overlaps(swept.grown_W[other])) {
+          continue;
+        }
+        AddSweptPairIfNear(std::min(leaver, other), std::max(leaver, other));
       }
-      AddSweptPairIfNear(std::min(leaver, other), std::max(leaver, other));
     }
   }
   std::sort(swept.pairs.begin(), swept.pairs.end(),
             [](const SweptPair& x, const SweptPair& y) { return x.pair < y.pair; });
   return true;
+}
+
+void Monitor::Impl::ScanSweptPairs() {
+  // The grown boxes by id (NaN, overlapping nothing, for those not indexed), so that a word of
+  // hits lines up with the leaver's compatibility row: the compatible pairs, and the pairs with
+  // a leaver of a smaller id (taken from that side), are masked before any exact test.
+  const std::uint32_t n = live_end;
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  const Aabb not_indexed_W{Eigen::Vector3d::Constant(kNaN), Eigen::Vector3d::Constant(kNaN)};
+  swept.grown_by_id_W.Clear();
+  for (PrimitiveId id = 0; id < n; ++id) {
+    swept.grown_by_id_W.PushBack(in_broad_phase[id] ? swept.grown_W[id] : not_indexed_W);
+  }
+  std::fill(swept.leaver_words.begin(), swept.leaver_words.end(), std::uint64_t{0});
+  for (const PrimitiveId leaver : swept.leavers) {
+    swept.leaver_words[leaver / 64] |= std::uint64_t{1} << (leaver % 64);
+  }
+  for (const PrimitiveId leaver : swept.leavers) {
+    const std::uint64_t* compatible_row = compatible.RowWords(leaver);
+    const std::uint32_t row_words = compatible_row != nullptr ? compatible.words_per_row() : 0;
+    const std::uint32_t leaver_word = leaver / 64;
+    // Bits of the ids up to the leaver's own in its word (2 << 63 wraps to 0: every bit).
+    const std::uint64_t up_to_leaver = (std::uint64_t{2} << (leaver % 64)) - 1;
+    swept.grown_by_id_W.MarkOverlaps(swept.grown_W[leaver]);
+    swept.grown_by_id_W.ForEachHit(
+        [&](std::uint32_t w) {
+          const std::uint64_t earlier =
+              w < leaver_word ? ~std::uint64_t{0} : (w == leaver_word ? up_to_leaver : 0);
+          return ~(swept.leaver_words[w] & earlier) &
+                 ~(w < row_words ? compatible_row[w] : std::uint64_t{0});
+        },
+        [&](std::uint32_t other) {
+          AddSweptPairIfNear(std::min(leaver, other), std::max(leaver, other));
+        });
+  }
 }
 
 void Monitor::Impl::AddSweptPairIfNear(PrimitiveId a, PrimitiveId b) {

@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "arm_collision_monitor/broadphase/box_array.h"
 #include "arm_collision_monitor/broadphase/broad_phase.h"
 #include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/geometry/primitives.h"
@@ -61,6 +62,8 @@ struct SweptScratch {
   std::vector<std::uint8_t> leaves_slack;  // per primitive: may leave its slack in the step
   std::vector<PrimitiveId> leavers;        // those that may, in order
   std::vector<PrimitiveId> near;           // the indexed ones whose boxes meet the leavers' hull
+  BoxArray grown_by_id_W;  // per id: grown_W, NaN if not indexed (ScanSweptPairs)
+  std::vector<std::uint64_t> leaver_words;  // bit id % 64 of word id / 64: leaves_slack
   // At the step's start, when has_start_displacement (the index unchanged since the last
   // kinematics): the last kinematics' q. A bound on a primitive's displacement at q_start adds
   // its motion since to its displacement then (Impl::StartDisplacement_m, only for the few

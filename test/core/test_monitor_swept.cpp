@@ -4,9 +4,11 @@
 // all pairs): no contact the sampler finds is missed, and every between-samples warning is
 // checked at its own fraction to lie within threshold + resolution. Also: jumps beyond
 // max_step_m, the start-up tolerance check, and how rarely the path is needed.
+#include <array>
 #include <map>
 #include <sstream>
 
+#include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/core/load_error.h"
 #include "test_monitor_util.h"
 
@@ -35,6 +37,25 @@ std::shared_ptr<const Workcell> LoadSceneWith(const std::string& name,
   });
 }
 
+/// YAML list entries (for LoadSceneWith) of 3 cm cubes on a grid: count[a] along axis a from
+/// `first_m`, `spacing_m` apart.
+std::string CubeGrid(const std::array<int, 3>& count, const Eigen::Vector3d& first_m,
+                     const Eigen::Vector3d& spacing_m) {
+  std::ostringstream cubes;
+  for (int i = 0; i < count[0]; ++i) {
+    for (int j = 0; j < count[1]; ++j) {
+      for (int k = 0; k < count[2]; ++k) {
+        const Eigen::Vector3d centre_m =
+            first_m + spacing_m.cwiseProduct(Eigen::Vector3d(i, j, k));
+        cubes << (i + j + k == 0 ? "" : "\n  ") << "- {name: cube_" << i << "_" << j << "_" << k
+              << ", size_m: [0.03, 0.03, 0.03], pose: {xyz_m: [" << centre_m.x() << ", "
+              << centre_m.y() << ", " << centre_m.z() << "]}}";
+      }
+    }
+  }
+  return cubes.str();
+}
+
 /// The straight joint-space path of a step.
 Eigen::VectorXd Along(const Eigen::VectorXd& q0, const Eigen::VectorXd& q1, double s) {
   return q0 + s * (q1 - q0);
@@ -59,6 +80,11 @@ DenseResult DenseStep(const Workcell& wc, const Eigen::VectorXd& q0, const Eigen
   std::vector<Aabb> box(n);
   // The far cut: 0.1 m beyond any threshold; nearer pairs get exact distances.
   constexpr double kFar_m = 0.1;
+  std::vector<std::uint8_t> is_static(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const PrimitiveSpec& p = wc.primitives[i];
+    is_static[i] = p.link_index >= 0 ? p.is_static : wc.objects[p.object_index].frame.empty();
+  }
   DenseResult result;
   for (int k = 1; k <= samples; ++k) {
     model.ComputeLinkPoses(Along(q0, q1, static_cast<double>(k) / samples), &X_WL);
@@ -67,18 +93,16 @@ DenseResult DenseStep(const Workcell& wc, const Eigen::VectorXd& q0, const Eigen
       shape[i] = p.link_index >= 0 ? TransformShape(X_WL[p.link_index], p.shape_L) : p.shape_L;
       box[i] = ComputeAabb(shape[i]).Inflated(p.tolerance_m + kFar_m);
     }
-    auto is_static = [&](const PrimitiveSpec& p) {
-      return p.link_index >= 0 ? p.is_static : wc.objects[p.object_index].frame.empty();
-    };
-    for (std::size_t a = 0; a < n; ++a) {
-      const PrimitiveSpec& pa = wc.primitives[a];
-      if (!pa.variant.empty()) continue;
-      for (std::size_t b = a + 1; b < n; ++b) {
+    // Each pair with a moving primitive (two static ones are never checked), from the moving
+    // one, or from the smaller id when both move.
+    for (std::size_t m = 0; m < n; ++m) {
+      if (!wc.primitives[m].variant.empty() || is_static[m]) continue;
+      for (std::size_t o = 0; o < n; ++o) {
+        if (o == m || !wc.primitives[o].variant.empty() || (!is_static[o] && o < m)) continue;
+        const std::size_t a = std::min(m, o), b = std::max(m, o);
+        const PrimitiveSpec& pa = wc.primitives[a];
         const PrimitiveSpec& pb = wc.primitives[b];
-        if (!pb.variant.empty() || (is_static(pa) && is_static(pb)) ||
-            wc.compatible.AreCompatible(a, b) || !box[a].Overlaps(box[b])) {
-          continue;
-        }
+        if (wc.compatible.AreCompatible(a, b) || !box[a].Overlaps(box[b])) continue;
         DensePair& pair = result[{static_cast<PrimitiveId>(a), static_cast<PrimitiveId>(b)}];
         pair.threshold_m = pa.tolerance_m + pb.tolerance_m;
         const double d = ShapeDistance(shape[a], shape[b]).distance_m;
@@ -230,39 +254,50 @@ TEST(MonitorSwept, PlateMovedIntoPathAfterSweptStep) {
 // The left arm, stretched out, swings its base joint through the right arm (straight up) in
 // one step; the ends are found by scanning for clear poses either side of the contact.
 TEST(MonitorSwept, ArmsCrossInOneStep) {
-  const auto wc = test::LoadBundledWorkcell();
-  const int j1 = JointIndex(*wc, "left_joint1");
-  const Eigen::VectorXd base = MakeQ(*wc, {{"left_joint2", 1.3}});
-  Monitor monitor(wc, Unlimited());
-  // Scan the base joint for the left-right contact and clear poses either side of it.
-  double contact = std::nan(""), before = std::nan(""), after = std::nan("");
-  for (double t = -2.9; t <= 2.9; t += 0.01) {
-    Eigen::VectorXd q = base;
-    q[j1] = t;
-    const CycleReport r = monitor.Check(q);
-    const bool arms_near = std::any_of(r.warnings.begin(), r.warnings.end(), [&](const Warning& w) {
-      return wc->primitives[w.a].owner.rfind("left", 0) == 0 &&
-             wc->primitives[w.b].owner.rfind("right", 0) == 0;
-    });
-    if (arms_near && std::isnan(contact)) contact = t;
-    if (r.warnings.empty() && std::isnan(contact)) before = t;
-    if (r.warnings.empty() && !std::isnan(contact) && std::isnan(after)) after = t;
+  // The bundled scene, and the same with 336 small cubes low between the pedestals, under the
+  // arms and inside the hull of the leavers' grown boxes: with those near, the leavers' pairs are
+  // found by CollectSweptPairs' scan (kSweptScanMinTests). The left-right pairs are pairs of two
+  // leavers (slack 0, the right arm turning slightly too).
+  const std::string cubes = CubeGrid({8, 14, 3}, {-0.5, -1.7, 0.55}, {0.13, 0.2, 0.05});
+  for (const auto& wc : {test::LoadBundledWorkcell(), LoadSceneWith("cubes_above", cubes)}) {
+    const int j1 = JointIndex(*wc, "left_joint1");
+    const Eigen::VectorXd base = MakeQ(*wc, {{"left_joint2", 1.3}});
+    MonitorOptions options = Unlimited();
+    options.index_slack_m = 0.0;
+    Monitor monitor(wc, options);
+    // Scan the base joint for the left-right contact and clear poses either side of it.
+    double contact = std::nan(""), before = std::nan(""), after = std::nan("");
+    for (double t = -2.9; t <= 2.9; t += 0.01) {
+      Eigen::VectorXd q = base;
+      q[j1] = t;
+      const CycleReport r = monitor.Check(q);
+      const bool arms_near =
+          std::any_of(r.warnings.begin(), r.warnings.end(), [&](const Warning& w) {
+            return wc->primitives[w.a].owner.rfind("left", 0) == 0 &&
+                   wc->primitives[w.b].owner.rfind("right", 0) == 0;
+          });
+      if (arms_near && std::isnan(contact)) contact = t;
+      if (r.warnings.empty() && std::isnan(contact)) before = t;
+      if (r.warnings.empty() && !std::isnan(contact) && std::isnan(after)) after = t;
+    }
+    ASSERT_FALSE(std::isnan(contact) || std::isnan(before) || std::isnan(after));
+    Eigen::VectorXd q0 = base, q1 = base;
+    q0[j1] = before;
+    q1[j1] = after;
+    q1[JointIndex(*wc, "right_joint1")] += 0.01;
+    const CycleReport report = RunStep(&monitor, q0, q1);
+    EXPECT_TRUE(report.stop);
+    bool arm_arm = false;
+    for (const Warning& w : report.warnings) {
+      arm_arm = arm_arm || (w.between_samples && wc->primitives[w.a].owner.rfind("left", 0) == 0 &&
+                            wc->primitives[w.b].owner.rfind("right", 0) == 0);
+    }
+    const std::string context = std::to_string(wc->primitives.size()) + " primitives";
+    EXPECT_TRUE(arm_arm) << context << ", step " << before << " -> " << after << " rad";
+    StepTally tally;
+    CheckStep(*wc, options, q0, q1, report, "arms cross, " + context, &tally);
+    EXPECT_GT(tally.dense_contacts, 0) << context;
   }
-  ASSERT_FALSE(std::isnan(contact) || std::isnan(before) || std::isnan(after));
-  Eigen::VectorXd q0 = base, q1 = base;
-  q0[j1] = before;
-  q1[j1] = after;
-  const CycleReport report = RunStep(&monitor, q0, q1);
-  EXPECT_TRUE(report.stop);
-  bool arm_arm = false;
-  for (const Warning& w : report.warnings) {
-    arm_arm = arm_arm || (w.between_samples && wc->primitives[w.a].owner.rfind("left", 0) == 0 &&
-                          wc->primitives[w.b].owner.rfind("right", 0) == 0);
-  }
-  EXPECT_TRUE(arm_arm) << "step " << before << " -> " << after << " rad";
-  StepTally tally;
-  CheckStep(*wc, Unlimited(), q0, q1, report, "arms cross", &tally);
-  EXPECT_GT(tally.dense_contacts, 0);
 }
 
 // A wrist flip, dominated by rotation: joint 6 swings the gripper through a 3 mm rod laid along
@@ -350,6 +385,47 @@ TEST(MonitorSwept, RandomFastTrajectoriesMissNothing) {
       EXPECT_EQ(tally.missed, 0);
       EXPECT_GT(tally.dense_contacts, 0) << "the trajectories must pass near things";
     }
+  }
+}
+
+// Many small boxes around the arms, index slack 0 (every moving primitive may leave its slack in
+// every step) and fast steps: some 20 leavers by a few hundred near boxes, so CollectSweptPairs
+// scans the boxes as arrays (kSweptScanMinTests) rather than one by one. Each step against the
+// dense sampler: 0 missed.
+TEST(MonitorSwept, CrowdedStepsScannedAsArraysMissNothing) {
+  const std::string cubes = CubeGrid({8, 8, 6}, {-0.8, -1.4, 0.7}, {0.3, 0.4, 0.3});
+  const auto wc = LoadSceneWith("cubes", cubes);
+  std::size_t moving = 0;
+  for (const PrimitiveSpec& p : wc->primitives) moving += p.link_index >= 0 && !p.is_static;
+  ASSERT_GE(moving * wc->primitives.size(), 2 * kSweptScanMinTests) << "too few to scan";
+  const test::JointLimits limits = test::LimitsOf(*wc);
+  std::mt19937_64 rng(test::PrintSeed(2718));
+  // Slack 0, where the nearby pairs are kept pairs too, and the default slack, which steps of
+  // 0.2 s at full speed leave.
+  for (const double slack_m : {0.0, MonitorOptions().index_slack_m}) {
+    StepTally tally;
+    for (int trajectory = 0; trajectory < 2; ++trajectory) {
+      const test::SmoothTrajectory path(limits, 1.0, &rng);
+      MonitorOptions options = Unlimited();
+      options.index_slack_m = slack_m;
+      Monitor monitor(wc, options);
+      Eigen::VectorXd q_prev, q;
+      path.At(0.0, &q_prev);
+      monitor.Update(q_prev);
+      for (int k = 1; k <= 12; ++k) {
+        path.At(k * 0.2, &q);
+        const CycleReport& report = monitor.Update(q);
+        CheckStep(*wc, options, q_prev, q, report,
+                  "slack " + std::to_string(slack_m) + " trajectory " +
+                      std::to_string(trajectory) + " step " + std::to_string(k),
+                  &tally);
+        q_prev = q;
+      }
+    }
+    PrintTally(("crowded, slack " + std::to_string(slack_m) + " m").c_str(), tally);
+    EXPECT_EQ(tally.missed, 0);
+    EXPECT_GT(tally.dense_contacts, 0) << "the trajectories must pass near things";
+    EXPECT_GT(tally.swept_cycles, 0);
   }
 }
 

@@ -5,7 +5,8 @@
 // float(x) <= float(y)), so it flags every box the exact test would, and a few more; each
 // flagged box is then decided by the exact double test before it is handed out. The brute-force
 // lists of the broad phases use it: NaiveBroadPhase's every present primitive, CellBroadPhase's
-// primitives outside the world cube and too large for its cells.
+// primitives outside the world cube and unlinked from its cells; so does the Monitor's swept
+// check, for the boxes near the primitives that may leave their slack.
 #pragma once
 
 #include <array>
@@ -29,6 +30,8 @@ class BoxArray {
   void SwapRemove(std::uint32_t slot);
   /// Drops the last box.
   void PopBack() { --size_; }
+  /// Drops every box (the capacity stays).
+  void Clear() { size_ = 0; }
 
   /// The scan's code: the best the CPU has (the default: AVX2, else SSE2 on x86-64; elsewhere
   /// the portable one), or one forced for every BoxArray (tests; kAvx2 only where the CPU has
