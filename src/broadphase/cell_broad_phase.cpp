@@ -7,6 +7,15 @@
 #include "arm_collision_monitor/core/constants.h"
 
 namespace arm_collision_monitor {
+namespace {
+
+// True when every face of the box moved by less than `limit_m` (false for a NaN bound).
+bool FacesMovedLess(const Aabb& old_box_W, const Aabb& new_box_W, double limit_m) {
+  return ((new_box_W.min_W - old_box_W.min_W).array().abs() < limit_m).all() &&
+         ((new_box_W.max_W - old_box_W.max_W).array().abs() < limit_m).all();
+}
+
+}  // namespace
 
 // Why the neighbour search of the incremental update is exact (the seed's "an object cannot
 // move through a node", made precise). Every cell boundary lies on the lattice
@@ -153,8 +162,7 @@ std::uint32_t CellBroadPhase::NextUnionStamp() {
 }
 
 bool CellBroadPhase::ShortMove(const Aabb& old_box_W, const Aabb& new_box_W) const {
-  return ((new_box_W.min_W - old_box_W.min_W).array().abs() < jump_limit_m_).all() &&
-         ((new_box_W.max_W - old_box_W.max_W).array().abs() < jump_limit_m_).all();
+  return FacesMovedLess(old_box_W, new_box_W, jump_limit_m_);
 }
 
 void CellBroadPhase::StampLinkedCells(PrimitiveId id, std::uint32_t stamp) {
@@ -280,8 +288,7 @@ bool CellBroadPhase::IsOversize(const Aabb& box_W) const {
 }
 
 bool CellBroadPhase::IsJump(const Aabb& old_box_W, const Aabb& new_box_W) const {
-  return !(((new_box_W.min_W - old_box_W.min_W).array().abs() < jump_step_m_).all() &&
-           ((new_box_W.max_W - old_box_W.max_W).array().abs() < jump_step_m_).all());
+  return !FacesMovedLess(old_box_W, new_box_W, jump_step_m_);
 }
 
 void CellBroadPhase::SetUnlinked(PrimitiveId id, bool unlinked) {

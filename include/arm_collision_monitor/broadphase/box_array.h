@@ -6,7 +6,7 @@
 // flagged box is then decided by the exact double test before it is handed out. The brute-force
 // lists of the broad phases use it: NaiveBroadPhase's every present primitive, CellBroadPhase's
 // primitives outside the world cube and unlinked from its cells; so does the Monitor's swept
-// check, for the boxes near the primitives that may leave their slack.
+// check, for the grown boxes of a step with many primitives leaving their slack.
 #pragma once
 
 #include <array>

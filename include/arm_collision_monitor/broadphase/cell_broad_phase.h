@@ -1,8 +1,8 @@
 // What the octree and the uniform grid share: the primitive table, the location links between
 // primitives and cells (the seed's Figure 4), the list of primitives outside the world cube,
 // the unlinked list of boxes too large for the cells or jumping across them, the visit and
-// pair stamps, and the
-// per-cycle pair scan (cell_broad_phase.cpp; the self-checks in cell_broad_phase_validate.cpp).
+// pair stamps, and the per-cycle pair scan (cell_broad_phase.cpp; the self-checks in
+// cell_broad_phase_validate.cpp).
 // The cell structure itself (which cells exist, where a box goes, how cells split and merge) is
 // left to the derived class.
 #pragma once
@@ -220,8 +220,7 @@ class CellBroadPhase : public BroadPhase {
   // Puts `id` (linked to no cell, on no outside list) on or off the unlinked list.
   void SetUnlinked(PrimitiveId id, bool unlinked);
   // Links `id` into the cells of its box, or lists it as unlinked (oversize or jumped: its
-  // record's flag), and sets its outside flag
-  // (it is linked to no cell and on neither list).
+  // record's flag), and sets its outside flag (it is linked to no cell and on neither list).
   void Place(PrimitiveId id);
   // Appends the pairs of an unlinked primitive `m`: every present primitive's box tested (the
   // present list's structure of arrays, as the all-pairs broad phase).
