@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <string>
 
 #include "arm_collision_monitor/broadphase/broad_phase_util.h"
@@ -10,8 +9,7 @@
 namespace arm_collision_monitor {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-const Aabb kAbsentBox{Eigen::Vector3d::Constant(kNaN), Eigen::Vector3d::Constant(kNaN)};
+const Aabb kAbsentBox = Aabb::Nowhere();
 
 /// The bits of word `w` for ids at most `id`.
 std::uint64_t UpToMask(PrimitiveId id, std::uint32_t w) {

@@ -268,8 +268,7 @@ void Monitor::Impl::ScanSweptPairs() {
   // hits lines up with the leaver's compatibility row: the compatible pairs, and the pairs with
   // a leaver of a smaller id (taken from that side), are masked before any exact test.
   const std::uint32_t n = live_end;
-  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-  const Aabb not_indexed_W{Eigen::Vector3d::Constant(kNaN), Eigen::Vector3d::Constant(kNaN)};
+  const Aabb not_indexed_W = Aabb::Nowhere();
   swept.grown_by_id_W.Clear();
   for (PrimitiveId id = 0; id < n; ++id) {
     swept.grown_by_id_W.PushBack(in_broad_phase[id] ? swept.grown_W[id] : not_indexed_W);

@@ -33,10 +33,12 @@ T GetParamOr(const ros::NodeHandle& nh, const std::string& name, const T& fallba
   return value;
 }
 
-void RequirePositive(const ros::NodeHandle& nh, const std::string& name, double value,
-                     bool allow_zero) {
-  if (!(value > 0.0 || (allow_zero && value == 0.0))) {
-    throw LoadError("parameter " + nh.resolveName(name) + " = " + std::to_string(value) +
+/// Parameter `name` into *value (kept when unset); a positive number, or zero if `allow_zero`.
+template <typename T>
+void ReadPositive(const ros::NodeHandle& nh, const std::string& name, bool allow_zero, T* value) {
+  *value = GetParamOr(nh, name, *value);
+  if (!(*value > 0 || (allow_zero && *value == 0))) {
+    throw LoadError("parameter " + nh.resolveName(name) + " = " + std::to_string(*value) +
                     ": expected a " + (allow_zero ? "non-negative" : "positive") + " number");
   }
 }
@@ -68,18 +70,12 @@ NodeOptions LoadNodeOptions(const ros::NodeHandle& private_nh) {
     throw LoadError("parameter " + private_nh.resolveName("input_topics") +
                     ": expected at least one non-empty topic name");
   }
-  o.queue_size = GetParamOr(private_nh, "queue_size", o.queue_size);
-  RequirePositive(private_nh, "queue_size", o.queue_size, false);
-  o.cycle_rate_hz = GetParamOr(private_nh, "cycle_rate_hz", o.cycle_rate_hz);
-  RequirePositive(private_nh, "cycle_rate_hz", o.cycle_rate_hz, true);
-  o.input_timeout_s = GetParamOr(private_nh, "input_timeout_s", o.input_timeout_s);
-  RequirePositive(private_nh, "input_timeout_s", o.input_timeout_s, false);
-  o.stop_hold_s = GetParamOr(private_nh, "stop_hold_s", o.stop_hold_s);
-  RequirePositive(private_nh, "stop_hold_s", o.stop_hold_s, true);
-  o.stop_period_s = GetParamOr(private_nh, "stop_period_s", o.stop_period_s);
-  RequirePositive(private_nh, "stop_period_s", o.stop_period_s, false);
-  o.marker_rate_hz = GetParamOr(private_nh, "marker_rate_hz", o.marker_rate_hz);
-  RequirePositive(private_nh, "marker_rate_hz", o.marker_rate_hz, false);
+  ReadPositive(private_nh, "queue_size", false, &o.queue_size);
+  ReadPositive(private_nh, "cycle_rate_hz", true, &o.cycle_rate_hz);
+  ReadPositive(private_nh, "input_timeout_s", false, &o.input_timeout_s);
+  ReadPositive(private_nh, "stop_hold_s", true, &o.stop_hold_s);
+  ReadPositive(private_nh, "stop_period_s", false, &o.stop_period_s);
+  ReadPositive(private_nh, "marker_rate_hz", false, &o.marker_rate_hz);
   o.fixed_frame = GetParamOr(private_nh, "fixed_frame", o.fixed_frame);
   return o;
 }

@@ -275,7 +275,10 @@ TEST(ClearanceBatch, SpheresBoundWithinTwoMarginsOfTheDistance) {
   // Every sphere pair's bound, not only the worst: d - 2 margins <= bound <= d.
   Rng rng(kSeed + 2);
   std::vector<std::pair<Shape, Shape>> pairs;
-  for (int i = 0; i < kCasesPerFamily; ++i) pairs.push_back(CapsulesAtGap(&rng, {}, false, true));
+  const Eigen::Vector3d at_origin_W = Eigen::Vector3d::Zero();
+  for (int i = 0; i < kCasesPerFamily; ++i) {
+    pairs.push_back(CapsulesAtGap(&rng, at_origin_W, false, true));
+  }
   std::vector<FloatPrimitive> floats;
   const std::vector<double> bounds = Bounds(pairs, &floats);
   for (std::size_t k = 0; k < pairs.size(); ++k) {
@@ -306,7 +309,10 @@ TEST(ClearanceBatch, PartialBlocksMatchSinglePairs) {
   // 13 pairs: a full block of 8 and a partial one of 5; each bound as computed alone.
   Rng rng(kSeed + 3);
   std::vector<FloatPrimitive> floats;
-  for (int i = 0; i < 26; ++i) floats.push_back(ToFloat(RandomShape(&rng, {}, i % 3 == 0)));
+  const Eigen::Vector3d at_origin_W = Eigen::Vector3d::Zero();
+  for (int i = 0; i < 26; ++i) {
+    floats.push_back(ToFloat(RandomShape(&rng, at_origin_W, i % 3 == 0)));
+  }
   std::vector<PrimitiveId> a, b;
   for (PrimitiveId k = 0; k < 13; ++k) {
     a.push_back(2 * k);

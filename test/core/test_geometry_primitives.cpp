@@ -1,8 +1,8 @@
 // geometry/primitives' transforms and constructors: TransformShape (identity, composition
 // X_AB * X_BC, rigid-transform invariance of the distances between capsules and boxes),
 // PoseFromXyzRpy (the URDF convention, against hand-derived rotations and against Eigen's
-// AngleAxis composition Rz(yaw) Ry(pitch) Rx(roll)) and Aabb::Cube. Seeded: the seed is printed
-// (ACM_PRIMITIVES_SEED=<n> overrides it).
+// AngleAxis composition Rz(yaw) Ry(pitch) Rx(roll)), Aabb::Cube and Aabb::Nowhere. Seeded: the
+// seed is printed (ACM_PRIMITIVES_SEED=<n> overrides it).
 #include <algorithm>
 #include <cinttypes>
 #include <cmath>
@@ -243,6 +243,17 @@ TEST(AabbCube, HandCase) {
   const Aabb cube = Aabb::Cube(Vector3d(1.0, 2.0, 3.0), 2.0);
   EXPECT_EQ(cube.min_W, Vector3d(0.0, 1.0, 2.0));
   EXPECT_EQ(cube.max_W, Vector3d(2.0, 3.0, 4.0));
+}
+
+TEST(AabbNowhere, OverlapsNothingNotEvenItself) {
+  const Aabb nowhere = Aabb::Nowhere();
+  const double inf = std::numeric_limits<double>::infinity();
+  const Aabb everywhere{Vector3d::Constant(-inf), Vector3d::Constant(inf)};
+  EXPECT_FALSE(nowhere.Overlaps(everywhere));
+  EXPECT_FALSE(everywhere.Overlaps(nowhere));
+  EXPECT_FALSE(nowhere.Overlaps(nowhere));
+  EXPECT_FALSE(everywhere.Contains(nowhere));
+  EXPECT_TRUE(everywhere.Overlaps(Aabb::Cube(Vector3d::Zero(), 1.0)));
 }
 
 TEST_F(PrimitivesTest, CubeHasItsCentreAndEdge) {

@@ -97,10 +97,14 @@ class StartupErrorsTest(unittest.TestCase):
         self.assertIn('urdf', output)
 
     def test_bad_parameter_value(self):
-        args = self.defaults()
-        code, output = self.run_node(extra=['_input_timeout_s:=-1.0'], **args)
-        self.assertNotEqual(code, 0)
-        self.assertIn('input_timeout_s', output)
+        # A double and an integer that must be positive, a double that may be zero.
+        for param, value, expected in (('input_timeout_s', '-1.0', 'a positive number'),
+                                       ('queue_size', '0', 'a positive number'),
+                                       ('stop_hold_s', '-0.5', 'a non-negative number')):
+            code, output = self.run_node(extra=['_%s:=%s' % (param, value)], **self.defaults())
+            self.assertNotEqual(code, 0, 'started with %s = %s:\n%s' % (param, value, output))
+            self.assertIn(param, output)
+            self.assertIn(expected, output)
 
 
 if __name__ == '__main__':

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <variant>
 
 #include <Eigen/Core>
@@ -36,6 +37,12 @@ struct Aabb {
   /// This box grown by `margin_m` (>= 0) on every side.
   Aabb Inflated(double margin_m) const {
     return Aabb{(min_W.array() - margin_m).matrix(), (max_W.array() + margin_m).matrix()};
+  }
+  /// The box of NaN bounds, which overlaps nothing (Overlaps is false on either side): the
+  /// place holder of an absent primitive in lists kept by id.
+  static Aabb Nowhere() {
+    const double nan_m = std::numeric_limits<double>::quiet_NaN();
+    return Aabb{Eigen::Vector3d::Constant(nan_m), Eigen::Vector3d::Constant(nan_m)};
   }
   /// The cube of edge `edge_m` (> 0) centred on `center_W`.
   static Aabb Cube(const Eigen::Vector3d& center_W, double edge_m) {
