@@ -174,6 +174,14 @@ struct Monitor::Impl {
   // `id` from its indexed copy at the step's start (its displacement `kinematics_m` at the last
   // kinematics plus its motion bound since), m.
   double StartDisplacement_m(PrimitiveId id, double kinematics_m);
+  // The link poses at the step's start (q_start).
+  const std::vector<Eigen::Isometry3d>& StartPoses();
+  // Whether (a, b) is clear all along the step by SweepPair's first test (the whole step) on
+  // lower bounds of its distances at the ends: `end_bound_m` at q, its boxes' gap at q_start
+  // (on the same shapes as SweepPair's start distance, so what this clears SweepPair would
+  // clear without a warning); `pair_motion_m`: the pair's relative motion bound.
+  bool IsClearFromBothEnds(PrimitiveId a, PrimitiveId b, double end_bound_m,
+                           double pair_motion_m);
   // Bisects one pair along the step (conservative advancement) from its distance d1_m at q;
   // appends its warning if any.
   void SweepPair(PrimitiveId a, PrimitiveId b, double pair_motion_m, double d1_m,

@@ -28,6 +28,12 @@ bool IsBefore(const Warning& w, const CandidatePair& p) {
   return w.a < p.a || (w.a == p.a && w.b < p.b);
 }
 
+/// The distance between two boxes (0 when they meet): a lower bound on the distance of the
+/// shapes they hold.
+double BoxGap_m(const Aabb& a, const Aabb& b) {
+  return (b.min_W - a.max_W).cwiseMax(a.min_W - b.max_W).cwiseMax(0.0).norm();
+}
+
 }  // namespace
 
 void Monitor::Impl::InitSwept() {
@@ -47,6 +53,8 @@ void Monitor::Impl::InitSwept() {
   swept.leaver_words.assign((n + 63) / 64, 0);
   swept.q_kinematics = model.q_start;
   swept.pairs.reserve(static_cast<std::size_t>(n) * (n > 0 ? n - 1 : 0) / 2);
+  swept.start_box_W.assign(n, Aabb{});
+  swept.start_box_step.assign(n, 0);
   CheckStepTolerance();
 }
 
@@ -101,7 +109,8 @@ void Monitor::Impl::SweepStep(const Eigen::Ref<const Eigen::VectorXd>& q, CycleW
     const double threshold_m = tol_now[pair.a] + tol_now[pair.b];
     if (cache.IsClear(end_bound_m, two_largest_m, threshold_m)) return false;
     pair_motion_m = PairStepBound_m(pair.a, pair.b);
-    return !cache.IsClear(end_bound_m, pair_motion_m, threshold_m);
+    return !cache.IsClear(end_bound_m, pair_motion_m, threshold_m) &&
+           !IsClearFromBothEnds(pair.a, pair.b, end_bound_m, pair_motion_m);
   };
   auto sweep = [&](const CandidatePair& pair, double end_bound_m, bool is_exact) {
     const PrimitiveId a = pair.a;
@@ -148,6 +157,7 @@ void Monitor::Impl::SweepStep(const Eigen::Ref<const Eigen::VectorXd>& q, CycleW
 
 void Monitor::Impl::BeginStep(double step_m) {
   swept.largest_step_m = step_m;
+  ++swept.step_count;  // the start boxes of earlier steps go
   swept.has_start_displacement = has_good && !cache.is_stale();
   swept.is_since_kinematics_set = false;
   // The kinematics overwrites it; the motion bounds since are left to the few primitives that
@@ -302,11 +312,15 @@ void Monitor::Impl::AddSweptPairIfNear(PrimitiveId a, PrimitiveId b) {
   // The boxes' gap bounds the distance at q from below (they hold the shapes): a pair it clears
   // by more than the step's motion of both is clear along the step (SweepStep's test, with the
   // larger motion B_a + B_b).
-  const Aabb& box_a = swept.box_W[a];
-  const Aabb& box_b = swept.box_W[b];
-  const double gap_m =
-      (box_b.min_W - box_a.max_W).cwiseMax(box_a.min_W - box_b.max_W).cwiseMax(0.0).norm();
-  if (cache.IsClear(gap_m, StepBound_m(a) + StepBound_m(b), tol_now[a] + tol_now[b])) return;
+  const double gap_m = BoxGap_m(swept.box_W[a], swept.box_W[b]);
+  const double threshold_m = tol_now[a] + tol_now[b];
+  if (cache.IsClear(gap_m, StepBound_m(a) + StepBound_m(b), threshold_m)) return;
+  // SweepStep's tests on the pair's own bound (the end, then both ends), made here for its list.
+  const double pair_motion_m = PairStepBound_m(a, b);
+  if (cache.IsClear(gap_m, pair_motion_m, threshold_m) ||
+      IsClearFromBothEnds(a, b, gap_m, pair_motion_m)) {
+    return;
+  }
   swept.pairs.push_back({CandidatePair{a, b}, gap_m, false});
 }
 
@@ -325,17 +339,34 @@ const std::vector<Eigen::Isometry3d>& Monitor::Impl::StepPoses(
   return *X_WL_s;
 }
 
-void Monitor::Impl::SweepPair(PrimitiveId a, PrimitiveId b, double pair_motion_m, double d1_m,
-                              const Eigen::Ref<const Eigen::VectorXd>& q, CycleWork* work) {
-  const double threshold_m = tol_now[a] + tol_now[b];
+const std::vector<Eigen::Isometry3d>& Monitor::Impl::StartPoses() {
   // Without bounded cycles since, the last kinematics was at q_start: FollowKinematics swapped
   // its poses into X_WL_next.
-  if (swept.is_behind && !swept.has_start) {
+  if (!swept.is_behind) return X_WL_next;
+  if (!swept.has_start) {
     model.kinematics->ComputeMovingLinkPoses(swept.q_start, &swept.X_WL_start);
     swept.has_start = true;
   }
-  const std::vector<Eigen::Isometry3d>& X_WL_start =
-      swept.is_behind ? swept.X_WL_start : X_WL_next;
+  return swept.X_WL_start;
+}
+
+bool Monitor::Impl::IsClearFromBothEnds(PrimitiveId a, PrimitiveId b, double end_bound_m,
+                                         double pair_motion_m) {
+  for (const PrimitiveId id : {a, b}) {
+    if (swept.start_box_step[id] == swept.step_count) continue;
+    swept.start_box_step[id] = swept.step_count;
+    swept.start_box_W[id] = ComputeAabb(ShapeAt(id, StartPoses()));
+  }
+  // SweepPair's first interval, [0, 1], on lower bounds of the distances at its ends.
+  const double start_bound_m = BoxGap_m(swept.start_box_W[a], swept.start_box_W[b]);
+  return cache.IsClear(0.5 * (start_bound_m + end_bound_m - pair_motion_m), 0.0,
+                       tol_now[a] + tol_now[b]);
+}
+
+void Monitor::Impl::SweepPair(PrimitiveId a, PrimitiveId b, double pair_motion_m, double d1_m,
+                              const Eigen::Ref<const Eigen::VectorXd>& q, CycleWork* work) {
+  const double threshold_m = tol_now[a] + tol_now[b];
+  const std::vector<Eigen::Isometry3d>& X_WL_start = StartPoses();
   // Appends the pair's warning at fraction s of the step, for the link poses X there.
   auto warn_at = [&](double s, const std::vector<Eigen::Isometry3d>& X) {
     Warning warning =

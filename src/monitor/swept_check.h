@@ -72,6 +72,11 @@ struct SweptScratch {
   bool has_start_displacement = false;
   bool is_since_kinematics_set = false;  // Impl::motion holds q_kinematics -> q_start
   std::vector<SweptPair> pairs;            // pairs of those besides the kept ones, in order
+  // Per primitive: its box at q_start, made on first use in a step (IsClearFromBothEnds) when
+  // its start_box_step is not this step's step_count (64 bits: never wraps).
+  std::vector<Aabb> start_box_W;
+  std::vector<std::uint64_t> start_box_step;
+  std::uint64_t step_count = 0;
   // Depth-first bisection: at most one pending sibling per level, plus the current interval.
   std::array<SweptInterval, kMaxSweptBisections + 2> stack;
 };

@@ -3,7 +3,8 @@
 // dense sampler (>= 1,000 sub-samples of the same straight joint-space path, brute force over
 // all pairs): no contact the sampler finds is missed, and every between-samples warning is
 // checked at its own fraction to lie within threshold + resolution. Also: jumps beyond
-// max_step_m, the start-up tolerance check, and how rarely the path is needed.
+// max_step_m, a long step far from everything at both ends (no pair bisected), the start-up
+// tolerance check, and how rarely the path is needed.
 #include <array>
 #include <map>
 #include <sstream>
@@ -492,6 +493,27 @@ TEST(MonitorSwept, MetreJumpIsSweptOrStopped) {
   const CycleReport& normal = jumped.Update(q_next);
   EXPECT_FALSE(normal.input_jumped);
   EXPECT_EQ(normal.stop, !normal.warnings.empty());
+}
+
+// A long step far from everything at both ends: each pair's distances at the two ends, less its
+// motion bound, leave twice the threshold, so no pair is bisected, though for many pairs the
+// motion bound exceeds the distance at the end (a test of the end alone would bisect them).
+TEST(MonitorSwept, LongStepFarAtBothEndsBisectsNoPair) {
+  const auto wc = test::LoadBundledWorkcell();
+  // The left arm, tilted forward, turned 0.4 rad about its base joint, pointing away from the
+  // right arm, the tables and the shelves.
+  const Eigen::VectorXd q0 = MakeQ(*wc, {{"left_joint1", -2.6}, {"left_joint2", 1.1}});
+  const Eigen::VectorXd q1 = MakeQ(*wc, {{"left_joint1", -2.2}, {"left_joint2", 1.1}});
+  const MonitorOptions options = Unlimited();
+  Monitor monitor(wc, options);
+  const CycleReport report = RunStep(&monitor, q0, q1);
+  EXPECT_GT(report.step_motion_m, 0.7);
+  EXPECT_EQ(report.swept_pairs, 0u);
+  EXPECT_EQ(report.swept_distance_tests, 0u);
+  EXPECT_TRUE(report.warnings.empty());
+  StepTally tally;
+  CheckStep(*wc, options, q0, q1, report, "long step far at both ends", &tally);
+  EXPECT_EQ(tally.dense_contacts, 0);
 }
 
 // Start-up: a tolerance below the per-cycle motion is a notice with the swept check on, an
