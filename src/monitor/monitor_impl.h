@@ -179,7 +179,8 @@ struct Monitor::Impl {
   // Whether (a, b) is clear all along the step by SweepPair's first test (the whole step) on
   // lower bounds of its distances at the ends: `end_bound_m` at q, its boxes' gap at q_start
   // (on the same shapes as SweepPair's start distance, so what this clears SweepPair would
-  // clear without a warning); `pair_motion_m`: the pair's relative motion bound.
+  // clear without a warning); `pair_motion_m`: the pair's relative motion bound. For the pairs
+  // of AddSweptPairIfNear (a kept pair's bound at q is often exact: little left to spare).
   bool IsClearFromBothEnds(PrimitiveId a, PrimitiveId b, double end_bound_m,
                            double pair_motion_m);
   // Bisects one pair along the step (conservative advancement) from its distance d1_m at q;

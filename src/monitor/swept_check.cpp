@@ -109,8 +109,7 @@ void Monitor::Impl::SweepStep(const Eigen::Ref<const Eigen::VectorXd>& q, CycleW
     const double threshold_m = tol_now[pair.a] + tol_now[pair.b];
     if (cache.IsClear(end_bound_m, two_largest_m, threshold_m)) return false;
     pair_motion_m = PairStepBound_m(pair.a, pair.b);
-    return !cache.IsClear(end_bound_m, pair_motion_m, threshold_m) &&
-           !IsClearFromBothEnds(pair.a, pair.b, end_bound_m, pair_motion_m);
+    return !cache.IsClear(end_bound_m, pair_motion_m, threshold_m);
   };
   auto sweep = [&](const CandidatePair& pair, double end_bound_m, bool is_exact) {
     const PrimitiveId a = pair.a;
@@ -315,7 +314,8 @@ void Monitor::Impl::AddSweptPairIfNear(PrimitiveId a, PrimitiveId b) {
   const double gap_m = BoxGap_m(swept.box_W[a], swept.box_W[b]);
   const double threshold_m = tol_now[a] + tol_now[b];
   if (cache.IsClear(gap_m, StepBound_m(a) + StepBound_m(b), threshold_m)) return;
-  // SweepStep's tests on the pair's own bound (the end, then both ends), made here for its list.
+  // SweepStep's test on the pair's own bound, made here for its list, then that of both ends
+  // (the end distance a box gap, so it spares SweepPair the distances at both ends).
   const double pair_motion_m = PairStepBound_m(a, b);
   if (cache.IsClear(gap_m, pair_motion_m, threshold_m) ||
       IsClearFromBothEnds(a, b, gap_m, pair_motion_m)) {
