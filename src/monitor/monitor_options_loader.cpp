@@ -8,8 +8,58 @@
 
 namespace arm_collision_monitor {
 
+namespace {
+
+using yaml_fields::ReadIfPresent;
+using yaml_fields::Where;
+
+/// The `techniques` map at `where` into *techniques.
+void ReadTechniques(const YAML::Node& t, const Where& where, BroadPhaseTechniques* techniques) {
+  yaml_fields::RequireMap(t, where);
+  yaml_fields::CheckKeys(t,
+                         {"directional_neighbours", "inside_node_exit", "pair_deduplication",
+                          "bounding_box_pretests"},
+                         where);
+  ReadIfPresent(t, "directional_neighbours", where, yaml_fields::ReadBool,
+                &techniques->directional_neighbours);
+  ReadIfPresent(t, "inside_node_exit", where, yaml_fields::ReadBool,
+                &techniques->inside_node_exit);
+  ReadIfPresent(t, "pair_deduplication", where, yaml_fields::ReadBool,
+                &techniques->pair_deduplication);
+  ReadIfPresent(t, "bounding_box_pretests", where, yaml_fields::ReadBool,
+                &techniques->bounding_box_pretests);
+}
+
+/// The `live_objects` map at `where` into *live.
+void ReadLiveObjects(const YAML::Node& node, const Where& where, LiveObjectOptions* live) {
+  yaml_fields::RequireMap(node, where);
+  yaml_fields::CheckKeys(node, {"capacity", "max_primitives_per_object"}, where);
+  if (node["capacity"]) {
+    // 0 is allowed (no live objects): read as a non-negative whole number.
+    const double capacity =
+        yaml_fields::ReadNonNegativeDouble(node["capacity"], where.Child("capacity"));
+    if (capacity != std::floor(capacity) || capacity > kLiveObjectMaxCapacity) {
+      where.Child("capacity").Fail(node["capacity"],
+                                   "expected a whole number in [0, " +
+                                       std::to_string(kLiveObjectMaxCapacity) + "]");
+    }
+    live->capacity = static_cast<std::uint32_t>(capacity);
+  }
+  if (node["max_primitives_per_object"]) {
+    const int k = yaml_fields::ReadPositiveInt(node["max_primitives_per_object"],
+                                               where.Child("max_primitives_per_object"));
+    if (static_cast<std::uint32_t>(k) > kLiveObjectMaxPrimitives) {
+      where.Child("max_primitives_per_object")
+          .Fail(node["max_primitives_per_object"],
+                "expected at most " + std::to_string(kLiveObjectMaxPrimitives));
+    }
+    live->max_primitives_per_object = static_cast<std::uint32_t>(k);
+  }
+}
+
+}  // namespace
+
 MonitorOptions LoadMonitorOptions(const std::string& path) {
-  using yaml_fields::Where;
   const YAML::Node root = yaml_fields::LoadMapFile(path);
   const Where top{path, ""};
   if (root["auto_broad_phase"]) {
@@ -34,28 +84,12 @@ MonitorOptions LoadMonitorOptions(const std::string& path) {
                     "' (expected auto, octree, naive, grid, rebuild or reinsert)");
     }
   }
-  using yaml_fields::ReadIfPresent;
   ReadIfPresent(root, "max_objects_per_leaf", top, yaml_fields::ReadPositiveInt,
                 &options.broad_phase.max_objects_per_leaf);
   ReadIfPresent(root, "grid_cells_per_axis", top, yaml_fields::ReadPositiveInt,
                 &options.broad_phase.grid_cells_per_axis);
   if (root["techniques"]) {
-    const YAML::Node t = root["techniques"];
-    const Where where = top.Child("techniques");
-    yaml_fields::RequireMap(t, where);
-    yaml_fields::CheckKeys(t,
-                           {"directional_neighbours", "inside_node_exit", "pair_deduplication",
-                            "bounding_box_pretests"},
-                           where);
-    BroadPhaseTechniques& techniques = options.broad_phase.techniques;
-    ReadIfPresent(t, "directional_neighbours", where, yaml_fields::ReadBool,
-                  &techniques.directional_neighbours);
-    ReadIfPresent(t, "inside_node_exit", where, yaml_fields::ReadBool,
-                  &techniques.inside_node_exit);
-    ReadIfPresent(t, "pair_deduplication", where, yaml_fields::ReadBool,
-                  &techniques.pair_deduplication);
-    ReadIfPresent(t, "bounding_box_pretests", where, yaml_fields::ReadBool,
-                  &techniques.bounding_box_pretests);
+    ReadTechniques(root["techniques"], top.Child("techniques"), &options.broad_phase.techniques);
   }
   ReadIfPresent(root, "tolerance_m", top, yaml_fields::ReadNonNegativeDouble,
                 &options.tolerance_m);
@@ -77,31 +111,7 @@ MonitorOptions LoadMonitorOptions(const std::string& path) {
   ReadIfPresent(root, "max_step_m", top, yaml_fields::ReadPositiveDouble, &options.max_step_m);
   ReadIfPresent(root, "fixed_frame", top, yaml_fields::ReadName, &options.fixed_frame);
   if (root["live_objects"]) {
-    const YAML::Node live = root["live_objects"];
-    const Where where = top.Child("live_objects");
-    yaml_fields::RequireMap(live, where);
-    yaml_fields::CheckKeys(live, {"capacity", "max_primitives_per_object"}, where);
-    if (live["capacity"]) {
-      // 0 is allowed (no live objects): read as a non-negative whole number.
-      const double capacity =
-          yaml_fields::ReadNonNegativeDouble(live["capacity"], where.Child("capacity"));
-      if (capacity != std::floor(capacity) || capacity > kLiveObjectMaxCapacity) {
-        where.Child("capacity").Fail(live["capacity"],
-                                     "expected a whole number in [0, " +
-                                         std::to_string(kLiveObjectMaxCapacity) + "]");
-      }
-      options.live_objects.capacity = static_cast<std::uint32_t>(capacity);
-    }
-    if (live["max_primitives_per_object"]) {
-      const int k = yaml_fields::ReadPositiveInt(live["max_primitives_per_object"],
-                                                 where.Child("max_primitives_per_object"));
-      if (static_cast<std::uint32_t>(k) > kLiveObjectMaxPrimitives) {
-        where.Child("max_primitives_per_object")
-            .Fail(live["max_primitives_per_object"],
-                  "expected at most " + std::to_string(kLiveObjectMaxPrimitives));
-      }
-      options.live_objects.max_primitives_per_object = static_cast<std::uint32_t>(k);
-    }
+    ReadLiveObjects(root["live_objects"], top.Child("live_objects"), &options.live_objects);
   }
   return options;
 }
