@@ -628,7 +628,8 @@ def section_slack(out_dir, md):
         return
     md.append("\n## 5b. Index slack swept\n\n")
     md.append("The octree with the default Monitor's options on the three tasks, "
-              "MonitorOptions::index_slack_m swept. A moving primitive is indexed by its box grown by the slack and re-indexed "
+              "MonitorOptions::index_slack_m swept. A moving primitive is indexed by its box "
+              "grown by the slack and re-indexed "
               "only after moving farther than that; candidate pairs are kept between cycles with "
               "a lower bound on their distance and skip the exact test while the bound clears "
               "their threshold. 0 = the seed's loop. Work columns are means per cycle; "
@@ -637,11 +638,13 @@ def section_slack(out_dir, md):
     for r in rows:
         label = fmt(r["slack_m"], 2) + (" (default)" if r["is_default"] == "1" else "")
         out.append([label, fmt(r["mean_us"]), fmt(r["median_us"]), fmt(r["p99_us"]),
-                    fmt(r["max_us"]), fmt(r["reindexed_per_cycle"]), fmt(r["candidate_pairs_per_cycle"]),
+                    fmt(r["max_us"]), fmt(r["reindexed_per_cycle"]),
+                    fmt(r["candidate_pairs_per_cycle"]),
                     fmt(r["narrow_phase_tests_per_cycle"]), r["splits_plus_merges"], r["missed"],
                     r["false"]])
     md.append(table(["slack m", "mean", "median", "p99", "max", "re-indexed / cycle",
-                     "candidate pairs / cycle", "exact tests / cycle", "splits + merges (all cycles)",
+                     "candidate pairs / cycle", "exact tests / cycle",
+                     "splits + merges (all cycles)",
                      "missed", "false"], out))
     fastest_med = min(rows, key=lambda r: num(r["median_us"]))
     fastest_mean = min(rows, key=lambda r: num(r["mean_us"]))
@@ -772,7 +775,8 @@ def section_scaling(out_dir, md):
         series = [(i, [num(r["moving_primitives"]) for r in rows if r["impl"] == i],
                    [num(r["median_us"]) for r in rows if r["impl"] == i], i, "median")
                   for i in impls]
-        name = line_chart(out_dir, "moving_scaling.png", "Median cycle time against moving primitives",
+        name = line_chart(out_dir, "moving_scaling.png",
+                          "Median cycle time against moving primitives",
                           "moving primitives", {"": series})
         md.append(f"\n![moving scaling]({name})\n")
 
@@ -1048,7 +1052,9 @@ def section_tradeoffs(out_dir, md):
         md.append("\n## 8c. Run time against error: float against double\n\n")
         md.append("Capsule-capsule distance (segment closest points, Ericson, Real-Time "
                   "Collision Detection, 5.1.9) evaluated in float, double and with our library "
-                  "routine, against the same computation in long double (itself approximate by ~1e-11 m on the near-parallel pairs, which bounds what the library row can show), over seeded random and "
+                  "routine, against the same computation in long double (itself approximate "
+                  "by ~1e-11 m on the near-parallel pairs, which bounds what the library row "
+                  "can show), over seeded random and "
                   "near-parallel capsule pairs of arm scale (metres).\n\n")
         md.append(table(["routine", "ns per call", "max error m", "p99 error m",
                          "wrong decisions at 6.1 cm (2 arm tolerances)"],

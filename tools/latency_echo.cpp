@@ -10,7 +10,8 @@ int main(int argc, char** argv) {
   ros::NodeHandle private_nh("~");
   const ros::Publisher out = private_nh.advertise<sensor_msgs::JointState>("joint_states", 100);
   const ros::Subscriber in = nh.subscribe<sensor_msgs::JointState>(
-      "joint_states", 100, [&out](const sensor_msgs::JointState::ConstPtr& msg) { out.publish(msg); },
+      "joint_states", 100,
+      [&out](const sensor_msgs::JointState::ConstPtr& msg) { out.publish(msg); },
       ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay());
   ros::spin();
   return 0;

@@ -125,7 +125,8 @@ class MotionGenerator {
         lower_[joint.q_index] = joint.lower;
         upper_[joint.q_index] = joint.upper;
       }
-      if (joint.max_velocity > 0.0) speed_[joint.q_index] = joint.max_velocity * kJointSpeedFraction;
+      if (joint.max_velocity > 0.0)
+        speed_[joint.q_index] = joint.max_velocity * kJointSpeedFraction;
     }
     for (std::size_t i = 0; i < motion_.size(); ++i) Randomise(i, /*keep_position=*/false);
   }

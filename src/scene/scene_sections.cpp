@@ -271,7 +271,8 @@ ShapeOptions ReadShapeOptions(const YAML::Node& scene, const std::string& scene_
     const bool is_digits = !count.empty() && count.size() <= 3 &&
                            std::all_of(count.begin(), count.end(), ::isdigit);
     options.mesh_fit.capsule_count = is_digits ? std::stoi(count) : 0;
-    if (options.mesh_fit.capsule_count < 1 || options.mesh_fit.capsule_count > kMeshFitMaxCapsules) {
+    if (options.mesh_fit.capsule_count < 1 ||
+        options.mesh_fit.capsule_count > kMeshFitMaxCapsules) {
       fit_where.Fail(scene["mesh_fit"], "capsules:K needs K in [1, " +
                                             std::to_string(kMeshFitMaxCapsules) + "], got" +
                                             Quoted(fit));

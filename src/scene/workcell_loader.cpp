@@ -197,8 +197,8 @@ Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_pat
   scene_sections::ReadVariants(scene["variants"], Where{scene_path, "variants"}, links, &names, &w);
   auto compatible_pairs =
       scene_sections::ReadCompatiblePairs(scene["compatible"], Where{scene_path, "compatible"}, w);
-  for (const auto& more :
-       {scene_sections::SrdfPairs(srdf, &w), scene_sections::PlanningSceneAcmPairs(planning_scene, &w)}) {
+  for (const auto& more : {scene_sections::SrdfPairs(srdf, &w),
+                           scene_sections::PlanningSceneAcmPairs(planning_scene, &w)}) {
     compatible_pairs.insert(compatible_pairs.end(), more.begin(), more.end());
   }
   w.grasp_targets = scene_sections::ReadGraspTargets(scene["grasp_targets"],

@@ -8,7 +8,8 @@
 // the methods are timed in turns, kPasses times each. Seeded (std::mt19937_64, seed printed);
 // each trajectory is recorded once and replayed forward and backward.
 //
-//   $ACM_WS/devel/lib/arm_collision_monitor/bench_broadphase_workloads [--sweep-only|--workloads-only]
+//   $ACM_WS/devel/lib/arm_collision_monitor/bench_broadphase_workloads
+//   [--sweep-only|--workloads-only]
 #include <benchmark/benchmark.h>
 
 #include <algorithm>

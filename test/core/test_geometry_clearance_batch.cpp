@@ -284,8 +284,8 @@ TEST(ClearanceBatch, SpheresBoundWithinTwoMarginsOfTheDistance) {
   for (std::size_t k = 0; k < pairs.size(); ++k) {
     const double exact_m = ShapeDistance(pairs[k].first, pairs[k].second).distance_m;
     if (exact_m <= 0.0) continue;  // overlap: the bound is negative, the distance 0
-    const double margin_m =
-        kClearanceBatchMarginUlps * kFloatUnitRoundoff * MarginScale_m(floats[2 * k], floats[2 * k + 1]);
+    const double margin_m = kClearanceBatchMarginUlps * kFloatUnitRoundoff *
+                            MarginScale_m(floats[2 * k], floats[2 * k + 1]);
     EXPECT_GE(bounds[k], exact_m - 2.0 * margin_m) << "pair " << k << " (seed " << kSeed + 2 << ")";
     EXPECT_LE(bounds[k], exact_m) << "pair " << k << " (seed " << kSeed + 2 << ")";
   }

@@ -357,12 +357,13 @@ TEST(MeshFit, DegenerateMeshesAreRefusedWithTheirReason) {
                 MeshStatus::kNoVolume, "collinear points");
   ExpectRefused(TriangleMesh{{{0.5, -2, 7}}, {{0, 0, 0}}}, MeshStatus::kNoVolume, "single point");
   // A flat square lifted far from the origin and tilted: flat relative to its own size.
-  ExpectRefused(Transformed(TriangleMesh{{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}},
-                                         {{0, 1, 2}, {0, 2, 3}}},
-                            Eigen::Isometry3d(Eigen::AngleAxisd(0.7, Vector3d(1, 2, 3).normalized()))
-                                .pretranslate(Vector3d(900, -900, 500)),
-                            0.01),
-                MeshStatus::kNoVolume, "tilted flat square far away");
+  ExpectRefused(
+      Transformed(
+          TriangleMesh{{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, {{0, 1, 2}, {0, 2, 3}}},
+          Eigen::Isometry3d(Eigen::AngleAxisd(0.7, Vector3d(1, 2, 3).normalized()))
+              .pretranslate(Vector3d(900, -900, 500)),
+          0.01),
+      MeshStatus::kNoVolume, "tilted flat square far away");
   TriangleMesh nan_vertex = BoxMesh(Vector3d(1, 1, 1));
   nan_vertex.vertices_L[5].y() = std::numeric_limits<double>::quiet_NaN();
   ExpectRefused(nan_vertex, MeshStatus::kNonFiniteVertex, "NaN vertex");

@@ -313,7 +313,8 @@ double LocalScale(const Shape& a, const Shape& b) {
   return std::max({(ReferencePoint(a) - ReferencePoint(b)).norm(), Size(a), Size(b)});
 }
 double StatedBound(const Shape& a, const Shape& b) {
-  const bool both_capsules = std::holds_alternative<Capsule>(a) && std::holds_alternative<Capsule>(b);
+  const bool both_capsules =
+      std::holds_alternative<Capsule>(a) && std::holds_alternative<Capsule>(b);
   const double ulps = both_capsules ? kSegmentDistanceErrorUlps : kBoxDistanceErrorUlps;
   return ulps * kEps * LocalScale(a, b) + kDistanceErrorFloor_m;
 }
@@ -474,7 +475,8 @@ Pair CapBoxAxisParallel(Rng& rng) {
   Vector3d start_B;
   for (int i = 0; i < 3; ++i) {
     const double h = b.half_extents_m[i];
-    start_B[i] = (rng.Chance(0.5) ? 1 : -1) * (h + (rng.Chance(0.2) ? 0.0 : rng.Uniform(-0.2, 0.5)));
+    start_B[i] =
+        (rng.Chance(0.5) ? 1 : -1) * (h + (rng.Chance(0.2) ? 0.0 : rng.Uniform(-0.2, 0.5)));
   }
   start_B -= rng.Uniform(0, 3) * dir_B;
   const Vector3d p0 = b.X_WB * start_B;
@@ -527,7 +529,8 @@ Pair BoxBoxFar1e4(Rng& rng) {
 
 // --- Any finite input within the stated range: magnitudes from 1e-300 m to 1e60 m.
 double Extreme(Rng& rng) {
-  return (rng.Chance(0.5) ? 1 : -1) * (rng.Chance(0.1) ? 0.0 : rng.LogUniform(-300, std::log10(kMaxSupportedCoordinate_m)));
+  return (rng.Chance(0.5) ? 1 : -1) *
+         (rng.Chance(0.1) ? 0.0 : rng.LogUniform(-300, std::log10(kMaxSupportedCoordinate_m)));
 }
 Vector3d ExtremeVector(Rng& rng) {
   return Vector3d(Extreme(rng), Extreme(rng), Extreme(rng));
@@ -572,9 +575,9 @@ uint64_t FamilyHash(const std::string& name) {
 std::string Describe(const Shape& s) {
   char buf[600];
   if (const auto* c = std::get_if<Capsule>(&s)) {
-    std::snprintf(buf, sizeof(buf), "Capsule{(%.17g, %.17g, %.17g), (%.17g, %.17g, %.17g), r=%.17g}",
-                  c->p0_W.x(), c->p0_W.y(), c->p0_W.z(), c->p1_W.x(), c->p1_W.y(), c->p1_W.z(),
-                  c->radius_m);
+    std::snprintf(buf, sizeof(buf),
+                  "Capsule{(%.17g, %.17g, %.17g), (%.17g, %.17g, %.17g), r=%.17g}", c->p0_W.x(),
+                  c->p0_W.y(), c->p0_W.z(), c->p1_W.x(), c->p1_W.y(), c->p1_W.z(), c->radius_m);
   } else {
     const Box& b = std::get<Box>(s);
     const Eigen::Matrix3d& R = b.X_WB.linear();
@@ -702,7 +705,8 @@ void CheckCase(Checker& check, const Pair& p, Rng& rng, FamilyResult& result, lo
   const auto* ca = std::get_if<Capsule>(&a);
   const auto* cb = std::get_if<Capsule>(&b);
   if (ca && cb) {
-    const SegmentClosestPoints s = SegmentSegmentClosestPoints(ca->p0_W, ca->p1_W, cb->p0_W, cb->p1_W);
+    const SegmentClosestPoints s =
+        SegmentSegmentClosestPoints(ca->p0_W, ca->p1_W, cb->p0_W, cb->p1_W);
     const double seg_ref = static_cast<double>(RefSegmentSegment(
         Make<ld>(ca->p0_W), Make<ld>(ca->p1_W), Make<ld>(cb->p0_W), Make<ld>(cb->p1_W)));
     check.Near("segment distance vs reference", s.distance_m, seg_ref, bound);

@@ -203,7 +203,8 @@ TEST_P(MonitorLiveObjects, RefusalsChangeNothing) {
   const auto wc = test::LoadBundledWorkcell();
   Monitor monitor(wc, LiveOptions(GetParam()));
   const Eigen::VectorXd q = test::MakeQ(*wc, {});
-  const std::vector<Shape> box = {Box{Eigen::Isometry3d::Identity(), Eigen::Vector3d(0.1, 0.1, 0.1)}};
+  const std::vector<Shape> box = {
+      Box{Eigen::Isometry3d::Identity(), Eigen::Vector3d(0.1, 0.1, 0.1)}};
   Eigen::Isometry3d X_WO = Eigen::Isometry3d::Identity();
   X_WO.translation() << 0.8, 0.0, 1.5;
   std::string error;
@@ -212,7 +213,8 @@ TEST_P(MonitorLiveObjects, RefusalsChangeNothing) {
   const std::vector<Warning> before = monitor.report().warnings;
   auto expect_refused = [&](bool ok, const std::string& needle) {
     EXPECT_FALSE(ok) << needle;
-    EXPECT_NE(error.find(needle), std::string::npos) << "'" << error << "' lacks '" << needle << "'";
+    EXPECT_NE(error.find(needle), std::string::npos)
+        << "'" << error << "' lacks '" << needle << "'";
     EXPECT_EQ(monitor.live_object_count(), 1u) << needle;
     ExpectValid(monitor, needle);
   };
@@ -232,12 +234,14 @@ TEST_P(MonitorLiveObjects, RefusalsChangeNothing) {
   bad = X_WO;
   bad.linear() *= 2.0;
   expect_refused(monitor.AddObject("b", box, bad, 0.0, false, &error), "not orthonormal");
-  expect_refused(monitor.AddObject("b", {Capsule{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), nan}},
-                                   X_WO, 0.0, false, &error),
-                 "radius");
-  expect_refused(monitor.AddObject("b", {Box{Eigen::Isometry3d::Identity(), Eigen::Vector3d(0.1, 0.0, 0.1)}},
-                                   X_WO, 0.0, false, &error),
-                 "half extents");
+  expect_refused(
+      monitor.AddObject("b", {Capsule{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), nan}}, X_WO,
+                        0.0, false, &error),
+      "radius");
+  expect_refused(
+      monitor.AddObject("b", {Box{Eigen::Isometry3d::Identity(), Eigen::Vector3d(0.1, 0.0, 0.1)}},
+                        X_WO, 0.0, false, &error),
+      "half extents");
   Eigen::Isometry3d far = X_WO;
   far.translation().x() = 50.0;
   expect_refused(monitor.AddObject("b", box, far, 0.0, false, &error), "world cube");
@@ -279,7 +283,8 @@ TEST(MonitorLiveObjectsSolids, BadSolidsAreRefused) {
   std::string error;
   auto refused = [&](const SolidSpec& solid, const std::string& needle) {
     EXPECT_FALSE(MakeSolidShapes_O(solid, options, &shapes, &error)) << needle;
-    EXPECT_NE(error.find(needle), std::string::npos) << "'" << error << "' lacks '" << needle << "'";
+    EXPECT_NE(error.find(needle), std::string::npos)
+        << "'" << error << "' lacks '" << needle << "'";
   };
   SolidSpec s;
   s.type = SolidType::kBox;

@@ -236,7 +236,8 @@ TEST(MonitorMotionBounds, LargestBoundOverUndominatedEqualsLargestOverAll) {
       const double largest_m = bounds.ComputeLargestBound_m();
       double expected_m = 0.0;
       for (PrimitiveId id = 0; id < wc->primitives.size(); ++id) {
-        if (bounds.lever_count(id) > 0) expected_m = std::max(expected_m, bounds.ComputeBound_m(id));
+        if (bounds.lever_count(id) > 0)
+          expected_m = std::max(expected_m, bounds.ComputeBound_m(id));
       }
       ASSERT_EQ(largest_m, expected_m) << "round " << round << " motion " << k;
       ASSERT_GT(largest_m, 0.0);

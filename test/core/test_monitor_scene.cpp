@@ -45,7 +45,8 @@ TEST(MonitorScene, KnownClearAndColliding) {
   const PrimitiveId table = Prim(*wc, "front_table_top");
   for (const std::string arm : {"left", "right"}) {
     // Shoulder pitched forward, elbow down: the forearm goes through the front table top.
-    const Eigen::VectorXd q = MakeQ(*wc, {{arm + "_joint2", M_PI / 2}, {arm + "_joint4", M_PI / 2}});
+    const Eigen::VectorXd q =
+        MakeQ(*wc, {{arm + "_joint2", M_PI / 2}, {arm + "_joint4", M_PI / 2}});
     const CycleReport& report = monitor.Update(q);
     ExpectSameWarnings(*wc, ReferenceWarnings(*wc, q), report.warnings, arm);
     EXPECT_TRUE(report.stop);
@@ -227,7 +228,8 @@ TEST(MonitorScene, ModelSwitchingReplacesTheLinksPrimitives) {
   // The detailed gripper over the box: fingers warn, the coarse capsule does not exist.
   const Eigen::VectorXd q = ArmReachDown(*wc, "left", 0.95, 0.0, 0.96);
   const CycleReport& report = monitor.Update(q);
-  ExpectSameWarnings(*wc, ReferenceWarnings(*wc, q, scene), report.warnings, "grasp model over box");
+  ExpectSameWarnings(*wc, ReferenceWarnings(*wc, q, scene), report.warnings,
+                     "grasp model over box");
   for (const Warning& w : report.warnings) EXPECT_TRUE(w.a != coarse && w.b != coarse);
 
   ASSERT_TRUE(monitor.SwitchModel("left_link7", "", &error)) << error;
@@ -269,10 +271,11 @@ TEST(MonitorScene, FrameBoundObjectFollowsItsPose) {
   ExpectSameWarnings(*wc, ReferenceWarnings(*wc, home, scene), in_table.warnings,
                      "camera in the table");
   const PrimitiveId table = Prim(*wc, "front_table_top");
-  EXPECT_TRUE(std::any_of(in_table.warnings.begin(), in_table.warnings.end(), [&](const Warning& w) {
-    return w.a == std::min(camera, table) && w.b == std::max(camera, table) &&
-           w.threshold_m == 0.0 && w.distance_m == 0.0;
-  }));
+  EXPECT_TRUE(
+      std::any_of(in_table.warnings.begin(), in_table.warnings.end(), [&](const Warning& w) {
+        return w.a == std::min(camera, table) && w.b == std::max(camera, table) &&
+               w.threshold_m == 0.0 && w.distance_m == 0.0;
+      }));
   // Next to the back wall (left out as unreachable): the wall joins the checked scene.
   const PrimitiveId wall = Prim(*wc, "back_wall");
   EXPECT_FALSE(monitor.is_active(wall));

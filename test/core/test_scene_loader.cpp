@@ -183,7 +183,8 @@ TEST(SceneLoader, MovingLinksOutsideEveryArmKeepTheDefaultTolerance) {
 // The plain loader resolves no package:// URL (the ROS programs' fetcher does: test/node).
 TEST(SceneLoader, PackageMeshWithoutRosFetcherFailsNamingLinkAndFile) {
   ExpectLoadError([&] { LoadWorkcell(kArmMeshUrdf, kData + "three_link_scene.yaml"); },
-                  {kArmMeshUrdf, "link 'forearm'", "package://arm_collision_monitor/test/data/meshes/forearm.stl",
+                  {kArmMeshUrdf, "link 'forearm'",
+                   "package://arm_collision_monitor/test/data/meshes/forearm.stl",
                    "package:// URLs are not resolved", "give a file path"});
 }
 
@@ -280,7 +281,8 @@ TEST(SceneLoader, PrimitivesOutsideTheWorldInTheHomePoseAreReported) {
 
 TEST(SceneLoader, JointLimitOverrides) {
   const Workcell w = LoadWorkcell(
-      kArmUrdf, WriteTempFile("limits.yaml", kWorldLine + "joint_limits: {elbow: {lower: -1.0}}\n"));
+      kArmUrdf,
+      WriteTempFile("limits.yaml", kWorldLine + "joint_limits: {elbow: {lower: -1.0}}\n"));
   const JointSpec& elbow = w.kinematics.joint(w.kinematics.FindJointChildLink("elbow"));
   EXPECT_EQ(elbow.lower, -1.0);
   EXPECT_EQ(elbow.upper, 2.0);

@@ -410,7 +410,8 @@ TEST(SceneMeshLinks, ColladaIndexListWithANonNumberIsRejected) {
   for (const std::string& name : std::vector<std::string>{"letter.dae", "letter.xml"}) {
     std::string bad = dae;
     bad.insert(p + 3, "0 x ");
-    ExpectBadLinkMesh(dir, name, bad, {"COLLADA <p> element on line " + line, "character code 120"});
+    ExpectBadLinkMesh(dir, name, bad,
+                      {"COLLADA <p> element on line " + line, "character code 120"});
   }
   std::string entity = dae;
   entity.insert(p + 3, "&#48; ");

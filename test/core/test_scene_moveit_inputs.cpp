@@ -297,7 +297,8 @@ const char* const kAcmScene =
 
 TEST(SceneMoveitInputs, PlanningSceneAcmIsImportedOnRequest) {
   const std::string ps = WriteTempFile("acm_ps.yaml", kAcmScene);
-  const Workcell plain = LoadWorkcell(kUrdf, BundledSceneWith("acm0.yaml", "planning_scene: " + ps));
+  const Workcell plain =
+      LoadWorkcell(kUrdf, BundledSceneWith("acm0.yaml", "planning_scene: " + ps));
   const Workcell w = LoadWorkcell(
       kUrdf, BundledSceneWith("acm1.yaml", "planning_scene: " + ps + "\nplanning_scene_acm: true"));
   ExpectValid(w);

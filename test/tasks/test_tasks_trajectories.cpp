@@ -266,7 +266,8 @@ TEST(TaskTrajectories, MonitorAgreesWithBruteForceForEveryMethod) {
     const std::vector<Eigen::VectorXd> trajectory = MakeTaskTrajectory(task, *workcell);
     const ReferenceScene scene = SceneOf(*workcell, spec);
     std::vector<std::vector<ReferenceWarning>> expected;
-    for (const Eigen::VectorXd& q : trajectory) expected.push_back(ReferenceWarnings(*workcell, q, scene));
+    for (const Eigen::VectorXd& q : trajectory)
+      expected.push_back(ReferenceWarnings(*workcell, q, scene));
     for (const BroadPhaseMethod method : test::AllMethods()) {
       Monitor monitor(workcell, test::OptionsFor(method));
       for (const TaskGraspTarget& target : spec.grasp_targets) {

@@ -430,10 +430,11 @@ void ExperimentFidelity(const Args& args, const std::vector<const Scenario*>& sc
     std::printf("  %-22s median %7.2f us  (%llu pair-cycles)\n", "exact", se.median,
                 static_cast<unsigned long long>(total_exact));
   }
-  std::printf("conservative models (all but the tight capsule): %llu missed warning pair-cycles "
-              "against the exact geometry -- %s\n",
-              static_cast<unsigned long long>(conservative_missed),
-              conservative_missed == 0 ? "none, as containment guarantees" : "CONTAINMENT VIOLATED");
+  std::printf(
+      "conservative models (all but the tight capsule): %llu missed warning pair-cycles "
+      "against the exact geometry -- %s\n",
+      static_cast<unsigned long long>(conservative_missed),
+      conservative_missed == 0 ? "none, as containment guarantees" : "CONTAINMENT VIOLATED");
 }
 
 }  // namespace bench

@@ -29,7 +29,8 @@ void ExperimentMovingScaling(const Args& args, const Scenario& base, std::uint64
     s.tasks = MapTasks(base.tasks, *base.workcell, *s.workcell);
     const Reference ref = BruteForce(s);
     int moving = 0;
-    for (const auto& p : s.workcell->primitives) moving += !p.is_static && p.link_index >= 0 && p.variant.empty();
+    for (const auto& p : s.workcell->primitives)
+      moving += !p.is_static && p.link_index >= 0 && p.variant.empty();
     const std::vector<RunResult> results = RunScalingImplementations(s, ref, DefaultOptions());
     std::printf(" %d arms, %d moving primitives\n", arms, moving);
     for (const RunResult& r : results) {

@@ -168,9 +168,10 @@ void ExperimentTemporal(const Args& args, const Scenario& s, double check_us, Cs
             if (b_moving && b < a) continue;  // each moving pair once
             const double t = wc.primitives[a].tolerance_m + wc.primitives[b].tolerance_m;
             if (!IsCloserThan(eval.shape_W(a), eval.shape_W(b), t)) continue;
-            const bool touching = !IsCloserThan(eval.shape_W(a), eval.shape_W(b), 0.0)
-                                      ? ShapeDistance(eval.shape_W(a), eval.shape_W(b)).distance_m <= 0.0
-                                      : true;
+            const bool touching =
+                !IsCloserThan(eval.shape_W(a), eval.shape_W(b), 0.0)
+                    ? ShapeDistance(eval.shape_W(a), eval.shape_W(b)).distance_m <= 0.0
+                    : true;
             now[{std::min(a, b), std::max(a, b)}] = touching;
           }
         }

@@ -32,8 +32,11 @@ int main(int argc, char** argv) {
     } else if (a == "--seed" && i + 1 < argc) {
       args.seed = std::stoull(argv[++i]);
     } else {
-      std::fprintf(stderr, "usage: %s [--out DIR] [--quick] [--seed S] [--only tasks,octree,sweeps,slack,static,"
-                   "moving,workloads,temporal,float,fidelity,cylinders]\n", argv[0]);
+      std::fprintf(
+          stderr,
+          "usage: %s [--out DIR] [--quick] [--seed S] [--only tasks,octree,sweeps,slack,static,"
+          "moving,workloads,temporal,float,fidelity,cylinders]\n",
+          argv[0]);
       return 2;
     }
   }

@@ -218,10 +218,10 @@ std::vector<RunResult> RunScalingImplementations(const Scenario& s, const Refere
 
 void PrintRow(const RunResult& r) {
   const TimingSummary s = SummarizeTimings(r.t_us);
-  std::printf("  %-16s mean %8.2f us  median %8.2f  p99 %8.2f  max %9.2f  missed %llu  false %llu\n",
-              r.impl.c_str(), s.mean, s.median, s.p99, s.max,
-              static_cast<unsigned long long>(r.missed),
-              static_cast<unsigned long long>(r.false_warnings));
+  std::printf(
+      "  %-16s mean %8.2f us  median %8.2f  p99 %8.2f  max %9.2f  missed %llu  false %llu\n",
+      r.impl.c_str(), s.mean, s.median, s.p99, s.max, static_cast<unsigned long long>(r.missed),
+      static_cast<unsigned long long>(r.false_warnings));
   std::fflush(stdout);
 }
 

@@ -49,7 +49,8 @@ CompatibilityMatrix TaskCompatibility(const Workcell& wc, const TaskRun& task) {
     if (object < 0) continue;
     const PrimitiveId object_primitive = wc.objects[object].primitive;
     for (std::size_t id = 0; id < wc.primitives.size(); ++id) {
-      if (wc.primitives[id].owner == g.link) m.Set(static_cast<PrimitiveId>(id), object_primitive, true);
+      if (wc.primitives[id].owner == g.link)
+        m.Set(static_cast<PrimitiveId>(id), object_primitive, true);
     }
   }
   return m;
@@ -151,7 +152,8 @@ Scenario MakeSceneScenario(const Args& args, const Scenario& base, const std::st
   s.scene_yaml = yaml;
   const std::string path = args.out_dir + "/scene_" + label + ".yaml";
   WriteFile(path, yaml);
-  s.workcell = std::make_shared<const Workcell>(LoadWorkcell(SourcePath("urdf/workcell.urdf"), path));
+  s.workcell =
+      std::make_shared<const Workcell>(LoadWorkcell(SourcePath("urdf/workcell.urdf"), path));
   std::remove(path.c_str());
   s.tasks = MapTasks(base.tasks, *base.workcell, *s.workcell);
   return s;

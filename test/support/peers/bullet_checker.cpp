@@ -1,7 +1,7 @@
 // Bullet as a peer: a btCollisionWorld over btDbvtBroadphase (two dynamic AABB trees, the
 // moving and the fixed set), discrete collision detection, contacts read from the manifolds.
-// Built against Bullet's double-precision libraries when they are installed (BT_USE_DOUBLE_PRECISION
-// set by CMake), so both sides compute in double.
+// Built against Bullet's double-precision libraries when they are installed
+// (BT_USE_DOUBLE_PRECISION set by CMake), so both sides compute in double.
 #include <algorithm>
 #include <memory>
 #include <utility>

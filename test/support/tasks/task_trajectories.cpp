@@ -124,7 +124,8 @@ struct JointSource {
 JointSource SourceOf(const std::string& joint_name) {
   for (int arm = 0; arm < 2; ++arm) {
     const std::string prefix = arm == 0 ? "left_joint" : "right_joint";
-    if (joint_name.size() == prefix.size() + 1 && joint_name.compare(0, prefix.size(), prefix) == 0) {
+    if (joint_name.size() == prefix.size() + 1 &&
+        joint_name.compare(0, prefix.size(), prefix) == 0) {
       const int joint = joint_name.back() - '1';
       if (joint >= 0 && joint < 7) return {arm, joint};
     }

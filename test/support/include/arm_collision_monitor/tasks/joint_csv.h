@@ -26,7 +26,7 @@ JointCsv ReadJointCsv(const std::string& path);
 /// The rows re-ordered as `model_joint_names` (Workcell::joint_names), matched by name. Done
 /// once at start-up, so every column must be a model joint and every model joint a column;
 /// otherwise throws LoadError naming the file and the joint.
-std::vector<Eigen::VectorXd> JointCsvInModelOrder(const JointCsv& csv,
-                                                  const std::vector<std::string>& model_joint_names);
+std::vector<Eigen::VectorXd> JointCsvInModelOrder(
+    const JointCsv& csv, const std::vector<std::string>& model_joint_names);
 
 }  // namespace arm_collision_monitor
