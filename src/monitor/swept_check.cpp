@@ -197,10 +197,11 @@ double Monitor::Impl::StartDisplacement_m(PrimitiveId id, double kinematics_m) {
 
 bool Monitor::Impl::MayLeaveSlack(PrimitiveId id, bool is_start_copy, double kinematics_m) {
   const double slack_m = model.options.index_slack_m;
-  const double end_m = cache.displacement_m(id) + StepBound_m(id);
-  if (end_m <= slack_m) return false;  // NaN may leave
+  const double end_m = cache.displacement_m(id);
+  const double step_m = StepBound_m(id);
+  if (end_m + step_m <= slack_m) return false;  // NaN may leave
   return !(is_start_copy && swept.has_start_displacement &&
-           0.5 * (StartDisplacement_m(id, kinematics_m) + end_m) <= slack_m);
+           LargestOverStretch_m(StartDisplacement_m(id, kinematics_m), end_m, step_m) <= slack_m);
 }
 
 bool Monitor::Impl::CollectSweptPairs() {
@@ -359,7 +360,7 @@ bool Monitor::Impl::IsClearFromBothEnds(PrimitiveId a, PrimitiveId b, double end
   }
   // SweepPair's first interval, [0, 1], on lower bounds of the distances at its ends.
   const double start_bound_m = BoxGap_m(swept.start_box_W[a], swept.start_box_W[b]);
-  return cache.IsClear(0.5 * (start_bound_m + end_bound_m - pair_motion_m), 0.0,
+  return cache.IsClear(SmallestOverStretch_m(start_bound_m, end_bound_m, pair_motion_m), 0.0,
                        tol_now[a] + tol_now[b]);
 }
 
@@ -390,7 +391,7 @@ void Monitor::Impl::SweepPair(PrimitiveId a, PrimitiveId b, double pair_motion_m
     // On [s0, s1] the distance is at least max(d0 - P (s - s0), d1 - P (s1 - s)), whose
     // smallest value is (d0 + d1 - P (s1 - s0)) / 2; NaN is not clear.
     const double motion_m = pair_motion_m * (iv.s1 - iv.s0);
-    const double lower_m = 0.5 * (iv.d0_m + iv.d1_m - motion_m);
+    const double lower_m = SmallestOverStretch_m(iv.d0_m, iv.d1_m, motion_m);
     if (lower_m - cache.BoundMargin_m(lower_m) > threshold_m) continue;
     if (motion_m <= 2.0 * resolution_m || iv.depth >= kMaxSweptBisections) {
       // Resolved: the nearer end is within threshold + motion / 2 <= threshold + resolution.

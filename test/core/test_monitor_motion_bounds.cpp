@@ -260,5 +260,48 @@ TEST(MonitorMotionBounds, PointHelpers) {
   EXPECT_DOUBLE_EQ(MaxPointDisplacement_m(c, turned), std::sqrt(2.0));
 }
 
+// The swept check's interval bounds: tight for a point that runs straight at an obstacle point
+// and back (smallest) or away and back (largest), and bounds for any path of that length.
+TEST(MonitorMotionBounds, StretchBoundsAreTightAndHoldOnAnyPath) {
+  // Head-on: from 0.5 m in to 0.02 m, then back out to 0.3 m (0.48 + 0.28 m of motion).
+  EXPECT_NEAR(SmallestOverStretch_m(0.5, 0.3, 0.48 + 0.28), 0.02, 1e-15);
+  // Away: from 0.1 m out to 0.9 m, then back in to 0.4 m.
+  EXPECT_NEAR(LargestOverStretch_m(0.1, 0.4, 0.8 + 0.5), 0.9, 1e-15);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_TRUE(std::isnan(SmallestOverStretch_m(nan, 0.3, 0.1)));
+  EXPECT_TRUE(std::isnan(LargestOverStretch_m(0.1, 0.4, nan)));
+  // Random polylines of four segments: the distance to a point along them, densely sampled.
+  std::mt19937_64 rng(test::PrintSeed(kSeed + 8));
+  std::uniform_real_distribution<double> coordinate(-1.0, 1.0);
+  auto random_point = [&] {
+    return Eigen::Vector3d(coordinate(rng), coordinate(rng), coordinate(rng));
+  };
+  for (int path = 0; path < 2000; ++path) {
+    const Eigen::Vector3d obstacle = random_point();
+    std::vector<Eigen::Vector3d> corners;
+    for (int k = 0; k < 5; ++k) corners.push_back(random_point());
+    double length_m = 0.0, smallest_m = std::numeric_limits<double>::infinity(), largest_m = 0.0;
+    for (int k = 0; k + 1 < 5; ++k) {
+      length_m += (corners[k + 1] - corners[k]).norm();
+      for (int i = 0; i <= kSamplesPerMotion; ++i) {
+        const double d_m =
+            (corners[k] + (corners[k + 1] - corners[k]) * (static_cast<double>(i) /
+                                                           kSamplesPerMotion) -
+             obstacle)
+                .norm();
+        smallest_m = std::min(smallest_m, d_m);
+        largest_m = std::max(largest_m, d_m);
+      }
+    }
+    const double d0_m = (corners.front() - obstacle).norm();
+    const double d1_m = (corners.back() - obstacle).norm();
+    ASSERT_LE(SmallestOverStretch_m(d0_m, d1_m, length_m), smallest_m + 1e-12) << path;
+    ASSERT_GE(LargestOverStretch_m(d0_m, d1_m, length_m), largest_m - 1e-12) << path;
+    // With a lower bound at the start and an upper bound at the end (as the swept check uses).
+    ASSERT_LE(SmallestOverStretch_m(0.5 * d0_m, d1_m, length_m), smallest_m + 1e-12) << path;
+    ASSERT_GE(LargestOverStretch_m(d0_m, 2.0 * d1_m, length_m), largest_m - 1e-12) << path;
+  }
+}
+
 }  // namespace
 }  // namespace arm_collision_monitor

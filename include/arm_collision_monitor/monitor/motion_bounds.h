@@ -34,6 +34,19 @@ inline double MaxPointDisplacement_m(const Shape& before, const Shape& after) {
       std::max((c1.p0_W - c0->p0_W).squaredNorm(), (c1.p1_W - c0->p1_W).squaredNorm()));
 }
 
+/// Over a stretch of motion along which a pair's distance (or a point's displacement) changes
+/// by at most `motion_m` in all -- it is 1-Lipschitz in the motion -- and which starts at d0_m
+/// and ends at d1_m: after motion m it is within [d0 - m, d0 + m] and [d1 - (P - m), d1 + (P -
+/// m)]. The smallest value it can take is then (d0 + d1 - P) / 2, the largest (d0 + d1 + P) / 2
+/// (conservative advancement's bounds on an interval; still bounds when d0 and d1 are only a
+/// lower, resp. upper, bound). NaN stays NaN.
+inline double SmallestOverStretch_m(double d0_m, double d1_m, double motion_m) {
+  return 0.5 * (d0_m + d1_m - motion_m);
+}
+inline double LargestOverStretch_m(double d0_m, double d1_m, double motion_m) {
+  return 0.5 * (d0_m + d1_m + motion_m);
+}
+
 /// The index into q that drives `joint` (its own, or the one it mimics); -1 if it does not move.
 int DrivingQIndex(const JointSpec& joint);
 
