@@ -10,6 +10,7 @@ import shutil
 import tempfile
 import unittest
 
+import rosbag
 import rospkg
 import rostest
 
@@ -20,6 +21,20 @@ PKG = 'arm_collision_monitor'
 TASKS = {'task1': (1000, []), 'task2': (150, []), 'task3': (2000, ['--task', '3'])}
 METHODS = ['octree', 'naive', 'grid', 'rebuild', 'reinsert']
 OPTIONAL_METHODS = ['fcl', 'bullet']
+
+
+def moving_cycles(path):
+    """Read independently of replay: its cycles (messages with equal header stamps, merged by
+    joint name) whose joint positions differ from the previous cycle's, the first one included."""
+    state, previous, stamp, count = {}, None, None, 0
+    with rosbag.Bag(path) as bag:
+        for _, msg, _ in bag.read_messages():
+            if stamp is not None and msg.header.stamp != stamp:
+                count += sorted(state.items()) != previous
+                previous = sorted(state.items())
+            stamp = msg.header.stamp
+            state.update(zip(msg.name, msg.position))
+    return count + (sorted(state.items()) != previous)
 
 
 class TaskBagsTest(unittest.TestCase):
@@ -58,6 +73,12 @@ class TaskBagsTest(unittest.TestCase):
             self.assertEqual(reference['refused_messages'], {}, name)
             self.assertEqual(reference['incomplete_cycles'], 0, name)
             expected = [c['warnings'] for c in reference['per_cycle']]
+            # Timing statistics apart for the moving cycles (the seed's tasks dwell: fewer).
+            moving = moving_cycles(os.path.join(self.bags, name + '.bag'))
+            self.assertEqual(reference['moving_cycles'], moving, name)
+            self.assertLess(moving, cycles, name)
+            self.assertLessEqual(reference['moving_cycle_time_s']['p50'],
+                                 reference['moving_cycle_time_s']['max'], name)
             for method in METHODS + OPTIONAL_METHODS:
                 result = self.replay(name, method)
                 if result is None:

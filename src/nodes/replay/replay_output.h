@@ -1,0 +1,80 @@
+// replay's input and results, and its two outputs (text and JSON) of a run (src/nodes/replay.cpp
+// reads the input and runs the checker; this file summarises and prints).
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "arm_collision_monitor/broadphase/broad_phase.h"
+#include "arm_collision_monitor/core/timing_summary.h"
+#include "arm_collision_monitor/monitor/monitor.h"
+#include "arm_collision_monitor/scene/workcell.h"
+#include "arm_collision_monitor/tasks/task_trajectories.h"
+
+namespace arm_collision_monitor {
+namespace replay {
+
+// The command line (replay.cpp: ParseOptions).
+struct Options {
+  std::string urdf, scene, config;
+  std::string method = "auto";
+  bool json = false;
+  std::vector<TaskGraspTarget> grasp_targets;
+  std::string input;
+  bool help = false;  ///< -h or --help: print the usage on stdout and exit 0
+};
+
+// The input as one q per cycle (model order) with its time, plus what was refused on the way.
+struct Input {
+  std::vector<Eigen::VectorXd> q;
+  std::vector<double> time_s;  ///< since the first cycle
+  std::uint64_t messages = 0;
+  std::map<std::string, std::uint64_t> refused;  ///< MergeStatusName -> count
+  std::uint64_t incomplete_cycles = 0;           ///< before every joint was received
+};
+
+// One cycle's outcome: warning pairs with their distances at the cycle's q, those the swept
+// check found between the previous cycle's q and this one's (the Monitor only: the peers check
+// the samples), and the wall time of the check.
+struct CycleResult {
+  std::vector<Warning> warnings;
+  std::vector<Warning> between_samples;
+  bool refused = false;
+  bool is_jumped = false;
+  bool is_moving = true;  ///< its q differs from the previous cycle's (the first one's does)
+  double time_s = 0.0;
+};
+
+// What both output formats report about the whole run.
+struct RunSummary {
+  std::uint64_t warning_cycles = 0, refused_cycles = 0;
+  int first = -1;  ///< the first cycle with a warning at its q, -1 if none
+  std::uint64_t between_cycles = 0;  ///< cycles with a warning between samples (swept check)
+  int first_between = -1;            ///< the first of those, -1 if none
+  std::uint64_t jumped_cycles = 0;   ///< steps beyond max_step_m
+  TimingSummary time_s;
+  TimingSummary moving_time_s;  ///< over the moving cycles: the Monitor's idle ones left out
+  BroadPhaseCounters counters;
+  std::uint64_t refused_messages = 0;
+};
+
+// The run's counts and timings; `counters`: the checker's broad-phase counters.
+RunSummary Summarize(const Input& input, const std::vector<CycleResult>& cycles,
+                     const BroadPhaseCounters& counters);
+
+// The run as JSON (--json): counts, first warning, timings, counters and every cycle's warnings.
+void PrintJson(const Options& options, const Workcell& wc, const Input& input,
+               const std::vector<CycleResult>& cycles, const RunSummary& summary,
+               bool is_swept);
+
+// The run as text: the runs of warning cycles, the swept check's warnings, the summary lines.
+void PrintText(const Options& options, const Workcell& wc, const Input& input,
+               const std::vector<CycleResult>& cycles, const RunSummary& summary,
+               bool is_swept);
+
+}  // namespace replay
+}  // namespace arm_collision_monitor
