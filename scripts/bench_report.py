@@ -386,14 +386,23 @@ def goals(out_dir):
             ("15 (c)", "sphere_robot", "mean_us", 0.1, ("bullet", "fcl")),
             ("15 (c)", "sphere_robot", "p99_us", 0.2, ("bullet", "fcl"))):
         rows, ours = workload(w)
-        measured, v = peer_goal(ours, rows, peers, key, bound)
+        # Goal (b) is on cycles that are all full kinematics cycles: the every-cycle row (index
+        # slack 0), as bench_tasks_experiments prints it; the default's ratios beside.
+        every = next((r for r in rows if ours is not None
+                      and r["impl"] == ours["impl"] + " (every cycle)"), None)
+        judged = every if w == "tasks_every_cycle" and every is not None else ours
+        measured, v = peer_goal(judged, rows, peers, key, bound)
         if not rows:
             measured = f"no {w} rows in workloads_summary.csv"
+        elif judged is not ours:
+            measured = (f"{judged['impl']}: {measured} (the default {ours['impl']}: "
+                        f"{peer_goal(ours, rows, peers, key, bound)[0]})")
         elif ours is not None:
             measured = f"default = {ours['impl']}: {measured}"
         against = " and ".join(p.replace("fcl", "FCL's").replace("bullet", "Bullet's")
                                for p in peers)
-        out.append((issue, f"{w}: default {key.split('_')[0]} <= {bound} x {against}",
+        row = "every-cycle row" if judged is not ours else "default"
+        out.append((issue, f"{w}: {row} {key.split('_')[0]} <= {bound} x {against}",
                     measured, v))
     # (d) No broad phase above 2 x naive, on medians.
     parts, ratios = [], []
