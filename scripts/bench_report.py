@@ -14,6 +14,7 @@ import math
 import os
 import platform
 import re
+import statistics
 import sys
 
 import matplotlib
@@ -299,9 +300,7 @@ def real_robot(out_dir):
             continue
 
         def median_of(key, stat):
-            values = sorted(r[key][stat] * 1e6 for r in runs)
-            mid = len(values) // 2
-            return values[mid] if len(values) % 2 else 0.5 * (values[mid - 1] + values[mid])
+            return statistics.median(r[key][stat] * 1e6 for r in runs)
 
         out[method] = {
             "passes": len(runs), "cycles": runs[0]["cycles"],

@@ -177,6 +177,7 @@ Input ReadCsv(const std::string& path, const Workcell& workcell) {
   return result;
 }
 
+// The checker under test: the Monitor with a broad phase, or (when built with them) a peer.
 class Checker {
  public:
   virtual ~Checker() = default;
