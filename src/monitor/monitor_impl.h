@@ -151,7 +151,8 @@ struct Monitor::Impl {
   bool CollectSweptPairs();
   // CollectSweptPairs' search when leavers x near boxes reach kSweptScanMinTests: each leaver's
   // grown box against every grown box at once (BoxArray by id), the hits masked by its
-  // compatibility row and by the leavers that take the pair themselves.
+  // compatibility row and by the leavers that take the pair themselves; the leavers of one
+  // link in a row share one scan, of their hull.
   void ScanSweptPairs();
   // Whether `id` may leave its slack during the step: its displacement at q plus its step bound
   // B exceeds the slack and, when `is_start_copy` (its indexed copy is the one it had at the

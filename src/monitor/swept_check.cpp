@@ -51,6 +51,7 @@ void Monitor::Impl::InitSwept() {
   swept.near.reserve(n);
   swept.grown_by_id_W.Reserve(n);
   swept.leaver_words.assign((n + 63) / 64, 0);
+  swept.link_hit_words.assign((n + 63) / 64, 0);
   swept.q_kinematics = model.q_start;
   swept.pairs.reserve(static_cast<std::size_t>(n) * (n > 0 ? n - 1 : 0) / 2);
   swept.start_box_W.assign(n, Aabb{});
@@ -287,23 +288,58 @@ void Monitor::Impl::ScanSweptPairs() {
   for (const PrimitiveId leaver : swept.leavers) {
     swept.leaver_words[leaver / 64] |= std::uint64_t{1} << (leaver % 64);
   }
-  for (const PrimitiveId leaver : swept.leavers) {
+  // The bits of word w that `leaver` pairs with: not compatible with it, and not a leaver up
+  // to its own id (2 << 63 wraps to 0: every bit), whose side takes the pair.
+  auto pairable = [&](PrimitiveId leaver, std::uint32_t w) {
     const std::uint64_t* compatible_row = compatible.RowWords(leaver);
     const std::uint32_t row_words = compatible_row != nullptr ? compatible.words_per_row() : 0;
     const std::uint32_t leaver_word = leaver / 64;
-    // Bits of the ids up to the leaver's own in its word (2 << 63 wraps to 0: every bit).
     const std::uint64_t up_to_leaver = (std::uint64_t{2} << (leaver % 64)) - 1;
-    swept.grown_by_id_W.MarkOverlaps(swept.grown_W[leaver]);
-    swept.grown_by_id_W.ForEachHit(
-        [&](std::uint32_t w) {
-          const std::uint64_t earlier =
-              w < leaver_word ? ~std::uint64_t{0} : (w == leaver_word ? up_to_leaver : 0);
-          return ~(swept.leaver_words[w] & earlier) &
-                 ~(w < row_words ? compatible_row[w] : std::uint64_t{0});
-        },
-        [&](std::uint32_t other) {
-          AddSweptPairIfNear(std::min(leaver, other), std::max(leaver, other));
-        });
+    const std::uint64_t earlier =
+        w < leaver_word ? ~std::uint64_t{0} : (w == leaver_word ? up_to_leaver : 0);
+    return ~(swept.leaver_words[w] & earlier) &
+           ~(w < row_words ? compatible_row[w] : std::uint64_t{0});
+  };
+  // The leavers of one link come in a row (ForEachMayHaveMoved goes by id, and a link's
+  // primitives have consecutive ids): they share one scan, for the hull of their boxes, whose
+  // hits each of them then tests itself (a link modelled by spheres has most of them leave
+  // together).
+  const std::vector<PrimitiveId>& leavers = swept.leavers;
+  for (std::size_t first = 0; first < leavers.size();) {
+    std::size_t end = first + 1;
+    Aabb hull_W = swept.grown_W[leavers[first]];
+    for (; end < leavers.size() && carrier[leavers[end]] == carrier[leavers[first]]; ++end) {
+      hull_W.min_W = hull_W.min_W.cwiseMin(swept.grown_W[leavers[end]].min_W);
+      hull_W.max_W = hull_W.max_W.cwiseMax(swept.grown_W[leavers[end]].max_W);
+    }
+    swept.grown_by_id_W.MarkOverlaps(hull_W);
+    if (end - first == 1) {
+      const PrimitiveId leaver = leavers[first];
+      swept.grown_by_id_W.ForEachHit(
+          [&](std::uint32_t w) { return pairable(leaver, w); },
+          [&](std::uint32_t other) {
+            AddSweptPairIfNear(std::min(leaver, other), std::max(leaver, other));
+          });
+      first = end;
+      continue;
+    }
+    std::fill(swept.link_hit_words.begin(), swept.link_hit_words.end(), std::uint64_t{0});
+    swept.grown_by_id_W.ForEachHit([&](std::uint32_t id) {
+      swept.link_hit_words[id / 64] |= std::uint64_t{1} << (id % 64);
+    });
+    for (; first < end; ++first) {
+      const PrimitiveId leaver = leavers[first];
+      const Aabb& grown_W = swept.grown_W[leaver];
+      for (std::uint32_t w = 0; w < swept.link_hit_words.size(); ++w) {
+        for (std::uint64_t bits = swept.link_hit_words[w] & pairable(leaver, w); bits != 0;
+             bits &= bits - 1) {
+          const PrimitiveId other = 64 * w + static_cast<PrimitiveId>(__builtin_ctzll(bits));
+          if (grown_W.Overlaps(swept.grown_W[other])) {
+            AddSweptPairIfNear(std::min(leaver, other), std::max(leaver, other));
+          }
+        }
+      }
+    }
   }
 }
 

@@ -6,7 +6,9 @@
 // max_step_m, a long step far from everything at both ends (no pair bisected), the start-up
 // tolerance check, and how rarely the path is needed.
 #include <array>
+#include <fstream>
 #include <map>
+#include <regex>
 #include <sstream>
 
 #include "arm_collision_monitor/core/constants.h"
@@ -393,9 +395,7 @@ TEST(MonitorSwept, RandomFastTrajectoriesMissNothing) {
 // every step) and fast steps: some 20 leavers by a few hundred near boxes, so CollectSweptPairs
 // scans the boxes as arrays (kSweptScanMinTests) rather than one by one. Each step against the
 // dense sampler: 0 missed.
-TEST(MonitorSwept, CrowdedStepsScannedAsArraysMissNothing) {
-  const std::string cubes = CubeGrid({8, 8, 6}, {-0.8, -1.4, 0.7}, {0.3, 0.4, 0.3});
-  const auto wc = LoadSceneWith("cubes", cubes);
+void RunCrowdedSteps(const std::shared_ptr<const Workcell>& wc) {
   std::size_t moving = 0;
   for (const PrimitiveSpec& p : wc->primitives) moving += p.link_index >= 0 && !p.is_static;
   ASSERT_GE(moving * wc->primitives.size(), 2 * kSweptScanMinTests) << "too few to scan";
@@ -428,6 +428,54 @@ TEST(MonitorSwept, CrowdedStepsScannedAsArraysMissNothing) {
     EXPECT_GT(tally.dense_contacts, 0) << "the trajectories must pass near things";
     EXPECT_GT(tally.swept_cycles, 0);
   }
+}
+
+/// CrowdedStepsScannedAsArraysMissNothing's boxes around the arms, in the bundled scene.
+std::string CrowdedCubes() { return CubeGrid({8, 8, 6}, {-0.8, -1.4, 0.7}, {0.3, 0.4, 0.3}); }
+
+TEST(MonitorSwept, CrowdedStepsScannedAsArraysMissNothing) {
+  RunCrowdedSteps(LoadSceneWith("cubes", CrowdedCubes()));
+}
+
+// The same with every <collision> of the bundled URDF given twice, the copy 8 cm further along
+// its link's z: each link's primitives leave their slack together, and CollectSweptPairs' scan
+// takes them as one (one scan for the hull of their boxes); a pair missed there, or a hull short
+// of a box, leaves a contact unwarned.
+TEST(MonitorSwept, CrowdedStepsOfLinksWithSeveralPrimitivesMissNothing) {
+  std::ifstream in(ACM_SOURCE_DIR "/urdf/workcell.urdf");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string urdf = text.str();
+  std::string doubled;
+  std::size_t copied = 0, twice = 0;
+  for (std::size_t at = urdf.find("<collision>"); at != std::string::npos;
+       at = urdf.find("<collision>", copied)) {
+    const std::size_t end = urdf.find("</collision>", at) + std::string("</collision>").size();
+    const std::string block = urdf.substr(at, end - at);
+    std::smatch xyz;
+    const std::regex origin("xyz=\"(\\S+) (\\S+) ([^\"]+)\"");
+    ASSERT_TRUE(std::regex_search(block, xyz, origin)) << block;
+    const std::string moved = "xyz=\"" + xyz[1].str() + " " + xyz[2].str() + " " +
+                              std::to_string(std::stod(xyz[3].str()) + 0.08) + "\"";
+    doubled += urdf.substr(copied, end - copied) + xyz.prefix().str() + moved + xyz.suffix().str();
+    copied = end;
+    ++twice;
+  }
+  doubled += urdf.substr(copied);
+  const std::string urdf_path = ::testing::TempDir() + "/swept_doubled.urdf";
+  std::ofstream(urdf_path) << doubled;
+  LoadSceneWith("doubled_cubes", CrowdedCubes());  // writes the scene file
+  const auto wc = std::make_shared<const Workcell>(
+      LoadWorkcell(urdf_path, ::testing::TempDir() + "/swept_doubled_cubes.yaml"));
+  ASSERT_GT(twice, 0u);
+  std::map<int, int> per_link;
+  for (const PrimitiveSpec& p : wc->primitives) per_link[p.link_index] += !p.is_static;
+  for (const auto& [link, count] : per_link) {
+    if (link >= 0 && count > 0) {
+      EXPECT_GE(count, 2) << "link " << link;
+    }
+  }
+  RunCrowdedSteps(wc);
 }
 
 // Differential against the dense sampler on random steps from random configurations, up to
