@@ -31,6 +31,8 @@ void NaiveBroadPhase::Reserve(std::uint32_t max_primitives) {
   const std::size_t words = (entries_.size() + 63) / 64;
   static_bits_.resize(words, 0);
   moving_bits_.resize(words, 0);
+  group_bits_.resize(words, 0);
+  hull_hit_bits_.resize(words, 0);
   boxes_.Reserve(entries_.size());
 }
 
@@ -110,6 +112,55 @@ void NaiveBroadPhase::FindPairsOf(PrimitiveId id, const CompatibilityMatrix& com
              [&](std::uint32_t w) { return w == self_word ? not_self : ~std::uint64_t{0}; },
              pairs);
   }
+}
+
+bool NaiveBroadPhase::FindPairsOfGroup(const PrimitiveId* ids, std::uint32_t count,
+                                       const CompatibilityMatrix& compatible,
+                                       std::vector<CandidatePair>* pairs) {
+  pairs->clear();
+  Aabb hull_W = kAbsentBox;
+  bool is_any_present = false;
+  for (std::uint32_t k = 0; k < count; ++k) {
+    const PrimitiveId id = ids[k];
+    if (id >= entries_.size() || !entries_[id].present) continue;
+    SetBit(&group_bits_, id, true);
+    // Every box that meets a member's meets the hull; a member with a NaN bound meets nothing
+    // and is left out of it (it would void the hull for the others).
+    const Aabb box_W = boxes_.Get(id);
+    if (box_W.min_W.hasNaN() || box_W.max_W.hasNaN()) continue;
+    hull_W.min_W = is_any_present ? hull_W.min_W.cwiseMin(box_W.min_W) : box_W.min_W;
+    hull_W.max_W = is_any_present ? hull_W.max_W.cwiseMax(box_W.max_W) : box_W.max_W;
+    is_any_present = true;
+  }
+  counters_.object_object_tests += present_count_;
+  boxes_.MarkOverlaps(hull_W);
+  const std::uint32_t words = (boxes_.size() + 63) / 64;  // the scan's
+  std::fill_n(hull_hit_bits_.begin(), words, std::uint64_t{0});
+  boxes_.ForEachHit([&](std::uint32_t b) { SetBit(&hull_hit_bits_, b, true); });
+  for (std::uint32_t k = 0; k < count; ++k) {
+    const PrimitiveId id = ids[k];
+    if (id >= entries_.size() || !entries_[id].present) continue;
+    const Aabb box_W = boxes_.Get(id);
+    const std::uint64_t* compatible_row = compatible.RowWords(id);
+    const std::uint32_t row_words = compatible_row != nullptr ? compatible.words_per_row() : 0;
+    const bool is_static = entries_[id].motion == Motion::kStatic;
+    for (std::uint32_t w = 0; w < words; ++w) {
+      // Not compatible, not static-static, and not a member up to id (the smaller member's
+      // side takes a pair of two members; itself is one of them).
+      const std::uint64_t keep = ~(w < row_words ? compatible_row[w] : std::uint64_t{0}) &
+                                 ~(is_static ? static_bits_[w] : std::uint64_t{0}) &
+                                 ~(group_bits_[w] & UpToMask(id, w));
+      for (std::uint64_t bits = hull_hit_bits_[w] & keep; bits != 0; bits &= bits - 1) {
+        const PrimitiveId b = 64 * w + static_cast<PrimitiveId>(__builtin_ctzll(bits));
+        ++counters_.object_object_tests;
+        if (boxes_.Overlaps(b, box_W)) pairs->push_back(MakeOrderedPair(id, b));
+      }
+    }
+  }
+  for (std::uint32_t k = 0; k < count; ++k) {
+    if (ids[k] < entries_.size()) SetBit(&group_bits_, ids[k], false);
+  }
+  return true;
 }
 
 bool NaiveBroadPhase::Validate(std::string* why) const {

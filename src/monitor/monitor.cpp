@@ -212,7 +212,7 @@ std::uint32_t Monitor::Impl::FollowKinematics(const Eigen::Ref<const Eigen::Vect
       moved[id] = 0;
     });
   }
-  cache.Update(broad_phase.get(), compatible);
+  cache.Update(broad_phase.get(), compatible, &carrier);
   return moved_count;
 }
 

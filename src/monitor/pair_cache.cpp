@@ -50,15 +50,17 @@ void PairCache::Reindex(PrimitiveId id, const Shape& shape_W) {
   is_reindexed_[id] = 1;
 }
 
-void PairCache::Update(BroadPhase* broad_phase, const CompatibilityMatrix& compatible) {
-  UpdatePairs(broad_phase, compatible);
+void PairCache::Update(BroadPhase* broad_phase, const CompatibilityMatrix& compatible,
+                       const std::vector<int>* group_of) {
+  UpdatePairs(broad_phase, compatible, group_of);
   for (KeptPair& kept : pairs_) {
     kept.kinematics_bound_m = KinematicsBound_m(kept);
     kept.is_exact = false;
   }
 }
 
-void PairCache::UpdatePairs(BroadPhase* broad_phase, const CompatibilityMatrix& compatible) {
+void PairCache::UpdatePairs(BroadPhase* broad_phase, const CompatibilityMatrix& compatible,
+                            const std::vector<int>* group_of) {
   constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
   if (is_stale_) {
     broad_phase->FindPairs(compatible, &found_);
@@ -75,15 +77,36 @@ void PairCache::UpdatePairs(BroadPhase* broad_phase, const CompatibilityMatrix& 
                               }),
                pairs_.end());
   // ... and the re-indexed ones get theirs anew; a pair of two re-indexed primitives is taken
-  // from the smaller id's query.
+  // from the query of the smaller id (a group query has each pair within the group once).
   new_pairs_.clear();
-  for (const PrimitiveId id : reindexed_) {
-    broad_phase->FindPairsOf(id, compatible, &found_);
-    for (const CandidatePair& p : found_) {
-      const PrimitiveId other = p.a == id ? p.b : p.a;
-      if (is_reindexed_[other] && other < id) continue;
-      new_pairs_.push_back(p);
+  const std::size_t count = reindexed_.size();
+  for (std::size_t first = 0; first < count;) {
+    std::size_t end = first + 1;
+    const int group = group_of != nullptr ? (*group_of)[reindexed_[first]] : -1;
+    while (group >= 0 && end < count && (*group_of)[reindexed_[end]] == group) ++end;
+    const PrimitiveId* ids = &reindexed_[first];
+    const auto size = static_cast<std::uint32_t>(end - first);
+    if (size > 1 && broad_phase->FindPairsOfGroup(ids, size, compatible, &found_)) {
+      for (std::uint32_t k = 0; k < size; ++k) is_reindexed_[ids[k]] = kInGroup;
+      for (const CandidatePair& p : found_) {
+        // Either member, when both are in the group.
+        const PrimitiveId member = is_reindexed_[p.a] == kInGroup ? p.a : p.b;
+        const PrimitiveId other = member == p.a ? p.b : p.a;
+        if (is_reindexed_[other] == 1 && other < member) continue;
+        new_pairs_.push_back(p);
+      }
+      for (std::uint32_t k = 0; k < size; ++k) is_reindexed_[ids[k]] = 1;
+    } else {
+      for (std::uint32_t k = 0; k < size; ++k) {
+        broad_phase->FindPairsOf(ids[k], compatible, &found_);
+        for (const CandidatePair& p : found_) {
+          const PrimitiveId other = p.a == ids[k] ? p.b : p.a;
+          if (is_reindexed_[other] && other < ids[k]) continue;
+          new_pairs_.push_back(p);
+        }
+      }
     }
+    first = end;
   }
   std::sort(new_pairs_.begin(), new_pairs_.end());
   scratch_.clear();

@@ -8,8 +8,8 @@
 //    <= 1 s cold, <= 0.2 s cached. Run with --benchmark_repetitions=5 for medians.
 // The machine is printed by Google Benchmark's context.
 //
-//   $ACM_WS/devel/lib/arm_collision_monitor/bench_scene_load --benchmark_repetitions=5 \
-//       --benchmark_report_aggregates_only=true
+//   $ACM_WS/devel/lib/arm_collision_monitor/bench_scene_load (one command line with)
+//       --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
 #include <filesystem>

@@ -1,6 +1,7 @@
 // The reference broad phase and the factory: hand-checked scenes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <limits>
 #include <random>
 #include <string>
@@ -111,6 +112,21 @@ TEST(NaiveBroadPhase, RandomAddRemoveMoveMatchesEveryBoxAgainstEvery) {
     }
     bp.FindPairsOf(id, compatible, &pairs);
     ASSERT_EQ(pairs, of_id) << "round " << round << " primitive " << id;
+    // FindPairsOfGroup for the ids from id on (2 to 7 of them, present or not, across words):
+    // the pairs of `expected` that contain any, each once.
+    const auto group_end = std::min<PrimitiveId>(kIds, id + 2 + rng() % 6);
+    std::vector<PrimitiveId> group;
+    for (PrimitiveId g = id; g < group_end; ++g) group.push_back(g);
+    std::vector<CandidatePair> of_group;
+    for (const CandidatePair& p : expected) {
+      if ((p.a >= id && p.a < group_end) || (p.b >= id && p.b < group_end)) of_group.push_back(p);
+    }
+    ASSERT_TRUE(bp.FindPairsOfGroup(group.data(), static_cast<std::uint32_t>(group.size()),
+                                    compatible, &pairs));
+    std::sort(pairs.begin(), pairs.end());
+    ASSERT_EQ(pairs, of_group) << "round " << round << " primitives " << id << " to "
+                               << group_end - 1;
+    ASSERT_TRUE(bp.Validate(&why)) << "round " << round << ": " << why;
   }
 }
 

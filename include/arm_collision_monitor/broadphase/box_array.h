@@ -26,6 +26,12 @@ class BoxArray {
   void PushBack(const Aabb& box_W);
   void Set(std::uint32_t slot, const Aabb& box_W);
   Aabb Get(std::uint32_t slot) const;
+  /// Whether the box in `slot` overlaps `box_W` (Aabb::Overlaps, exactly: NaN meets nothing).
+  bool Overlaps(std::uint32_t slot, const Aabb& box_W) const {
+    return lo_W_[0][slot] <= box_W.max_W.x() && box_W.min_W.x() <= hi_W_[0][slot] &&
+           lo_W_[1][slot] <= box_W.max_W.y() && box_W.min_W.y() <= hi_W_[1][slot] &&
+           lo_W_[2][slot] <= box_W.max_W.z() && box_W.min_W.z() <= hi_W_[2][slot];
+  }
   /// Moves the last box into `slot` and drops the last (as SwapRemove on the ids' list).
   void SwapRemove(std::uint32_t slot);
   /// Drops the last box.
@@ -55,11 +61,7 @@ class BoxArray {
   void ForEachHit(Keep&& keep, F&& f) const;
 
  private:
-  bool OverlapsQuery(std::uint32_t slot) const {
-    return lo_W_[0][slot] <= query_W_.max_W.x() && query_W_.min_W.x() <= hi_W_[0][slot] &&
-           lo_W_[1][slot] <= query_W_.max_W.y() && query_W_.min_W.y() <= hi_W_[1][slot] &&
-           lo_W_[2][slot] <= query_W_.max_W.z() && query_W_.min_W.z() <= hi_W_[2][slot];
-  }
+  bool OverlapsQuery(std::uint32_t slot) const { return Overlaps(slot, query_W_); }
 
   std::array<std::vector<double>, 3> lo_W_, hi_W_;  // per slot and axis: min, max
   // The same rounded to float (NaN stays NaN), padded to a multiple of 8 slots.

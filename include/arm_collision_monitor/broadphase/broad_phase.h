@@ -83,6 +83,15 @@ class BroadPhase {
   /// Empty when `id` is not present. Replaces the contents of `pairs`.
   virtual void FindPairsOf(PrimitiveId id, const CompatibilityMatrix& compatible,
                            std::vector<CandidatePair>* pairs) = 0;
+  /// The candidate pairs of several primitives at once (distinct ids, such as one link's, which
+  /// lie close together): exactly the pairs of FindPairs() that contain any of ids[0, count),
+  /// each once, in any order; replaces the contents of `pairs`. False, with `pairs` untouched,
+  /// where the structure answers one primitive at a time (the callers use FindPairsOf then).
+  virtual bool FindPairsOfGroup(const PrimitiveId* /*ids*/, std::uint32_t /*count*/,
+                                const CompatibilityMatrix& /*compatible*/,
+                                std::vector<CandidatePair>* /*pairs*/) {
+    return false;
+  }
 
   /// The leaf cells (left empty by structures without cells, e.g. all pairs).
   virtual void CollectCells(std::vector<IndexCell>* cells) const { cells->clear(); }

@@ -29,6 +29,10 @@ class NaiveBroadPhase final : public BroadPhase {
                  std::vector<CandidatePair>* pairs) override;
   void FindPairsOf(PrimitiveId id, const CompatibilityMatrix& compatible,
                    std::vector<CandidatePair>* pairs) override;
+  /// One scan for the hull of the group's boxes; each member then decides only the hull's hits.
+  bool FindPairsOfGroup(const PrimitiveId* ids, std::uint32_t count,
+                        const CompatibilityMatrix& compatible,
+                        std::vector<CandidatePair>* pairs) override;
   /// The flag words and the present count agree with the entries, every absent id's slot below
   /// the scan's end is NaN, and the scan ends just past the highest present id.
   bool Validate(std::string* why) const override;
@@ -54,6 +58,8 @@ class NaiveBroadPhase final : public BroadPhase {
   BoxArray boxes_;
   // Bit id % 64 of word id / 64: present and static; present and moving.
   std::vector<std::uint64_t> static_bits_, moving_bits_;
+  // FindPairsOfGroup's scratch, the same layout: the group's members; the hull's hits.
+  std::vector<std::uint64_t> group_bits_, hull_hit_bits_;
   std::uint32_t present_count_ = 0;
 };
 

@@ -108,7 +108,10 @@ class PairCache {
   /// `broad_phase` (all found anew when stale, else the pairs of the re-indexed primitives
   /// replaced, their bounds unknown until TestPairs), and each pair's kinematics bound: its
   /// distance now is at least its indexed distance less both primitives' displacement.
-  void Update(BroadPhase* broad_phase, const CompatibilityMatrix& compatible);
+  /// `group_of` (per primitive; may be null): re-indexed primitives in a row with the same
+  /// group >= 0 (the Monitor's: their carrier link) are queried together (FindPairsOfGroup).
+  void Update(BroadPhase* broad_phase, const CompatibilityMatrix& compatible,
+              const std::vector<int>* group_of = nullptr);
   /// The narrow phase over the kept pairs: `narrow_phase(a, b)` (returning the exact distance of
   /// the current shapes, m) is called, in pair order, on each pair that neither its lower bound
   /// nor the float clearance bound of its current shapes `shapes_W` (as last given to
@@ -144,7 +147,8 @@ class PairCache {
 
  private:
   // The pair set of Update.
-  void UpdatePairs(BroadPhase* broad_phase, const CompatibilityMatrix& compatible);
+  void UpdatePairs(BroadPhase* broad_phase, const CompatibilityMatrix& compatible,
+                   const std::vector<int>* group_of);
   double KinematicsBound_m(const KeptPair& kept) const {
     return kept.lower_bound_m - disp_m_[kept.pair.a] - disp_m_[kept.pair.b];
   }
@@ -199,7 +203,9 @@ class PairCache {
   std::vector<KeptPair> scratch_;
   std::vector<CandidatePair> found_, new_pairs_;  // scratch for FindPairs / FindPairsOf
   std::vector<PrimitiveId> reindexed_;
-  std::vector<std::uint8_t> is_reindexed_;  // per primitive: in reindexed_
+  std::vector<std::uint8_t> is_reindexed_;  // per primitive: in reindexed_ (1, or kInGroup)
+  // is_reindexed_ of the members of the group UpdatePairs is taking the pairs of.
+  static constexpr std::uint8_t kInGroup = 2;
   bool is_stale_ = true;
 };
 
