@@ -32,7 +32,6 @@ void NaiveBroadPhase::Reserve(std::uint32_t max_primitives) {
   static_bits_.resize(words, 0);
   moving_bits_.resize(words, 0);
   group_bits_.resize(words, 0);
-  hull_hit_bits_.resize(words, 0);
   boxes_.Reserve(entries_.size());
 }
 
@@ -133,10 +132,10 @@ bool NaiveBroadPhase::FindPairsOfGroup(const PrimitiveId* ids, std::uint32_t cou
     is_any_present = true;
   }
   counters_.object_object_tests += present_count_;
+  // The scan's flags for the hull, undecided: each member decides its own below.
   boxes_.MarkOverlaps(hull_W);
-  const std::uint32_t words = (boxes_.size() + 63) / 64;  // the scan's
-  std::fill_n(hull_hit_bits_.begin(), words, std::uint64_t{0});
-  boxes_.ForEachHit([&](std::uint32_t b) { SetBit(&hull_hit_bits_, b, true); });
+  const std::uint64_t* hull_hits = boxes_.hit_words();
+  const std::uint32_t words = (boxes_.size() + 63) / 64;
   for (std::uint32_t k = 0; k < count; ++k) {
     const PrimitiveId id = ids[k];
     if (id >= entries_.size() || !entries_[id].present) continue;
@@ -150,7 +149,7 @@ bool NaiveBroadPhase::FindPairsOfGroup(const PrimitiveId* ids, std::uint32_t cou
       const std::uint64_t keep = ~(w < row_words ? compatible_row[w] : std::uint64_t{0}) &
                                  ~(is_static ? static_bits_[w] : std::uint64_t{0}) &
                                  ~(group_bits_[w] & UpToMask(id, w));
-      for (std::uint64_t bits = hull_hit_bits_[w] & keep; bits != 0; bits &= bits - 1) {
+      for (std::uint64_t bits = hull_hits[w] & keep; bits != 0; bits &= bits - 1) {
         const PrimitiveId b = 64 * w + static_cast<PrimitiveId>(__builtin_ctzll(bits));
         ++counters_.object_object_tests;
         if (boxes_.Overlaps(b, box_W)) pairs->push_back(MakeOrderedPair(id, b));

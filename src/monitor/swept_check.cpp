@@ -51,7 +51,6 @@ void Monitor::Impl::InitSwept() {
   swept.near.reserve(n);
   swept.grown_by_id_W.Reserve(n);
   swept.leaver_words.assign((n + 63) / 64, 0);
-  swept.link_hit_words.assign((n + 63) / 64, 0);
   swept.q_kinematics = model.q_start;
   swept.pairs.reserve(static_cast<std::size_t>(n) * (n > 0 ? n - 1 : 0) / 2);
   swept.start_box_W.assign(n, Aabb{});
@@ -323,18 +322,17 @@ void Monitor::Impl::ScanSweptPairs() {
       first = end;
       continue;
     }
-    std::fill(swept.link_hit_words.begin(), swept.link_hit_words.end(), std::uint64_t{0});
-    swept.grown_by_id_W.ForEachHit([&](std::uint32_t id) {
-      swept.link_hit_words[id / 64] |= std::uint64_t{1} << (id % 64);
-    });
+    // The scan's flags for the hull, undecided: each leaver decides its own.
+    const std::uint64_t* hull_hits = swept.grown_by_id_W.hit_words();
+    const std::uint32_t words = (n + 63) / 64;
     for (; first < end; ++first) {
       const PrimitiveId leaver = leavers[first];
       const Aabb& grown_W = swept.grown_W[leaver];
-      for (std::uint32_t w = 0; w < swept.link_hit_words.size(); ++w) {
-        for (std::uint64_t bits = swept.link_hit_words[w] & pairable(leaver, w); bits != 0;
+      for (std::uint32_t w = 0; w < words; ++w) {
+        for (std::uint64_t bits = hull_hits[w] & pairable(leaver, w); bits != 0;
              bits &= bits - 1) {
           const PrimitiveId other = 64 * w + static_cast<PrimitiveId>(__builtin_ctzll(bits));
-          if (grown_W.Overlaps(swept.grown_W[other])) {
+          if (swept.grown_by_id_W.Overlaps(other, grown_W)) {
             AddSweptPairIfNear(std::min(leaver, other), std::max(leaver, other));
           }
         }

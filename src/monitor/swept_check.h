@@ -64,7 +64,6 @@ struct SweptScratch {
   std::vector<PrimitiveId> near;           // the indexed ones whose boxes meet the leavers' hull
   BoxArray grown_by_id_W;  // per id: grown_W, NaN if not indexed (ScanSweptPairs)
   std::vector<std::uint64_t> leaver_words;  // bit id % 64 of word id / 64: leaves_slack
-  std::vector<std::uint64_t> link_hit_words;  // the same layout: boxes meeting one link's hull
   // At the step's start, when has_start_displacement (the index unchanged since the last
   // kinematics): the last kinematics' q. A bound on a primitive's displacement at q_start adds
   // its motion since to its displacement then (Impl::StartDisplacement_m, only for the few

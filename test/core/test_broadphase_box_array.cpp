@@ -57,7 +57,12 @@ TEST_P(BoxArrayScan, ScanFlagsExactlyTheOverlappingBoxesInSlotOrder) {
     std::vector<std::uint32_t> hits;
     boxes.ForEachHit([&](std::uint32_t slot) { hits.push_back(slot); });
     std::vector<std::uint32_t> brute;
+    const std::uint64_t* flags = boxes.hit_words();
     for (std::uint32_t s = 0; s < expected.size(); ++s) {
+      // hit_words: every overlapping box flagged; Overlaps(slot, box) the exact test.
+      const bool is_flagged = (flags[s / 64] >> (s % 64)) & 1;
+      ASSERT_TRUE(is_flagged || !query.Overlaps(expected[s])) << "slot " << s << " step " << step;
+      ASSERT_EQ(boxes.Overlaps(s, query), query.Overlaps(expected[s])) << "slot " << s;
       if (query.Overlaps(expected[s])) brute.push_back(s);
       const Aabb got = boxes.Get(s);
       ASSERT_TRUE(got.min_W.cwiseEqual(expected[s].min_W).count() +
@@ -67,6 +72,11 @@ TEST_P(BoxArrayScan, ScanFlagsExactlyTheOverlappingBoxesInSlotOrder) {
           << "slot " << s << " step " << step;
     }
     ASSERT_EQ(hits, brute) << "step " << step;
+    // No flag past the last slot.
+    if (boxes.size() > 0) {
+      const std::uint32_t last = boxes.size() - 1;
+      ASSERT_EQ(flags[last / 64] >> 1 >> (last % 64), 0u) << "step " << step;
+    }
     hits_seen += hits.size();
   }
   EXPECT_GT(hits_seen, 1000u);  // the scan met boxes, not only empty sets

@@ -49,6 +49,10 @@ class BoxArray {
   /// Aabb::Overlaps on closed boxes: a NaN bound on either side overlaps nothing); returns the
   /// boxes tested (size()).
   std::uint32_t MarkOverlaps(const Aabb& box_W);
+  /// The last MarkOverlaps' flags, bit slot % 64 of word slot / 64 (size() + 63) / 64 words:
+  /// every box that overlaps its box and a few more (float bounds), each still to be decided
+  /// exactly (Overlaps), for callers that decide them against boxes of their own.
+  const std::uint64_t* hit_words() const { return hit_words_.data(); }
   /// Calls f(slot) for every box that overlaps the last MarkOverlaps' box, in slot order (the
   /// boxes must not change in between).
   template <typename F>

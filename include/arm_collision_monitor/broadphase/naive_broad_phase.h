@@ -58,8 +58,8 @@ class NaiveBroadPhase final : public BroadPhase {
   BoxArray boxes_;
   // Bit id % 64 of word id / 64: present and static; present and moving.
   std::vector<std::uint64_t> static_bits_, moving_bits_;
-  // FindPairsOfGroup's scratch, the same layout: the group's members; the hull's hits.
-  std::vector<std::uint64_t> group_bits_, hull_hit_bits_;
+  // FindPairsOfGroup's scratch, the same layout: the group's members.
+  std::vector<std::uint64_t> group_bits_;
   std::uint32_t present_count_ = 0;
 };
 
