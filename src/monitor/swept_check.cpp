@@ -311,32 +311,16 @@ void Monitor::Impl::ScanSweptPairs() {
       hull_W.min_W = hull_W.min_W.cwiseMin(swept.grown_W[leavers[end]].min_W);
       hull_W.max_W = hull_W.max_W.cwiseMax(swept.grown_W[leavers[end]].max_W);
     }
+    // Each leaver of the run decides the hull's flags against its own box (alone, its box is
+    // the hull).
     swept.grown_by_id_W.MarkOverlaps(hull_W);
-    if (end - first == 1) {
+    for (; first < end; ++first) {
       const PrimitiveId leaver = leavers[first];
-      swept.grown_by_id_W.ForEachHit(
-          [&](std::uint32_t w) { return pairable(leaver, w); },
+      swept.grown_by_id_W.ForEachHitOf(
+          swept.grown_W[leaver], [&](std::uint32_t w) { return pairable(leaver, w); },
           [&](std::uint32_t other) {
             AddSweptPairIfNear(std::min(leaver, other), std::max(leaver, other));
           });
-      first = end;
-      continue;
-    }
-    // The scan's flags for the hull, undecided: each leaver decides its own.
-    const std::uint64_t* hull_hits = swept.grown_by_id_W.hit_words();
-    const std::uint32_t words = (n + 63) / 64;
-    for (; first < end; ++first) {
-      const PrimitiveId leaver = leavers[first];
-      const Aabb& grown_W = swept.grown_W[leaver];
-      for (std::uint32_t w = 0; w < words; ++w) {
-        for (std::uint64_t bits = hull_hits[w] & pairable(leaver, w); bits != 0;
-             bits &= bits - 1) {
-          const PrimitiveId other = 64 * w + static_cast<PrimitiveId>(__builtin_ctzll(bits));
-          if (swept.grown_by_id_W.Overlaps(other, grown_W)) {
-            AddSweptPairIfNear(std::min(leaver, other), std::max(leaver, other));
-          }
-        }
-      }
     }
   }
 }

@@ -51,7 +51,7 @@ class BoxArray {
   std::uint32_t MarkOverlaps(const Aabb& box_W);
   /// The last MarkOverlaps' flags, bit slot % 64 of word slot / 64 (size() + 63) / 64 words:
   /// every box that overlaps its box and a few more (float bounds), each still to be decided
-  /// exactly (Overlaps), for callers that decide them against boxes of their own.
+  /// exactly (Overlaps).
   const std::uint64_t* hit_words() const { return hit_words_.data(); }
   /// Calls f(slot) for every box that overlaps the last MarkOverlaps' box, in slot order (the
   /// boxes must not change in between).
@@ -62,11 +62,16 @@ class BoxArray {
   /// The same for the boxes whose bits survive `keep(w)`, a mask for word w (slots 64 w ..
   /// 64 w + 63): only those are decided exactly.
   template <typename Keep, typename F>
-  void ForEachHit(Keep&& keep, F&& f) const;
+  void ForEachHit(Keep&& keep, F&& f) const {
+    ForEachHitOf(query_W_, keep, f);
+  }
+  /// ForEachHit for a box `box_W` inside the last MarkOverlaps' box (one of several whose hull
+  /// it scanned: every box meeting box_W is flagged): f(slot) for each flagged box whose bit
+  /// survives keep(w) and that overlaps box_W exactly, in slot order.
+  template <typename Keep, typename F>
+  void ForEachHitOf(const Aabb& box_W, Keep&& keep, F&& f) const;
 
  private:
-  bool OverlapsQuery(std::uint32_t slot) const { return Overlaps(slot, query_W_); }
-
   std::array<std::vector<double>, 3> lo_W_, hi_W_;  // per slot and axis: min, max
   // The same rounded to float (NaN stays NaN), padded to a multiple of 8 slots.
   std::array<std::vector<float>, 3> lo_f_, hi_f_;
@@ -76,14 +81,14 @@ class BoxArray {
 };
 
 template <typename Keep, typename F>
-void BoxArray::ForEachHit(Keep&& keep, F&& f) const {
+void BoxArray::ForEachHitOf(const Aabb& box_W, Keep&& keep, F&& f) const {
   const std::uint32_t word_count = (size_ + 63) / 64;
   for (std::uint32_t w = 0; w < word_count; ++w) {
     const std::uint64_t hits = hit_words_[w];
     if (hits == 0) continue;
     for (std::uint64_t bits = hits & keep(w); bits != 0; bits &= bits - 1) {
       const std::uint32_t slot = 64 * w + static_cast<std::uint32_t>(__builtin_ctzll(bits));
-      if (OverlapsQuery(slot)) f(slot);
+      if (Overlaps(slot, box_W)) f(slot);
     }
   }
 }
