@@ -127,8 +127,11 @@ bool NaiveBroadPhase::FindPairsOfGroup(const PrimitiveId* ids, std::uint32_t cou
     // and is left out of it (it would void the hull for the others).
     const Aabb box_W = boxes_.Get(id);
     if (box_W.min_W.hasNaN() || box_W.max_W.hasNaN()) continue;
-    hull_W.min_W = is_any_present ? hull_W.min_W.cwiseMin(box_W.min_W) : box_W.min_W;
-    hull_W.max_W = is_any_present ? hull_W.max_W.cwiseMax(box_W.max_W) : box_W.max_W;
+    if (is_any_present) {
+      hull_W.Enclose(box_W);
+    } else {
+      hull_W = box_W;
+    }
     is_any_present = true;
   }
   counters_.object_object_tests += present_count_;

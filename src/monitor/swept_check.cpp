@@ -246,8 +246,7 @@ bool Monitor::Impl::CollectSweptPairs() {
   // then each leaver with those (two leavers once), then in pair order.
   Aabb hull_W = swept.grown_W[swept.leavers.front()];
   for (const PrimitiveId leaver : swept.leavers) {
-    hull_W.min_W = hull_W.min_W.cwiseMin(swept.grown_W[leaver].min_W);
-    hull_W.max_W = hull_W.max_W.cwiseMax(swept.grown_W[leaver].max_W);
+    hull_W.Enclose(swept.grown_W[leaver]);
   }
   swept.near.clear();
   for (PrimitiveId id = 0; id < n; ++id) {
@@ -308,8 +307,7 @@ void Monitor::Impl::ScanSweptPairs() {
     std::size_t end = first + 1;
     Aabb hull_W = swept.grown_W[leavers[first]];
     for (; end < leavers.size() && carrier[leavers[end]] == carrier[leavers[first]]; ++end) {
-      hull_W.min_W = hull_W.min_W.cwiseMin(swept.grown_W[leavers[end]].min_W);
-      hull_W.max_W = hull_W.max_W.cwiseMax(swept.grown_W[leavers[end]].max_W);
+      hull_W.Enclose(swept.grown_W[leavers[end]]);
     }
     // Each leaver of the run decides the hull's flags against its own box (alone, its box is
     // the hull).

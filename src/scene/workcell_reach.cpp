@@ -20,17 +20,11 @@ double MaxAttachableDiameter_m(const Workcell& w) {
     Aabb box = ComputeAabb(w.primitives[object.primitive].shape_L);
     for (int k = 1; k < object.primitive_count; ++k) {
       const Aabb b = ComputeAabb(w.primitives[object.primitive + k].shape_L);
-      box.min_W = box.min_W.cwiseMin(b.min_W);
-      box.max_W = box.max_W.cwiseMax(b.max_W);
+      box.Enclose(b);
     }
     diameter_m = std::max(diameter_m, (box.max_W - box.min_W).norm());
   }
   return diameter_m;
-}
-
-void Enclose(const Aabb& box, Aabb* all) {
-  all->min_W = all->min_W.cwiseMin(box.min_W);
-  all->max_W = all->max_W.cwiseMax(box.max_W);
 }
 
 }  // namespace
@@ -116,14 +110,13 @@ Aabb DeriveWorldCube(const Workcell& w) {
                       "' has an unbounded reach (a prismatic joint without limits above it); "
                       "expected world: {center_m: [x, y, z], edge_m: e}");
     }
-    Enclose(sphere.ComputeAabb(), &all);
+    all.Enclose(sphere.ComputeAabb());
   }
   for (const PrimitiveSpec& p : w.primitives) {
     if (p.link_index >= 0 && reach.spheres[p.link_index].radius_m >= 0.0) continue;  // above
     // Objects at their start poses (shape_L is in W), links that never move at their poses.
-    Enclose(ComputeAabb(p.link_index >= 0 ? TransformShape(X_WL[p.link_index], p.shape_L)
-                                          : p.shape_L),
-            &all);
+    all.Enclose(ComputeAabb(p.link_index >= 0 ? TransformShape(X_WL[p.link_index], p.shape_L)
+                                              : p.shape_L));
   }
   all = all.Inflated(max_tolerance_m);
   const double edge_m = (all.max_W - all.min_W).maxCoeff() + 2.0 * kDerivedWorldMargin_m;

@@ -34,6 +34,11 @@ struct Aabb {
     return (min_W.array() <= other.min_W.array()).all() &&
            (other.max_W.array() <= max_W.array()).all();
   }
+  /// Grows this box to enclose `other` too (a NaN bound may void it: callers leave NaN out).
+  void Enclose(const Aabb& other) {
+    min_W = min_W.cwiseMin(other.min_W);
+    max_W = max_W.cwiseMax(other.max_W);
+  }
   /// This box grown by `margin_m` (>= 0) on every side.
   Aabb Inflated(double margin_m) const {
     return Aabb{(min_W.array() - margin_m).matrix(), (max_W.array() + margin_m).matrix()};
