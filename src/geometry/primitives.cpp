@@ -23,6 +23,20 @@ double MaxDistanceFromPoint_m(const Shape& shape, const Eigen::Vector3d& p) {
   return (p_B.cwiseAbs() + box.half_extents_m).norm();
 }
 
+double MaxDistanceFromAxis_m(const Shape& shape, const Eigen::Vector3d& axis) {
+  // The distance from a line is convex: largest at an endpoint of a segment, a vertex of a box.
+  if (const auto* capsule = std::get_if<Capsule>(&shape)) {
+    return std::max(capsule->p0_W.cross(axis).norm(), capsule->p1_W.cross(axis).norm()) +
+           capsule->radius_m;
+  }
+  const Box& box = std::get<Box>(shape);
+  double farthest_m = 0.0;
+  for (int vertex = 0; vertex < 8; ++vertex) {
+    farthest_m = std::max(farthest_m, (box.X_WB * box.Vertex_B(vertex)).cross(axis).norm());
+  }
+  return farthest_m;
+}
+
 Eigen::Isometry3d PoseFromXyzRpy(const Eigen::Vector3d& p_WF_m, const Eigen::Vector3d& rpy_rad) {
   Eigen::Isometry3d X_WF = Eigen::Isometry3d::Identity();
   X_WF.linear() = (Eigen::AngleAxisd(rpy_rad.z(), Eigen::Vector3d::UnitZ()) *

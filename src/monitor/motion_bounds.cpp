@@ -10,9 +10,7 @@ namespace arm_collision_monitor {
 double MaxBoxVertexDisplacement_m(const Box& b0, const Box& b1) {
   double max_sq = 0.0;
   for (int corner = 0; corner < 8; ++corner) {
-    const Eigen::Vector3d v_B((corner & 1) ? b0.half_extents_m.x() : -b0.half_extents_m.x(),
-                              (corner & 2) ? b0.half_extents_m.y() : -b0.half_extents_m.y(),
-                              (corner & 4) ? b0.half_extents_m.z() : -b0.half_extents_m.z());
+    const Eigen::Vector3d v_B = b0.Vertex_B(corner);
     max_sq = std::max(max_sq, (b1.X_WB * v_B - b0.X_WB * v_B).squaredNorm());
   }
   return std::sqrt(max_sq);
@@ -108,21 +106,31 @@ void MotionBounds::SetCarrier(PrimitiveId id, int link, bool is_moving, const Sh
   if (lever_count_[id] > 0 || (link >= 0 && is_moving)) is_undominated_stale_ = true;
   lever_count_[id] = 0;
   if (link < 0 || !is_moving) return;
-  // The primitive reaches at most `extent` from its link's origin, and a joint's origin at
-  // most the chain of joint offsets (plus prismatic travel) below it from there; a point's
-  // distance from a joint's axis is at most its distance from the joint's origin.
-  const double extent_m = MaxDistanceFromPoint_m(shape_L, Eigen::Vector3d::Zero());
-  double chain_m = 0.0;
+  // A revolute joint's lever is the primitive's largest distance from the joint's axis, which
+  // passes through the origin of the joint's child link l. On l itself that distance is fixed.
+  // Above, the primitive is within `reach` of the origin of l's child c on the chain, and c's
+  // origin sits at the joint offset t_c in l's frame (plus c's prismatic travel): its distance
+  // from the axis is at most the part of t_c across the axis plus the travel plus `reach`. The
+  // reach grows by the whole offset and travel at each link upward.
+  double reach_m = MaxDistanceFromPoint_m(shape_L, Eigen::Vector3d::Zero());
+  const JointSpec* child = nullptr;
   Lever* out = &levers_[static_cast<std::size_t>(id) * max_levers_];
   for (int l = link; l > 0; l = model_->parent_link(l)) {
     const JointSpec& joint = model_->joint(l);
     const int q_index = DrivingQIndex(joint);
     if (q_index >= 0) {  // as link_depth_ counts
       const double scale = joint.q_index >= 0 ? 1.0 : std::abs(joint.mimic_multiplier);
-      const double lever_m = joint.type == JointType::kPrismatic ? 1.0 : chain_m + extent_m;
+      double lever_m = 1.0;  // a prismatic joint: its points move as far as the joint
+      if (joint.type != JointType::kPrismatic) {
+        const Eigen::Vector3d axis = joint.axis_J.normalized();
+        lever_m = child == nullptr ? MaxDistanceFromAxis_m(shape_L, axis)
+                                   : child->X_PJ.translation().cross(axis).norm() +
+                                         PrismaticTravel_m(*child) + reach_m;
+      }
       out[lever_count_[id]++] = Lever{q_index, scale * lever_m};
     }
-    chain_m += joint.X_PJ.translation().norm() + PrismaticTravel_m(joint);
+    if (child != nullptr) reach_m += child->X_PJ.translation().norm() + PrismaticTravel_m(*child);
+    child = &joint;
   }
 }
 

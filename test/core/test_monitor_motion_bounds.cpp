@@ -65,12 +65,7 @@ std::vector<Eigen::Vector3d> SurfacePoints(const Shape& shape, std::mt19937_64* 
     return points;
   }
   const Box& b = std::get<Box>(shape);
-  for (int corner = 0; corner < 8; ++corner) {
-    const Eigen::Vector3d v_B((corner & 1) ? b.half_extents_m.x() : -b.half_extents_m.x(),
-                              (corner & 2) ? b.half_extents_m.y() : -b.half_extents_m.y(),
-                              (corner & 4) ? b.half_extents_m.z() : -b.half_extents_m.z());
-    points.push_back(b.X_WB * v_B);
-  }
+  for (int corner = 0; corner < 8; ++corner) points.push_back(b.X_WB * b.Vertex_B(corner));
   return points;
 }
 
@@ -151,10 +146,20 @@ TEST(MonitorMotionBounds, LeversOfTheThreeLinkChain) {
   EXPECT_EQ(l[0].m_per_unit, 1.0);  // prismatic: 1 m per m, times |-1|
   EXPECT_EQ(l[1].q_index, model.joint(model.FindLink("wrist")).q_index);
   // Revolute levers: the unit ball's extent plus the chain of joint offsets (and the prismatic
-  // travel, 0.2 m) below the joint.
-  EXPECT_NEAR(l[1].m_per_unit, 1.0 + 0.05 + 0.2, 1e-12);
+  // travel, 0.2 m) below the joint, of which the first offset counts only across the joint's
+  // axis. The finger joint's 0.05 m offset lies on the spin's axis (x), the spin's 0.35 m is
+  // across the elbow's (y), the elbow's 0.4 m lies on the shoulder's (z).
+  EXPECT_NEAR(l[1].m_per_unit, 1.0 + 0.2, 1e-12);
   EXPECT_NEAR(l[2].m_per_unit, 1.0 + 0.05 + 0.2 + 0.35, 1e-12);
-  EXPECT_NEAR(l[3].m_per_unit, 1.0 + 0.05 + 0.2 + 0.35 + 0.4, 1e-12);
+  EXPECT_NEAR(l[3].m_per_unit, 1.0 + 0.05 + 0.2 + 0.35, 1e-12);
+  // On the joint's own link, the lever is the farthest distance from its axis: a capsule along
+  // the elbow's axis (y) reaches only its radius from it.
+  const Capsule along_elbow{Eigen::Vector3d::Zero(), Eigen::Vector3d(0, 0.3, 0), 0.05};
+  bounds.SetCarrier(1, model.FindLink("forearm"), true, along_elbow);
+  ASSERT_EQ(bounds.lever_count(1), 2);
+  EXPECT_NEAR(bounds.levers(1)[0].m_per_unit, 0.05, 1e-12);
+  // The shoulder's: the elbow lies on its axis, so the capsule's reach from the elbow.
+  EXPECT_NEAR(bounds.levers(1)[1].m_per_unit, 0.3 + 0.05, 1e-12);
   // A primitive that does not move, or has no carrier, has no levers and no motion.
   bounds.SetCarrier(1, model.FindLink("finger_b"), false, unit_ball);
   bounds.SetCarrier(2, -1, true, unit_ball);
@@ -255,6 +260,14 @@ TEST(MonitorMotionBounds, PointHelpers) {
   Box moved = b;
   moved.X_WB.translation() = Eigen::Vector3d(0, 0, 0.25);
   EXPECT_DOUBLE_EQ(MaxPointDisplacement_m(b, moved), 0.25);
+  // From an axis through the origin: a capsule's farthest endpoint plus its radius; a box's
+  // farthest vertex.
+  EXPECT_DOUBLE_EQ(MaxDistanceFromAxis_m(c, Eigen::Vector3d::UnitX()), 0.5);
+  EXPECT_DOUBLE_EQ(MaxDistanceFromAxis_m(c, Eigen::Vector3d::UnitY()), 1.5);
+  EXPECT_DOUBLE_EQ(MaxDistanceFromAxis_m(b, Eigen::Vector3d::UnitX()), std::sqrt(8.0));
+  EXPECT_DOUBLE_EQ(MaxDistanceFromAxis_m(moved, Eigen::Vector3d::UnitZ()), std::sqrt(5.0));
+  EXPECT_DOUBLE_EQ(MaxDistanceFromAxis_m(moved, Eigen::Vector3d::UnitY()),
+                   std::sqrt(1.0 + 2.25 * 2.25));
   Capsule turned = c;
   turned.p1_W = Eigen::Vector3d(0, 1, 0);
   EXPECT_DOUBLE_EQ(MaxPointDisplacement_m(c, turned), std::sqrt(2.0));

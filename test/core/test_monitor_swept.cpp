@@ -548,10 +548,10 @@ TEST(MonitorSwept, MetreJumpIsSweptOrStopped) {
 // motion bound exceeds the distance at the end (a test of the end alone would bisect them).
 TEST(MonitorSwept, LongStepFarAtBothEndsBisectsNoPair) {
   const auto wc = test::LoadBundledWorkcell();
-  // The left arm, tilted forward, turned 0.4 rad about its base joint, pointing away from the
+  // The left arm, tilted forward, turned 0.45 rad about its base joint, pointing away from the
   // right arm, the tables and the shelves.
   const Eigen::VectorXd q0 = MakeQ(*wc, {{"left_joint1", -2.6}, {"left_joint2", 1.1}});
-  const Eigen::VectorXd q1 = MakeQ(*wc, {{"left_joint1", -2.2}, {"left_joint2", 1.1}});
+  const Eigen::VectorXd q1 = MakeQ(*wc, {{"left_joint1", -2.15}, {"left_joint2", 1.1}});
   const MonitorOptions options = Unlimited();
   Monitor monitor(wc, options);
   const CycleReport report = RunStep(&monitor, q0, q1);

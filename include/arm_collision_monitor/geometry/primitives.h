@@ -81,6 +81,12 @@ struct Box {
     const Eigen::Vector3d reach_W = X_WB.linear().cwiseAbs() * half_extents_m;
     return Aabb{X_WB.translation() - reach_W, X_WB.translation() + reach_W};
   }
+  /// Vertex k (0 to 7) in the box frame: coordinate i is +h_i when bit i of k is set, else -h_i.
+  Eigen::Vector3d Vertex_B(int k) const {
+    return Eigen::Vector3d((k & 1) ? half_extents_m.x() : -half_extents_m.x(),
+                           (k & 2) ? half_extents_m.y() : -half_extents_m.y(),
+                           (k & 4) ? half_extents_m.z() : -half_extents_m.z());
+  }
 };
 
 /// Any primitive. New primitive types are added here and to every pairwise routine.
@@ -96,6 +102,9 @@ Shape TransformShape(const Eigen::Isometry3d& X_WL, const Shape& shape_L);
 
 /// Distance (m) from point p to the farthest point of `shape` (both in the same frame).
 double MaxDistanceFromPoint_m(const Shape& shape, const Eigen::Vector3d& p);
+/// Distance (m) from the line through the origin along the unit vector `axis` to the farthest
+/// point of `shape` (both in the same frame).
+double MaxDistanceFromAxis_m(const Shape& shape, const Eigen::Vector3d& axis);
 
 /// The pose of a frame F in W from its origin `p_WF_m` and URDF-convention angles `rpy_rad`
 /// (fixed-axis roll about x, then pitch about y, then yaw about z: R = Rz(yaw) Ry(pitch) Rx(roll)).
