@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace arm_collision_monitor {
@@ -111,25 +112,40 @@ void MotionBounds::SetCarrier(PrimitiveId id, int link, bool is_moving, const Sh
   // Above, the primitive is within `reach` of the origin of l's child c on the chain, and c's
   // origin sits at the joint offset t_c in l's frame (plus c's prismatic travel): its distance
   // from the axis is at most the part of t_c across the axis plus the travel plus `reach`. The
-  // reach grows by the whole offset and travel at each link upward.
+  // reach grows by the whole offset and travel at each link upward. When c turns about an axis
+  // a_c too, the part of the primitive's offset from c's origin across l's axis a is at most its
+  // distance from a_c (`across`, c's own bound) plus 2 |a - a_c| times the reach (a_c turned
+  // into l's frame, signed to match a): for parallel axes, as in a planar chain, c's bound.
+  const double kNone = std::numeric_limits<double>::infinity();
   double reach_m = MaxDistanceFromPoint_m(shape_L, Eigen::Vector3d::Zero());
+  double across_m = kNone;  // from the axis of `child` when it turns, else none
   const JointSpec* child = nullptr;
   Lever* out = &levers_[static_cast<std::size_t>(id) * max_levers_];
   for (int l = link; l > 0; l = model_->parent_link(l)) {
     const JointSpec& joint = model_->joint(l);
+    double from_axis_m = kNone;
+    if (joint.type == JointType::kRevolute || joint.type == JointType::kContinuous) {
+      const Eigen::Vector3d axis = joint.axis_J.normalized();
+      if (child == nullptr) {
+        from_axis_m = MaxDistanceFromAxis_m(shape_L, axis);
+      } else {
+        Eigen::Vector3d child_axis = child->X_PJ.linear() * child->axis_J.normalized();
+        if (child_axis.dot(axis) < 0.0) child_axis = -child_axis;
+        const double below_m =
+            std::min(reach_m, across_m + 2.0 * (axis - child_axis).norm() * reach_m);
+        from_axis_m = child->X_PJ.translation().cross(axis).norm() + PrismaticTravel_m(*child) +
+                      below_m;
+      }
+    }
     const int q_index = DrivingQIndex(joint);
     if (q_index >= 0) {  // as link_depth_ counts
       const double scale = joint.q_index >= 0 ? 1.0 : std::abs(joint.mimic_multiplier);
-      double lever_m = 1.0;  // a prismatic joint: its points move as far as the joint
-      if (joint.type != JointType::kPrismatic) {
-        const Eigen::Vector3d axis = joint.axis_J.normalized();
-        lever_m = child == nullptr ? MaxDistanceFromAxis_m(shape_L, axis)
-                                   : child->X_PJ.translation().cross(axis).norm() +
-                                         PrismaticTravel_m(*child) + reach_m;
-      }
+      // A prismatic joint's points move as far as the joint.
+      const double lever_m = joint.type == JointType::kPrismatic ? 1.0 : from_axis_m;
       out[lever_count_[id]++] = Lever{q_index, scale * lever_m};
     }
     if (child != nullptr) reach_m += child->X_PJ.translation().norm() + PrismaticTravel_m(*child);
+    across_m = from_axis_m;
     child = &joint;
   }
 }

@@ -1,7 +1,8 @@
-// MotionBounds (monitor/motion_bounds.h): the levers of known chains, the pair bound's shared
-// joints, and a differential test against exact forward kinematics: over seeded random joint
-// motions, no sampled surface point of a primitive moves farther than its bound, and no pair's
-// distance shrinks by more than its pair bound, at a dense set of samples along the motion.
+// MotionBounds (monitor/motion_bounds.h): the levers of known chains (one with parallel axes),
+// the pair bound's shared joints, and a differential test against exact forward kinematics:
+// over seeded random joint motions, no sampled surface point of a primitive moves farther than
+// its bound, and no pair's distance shrinks by more than its pair bound, at a dense set of
+// samples along the motion.
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -24,6 +25,13 @@ namespace {
 constexpr std::uint64_t kSeed = 20261123;
 constexpr int kMotions = 60;          // random joint motions per workcell
 constexpr int kSamplesPerMotion = 64;  // points along each motion, both ends included
+
+std::shared_ptr<const Workcell> ParallelAxesWorkcell() {
+  static const auto workcell = std::make_shared<const Workcell>(
+      LoadWorkcell(ACM_SOURCE_DIR "/test/data/parallel_axes_arm.urdf",
+                   ACM_SOURCE_DIR "/test/data/parallel_axes_scene.yaml"));
+  return workcell;
+}
 
 std::shared_ptr<const Workcell> ThreeLinkWorkcell() {
   static const auto workcell = std::make_shared<const Workcell>(
@@ -191,6 +199,24 @@ TEST(MonitorMotionBounds, LeversOfTheThreeLinkChain) {
   EXPECT_TRUE(std::isnan(bounds.ComputeBound_m(0)));
 }
 
+// Parallel axes (the shoulder's and the elbow's): the shoulder's lever is the elbow's offset
+// across it plus the primitive's distance from the elbow's axis, not plus its whole reach.
+TEST(MonitorMotionBounds, LeversOfParallelAxes) {
+  const auto wc = ParallelAxesWorkcell();
+  const KinematicModel& model = wc->kinematics;
+  MotionBounds bounds(model, 1);
+  // A ball on the elbow's axis (y), 0.1 m from the forearm's origin.
+  const Capsule ball{Eigen::Vector3d(0, 0.1, 0), Eigen::Vector3d(0, 0.1, 0), 0.05};
+  bounds.SetCarrier(0, model.FindLink("forearm"), true, ball);
+  ASSERT_EQ(bounds.lever_count(0), 3);
+  const MotionBounds::Lever* l = bounds.levers(0);
+  EXPECT_NEAR(l[0].m_per_unit, 0.05, 1e-12);        // the elbow: the radius
+  EXPECT_NEAR(l[1].m_per_unit, 0.4 + 0.05, 1e-12);  // the shoulder: 0.4 m offset, then 0.05
+  // The pan (z) is across the shoulder: the ball's whole reach, 0.15 m, from the shoulder's
+  // origin, whose 0.1 m offset lies on the pan's axis.
+  EXPECT_NEAR(l[2].m_per_unit, 0.4 + 0.15, 1e-12);
+}
+
 TEST(MonitorMotionBounds, PairBoundLeavesOutTheSharedJoints) {
   const auto wc = ThreeLinkWorkcell();
   const KinematicModel& model = wc->kinematics;
@@ -218,6 +244,7 @@ TEST(MonitorMotionBounds, BoundsHoldAgainstExactKinematics) {
   std::mt19937_64 rng(kSeed);
   ExpectBoundsHold(*test::LoadBundledWorkcell(), &rng);
   ExpectBoundsHold(*ThreeLinkWorkcell(), &rng);
+  ExpectBoundsHold(*ParallelAxesWorkcell(), &rng);
 }
 
 // The largest bound, taken over the undominated primitives only, equals the largest over all,
