@@ -193,16 +193,11 @@ inline double SegmentBoxLowerBoundSq(const Vector3d& e0, const Vector3d& e1, con
   return (below + above).squaredNorm();
 }
 
-// The 8 vertices of a box expressed in frame F, given X_FB; vertex v has coordinate i at +h_i
-// when bit i of v is set.
+// The 8 vertices of `box` expressed in frame F, given X_FB, in Box::Vertex_B's order.
 std::array<Vector3d, 8> BoxVertices(const Eigen::Matrix3d& R_FB, const Vector3d& p_FB,
-                                    const Vector3d& h) {
+                                    const Box& box) {
   std::array<Vector3d, 8> v;
-  for (int k = 0; k < 8; ++k) {
-    const Vector3d c((k & 1) ? h.x() : -h.x(), (k & 2) ? h.y() : -h.y(),
-                     (k & 4) ? h.z() : -h.z());
-    v[k] = p_FB + R_FB * c;
-  }
+  for (int k = 0; k < 8; ++k) v[k] = p_FB + R_FB * box.Vertex_B(k);
   return v;
 }
 
@@ -235,9 +230,9 @@ BoxBoxSearch SearchBoxBox(const Box& a, const Box& b, double stop_sq) {
   const Vector3d p_AB_W = b.X_WB.translation() - a.X_WB.translation();
   const Eigen::Matrix3d R_AB = R_WA.transpose() * R_WB;
   const std::array<Vector3d, 8> vb_A =
-      BoxVertices(R_AB, R_WA.transpose() * p_AB_W, b.half_extents_m);
+      BoxVertices(R_AB, R_WA.transpose() * p_AB_W, b);
   const std::array<Vector3d, 8> va_B =
-      BoxVertices(R_AB.transpose(), -(R_WB.transpose() * p_AB_W), a.half_extents_m);
+      BoxVertices(R_AB.transpose(), -(R_WB.transpose() * p_AB_W), a);
   BoxBoxSearch search;
   for (const bool edges_of_b : {true, false}) {
     const std::array<Vector3d, 8>& v = edges_of_b ? vb_A : va_B;
