@@ -261,14 +261,14 @@ std::shared_ptr<const Workcell> LoadWorkcellText(const Args& args, const std::st
   return wc;
 }
 
-Workload MakeWorkload(const std::string& name, std::shared_ptr<const Workcell> wc,
-                      std::vector<Eigen::VectorXd> q) {
+Workload MakeWorkload(const Args& args, const std::string& name,
+                      std::shared_ptr<const Workcell> wc, std::vector<Eigen::VectorXd> q) {
   Workload w;
   w.name = name;
   w.scenario.label = name;
   w.scenario.workcell = std::move(wc);
   w.scenario.tasks.push_back(TaskRun{0, name, std::move(q), {}});
-  w.ref = BruteForce(w.scenario);
+  if (args.profile.empty()) w.ref = BruteForce(w.scenario);
   return w;
 }
 
@@ -328,6 +328,11 @@ void PrintRatio(const char* what, double num, double den, double bound) {
 void RunWorkload(const Args& args, const Workload& w, Csv* csv, std::uint64_t* missed_total) {
   const Scenario& s = w.scenario;
   const Reference& ref = w.ref;
+  if (!args.profile.empty()) {
+    std::printf("profile %s: %zu cycles, %zu bounded\n", w.name.c_str(), s.cycles(),
+                CountCycles(s, DefaultOptions()).bounded);
+    return;
+  }
   std::printf("== workload %s: %zu cycles, %zu primitives\n", w.name.c_str(), s.cycles(),
               s.workcell->primitives.size());
   std::vector<std::function<RunResult()>> runs;
@@ -431,12 +436,20 @@ void RunWorkload(const Args& args, const Workload& w, Csv* csv, std::uint64_t* m
 
 void ExperimentWorkloads(const Args& args, const Scenario& tasks, const Reference& tasks_ref,
                          std::uint64_t* missed_total) {
-  Csv csv(args.out_dir + "/workloads_summary.csv",
+  // Profiling writes no file.
+  Csv csv(args.profile.empty() ? args.out_dir + "/workloads_summary.csv" : "/dev/null",
           "workload,impl,cycles,mean_us,median_us,p99_us,max_us,moving_samples,moving_median_us,"
           "moving_p99_us,moving_max_us,missed_vs_brute,false_vs_brute");
   const int cycles_20hz = args.quick ? 400 : 1200;  // 20 s or 60 s
   const std::uint64_t seed = args.seed;
-  {
+  // --profile: the one workload named (its set-up only: the others are not built).
+  bool is_any_run = false;
+  auto runs = [&](const char* name) {
+    const bool is_run = args.RunsWorkload(name);
+    is_any_run |= is_run;
+    return is_run;
+  };
+  if (runs("tasks")) {
     Workload w;
     w.name = "tasks";
     w.scenario = tasks;
@@ -445,8 +458,9 @@ void ExperimentWorkloads(const Args& args, const Scenario& tasks, const Referenc
     RunWorkload(args, w, &csv, missed_total);
   }
   const std::shared_ptr<const Workcell>& wc = tasks.workcell;
-  {
-    Workload w = MakeWorkload("tasks_every_cycle", wc, SmoothMotion(*wc, seed, 20.0, cycles_20hz));
+  if (runs("tasks_every_cycle")) {
+    Workload w =
+        MakeWorkload(args, "tasks_every_cycle", wc, SmoothMotion(*wc, seed, 20.0, cycles_20hz));
     for (std::size_t c = 1; c < w.scenario.tasks[0].q.size(); ++c) {
       if (w.scenario.tasks[0].q[c] == w.scenario.tasks[0].q[c - 1]) {
         std::fprintf(stderr, "tasks_every_cycle: cycle %zu repeats q\n", c);
@@ -456,25 +470,26 @@ void ExperimentWorkloads(const Args& args, const Scenario& tasks, const Referenc
     w.every_cycle_row = true;
     RunWorkload(args, w, &csv, missed_total);
   }
-  {
+  if (runs("sphere_robot")) {
     const std::string urdf_path = args.out_dir + "/sphere_robot.urdf";
     WriteFile(urdf_path, SphereRobotUrdf());
     auto robot = LoadWorkcellText(args, "sphere_robot", urdf_path, ShelfSceneYaml());
     std::remove(urdf_path.c_str());
-    Workload w =
-        MakeWorkload("sphere_robot", robot, SpherePaths(*robot, seed, args.quick ? 4 : 12));
+    Workload w = MakeWorkload(args, "sphere_robot", robot,
+                              SpherePaths(*robot, seed, args.quick ? 4 : 12));
     w.every_cycle_row = true;
     w.idle_skip_rows = true;
     RunWorkload(args, w, &csv, missed_total);
   }
-  {
+  if (runs("large_steps")) {
     // The same motion as tasks_every_cycle, sampled ten times more sparsely (for 5 times as
     // long: half as many cycles).
     RunWorkload(args,
-                MakeWorkload("large_steps", wc, SmoothMotion(*wc, seed, 2.0, cycles_20hz / 2)),
+                MakeWorkload(args, "large_steps", wc,
+                             SmoothMotion(*wc, seed, 2.0, cycles_20hz / 2)),
                 &csv, missed_total);
   }
-  {
+  if (runs("outside_world")) {
     // Static objects must lie in the world cube (the loader refuses others): a cube of 2 m
     // about the pedestals and the front table (kept, its box static), which the arms leave
     // above 1.95 m, beside and behind them.
@@ -493,18 +508,25 @@ void ExperimentWorkloads(const Args& args, const Scenario& tasks, const Referenc
     }
     auto small = LoadWorkcellText(args, "outside_world", wc->urdf_path, yaml);
     RunWorkload(args,
-                MakeWorkload("outside_world", small, SmoothMotion(*small, seed, 20.0, cycles_20hz)),
+                MakeWorkload(args, "outside_world", small,
+                             SmoothMotion(*small, seed, 20.0, cycles_20hz)),
                 &csv, missed_total);
   }
-  {
+  if (runs("statics_2000")) {
     std::mt19937_64 rng(seed);
     auto crowded = LoadWorkcellText(
         args, "statics_2000", wc->urdf_path,
         InsertAfterKey(tasks.scene_yaml, "objects", ExtraBoxesYaml(&rng, 2000, true)));
     RunWorkload(args,
-                MakeWorkload("statics_2000", crowded,
+                MakeWorkload(args, "statics_2000", crowded,
                              SmoothMotion(*crowded, seed, 20.0, cycles_20hz / 2)),
                 &csv, missed_total);
+  }
+  if (!is_any_run) {
+    std::fprintf(stderr, "--profile %s: no such workload (tasks, tasks_every_cycle, "
+                 "sphere_robot, large_steps, outside_world, statics_2000)\n",
+                 args.profile.c_str());
+    std::exit(2);
   }
 }
 

@@ -39,9 +39,13 @@ struct Args {
   std::uint64_t seed = 20261121;
   int repeats = 3;  // passes over each task for timing
   std::string only;  // comma-separated experiment names; empty: all
+  // --profile W: workload W's default Monitor only, one untimed pass, no reference (the A/B
+  // run that scripts/profile counts instructions of); empty: the experiments as usual.
+  std::string profile;
   bool Runs(const std::string& name) const {
     return only.empty() || ("," + only + ",").find("," + name + ",") != std::string::npos;
   }
+  bool RunsWorkload(const std::string& name) const { return profile.empty() || profile == name; }
 };
 
 // ------------------------------------------------------------------------------------------

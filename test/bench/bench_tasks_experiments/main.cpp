@@ -8,6 +8,7 @@
 // experiments.h.
 //
 //   bench_tasks_experiments --out build/bench [--quick] [--seed S]
+//   bench_tasks_experiments --profile WORKLOAD [--quick] [--seed S]   (see scripts/profile)
 #include <cstdio>
 #include <random>
 #include <string>
@@ -29,13 +30,16 @@ int main(int argc, char** argv) {
       args.out_dir = argv[++i];
     } else if (a == "--only" && i + 1 < argc) {
       args.only = argv[++i];
+    } else if (a == "--profile" && i + 1 < argc) {
+      args.profile = argv[++i];
+      args.only = "workloads";
     } else if (a == "--seed" && i + 1 < argc) {
       args.seed = std::stoull(argv[++i]);
     } else {
       std::fprintf(
           stderr,
           "usage: %s [--out DIR] [--quick] [--seed S] [--only tasks,octree,sweeps,slack,static,"
-          "moving,workloads,temporal,float,fidelity,cylinders]\n",
+          "moving,workloads,temporal,float,fidelity,cylinders] [--profile WORKLOAD]\n",
           argv[0]);
       return 2;
     }
@@ -50,7 +54,8 @@ int main(int argc, char** argv) {
   s.workcell = std::make_shared<const Workcell>(
       LoadWorkcell(SourcePath("urdf/workcell.urdf"), SourcePath("config/scene.yaml")));
   s.tasks = MakeTasks(*s.workcell);
-  const Reference ref = BruteForce(s);
+  const bool is_profile = !args.profile.empty();
+  const Reference ref = is_profile ? Reference{} : BruteForce(s);
   std::uint64_t missed_total = 0;
   double check_us = 0.0;
   if (args.Runs("tasks")) check_us = ExperimentTasks(args, s, ref, &missed_total);
@@ -60,6 +65,7 @@ int main(int argc, char** argv) {
   if (args.Runs("static")) ExperimentStaticScaling(args, s, &missed_total);
   if (args.Runs("moving")) ExperimentMovingScaling(args, s, &missed_total);
   if (args.Runs("workloads")) ExperimentWorkloads(args, s, ref, &missed_total);
+  if (is_profile) return 0;
   // The tasks have few close approaches; the error studies also run among 200 boxes added
   // near the arms (seeded), where grazing contacts are frequent.
   std::mt19937_64 clutter_rng(args.seed);
