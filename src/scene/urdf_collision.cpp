@@ -28,6 +28,55 @@ struct CollisionElement {
   bool is_absorbed = false;  // a sphere that is an end cap of a capsule-idiom cylinder
 };
 
+// Element i of a link's <collision> list, its sizes checked; `where` names it in errors.
+CollisionElement ReadCollisionElement(const urdf::Collision& collision, std::size_t i,
+                                      const std::string& where_element) {
+  CollisionElement e;
+  e.where = where_element;
+  const std::string where = e.where + ": ";
+  if (!collision.geometry) throw LoadError(where + "expected a <geometry>");
+  e.name = collision.name.empty() ? std::to_string(i) : collision.name;
+  e.type = collision.geometry->type;
+  e.X_LC = UrdfPoseToIsometry(collision.origin);
+  if (!e.X_LC.matrix().allFinite()) throw LoadError(where + "<origin> must be finite");
+  switch (e.type) {
+    case urdf::Geometry::SPHERE: {
+      e.radius_m = static_cast<const urdf::Sphere&>(*collision.geometry).radius;
+      if (!std::isfinite(e.radius_m) || e.radius_m < 0.0) {
+        throw LoadError(where + "<sphere radius> must be a finite number >= 0");
+      }
+      break;
+    }
+    case urdf::Geometry::CYLINDER: {
+      const auto& cylinder = static_cast<const urdf::Cylinder&>(*collision.geometry);
+      e.radius_m = cylinder.radius;
+      e.length_m = cylinder.length;
+      if (!std::isfinite(e.radius_m) || e.radius_m < 0.0 || !std::isfinite(e.length_m) ||
+          e.length_m < 0.0) {
+        throw LoadError(where + "<cylinder radius, length> must be finite numbers >= 0");
+      }
+      break;
+    }
+    case urdf::Geometry::BOX: {
+      const urdf::Vector3& dim = static_cast<const urdf::Box&>(*collision.geometry).dim;
+      e.size_m = Eigen::Vector3d(dim.x, dim.y, dim.z);
+      if (!e.size_m.allFinite() || (e.size_m.array() <= 0.0).any()) {
+        throw LoadError(where + "<box size> must be 3 finite numbers > 0");
+      }
+      break;
+    }
+    case urdf::Geometry::MESH: {
+      const auto& mesh = static_cast<const urdf::Mesh&>(*collision.geometry);
+      e.mesh_filename = mesh.filename;
+      e.mesh_scale = Eigen::Vector3d(mesh.scale.x, mesh.scale.y, mesh.scale.z);
+      break;
+    }
+    default:
+      throw LoadError(where + "unknown geometry (expected box, cylinder, sphere or mesh)");
+  }
+  return e;
+}
+
 // Marks the two spheres (radius r, centred on the cylinder's end faces) of the capsule idiom.
 void AbsorbEndSpheres(const CollisionElement& cylinder, std::vector<CollisionElement>* all) {
   // The URDF cylinder axis is z of its origin frame.
@@ -67,51 +116,9 @@ UrdfLinkGeometry ReadUrdfLinkGeometry(const urdf::Link& link, const std::string&
 
   std::vector<CollisionElement> elements;
   for (std::size_t i = 0; i < collisions.size(); ++i) {
-    const urdf::Collision& collision = *collisions[i];
-    CollisionElement e;
-    e.where = urdf_path + ": link '" + link.name + "' <collision> " + std::to_string(i);
-    const std::string where = e.where + ": ";
-    if (!collision.geometry) throw LoadError(where + "expected a <geometry>");
-    e.name = collision.name.empty() ? std::to_string(i) : collision.name;
-    e.type = collision.geometry->type;
-    e.X_LC = UrdfPoseToIsometry(collision.origin);
-    if (!e.X_LC.matrix().allFinite()) throw LoadError(where + "<origin> must be finite");
-    switch (e.type) {
-      case urdf::Geometry::SPHERE: {
-        e.radius_m = static_cast<const urdf::Sphere&>(*collision.geometry).radius;
-        if (!std::isfinite(e.radius_m) || e.radius_m < 0.0) {
-          throw LoadError(where + "<sphere radius> must be a finite number >= 0");
-        }
-        break;
-      }
-      case urdf::Geometry::CYLINDER: {
-        const auto& cylinder = static_cast<const urdf::Cylinder&>(*collision.geometry);
-        e.radius_m = cylinder.radius;
-        e.length_m = cylinder.length;
-        if (!std::isfinite(e.radius_m) || e.radius_m < 0.0 || !std::isfinite(e.length_m) ||
-            e.length_m < 0.0) {
-          throw LoadError(where + "<cylinder radius, length> must be finite numbers >= 0");
-        }
-        break;
-      }
-      case urdf::Geometry::BOX: {
-        const urdf::Vector3& dim = static_cast<const urdf::Box&>(*collision.geometry).dim;
-        e.size_m = Eigen::Vector3d(dim.x, dim.y, dim.z);
-        if (!e.size_m.allFinite() || (e.size_m.array() <= 0.0).any()) {
-          throw LoadError(where + "<box size> must be 3 finite numbers > 0");
-        }
-        break;
-      }
-      case urdf::Geometry::MESH: {
-        const auto& mesh = static_cast<const urdf::Mesh&>(*collision.geometry);
-        e.mesh_filename = mesh.filename;
-        e.mesh_scale = Eigen::Vector3d(mesh.scale.x, mesh.scale.y, mesh.scale.z);
-        break;
-      }
-      default:
-        throw LoadError(where + "unknown geometry (expected box, cylinder, sphere or mesh)");
-    }
-    elements.push_back(e);
+    const std::string where =
+        urdf_path + ": link '" + link.name + "' <collision> " + std::to_string(i);
+    elements.push_back(ReadCollisionElement(*collisions[i], i, where));
   }
 
   for (const CollisionElement& e : elements) {

@@ -246,6 +246,30 @@ TEST(SceneLoader, CapsuleIdiomNeedsMatchingSpheres) {
   EXPECT_EQ(separate.primitives[1].name, "base/1");
 }
 
+// A bad size in a <collision> element stops start-up with a message naming the file, the link,
+// the element's index in the link and what was expected (ReadCollisionElement; urdfdom itself
+// drops an element whose numbers do not parse, which CheckEveryCollisionRead reports).
+TEST(SceneLoader, BadCollisionGeometryNamesTheElement) {
+  const std::string scene = WriteTempFile("bad_geometry.yaml", kWorldLine);
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"<origin xyz=\"0 0 0\"/><geometry><box size=\"0 1 1\"/></geometry>",
+       "<box size> must be 3 finite numbers > 0"},
+      {"<origin xyz=\"0 0 0\"/><geometry><sphere radius=\"-0.1\"/></geometry>",
+       "<sphere radius> must be a finite number >= 0"},
+      {"<origin xyz=\"0 0 0\"/><geometry><cylinder radius=\"0.1\" length=\"-1\"/></geometry>",
+       "<cylinder radius, length> must be finite numbers >= 0"},
+  };
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    const std::string urdf = WriteTempFile(
+        "bad_geometry_" + std::to_string(k) + ".urdf",
+        "<?xml version=\"1.0\"?>\n<robot name=\"r\">\n  <link name=\"base\">\n"
+        "    <collision><geometry><sphere radius=\"0.1\"/></geometry></collision>\n"
+        "    <collision>" + cases[k].first + "</collision>\n  </link>\n</robot>\n");
+    ExpectLoadError([&] { LoadWorkcell(urdf, scene); },
+                    {urdf, "link 'base' <collision> 1", cases[k].second});
+  }
+}
+
 TEST(SceneLoader, PairsOverlappingInEveryConfigurationAreReported) {
   const std::string scene_text = kWorldLine +
                                  "arms: [{name: arm, root_link: upper_arm}]\n"
