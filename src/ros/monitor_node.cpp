@@ -118,27 +118,7 @@ MonitorNode::MonitorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   joint_state_out_.name = workcell_->joint_names;
   joint_state_out_.position.resize(workcell_->joint_names.size());
 
-  report_pub_ = private_nh_.advertise<MonitorReport>("report", options_.queue_size);
-  stop_pub_ = private_nh_.advertise<std_msgs::Bool>("stop", 1, /*latch=*/true);
-  markers_pub_ = private_nh_.advertise<visualization_msgs::MarkerArray>("markers", 1);
-  joint_states_pub_ = private_nh_.advertise<sensor_msgs::JointState>("joint_states", 1);
-  services_.push_back(private_nh_.advertiseService("check", &MonitorNode::OnCheck, this));
-  services_.push_back(private_nh_.advertiseService("attach", &MonitorNode::OnAttach, this));
-  services_.push_back(private_nh_.advertiseService("detach", &MonitorNode::OnDetach, this));
-  services_.push_back(
-      private_nh_.advertiseService("set_grasp_target", &MonitorNode::OnSetGraspTarget, this));
-  services_.push_back(
-      private_nh_.advertiseService("add_object", &MonitorNode::OnAddObject, this));
-  services_.push_back(
-      private_nh_.advertiseService("move_object", &MonitorNode::OnMoveObject, this));
-  services_.push_back(
-      private_nh_.advertiseService("remove_object", &MonitorNode::OnRemoveObject, this));
-
-  updater_.setHardwareID("arm_collision_monitor");
-  updater_.add("Input", this, &MonitorNode::DiagnoseInput);
-  updater_.add("Cycle", this, &MonitorNode::DiagnoseCycle);
-  updater_.add("Safety", this, &MonitorNode::DiagnoseSafety);
-  diag_time_ = ros::WallTime::now();
+  Advertise();
 
   PublishStop(/*only_on_change=*/false);
   for (const std::string& topic : options_.input_topics) {
@@ -165,6 +145,30 @@ MonitorNode::MonitorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
 }
 
 MonitorNode::~MonitorNode() = default;
+
+void MonitorNode::Advertise() {
+  report_pub_ = private_nh_.advertise<MonitorReport>("report", options_.queue_size);
+  stop_pub_ = private_nh_.advertise<std_msgs::Bool>("stop", 1, /*latch=*/true);
+  markers_pub_ = private_nh_.advertise<visualization_msgs::MarkerArray>("markers", 1);
+  joint_states_pub_ = private_nh_.advertise<sensor_msgs::JointState>("joint_states", 1);
+  services_.push_back(private_nh_.advertiseService("check", &MonitorNode::OnCheck, this));
+  services_.push_back(private_nh_.advertiseService("attach", &MonitorNode::OnAttach, this));
+  services_.push_back(private_nh_.advertiseService("detach", &MonitorNode::OnDetach, this));
+  services_.push_back(
+      private_nh_.advertiseService("set_grasp_target", &MonitorNode::OnSetGraspTarget, this));
+  services_.push_back(
+      private_nh_.advertiseService("add_object", &MonitorNode::OnAddObject, this));
+  services_.push_back(
+      private_nh_.advertiseService("move_object", &MonitorNode::OnMoveObject, this));
+  services_.push_back(
+      private_nh_.advertiseService("remove_object", &MonitorNode::OnRemoveObject, this));
+
+  updater_.setHardwareID("arm_collision_monitor");
+  updater_.add("Input", this, &MonitorNode::DiagnoseInput);
+  updater_.add("Cycle", this, &MonitorNode::DiagnoseCycle);
+  updater_.add("Safety", this, &MonitorNode::DiagnoseSafety);
+  diag_time_ = ros::WallTime::now();
+}
 
 void MonitorNode::OnJointState(const sensor_msgs::JointState::ConstPtr& msg) {
   const auto start = std::chrono::steady_clock::now();

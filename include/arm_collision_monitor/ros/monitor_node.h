@@ -68,6 +68,9 @@ class MonitorNode {
   void OnStopTimer(const ros::TimerEvent& event);
   void OnDiagnosticsTimer(const ros::WallTimerEvent& event);
 
+  /// The constructor's publishers, services and diagnostic tasks.
+  void Advertise();
+
   /// ros::Time::now(), after re-basing every time-derived state if it is earlier than the last
   /// time read (only with simulated time: a looping bag, a simulator reset). Every time-derived
   /// state is compared with this, never with a raw now().
