@@ -1,5 +1,5 @@
 // ReadPlanningSceneFile: a moveit_msgs/PlanningScene in YAML, read with the checked readers of
-// yaml_fields.
+// yaml_fields (a `.scene` file: scene_geometry_text.cpp).
 #include "arm_collision_monitor/scene/planning_scene_reader.h"
 
 #include <algorithm>
@@ -8,9 +8,9 @@
 #include <map>
 #include <set>
 
-#include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/scene/resource_fetch.h"
 #include "arm_collision_monitor/scene/yaml_fields.h"
+#include "scene_quaternion.h"
 
 namespace arm_collision_monitor {
 namespace {
@@ -75,17 +75,10 @@ Eigen::Quaterniond ReadOrientation(const YAML::Node& node, const Where& where) {
   } else {
     where.Fail(node, "expected {x: X, y: Y, z: Z, w: W} or [x, y, z, w]");
   }
-  const double norm = xyzw.norm();
-  if (norm == 0.0) {
-    where.Fail(node,
-               "a zero quaternion is not a rotation (expected a unit quaternion; write "
-               "w: 1 for none)");
-  }
-  if (std::abs(norm - 1.0) > kQuaternionUnitNormTolerance) {
-    where.Fail(node, "quaternion norm " + std::to_string(norm) +
-                         " is not 1 (expected a unit quaternion [x, y, z, w])");
-  }
-  return Eigen::Quaterniond(xyzw[3], xyzw[0], xyzw[1], xyzw[2]).normalized();
+  Eigen::Quaterniond q;
+  const std::string error = ToUnitQuaternion(xyzw, &q);
+  if (!error.empty()) where.Fail(node, error);
+  return q;
 }
 
 /// geometry_msgs/Pose as X_AB (B's pose in A): position and orientation, each optional.
@@ -379,10 +372,15 @@ void AddNotices(const YAML::Node& root, PlanningSceneFile* scene) {
 }  // namespace
 
 PlanningSceneFile ReadPlanningSceneFile(const std::string& path) {
-  return ReadPlanningSceneText(ReadWholeFile(path, "a readable YAML file"), path);
+  return ReadPlanningSceneText(ReadWholeFile(path, "a readable planning-scene file"), path);
 }
 
 PlanningSceneFile ReadPlanningSceneText(const std::string& text, const std::string& path) {
+  const std::string kTextSuffix = ".scene";
+  if (path.size() >= kTextSuffix.size() &&
+      path.compare(path.size() - kTextSuffix.size(), kTextSuffix.size(), kTextSuffix) == 0) {
+    return ReadSceneGeometryText(text, path);
+  }
   const YAML::Node root = yaml_fields::LoadMapText(text, path);
   const Where top{path, ""};
   yaml_fields::CheckKeys(root,

@@ -392,6 +392,32 @@ std::string PlanningSceneWithObject(const std::string& name, const std::string& 
   return WriteTempFile(name, "world:\n  collision_objects:\n" + object);
 }
 
+// MoveIt's scene geometry text (a .scene file) loads as the YAML forms do: its objects static, in
+// the fixed frame; a bad one stops the load naming the .scene file, its line and the object.
+TEST(SceneMoveitInputs, SceneGeometryTextObjectsBecomeStaticObjects) {
+  const Workcell base = LoadWorkcell(kUrdf, kScene);
+  const Workcell w = LoadWorkcell(
+      kUrdf, BundledSceneWith("ps_text.yaml", "planning_scene: " + kMoveit + "bookshelf.scene"));
+  ExpectValid(w);
+  EXPECT_EQ(w.primitives.size(), base.primitives.size() + 4);
+  for (const char* id : {"Can1", "shelf_bottom", "Ball", "Tetra"}) {
+    const int o = w.FindObject(id);
+    ASSERT_GE(o, 0) << id;
+    EXPECT_TRUE(w.objects[o].frame.empty()) << id;
+    EXPECT_TRUE(w.primitives[w.objects[o].primitive].is_static) << id;
+  }
+  ExpectCapsule(ShapeOf(w, "Can1"), {0.9, 0.0, 1.01}, {0.9, 0.0, 1.15}, 0.03, "Can1");
+  ExpectCapsule(ShapeOf(w, "Ball"), {0.7, 0.2, 1.1}, {0.7, 0.2, 1.1}, 0.05, "Ball");
+  ASSERT_TRUE(std::holds_alternative<Box>(ShapeOf(w, "shelf_bottom")));
+  EXPECT_TRUE(std::get<Box>(ShapeOf(w, "shelf_bottom"))
+                  .half_extents_m.isApprox(Eigen::Vector3d(0.6, 0.5, 0.02), 1e-15));
+
+  const std::string bad = WriteTempFile(
+      "bad_text.scene", "s\n* cup\n0.5 0 1\n0 0 0 1\n1\ntorus\n0.1 0.02\n");
+  ExpectBundledSceneError("planning_scene: " + bad,
+                          {bad + ":6:", "object 'cup' shape 0", "unknown shape type 'torus'"});
+}
+
 TEST(SceneMoveitInputs, BadPlanningSceneObjectsAreRejected) {
   const std::string box = "      primitives: [{type: box, dimensions: [0.1, 0.1, 0.1]}]\n"
                           "      primitive_poses: [{position: [0.5, 0, 1]}]\n";

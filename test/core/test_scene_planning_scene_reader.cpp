@@ -116,6 +116,99 @@ TEST(PlanningSceneReader, CompactBenchmarkForm) {
   EXPECT_TRUE(scene.allowed_collisions.disallowed_pairs.empty());
 }
 
+// The bookshelf of bookshelf_compact.yaml as MoveIt's scene geometry text (newer format: object
+// poses, one of them rotated with its shape rotated back, and a subframe) reads as the same
+// shapes, in the planning frame.
+TEST(PlanningSceneReader, SceneGeometryTextMatchesTheYamlForm) {
+  const PlanningSceneFile text = ReadPlanningSceneFile(kData + "bookshelf.scene");
+  const PlanningSceneFile yaml = ReadPlanningSceneFile(kData + "bookshelf_compact.yaml");
+  EXPECT_EQ(text.name, "bookshelf");
+  EXPECT_EQ(text.objects.at(0).line, 2);
+  EXPECT_EQ(text.objects.at(3).line, 35);
+  EXPECT_EQ(text.objects.at(3).element, "object 'Tetra'");
+  EXPECT_TRUE(text.allowed_collisions.allowed_pairs.empty());
+  ASSERT_EQ(text.objects.size(), yaml.objects.size());
+  for (std::size_t i = 0; i < text.objects.size(); ++i) {
+    const SceneCollisionObject& t = text.objects[i];
+    const SceneCollisionObject& y = yaml.objects[i];
+    EXPECT_EQ(t.id, y.id);
+    EXPECT_EQ(t.frame_id, "");
+    ASSERT_EQ(t.primitives.size(), y.primitives.size()) << t.id;
+    for (std::size_t k = 0; k < t.primitives.size(); ++k) {
+      EXPECT_EQ(t.primitives[k].type, y.primitives[k].type) << t.id;
+      EXPECT_EQ(t.primitives[k].dimensions_m, y.primitives[k].dimensions_m) << t.id;
+      EXPECT_TRUE(t.primitives[k].X_FP.isApprox(y.primitives[k].X_FP, 1e-9))
+          << t.id << "\n" << t.primitives[k].X_FP.matrix();
+    }
+    ASSERT_EQ(t.meshes.size(), y.meshes.size()) << t.id;
+    for (std::size_t k = 0; k < t.meshes.size(); ++k) {
+      EXPECT_EQ(t.meshes[k].vertices_M, y.meshes[k].vertices_M) << t.id;
+      EXPECT_EQ(t.meshes[k].triangles, y.meshes[k].triangles) << t.id;
+      EXPECT_TRUE(t.meshes[k].X_FM.isApprox(y.meshes[k].X_FM, 1e-12)) << t.id;
+    }
+  }
+}
+
+// The older format (MoveIt before 1.1): no object pose, shape poses in the planning frame, no
+// subframes; a cone's "radius length" in shape_msgs' order, and a quaternion a little off unit
+// norm normalised.
+TEST(PlanningSceneReader, OlderSceneGeometryText) {
+  const PlanningSceneFile scene = ReadPlanningSceneFile(WriteTempFile(
+      "older.scene",
+      "* (noname)\n* funnel\n1\ncone\n0.1 0.3\n1 2 3\n0 0 0.7072 0.7072\n0 0 0 0\n"
+      "* post one\n1\nbox\n0.1 0.2 0.3\n0 0 0\n0 0 0 1\n0 0 0 0\n.\n"));
+  EXPECT_EQ(scene.name, "* (noname)");  // the first line, whatever it holds
+  ASSERT_EQ(scene.objects.size(), 2u);
+  const ScenePrimitive& cone = scene.objects[0].primitives.at(0);
+  ExpectPrimitive(cone, SolidPrimitiveType::kCone, {0.3, 0.1}, {1, 2, 3});
+  EXPECT_TRUE((cone.X_FP.linear() * Eigen::Vector3d::UnitX()).isApprox(Eigen::Vector3d::UnitY(),
+                                                                       1e-12));
+  EXPECT_EQ(scene.objects[1].id, "post one");
+  EXPECT_EQ(scene.objects[1].line, 9);
+  ExpectPrimitive(scene.objects[1].primitives.at(0), SolidPrimitiveType::kBox, {0.1, 0.2, 0.3},
+                  {0, 0, 0});
+}
+
+/// MoveIt's scene geometry text of one object "a" (newer format) whose shape lines are `shape`.
+std::string OneTextObject(const std::string& shape) {
+  return "s\n* a\n0 0 0\n0 0 0 1\n1\n" + shape + "\n0 0 0\n0 0 0 1\n0 0 0 0\n0\n.\n";
+}
+
+TEST(PlanningSceneReader, BadSceneGeometryTextNamesLineObjectAndExpectation) {
+  EXPECT_EQ(ReadPlanningSceneFile(WriteTempFile("good.scene", OneTextObject("sphere\n1")))
+                .objects.size(),
+            1u);
+  ExpectBadInputFilesRejected(
+      "bad.scene",
+      {
+          {"s\n* a\n0 0 0\n0 0 0 1\n1\nsphere\n1\n0 0 0\n0 0 0 1\n0 0 0 0\n0\n",
+           {":12:", "after object 'a'", "the file ends", "'.' for the end of the scene"}},
+          {"s\n+ a\n.\n", {":2:", "scene: '+'", "'* ID' for an object"}},
+          {"s\n*\n1\n.\n", {":2:", "object ''", "without id"}},
+          {OneTextObject("plane\n0 0 1 0"),
+           {":6:", "object 'a' shape 0", "planes are not supported"}},
+          {OneTextObject("prism\n1"),
+           {":6:", "object 'a' shape 0", "unknown shape type 'prism'", "box, sphere"}},
+          {OneTextObject("cylinder\n0.1 -2"),
+           {":7:", "object 'a' shape 0", "the cylinder's length -2", "a number > 0"}},
+          {OneTextObject("box\n1 nan 1"),
+           {":7:", "'nan'", "the box's size y, a finite number"}},
+          {OneTextObject("mesh\n3 1\n0 0 0\n1 0 0\n0 1 0\n0 1 3"),
+           {":11:", "object 'a' shape 0", "'3'", "a vertex index, an integer from 0 to 2"}},
+          {OneTextObject("mesh\n2 1\n0 0 0\n1 0 0\n0 1 1"),
+           {":7:", "2 vertices and 1 triangles", "at least 3 vertices"}},
+          {"s\n* a\n0 0 0\n0 0 0 0\n1\nsphere\n1\n0 0 0\n0 0 0 1\n0 0 0 0\n0\n.\n",
+           {":4:", "object 'a'", "the object's pose", "zero quaternion"}},
+          {"s\n* a\n0 0 0\n0 0 0 1\n0\n0\n.\n", {":5:", "object 'a'", "no shape"}},
+          {"s\n* a\n0 0 0\n0 0 0 1\n1\nsphere\n1\n0 0 0\n0 0 0 1\n0 0 0 0\n0\n"
+           "* a\n0 0 0\n0 0 0 1\n1\nsphere\n1\n0 0 0\n0 0 0 1\n0 0 0 0\n0\n.\n",
+           {":12:", "object 'a'", "id repeated", "unique ids"}},
+          {"s\n* a\n0 0 0\n0 0 0 1\n-1\n.\n",
+           {":5:", "'-1'", "the object's shape count, an integer from 0"}},
+      },
+      [](const std::string& path) { ReadPlanningSceneFile(path); });
+}
+
 TEST(PlanningSceneReader, NoticesForIgnoredGeometry) {
   const PlanningSceneFile scene = ReadPlanningSceneFile(WriteTempFile(
       "notices.yaml",
@@ -130,7 +223,7 @@ TEST(PlanningSceneReader, NoticesForIgnoredGeometry) {
 TEST(PlanningSceneReader, MissingOrMalformedFile) {
   const std::string missing = ::testing::TempDir() + "acm_test_no_such_scene.yaml";
   ExpectLoadError([&] { ReadPlanningSceneFile(missing); },
-                  {missing, "cannot open", "readable YAML file"});
+                  {missing, "cannot open", "readable planning-scene file"});
   const std::string malformed = WriteTempFile("malformed_scene.yaml", "world: [\n");
   ExpectLoadError([&] { ReadPlanningSceneFile(malformed); }, {malformed + ":2:", "malformed YAML"});
 }
@@ -174,7 +267,7 @@ TEST(PlanningSceneReader, BadObjectsNameFileElementAndExpectation) {
                      "primitive_poses: [{}]"),
            {kObject + ".primitive_poses", "1 poses for 2 primitives", "one pose per entry"}},
           {OneObject("id: a, " + kBox + ", pose: {orientation: {x: 0, y: 0, z: 0, w: 0}}"),
-           {kObject + ".pose.orientation", "zero quaternion", "w: 1"}},
+           {kObject + ".pose.orientation", "zero quaternion", "w = 1"}},
           {OneObject("id: a, primitives: [{type: 1, dimensions: [1, 1, 1]}], "
                      "primitive_poses: [{orientation: [0, 0, 1, 1]}]"),
            {kObject + ".primitive_poses[0].orientation", "norm 1.41", "unit quaternion"}},

@@ -96,7 +96,23 @@ struct PlanningSceneFile {
 PlanningSceneFile ReadPlanningSceneFile(const std::string& path);
 
 /// The same from the file's text (fetched by the caller, e.g. through a ResourceFetcher);
-/// `path` names it in the messages.
+/// `path` names it in the messages. A `path` ending in `.scene` is read as scene geometry text
+/// (ReadSceneGeometryText).
 PlanningSceneFile ReadPlanningSceneText(const std::string& text, const std::string& path);
+
+/// Reads MoveIt's scene geometry text: a `.scene` file as RViz's Motion Planning panel exports
+/// it (PlanningScene::saveGeometryToStream), in the format of MoveIt 1.1 on (each object's pose
+/// and subframes) or the older one (shape poses in the planning frame), told apart as MoveIt
+/// does. Its objects become `objects` (frame_id "": the planning frame; `line`: the line of the
+/// object's `*`); it has no matrix and no notices. Shapes: box, sphere, cylinder and cone
+/// (dimensions into shape_msgs' order: the text's "radius length" becomes [height, radius]) and
+/// inline meshes; colours and subframes are read and dropped. Policies as above: planes, a
+/// repeated id, an object without shapes and a bad quaternion are errors.
+///
+/// Throws LoadError "path:line: element: what was expected" (element: "scene", "object 'ID'",
+/// "object 'ID' shape K") for a missing '.' at the end, an unknown marker or shape type, a
+/// token that is not a finite number (or a count) where one is expected, a dimension <= 0, a
+/// mesh of fewer than 3 vertices or no triangle, and a vertex index out of range.
+PlanningSceneFile ReadSceneGeometryText(const std::string& text, const std::string& path);
 
 }  // namespace arm_collision_monitor
