@@ -137,24 +137,21 @@ bool NaiveBroadPhase::FindPairsOfGroup(const PrimitiveId* ids, std::uint32_t cou
   counters_.object_object_tests += present_count_;
   // One scan for the hull; each member then decides its flags against its own box.
   boxes_.MarkOverlaps(hull_W);
-  const std::uint64_t* hull_hits = boxes_.hit_words();
   for (std::uint32_t k = 0; k < count; ++k) {
     const PrimitiveId id = ids[k];
     if (id >= entries_.size() || !entries_[id].present) continue;
     const std::uint64_t* compatible_row = compatible.RowWords(id);
     const std::uint32_t row_words = compatible_row != nullptr ? compatible.words_per_row() : 0;
     const bool is_static = entries_[id].motion == Motion::kStatic;
-    boxes_.ForEachHitOf(
+    // Each kept flag is one exact test.
+    counters_.object_object_tests += boxes_.ForEachHitOf(
         boxes_.Get(id),
         [&](std::uint32_t w) {
           // Not compatible, not static-static, and not a member up to id (the smaller member's
-          // side takes a pair of two members; itself is one of them). Each kept flag is one
-          // exact test.
-          const std::uint64_t keep = ~(w < row_words ? compatible_row[w] : std::uint64_t{0}) &
-                                     ~(is_static ? static_bits_[w] : std::uint64_t{0}) &
-                                     ~(group_bits_[w] & UpToMask(id, w));
-          counters_.object_object_tests += __builtin_popcountll(hull_hits[w] & keep);
-          return keep;
+          // side takes a pair of two members; itself is one of them).
+          return ~(w < row_words ? compatible_row[w] : std::uint64_t{0}) &
+                 ~(is_static ? static_bits_[w] : std::uint64_t{0}) &
+                 ~(group_bits_[w] & UpToMask(id, w));
         },
         [&](std::uint32_t b) { pairs->push_back(MakeOrderedPair(id, b)); });
   }

@@ -54,22 +54,22 @@ class BoxArray {
   /// exactly (Overlaps).
   const std::uint64_t* hit_words() const { return hit_words_.data(); }
   /// Calls f(slot) for every box that overlaps the last MarkOverlaps' box, in slot order (the
-  /// boxes must not change in between).
+  /// boxes must not change in between). Returns the flagged boxes decided exactly.
   template <typename F>
-  void ForEachHit(F&& f) const {
-    ForEachHit([](std::uint32_t) { return ~std::uint64_t{0}; }, f);
+  std::uint32_t ForEachHit(F&& f) const {
+    return ForEachHit([](std::uint32_t) { return ~std::uint64_t{0}; }, f);
   }
   /// The same for the boxes whose bits survive `keep(w)`, a mask for word w (slots 64 w ..
   /// 64 w + 63): only those are decided exactly.
   template <typename Keep, typename F>
-  void ForEachHit(Keep&& keep, F&& f) const {
-    ForEachHitOf(query_W_, keep, f);
+  std::uint32_t ForEachHit(Keep&& keep, F&& f) const {
+    return ForEachHitOf(query_W_, keep, f);
   }
   /// ForEachHit for a box `box_W` inside the last MarkOverlaps' box (one of several whose hull
   /// it scanned: every box meeting box_W is flagged): f(slot) for each flagged box whose bit
   /// survives keep(w) and that overlaps box_W exactly, in slot order.
   template <typename Keep, typename F>
-  void ForEachHitOf(const Aabb& box_W, Keep&& keep, F&& f) const;
+  std::uint32_t ForEachHitOf(const Aabb& box_W, Keep&& keep, F&& f) const;
 
  private:
   std::array<std::vector<double>, 3> lo_W_, hi_W_;  // per slot and axis: min, max
@@ -81,16 +81,19 @@ class BoxArray {
 };
 
 template <typename Keep, typename F>
-void BoxArray::ForEachHitOf(const Aabb& box_W, Keep&& keep, F&& f) const {
+std::uint32_t BoxArray::ForEachHitOf(const Aabb& box_W, Keep&& keep, F&& f) const {
   const std::uint32_t word_count = (size_ + 63) / 64;
+  std::uint32_t decided = 0;
   for (std::uint32_t w = 0; w < word_count; ++w) {
     const std::uint64_t hits = hit_words_[w];
     if (hits == 0) continue;
     for (std::uint64_t bits = hits & keep(w); bits != 0; bits &= bits - 1) {
       const std::uint32_t slot = 64 * w + static_cast<std::uint32_t>(__builtin_ctzll(bits));
+      ++decided;
       if (Overlaps(slot, box_W)) f(slot);
     }
   }
+  return decided;
 }
 
 }  // namespace arm_collision_monitor
