@@ -12,6 +12,10 @@
 #include <utility>
 #include <variant>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "arm_collision_monitor/broadphase/broad_phase_factory.h"
 #include "arm_collision_monitor/geometry/distance.h"
 #include "monitor_impl.h"
@@ -121,16 +125,27 @@ void Monitor::Impl::RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q) {
 
 InputStatus Monitor::Impl::CheckInput(const Eigen::Ref<const Eigen::VectorXd>& q) const {
   if (q.size() != model.q_lower.size()) return InputStatus::kWrongSize;
-  // One pass without early exits (every cycle that is not idle runs it).
-  bool is_finite = true;
+  // One pass without early exits (every cycle that is not idle runs it), two comparisons a
+  // joint: the limits are finite (MonitorModel), so they also refuse NaN and infinities.
+  const double* const x = q.data();
+  const double* const lower = model.q_lower.data();
+  const double* const upper = model.q_upper.data();
+  const Eigen::Index n = q.size();
+  Eigen::Index i = 0;
   bool is_within = true;
-  for (Eigen::Index i = 0; i < q.size(); ++i) {
-    const double x = q[i];
-    is_finite &= std::isfinite(x);
-    is_within &= (x >= model.q_lower[i]) & (x <= model.q_upper[i]);
+#if defined(__SSE2__)
+  // Two joints at a time (GCC leaves the scalar loop scalar).
+  __m128d within = _mm_castsi128_pd(_mm_set1_epi64x(-1));
+  for (; i + 2 <= n; i += 2) {
+    const __m128d x2 = _mm_loadu_pd(x + i);
+    within = _mm_and_pd(within, _mm_and_pd(_mm_cmpge_pd(x2, _mm_loadu_pd(lower + i)),
+                                           _mm_cmple_pd(x2, _mm_loadu_pd(upper + i))));
   }
-  if (!is_finite) return InputStatus::kNonFinite;
-  return is_within ? InputStatus::kOk : InputStatus::kOutOfLimits;
+  is_within = _mm_movemask_pd(within) == 3;
+#endif
+  for (; i < n; ++i) is_within &= (x[i] >= lower[i]) & (x[i] <= upper[i]);
+  if (is_within) return InputStatus::kOk;
+  return q.allFinite() ? InputStatus::kOutOfLimits : InputStatus::kNonFinite;
 }
 
 bool Monitor::Impl::IsProvablyClear(const Eigen::Ref<const Eigen::VectorXd>& q, double step_m) {

@@ -128,21 +128,21 @@ void MonitorModel::BuildPrimitives() {
 }
 
 void MonitorModel::BuildStartPose() {
-  q_lower = Eigen::VectorXd::Constant(kinematics->q_size(),
-                                      -std::numeric_limits<double>::infinity());
-  q_upper = Eigen::VectorXd::Constant(kinematics->q_size(),
-                                      std::numeric_limits<double>::infinity());
+  // Without limits (continuous joints): the largest finite doubles, so that the limits alone
+  // also refuse NaN and infinities (CheckInput).
+  q_lower = Eigen::VectorXd::Constant(kinematics->q_size(), std::numeric_limits<double>::lowest());
+  q_upper = Eigen::VectorXd::Constant(kinematics->q_size(), std::numeric_limits<double>::max());
   for (int link = 1; link < kinematics->link_count(); ++link) {
     const JointSpec& joint = kinematics->joint(link);
     if (joint.q_index < 0 || joint.type == JointType::kContinuous) continue;
     q_lower[joint.q_index] = joint.lower - kJointLimitMargin;
     q_upper[joint.q_index] = joint.upper + kJointLimitMargin;
   }
+  // Each joint at 0, or at its limit nearer 0 (finite: so are the limits).
   q_start = Eigen::VectorXd::Zero(kinematics->q_size());
   for (int i = 0; i < q_start.size(); ++i) {
     q_start[i] = std::min(std::max(0.0, q_lower[i] + kJointLimitMargin),
                           q_upper[i] - kJointLimitMargin);
-    if (!std::isfinite(q_start[i])) q_start[i] = 0.0;
   }
   X_WL_start.assign(kinematics->link_count(), Eigen::Isometry3d::Identity());
   kinematics->ComputeLinkPoses(q_start, &X_WL_start);

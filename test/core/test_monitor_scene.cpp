@@ -287,6 +287,71 @@ TEST(MonitorScene, FrameBoundObjectFollowsItsPose) {
   EXPECT_FALSE(monitor.SetObjectPose("no_such_object", X_WO, &error));
 }
 
+// Each joint's value, in every position of q (CheckInput takes two at a time, an odd last one
+// alone): NaN and infinities refused as not finite; a limited joint's value past its limit and
+// margin refused as out of limits, one within its margin taken; a continuous joint takes any
+// finite value. On the bundled workcell (14 joints), the three-link arm (4, the third
+// continuous) and a three-joint arm (the middle one continuous, the last one alone).
+TEST(MonitorScene, EveryJointValueIsCheckedInEveryPosition) {
+  const std::string dir = ::testing::TempDir();
+  const std::string urdf = dir + "acm_test_odd_arm.urdf";
+  const std::string scene = dir + "acm_test_odd_arm.yaml";
+  std::string links = "<link name=\"base\"/>";
+  const char* const kJoints[] = {"revolute", "continuous", "revolute"};
+  for (int k = 0; k < 3; ++k) {
+    const std::string link = "l" + std::to_string(k);
+    const std::string parent = k == 0 ? "base" : "l" + std::to_string(k - 1);
+    links += "<joint name=\"j" + std::to_string(k) + "\" type=\"" + kJoints[k] +
+             "\"><parent link=\"" + parent + "\"/><child link=\"" + link +
+             "\"/><origin xyz=\"0 0 0.3\"/><axis xyz=\"0 1 0\"/>"
+             "<limit lower=\"-1\" upper=\"1.5\" velocity=\"1\" effort=\"1\"/></joint>"
+             "<link name=\"" + link + "\"><collision><geometry>"
+             "<cylinder radius=\"0.05\" length=\"0.3\"/></geometry></collision></link>";
+  }
+  std::ofstream(urdf) << "<robot name=\"odd_arm\">" << links << "</robot>\n";
+  std::ofstream(scene) << "world: {center_m: [0, 0, 0.5], edge_m: 4.0}\n"
+                          "arms:\n  - {name: arm, root_link: l0}\n";
+  const std::string data = ACM_SOURCE_DIR "/test/data/";
+  const std::vector<std::shared_ptr<const Workcell>> workcells = {
+      LoadBundledWorkcell(),
+      std::make_shared<const Workcell>(
+          LoadWorkcell(data + "three_link_arm.urdf", data + "three_link_scene.yaml")),
+      std::make_shared<const Workcell>(LoadWorkcell(urdf, scene))};
+  const double inf = std::numeric_limits<double>::infinity();
+  for (const auto& wc : workcells) {
+    const Monitor monitor(wc, MonitorOptions{});
+    const KinematicModel& model = wc->kinematics;
+    const Eigen::VectorXd good = Eigen::VectorXd::Zero(model.q_size());
+    ASSERT_EQ(monitor.Check(good).input, InputStatus::kOk);
+    int continuous = 0;
+    for (int link = 1; link < model.link_count(); ++link) {
+      const JointSpec& joint = model.joint(link);
+      if (joint.q_index < 0) continue;
+      auto status_with = [&](double value) {
+        Eigen::VectorXd q = good;
+        q[joint.q_index] = value;
+        return monitor.Check(q).input;
+      };
+      const std::string what = joint.name;
+      for (const double bad : {std::numeric_limits<double>::quiet_NaN(), inf, -inf}) {
+        EXPECT_EQ(status_with(bad), InputStatus::kNonFinite) << what << " = " << bad;
+      }
+      if (joint.type == JointType::kContinuous) {
+        ++continuous;
+        EXPECT_EQ(status_with(1e300), InputStatus::kOk) << what;
+        EXPECT_EQ(status_with(-std::numeric_limits<double>::max()), InputStatus::kOk) << what;
+        continue;
+      }
+      EXPECT_EQ(status_with(joint.upper + 2.0 * kJointLimitMargin), InputStatus::kOutOfLimits)
+          << what;
+      EXPECT_EQ(status_with(joint.lower - 2.0 * kJointLimitMargin), InputStatus::kOutOfLimits)
+          << what;
+      EXPECT_EQ(status_with(joint.upper + 0.5 * kJointLimitMargin), InputStatus::kOk) << what;
+    }
+    EXPECT_EQ(continuous, wc == workcells[0] ? 0 : 1);
+  }
+}
+
 TEST(MonitorScene, BadInputsAreRefusedCountedAndFailSafe) {
   const auto wc = LoadBundledWorkcell();
   Monitor monitor(wc, MonitorOptions{});

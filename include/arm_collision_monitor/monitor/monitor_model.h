@@ -65,7 +65,9 @@ struct MonitorModel {
   int first_live_object = 0;             ///< their objects: first_live_object .. (one per slot)
   double world_edge_m = 0.0;      ///< the world box's longest edge
   double speed_tol_gain_s = 0.0;  ///< reaction + stopping time when speed-scaled, else 0
-  Eigen::VectorXd q_lower, q_upper;  ///< joint limits by q index, kJointLimitMargin included
+  /// Joint limits by q index, kJointLimitMargin included; always finite (a joint without limits:
+  /// the lowest and largest finite doubles), so that they alone refuse NaN and infinities.
+  Eigen::VectorXd q_lower, q_upper;
 
   std::vector<std::vector<PrimitiveId>> link_prims;     ///< per link: every variant's primitives
   std::vector<std::vector<std::string>> link_variants;  ///< per link; [0] is always ""
