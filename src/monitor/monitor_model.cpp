@@ -128,15 +128,16 @@ void MonitorModel::BuildPrimitives() {
 }
 
 void MonitorModel::BuildStartPose() {
-  // Without limits (continuous joints): the largest finite doubles, so that the limits alone
-  // also refuse NaN and infinities (CheckInput).
+  // Without a limit (a continuous joint, unless the scene file's joint_limits give it soft
+  // ones): the largest finite doubles, so that the limits alone also refuse NaN and infinities
+  // (CheckInput).
   q_lower = Eigen::VectorXd::Constant(kinematics->q_size(), std::numeric_limits<double>::lowest());
   q_upper = Eigen::VectorXd::Constant(kinematics->q_size(), std::numeric_limits<double>::max());
   for (int link = 1; link < kinematics->link_count(); ++link) {
     const JointSpec& joint = kinematics->joint(link);
-    if (joint.q_index < 0 || joint.type == JointType::kContinuous) continue;
-    q_lower[joint.q_index] = joint.lower - kJointLimitMargin;
-    q_upper[joint.q_index] = joint.upper + kJointLimitMargin;
+    if (joint.q_index < 0) continue;
+    if (std::isfinite(joint.lower)) q_lower[joint.q_index] = joint.lower - kJointLimitMargin;
+    if (std::isfinite(joint.upper)) q_upper[joint.q_index] = joint.upper + kJointLimitMargin;
   }
   // Each joint at 0, or at its limit nearer 0 (finite: so are the limits).
   q_start = Eigen::VectorXd::Zero(kinematics->q_size());

@@ -2,6 +2,9 @@
 // self and arm-arm collisions, grasp targets, attached objects, model switching, frame-bound
 // objects, refused inputs, speed-scaled tolerance and idle cycles. Every report is also compared
 // with the independent brute force of test_monitor_util.h.
+#include <iterator>
+
+#include "load_error_expect.h"
 #include "test_monitor_util.h"
 
 namespace arm_collision_monitor {
@@ -293,9 +296,6 @@ TEST(MonitorScene, FrameBoundObjectFollowsItsPose) {
 // finite value. On the bundled workcell (14 joints), the three-link arm (4, the third
 // continuous) and a three-joint arm (the middle one continuous, the last one alone).
 TEST(MonitorScene, EveryJointValueIsCheckedInEveryPosition) {
-  const std::string dir = ::testing::TempDir();
-  const std::string urdf = dir + "acm_test_odd_arm.urdf";
-  const std::string scene = dir + "acm_test_odd_arm.yaml";
   std::string links = "<link name=\"base\"/>";
   const char* const kJoints[] = {"revolute", "continuous", "revolute"};
   for (int k = 0; k < 3; ++k) {
@@ -308,9 +308,11 @@ TEST(MonitorScene, EveryJointValueIsCheckedInEveryPosition) {
              "<link name=\"" + link + "\"><collision><geometry>"
              "<cylinder radius=\"0.05\" length=\"0.3\"/></geometry></collision></link>";
   }
-  std::ofstream(urdf) << "<robot name=\"odd_arm\">" << links << "</robot>\n";
-  std::ofstream(scene) << "world: {center_m: [0, 0, 0.5], edge_m: 4.0}\n"
-                          "arms:\n  - {name: arm, root_link: l0}\n";
+  const std::string urdf =
+      WriteTempFile("odd_arm.urdf", "<robot name=\"odd_arm\">" + links + "</robot>\n");
+  const std::string scene = WriteTempFile("odd_arm.yaml",
+                                          "world: {center_m: [0, 0, 0.5], edge_m: 4.0}\n"
+                                          "arms:\n  - {name: arm, root_link: l0}\n");
   const std::string data = ACM_SOURCE_DIR "/test/data/";
   const std::vector<std::shared_ptr<const Workcell>> workcells = {
       LoadBundledWorkcell(),
@@ -349,6 +351,29 @@ TEST(MonitorScene, EveryJointValueIsCheckedInEveryPosition) {
       EXPECT_EQ(status_with(joint.upper + 0.5 * kJointLimitMargin), InputStatus::kOk) << what;
     }
     EXPECT_EQ(continuous, wc == workcells[0] ? 0 : 1);
+  }
+}
+
+// The scene file's soft limits hold for a continuous joint too (the three-link arm's spin).
+TEST(MonitorScene, SoftLimitsOfAContinuousJointAreChecked) {
+  const std::string data = ACM_SOURCE_DIR "/test/data/";
+  std::ifstream in(data + "three_link_scene.yaml");
+  const std::string scene = WriteTempFile(
+      "soft_spin.yaml", std::string(std::istreambuf_iterator<char>(in), {}) +
+                            "joint_limits: {spin: {lower: -1.0, upper: 1.5}}\n");
+  const auto wc =
+      std::make_shared<const Workcell>(LoadWorkcell(data + "three_link_arm.urdf", scene));
+  const Monitor monitor(wc, MonitorOptions{});
+  const int spin = wc->kinematics.joint(wc->kinematics.FindJointChildLink("spin")).q_index;
+  ASSERT_GE(spin, 0);
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(wc->kinematics.q_size());
+  for (const auto& [value, status] : std::vector<std::pair<double, InputStatus>>{
+           {1.4, InputStatus::kOk},
+           {1.5 + 2.0 * kJointLimitMargin, InputStatus::kOutOfLimits},
+           {-1.0 - 2.0 * kJointLimitMargin, InputStatus::kOutOfLimits},
+           {-1.0 - 0.5 * kJointLimitMargin, InputStatus::kOk}}) {
+    q[spin] = value;
+    EXPECT_EQ(monitor.Check(q).input, status) << "spin = " << value;
   }
 }
 
