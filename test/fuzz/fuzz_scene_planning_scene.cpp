@@ -1,11 +1,13 @@
-// libFuzzer harness for the planning-scene reader: a moveit_msgs/PlanningScene YAML file as a
-// user (or MoveIt, or a benchmark suite) could supply it, through ReadPlanningSceneFile, then,
-// when it is read, through LoadWorkcell as the planning_scene: (with planning_scene_acm) of a
-// small arm's scene (test/data/three_link_arm.urdf), which turns its objects into primitives
-// (meshes fitted). LoadError is the expected answer to bad input; any other exception, a crash,
-// undefined behaviour, a leak or a broken invariant of the result is a finding.
+// libFuzzer harness for the planning-scene readers: a moveit_msgs/PlanningScene YAML file or a
+// MoveIt scene geometry text (.scene) as a user (or MoveIt, or a benchmark suite) could supply
+// it, through ReadPlanningSceneFile, then, when it is read, through LoadWorkcell as the
+// planning_scene: (with planning_scene_acm) of a small arm's scene
+// (test/data/three_link_arm.urdf), which turns its objects into primitives (meshes fitted).
+// LoadError is the expected answer to bad input; any other exception, a crash, undefined
+// behaviour, a leak or a broken invariant of the result is a finding.
 //
-// Input: the planning-scene YAML text. Seeds: test/fuzz/corpus/scene_planning_scene/.
+// Input: the planning-scene text, read both as YAML (a .yaml file) and as scene geometry text (a
+// .scene file). Seeds: test/fuzz/corpus/scene_planning_scene/.
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -20,23 +22,20 @@
 namespace arm_collision_monitor {
 namespace {
 
-const std::string& PlanningScenePath() {
-  static const std::string path = fuzz::ScratchDirectory("planning_scene") + "/scene_dump.yaml";
-  return path;
+// The fuzzed planning scene as a file of extension `extension` ("yaml" or "scene").
+std::string PlanningScenePath(const std::string& extension) {
+  return fuzz::ScratchDirectory("planning_scene") + "/scene_dump." + extension;
 }
 
-// The three-link arm's scene with the fuzzed planning scene and its matrix.
-const std::string& ScenePath() {
-  static const std::string path = [] {
-    const std::string scene = fuzz::ScratchDirectory("planning_scene") + "/scene.yaml";
-    fuzz::WriteScratchFile(scene,
-                           "world: {center_m: [0.0, 0.0, 1.0], edge_m: 4.0}\n"
-                           "arms:\n  - {name: arm, root_link: upper_arm}\n"
-                           "planning_scene: " + PlanningScenePath() + "\n"
-                           "planning_scene_acm: true\n");
-    return scene;
-  }();
-  return path;
+// The three-link arm's scene with the fuzzed planning scene of `extension` and its matrix.
+std::string ScenePath(const std::string& extension) {
+  const std::string scene = fuzz::ScratchDirectory("planning_scene") + "/" + extension + ".yaml";
+  fuzz::WriteScratchFile(scene,
+                         "world: {center_m: [0.0, 0.0, 1.0], edge_m: 4.0}\n"
+                         "arms:\n  - {name: arm, root_link: upper_arm}\n"
+                         "planning_scene: " + PlanningScenePath(extension) + "\n"
+                         "planning_scene_acm: true\n");
+  return scene;
 }
 
 // The reader's contract (planning_scene_reader.h): ids, finite positive dimensions, finite
@@ -75,17 +74,19 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace arm_collision_monitor;
-  fuzz::WriteScratchFile(PlanningScenePath(),
-                         std::string_view(reinterpret_cast<const char*>(data), size));
-  PlanningSceneFile file;
-  try {
-    file = ReadPlanningSceneFile(PlanningScenePath());
-  } catch (const LoadError&) {
-    return 0;  // refused with a message: the expected answer to bad input
+  for (const char* extension : {"yaml", "scene"}) {
+    const std::string path = PlanningScenePath(extension);
+    fuzz::WriteScratchFile(path, std::string_view(reinterpret_cast<const char*>(data), size));
+    PlanningSceneFile file;
+    try {
+      file = ReadPlanningSceneFile(path);
+    } catch (const LoadError&) {
+      continue;  // refused with a message: the expected answer to bad input
+    }
+    for (const SceneCollisionObject& object : file.objects) {
+      if (!IsWellFormed(object)) std::abort();
+    }
+    fuzz::LoadThreeLinkArmAndValidate(ScenePath(extension));
   }
-  for (const SceneCollisionObject& object : file.objects) {
-    if (!IsWellFormed(object)) std::abort();
-  }
-  fuzz::LoadThreeLinkArmAndValidate(ScenePath());
   return 0;
 }
