@@ -30,6 +30,18 @@
 namespace arm_collision_monitor {
 namespace {
 
+/// `text` without leading and trailing blanks.
+std::string Trimmed(const std::string& text) {
+  const std::size_t first = text.find_first_not_of(" \t\r");
+  if (first == std::string::npos) return "";
+  return text.substr(first, text.find_last_not_of(" \t\r") - first + 1);
+}
+
+/// What a message says was found: the token, or the end of the file for "".
+std::string Found(const std::string& token) {
+  return token.empty() ? "the file ends" : "'" + token + "'";
+}
+
 /// The text's tokens (whitespace-separated) in order, each with its line.
 class TokenReader {
  public:
@@ -37,7 +49,6 @@ class TokenReader {
 
   /// The element messages name until the first object: "scene".
   void SetElement(const std::string& element) { element_ = element; }
-  const std::string& element() const { return element_; }
   int line() const { return line_; }
 
   [[noreturn]] void Fail(const std::string& what) const {
@@ -47,11 +58,9 @@ class TokenReader {
   /// The rest of the current line (the scene name, an object's id), trimmed; moves past it.
   std::string RestOfLine() {
     const std::size_t end = std::min(text_.find('\n', pos_), text_.size());
-    std::string rest = text_.substr(pos_, end - pos_);
+    const std::size_t start = pos_;
     pos_ = end;
-    const std::size_t first = rest.find_first_not_of(" \t\r");
-    if (first == std::string::npos) return "";
-    return rest.substr(first, rest.find_last_not_of(" \t\r") - first + 1);
+    return Trimmed(text_.substr(start, end - start));
   }
 
   /// The next token; "" at the end of the text.
@@ -111,9 +120,6 @@ class TokenReader {
 
  private:
   static bool IsSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; }
-  static std::string Found(const std::string& token) {
-    return token.empty() ? "the file ends" : "'" + token + "'";
-  }
 
   const std::string& text_;
   const std::string& path_;
@@ -188,11 +194,8 @@ bool IsNewerFormat(const std::string& text) {
     if (first < end && text[first] == '*') {
       const std::size_t next = end + 1;
       if (next >= text.size()) return false;
-      const std::string line = text.substr(next, text.find('\n', next) - next);
-      const std::size_t a = line.find_first_not_of(" \t\r");
-      if (a == std::string::npos) return false;
-      const std::string trimmed = line.substr(a, line.find_last_not_of(" \t\r") - a + 1);
-      return trimmed.find_first_of(" \t") != std::string::npos;
+      return Trimmed(text.substr(next, text.find('\n', next) - next)).find_first_of(" \t") !=
+             std::string::npos;
     }
     start = end + 1;
   }
@@ -213,8 +216,7 @@ PlanningSceneFile ReadSceneGeometryText(const std::string& text, const std::stri
     const std::string marker = in.Next();
     if (marker == ".") break;
     if (marker != "*") {
-      in.Fail((marker.empty() ? std::string("the file ends") : "'" + marker + "'") +
-              " (expected '* ID' for an object or '.' for the end of the scene)");
+      in.Fail(Found(marker) + " (expected '* ID' for an object or '.' for the end of the scene)");
     }
     SceneCollisionObject object;
     object.line = in.line();
