@@ -26,8 +26,8 @@ NODE = '/arm_collision_monitor'
 BURST_MESSAGES = 10000
 # Seed of the shuffled-stamp burst (printed by the test).
 SEED = 20261121
-# Random lateness of a stamp in the shuffled burst (s): far below ~input_timeout_s (0.5 s), so
-# the refusals are for going backwards, never for being old.
+# Random lateness of a stamp in the shuffled burst (s): far below ~input_timeout_s (10 s, longer
+# than a burst takes to send), so the refusals are for going backwards, never for being old.
 MAX_LATENESS_S = 0.05
 WAIT_S = 30.0
 
@@ -56,6 +56,17 @@ class BurstTest(unittest.TestCase):
 
     def wait_report(self, start, predicate, timeout_s=WAIT_S):
         return self.client.wait_report(start, predicate, timeout_s)
+
+    @staticmethod
+    def describe(reports, stamps):
+        """What the reports of a burst were, for a failure message."""
+        statuses = {}
+        for r in reports:
+            statuses[r.input_status] = statuses.get(r.input_status, 0) + 1
+        newest = reports[-1].header.stamp.to_sec() if reports else float('nan')
+        return ('%d reports, input statuses %s, newest report stamped %.6f, last left %.6f, '
+                'last right %.6f' % (len(reports), sorted(statuses.items()), newest,
+                                     stamps['left'].to_sec(), stamps['right'].to_sec()))
 
     def publish_burst(self, stamp_of, pose_of):
         """BURST_MESSAGES messages, alternating left and right; returns the last stamps."""
@@ -87,14 +98,16 @@ class BurstTest(unittest.TestCase):
         # The two topics' queues are served in no fixed order: the final state is reached by
         # whichever of the two last messages is taken second, so its report is the final one.
         last_two = c.wait_stamps(start, [stamps['left'], stamps['right']], WAIT_S)
-        self.assertIsNotNone(last_two, 'no report for one of the last two messages of the burst')
+        self.assertIsNotNone(last_two, 'no report for one of the last two messages of the burst; '
+                             + self.describe(c.reports_since(start), stamps))
         final = last_two[-1]
         self.assertEqual(final.input_status, MonitorReport.INPUT_OK)
         self.assertGreater(len(final.warnings), 0, 'the final pose must warn (arms crossed)')
         self.assertTrue(final.stop)
         burst_reports = c.reports_since(start)
         self.assertTrue(all(r.input_status == MonitorReport.INPUT_OK for r in burst_reports),
-                        'an in-order burst must not be refused')
+                        'an in-order burst must not be refused; '
+                        + self.describe(burst_reports, stamps))
         rospy.loginfo('in-order burst: %d reports for %d messages', len(burst_reports),
                       BURST_MESSAGES)
         self.assertTrue(c.wait_stop(True))
