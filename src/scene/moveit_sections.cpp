@@ -240,6 +240,14 @@ std::vector<std::pair<PrimitiveId, PrimitiveId>> PlanningSceneAcmPairs(
     const PlanningSceneInput& input, Workcell* workcell) {
   if (input.path.empty() || !input.is_acm_imported) return {};
   const SceneAllowedCollisions& acm = input.file.allowed_collisions;
+  if (acm.allowed_pairs.empty() && acm.disallowed_pairs.empty() &&
+      acm.default_allowed_names.empty()) {
+    // Asked for, but nothing there (scene geometry text never has a matrix): say so.
+    workcell->warnings.push_back(input.path +
+                                 ": planning_scene_acm: true, but the file allows no collisions "
+                                 "(no allowed_collision_matrix entries): none imported");
+    return {};
+  }
   const NamedCollisionRules rules{acm.allowed_pairs, acm.disallowed_pairs,
                                   acm.default_allowed_names};
   return ResolveCollisionRules(rules, input.path + ": allowed_collision_matrix", workcell);

@@ -412,6 +412,15 @@ TEST(SceneMoveitInputs, SceneGeometryTextObjectsBecomeStaticObjects) {
   EXPECT_TRUE(std::get<Box>(ShapeOf(w, "shelf_bottom"))
                   .half_extents_m.isApprox(Eigen::Vector3d(0.6, 0.5, 0.02), 1e-15));
 
+  // Scene geometry text has no allowed collision matrix: asking for it imports none, and says so.
+  const Workcell acm = LoadWorkcell(
+      kUrdf, BundledSceneWith("ps_text_acm.yaml", "planning_scene: " + kMoveit +
+                                                      "bookshelf.scene\nplanning_scene_acm: true"));
+  const std::string notice = FindWarning(acm, "planning_scene_acm: true");
+  EXPECT_NE(notice.find(kMoveit + "bookshelf.scene"), std::string::npos) << notice;
+  EXPECT_NE(notice.find("none imported"), std::string::npos) << notice;
+  EXPECT_EQ(acm.warnings.size(), w.warnings.size() + 1);
+
   const std::string bad = WriteTempFile(
       "bad_text.scene", "s\n* cup\n0.5 0 1\n0 0 0 1\n1\ntorus\n0.1 0.02\n");
   ExpectBundledSceneError("planning_scene: " + bad,
