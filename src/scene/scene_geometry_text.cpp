@@ -26,16 +26,10 @@
 #include "arm_collision_monitor/core/load_error.h"
 #include "arm_collision_monitor/scene/planning_scene_reader.h"
 #include "scene_quaternion.h"
+#include "text_trim.h"
 
 namespace arm_collision_monitor {
 namespace {
-
-/// `text` without leading and trailing blanks.
-std::string Trimmed(const std::string& text) {
-  const std::size_t first = text.find_first_not_of(" \t\r");
-  if (first == std::string::npos) return "";
-  return text.substr(first, text.find_last_not_of(" \t\r") - first + 1);
-}
 
 /// What a message says was found: the token, or the end of the file for "".
 std::string Found(const std::string& token) {

@@ -8,6 +8,7 @@
 
 #include "arm_collision_monitor/core/load_error.h"
 #include "arm_collision_monitor/scene/resource_fetch.h"
+#include "text_trim.h"
 
 namespace arm_collision_monitor {
 namespace {
@@ -32,13 +33,6 @@ bool IsIgnored(const char* name) {
     if (std::strcmp(name, ignored) == 0) return true;
   }
   return false;
-}
-
-std::string Trimmed(const char* text) {
-  const std::string s = text;
-  const auto first = s.find_first_not_of(" \t\r\n");
-  if (first == std::string::npos) return "";
-  return s.substr(first, s.find_last_not_of(" \t\r\n") - first + 1);
 }
 
 /// The trimmed value of the required attribute `name` of `xml`; fails when absent or empty.
