@@ -138,6 +138,9 @@ Input ReadBag(const std::string& path, const Workcell& workcell) {
   // The stamp checks compare each message with its own stamp as "now": offline, time is the
   // bag's. The timeout only bounds stamps going backwards, which is still refused.
   JointMerger input(workcell.joint_names, 1.0);
+  for (const auto& [q_index, position] : workcell.joint_defaults) {
+    input.SetDefault(q_index, position);
+  }
   Input result;
   ros::Time group_stamp, first_stamp;
   bool has_group = false;
@@ -165,13 +168,18 @@ Input ReadBag(const std::string& path, const Workcell& workcell) {
     if (status != MergeStatus::kAccepted) ++result.refused[MergeStatusName(status)];
   }
   flush();
+  if (!input.is_complete()) {
+    throw LoadError(path + ": model joint '" + input.joint_name(input.FirstMissingJoint()) +
+                    "' is in no accepted sensor_msgs/JointState message (" + kJointDefaultsHint +
+                    ")");
+  }
   return result;
 }
 
 Input ReadCsv(const std::string& path, const Workcell& workcell) {
   const JointCsv csv = ReadJointCsv(path);
   Input result;
-  result.q = JointCsvInModelOrder(csv, workcell.joint_names);
+  result.q = JointCsvInModelOrder(csv, workcell.joint_names, workcell.joint_defaults);
   for (const double t : csv.time_s) result.time_s.push_back(t - csv.time_s.front());
   result.messages = result.q.size();
   return result;

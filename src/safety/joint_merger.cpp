@@ -25,12 +25,21 @@ JointMerger::JointMerger(const std::vector<std::string>& joint_names, double inp
       stamp_s_(joint_names.size(), kNoStamp_s),
       received_s_(joint_names.size(), 0.0),
       is_received_(joint_names.size(), false),
+      has_default_(joint_names.size(), false),
       missing_count_(static_cast<int>(joint_names.size())),
       is_awaiting_(joint_names.size(), false) {
   for (std::size_t i = 0; i < joint_names_.size(); ++i) {
     index_of_name_.emplace(joint_names_[i], static_cast<int>(i));
   }
   layouts_.reserve(kMaxLayouts);
+}
+
+void JointMerger::SetDefault(int index, double position_rad_or_m) {
+  if (!is_received_[index]) {
+    q_[index] = position_rad_or_m;
+    if (!has_default_[index]) --missing_count_;
+  }
+  has_default_[index] = true;
 }
 
 JointMerger::Layout JointMerger::BuildLayout(const std::vector<std::string>& names) const {
@@ -132,7 +141,7 @@ MergeStatus JointMerger::Merge(const NamedPositions& input, double now_s) {
     }
     if (!is_received_[i]) {
       is_received_[i] = true;
-      --missing_count_;
+      if (!has_default_[i]) --missing_count_;
     }
     if (is_awaiting_[i]) {
       is_awaiting_[i] = false;
@@ -172,7 +181,7 @@ void JointMerger::OnTimeWentBackwards(double now_s) {
 
 int JointMerger::FirstMissingJoint() const {
   for (std::size_t i = 0; i < is_received_.size(); ++i) {
-    if (!is_received_[i]) {
+    if (!is_received_[i] && !has_default_[i]) {
       return static_cast<int>(i);
     }
   }
@@ -181,7 +190,7 @@ int JointMerger::FirstMissingJoint() const {
 
 int JointMerger::FirstMissingJointNotIn(const std::vector<std::string>& names) const {
   for (std::size_t i = 0; i < is_received_.size(); ++i) {
-    if (!is_received_[i] &&
+    if (!is_received_[i] && !has_default_[i] &&
         std::find(names.begin(), names.end(), joint_names_[i]) == names.end()) {
       return static_cast<int>(i);
     }

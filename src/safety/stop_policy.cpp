@@ -77,8 +77,8 @@ bool StopPolicy::BeginCycle(MergeStatus pending, const JointMerger& input) {
     return false;
   }
   if (!input.is_complete()) {
-    Raise(Rank::kRefused, SafetyStatus::kIncomplete, "joint '%s' never received",
-          input.joint_name(input.FirstMissingJoint()).c_str());
+    Raise(Rank::kRefused, SafetyStatus::kIncomplete, "joint '%s' never received (%s)",
+          input.joint_name(input.FirstMissingJoint()).c_str(), kJointDefaultsHint);
     return false;
   }
   return true;

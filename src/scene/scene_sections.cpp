@@ -242,9 +242,10 @@ std::vector<PrimitiveId> ResolveNames(const Workcell& w, const std::string& name
 
 void CheckSectionNames(const YAML::Node& scene, const std::string& scene_path) {
   yaml_fields::CheckKeys(scene,
-                         {"world", "arms", "links", "joint_limits", "objects", "compatible",
-                          "grasp_targets", "variants", "cylinder_model", "mesh_fit", "srdf",
-                          "planning_scene", "planning_scene_acm", "planning_scene_tolerance_m"},
+                         {"world", "arms", "links", "joint_limits", "joint_defaults", "objects",
+                          "compatible", "grasp_targets", "variants", "cylinder_model", "mesh_fit",
+                          "srdf", "planning_scene", "planning_scene_acm",
+                          "planning_scene_tolerance_m"},
                          Where{scene_path, ""});
 }
 
@@ -292,31 +293,62 @@ Aabb ReadWorld(const YAML::Node& node, const Where& where) {
   return Aabb::Cube(center_W, edge_m);
 }
 
-void ReadJointLimits(const YAML::Node& node, const Where& where, KinematicModel* model) {
+namespace {
+
+// The entries of a map keyed by actuated joint names (joint_limits:, joint_defaults:): `read`
+// gets each value, its place and the joint's name and spec; any other key fails.
+template <typename Read>
+void ReadActuatedJointMap(const YAML::Node& node, const Where& where, const KinematicModel& model,
+                          Read read) {
   if (!node.IsDefined()) return;
   yaml_fields::RequireMap(node, where);
   yaml_fields::RequireUniqueKeys(node, where);
   for (const auto& entry : node) {
     const std::string joint_name = entry.first.as<std::string>("");
     const Where item = where.Child(joint_name);
-    const int link = model->FindJointChildLink(joint_name);
-    if (link < 0 || model->joint(link).q_index < 0) {
+    const int link = model.FindJointChildLink(joint_name);
+    if (link < 0 || model.joint(link).q_index < 0) {
       item.Fail(entry.first, "unknown joint (expected an actuated joint of the URDF)");
     }
-    yaml_fields::RequireMap(entry.second, item);
-    yaml_fields::CheckKeys(entry.second, {"lower", "upper"}, item);
-    const JointSpec& joint = model->joint(link);
+    read(entry.second, item, joint_name, model.joint(link));
+  }
+}
+
+}  // namespace
+
+void ReadJointLimits(const YAML::Node& node, const Where& where, KinematicModel* model) {
+  ReadActuatedJointMap(node, where, *model, [&](const YAML::Node& value, const Where& item,
+                                                const std::string& joint_name,
+                                                const JointSpec& joint) {
+    yaml_fields::RequireMap(value, item);
+    yaml_fields::CheckKeys(value, {"lower", "upper"}, item);
     double lower = joint.lower;
     double upper = joint.upper;
-    yaml_fields::ReadIfPresent(entry.second, "lower", item, yaml_fields::ReadFiniteDouble, &lower);
-    yaml_fields::ReadIfPresent(entry.second, "upper", item, yaml_fields::ReadFiniteDouble, &upper);
+    yaml_fields::ReadIfPresent(value, "lower", item, yaml_fields::ReadFiniteDouble, &lower);
+    yaml_fields::ReadIfPresent(value, "upper", item, yaml_fields::ReadFiniteDouble, &upper);
     if (!(joint.lower <= lower && lower <= upper && upper <= joint.upper)) {
-      item.Fail(entry.second, "expected URDF lower (" + std::to_string(joint.lower) +
-                                  ") <= lower <= upper <= URDF upper (" +
-                                  std::to_string(joint.upper) + ")");
+      item.Fail(value, "expected URDF lower (" + std::to_string(joint.lower) +
+                           ") <= lower <= upper <= URDF upper (" + std::to_string(joint.upper) +
+                           ")");
     }
     model->SetPositionLimits(joint_name, lower, upper);
-  }
+  });
+}
+
+std::vector<std::pair<int, double>> ReadJointDefaults(const YAML::Node& node, const Where& where,
+                                                      const KinematicModel& model) {
+  std::vector<std::pair<int, double>> defaults;
+  ReadActuatedJointMap(node, where, model, [&](const YAML::Node& value, const Where& item,
+                                               const std::string&, const JointSpec& joint) {
+    const double position = yaml_fields::ReadFiniteDouble(value, item);
+    if (!(joint.lower <= position && position <= joint.upper)) {
+      item.Fail(value, "expected a position within the joint's limits [" +
+                           std::to_string(joint.lower) + ", " + std::to_string(joint.upper) +
+                           "]");
+    }
+    defaults.emplace_back(joint.q_index, position);
+  });
+  return defaults;
 }
 
 std::vector<ArmSpec> ReadArms(const YAML::Node& node, const Where& where,

@@ -75,6 +75,11 @@ Aabb ReadWorld(const YAML::Node& node, const Where& where);
 /// joint_limits: soft limits, each within the URDF's limits of an actuated joint; set on `model`.
 void ReadJointLimits(const YAML::Node& node, const Where& where, KinematicModel* model);
 
+/// joint_defaults: (q index, position) per actuated joint named, each position within the
+/// joint's limits on `model` (after joint_limits).
+std::vector<std::pair<int, double>> ReadJointDefaults(const YAML::Node& node, const Where& where,
+                                                      const KinematicModel& model);
+
 /// arms: the arms (tolerance `default_tolerance_m` unless given) and, in `arm_of_link`, the arm
 /// of every link (-1 outside every arm; the arms' subtrees must be disjoint).
 std::vector<ArmSpec> ReadArms(const YAML::Node& node, const Where& where,

@@ -13,6 +13,12 @@ bool Workcell::Validate(std::string* why) const {
     return false;
   };
   if (joint_names != kinematics.ActuatedJointNames()) return fail("joint_names != kinematics");
+  for (const auto& [q_index, position] : joint_defaults) {
+    if (q_index < 0 || q_index >= kinematics.q_size() || !std::isfinite(position)) {
+      return fail("joint default (" + std::to_string(q_index) + ", " + std::to_string(position) +
+                  ") out of range");
+    }
+  }
   if (!((world_W.min_W.array() < world_W.max_W.array()).all())) return fail("empty world cube");
   if (compatible.size() != primitives.size()) return fail("compatibility matrix size");
   std::set<std::string> names;

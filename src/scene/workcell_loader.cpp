@@ -167,6 +167,8 @@ Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_pat
   w.solid_options = SolidShapeOptions{shape_options.cylinder_model, shape_options.mesh_fit};
   scene_sections::ReadJointLimits(scene["joint_limits"], Where{scene_path, "joint_limits"},
                                   &w.kinematics);
+  w.joint_defaults = scene_sections::ReadJointDefaults(
+      scene["joint_defaults"], Where{scene_path, "joint_defaults"}, w.kinematics);
   // Without world:, every object fits until the cube is derived from the finished workcell.
   const bool derives_world = !scene["world"].IsDefined();
   constexpr double kInf = std::numeric_limits<double>::infinity();

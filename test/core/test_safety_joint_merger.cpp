@@ -140,6 +140,42 @@ TEST(JointMerger, ClockGoingBackAwaitsEveryJointAgain) {
   EXPECT_FALSE(merger.IsStale(5.1));
 }
 
+// joint_defaults: a joint the input leaves out is at its default, complete and never stale,
+// until a message gives it; from then on it is an input joint like the others.
+TEST(JointMerger, DefaultedJointCountsAsReceivedUntilAMessageGivesIt) {
+  JointMerger merger(kJoints, kTimeout_s);
+  merger.SetDefault(2, 0.75);
+  EXPECT_FALSE(merger.is_complete());
+  EXPECT_EQ(merger.FirstMissingJoint(), 0);
+  EXPECT_EQ(merger.FirstMissingJointNotIn({"a1", "a2"}), -1);
+  ASSERT_EQ(MergeAt(&merger, {"a1", "a2"}, {0.1, 0.2}, 10.0, 10.0), MergeStatus::kAccepted);
+  EXPECT_TRUE(merger.is_complete());
+  EXPECT_EQ(merger.FirstMissingJoint(), -1);
+  EXPECT_EQ(merger.q(), Eigen::Vector3d(0.1, 0.2, 0.75));
+  // No age: the a-source's own silence makes it stale, never b1's.
+  EXPECT_EQ(merger.OldestJoint(), 0);
+  EXPECT_FALSE(merger.IsStale(10.0 + kTimeout_s));
+  ASSERT_EQ(MergeAt(&merger, {"a1", "a2"}, {0.1, 0.2}, 20.0, 20.0), MergeStatus::kAccepted);
+  EXPECT_FALSE(merger.IsStale(20.0));
+  EXPECT_TRUE(merger.IsStale(20.0 + kTimeout_s + 0.001));
+  // Nor does a clock jump make it await input.
+  merger.OnTimeWentBackwards(5.0);
+  EXPECT_FALSE(merger.IsAwaitingInput(2));
+  ASSERT_EQ(MergeAt(&merger, {"a1", "a2"}, {0.1, 0.2}, 5.0, 5.0), MergeStatus::kAccepted);
+  EXPECT_FALSE(merger.IsStale(5.0));
+  // A message gives it: its value, and from then on its age.
+  ASSERT_EQ(MergeAt(&merger, {"b1"}, {-0.5}, 5.0, 5.0), MergeStatus::kAccepted);
+  EXPECT_EQ(merger.q()[2], -0.5);
+  EXPECT_TRUE(merger.is_complete());
+  ASSERT_EQ(MergeAt(&merger, {"a1", "a2"}, {0.1, 0.2}, 5.2, 5.2), MergeStatus::kAccepted);
+  EXPECT_EQ(merger.OldestJoint(), 2);
+  EXPECT_TRUE(merger.IsStale(5.0 + kTimeout_s + 0.001));
+  // A default set again later leaves the received value alone.
+  merger.SetDefault(2, 0.75);
+  EXPECT_EQ(merger.q()[2], -0.5);
+  EXPECT_TRUE(merger.is_complete());
+}
+
 TEST(JointMerger, MergeIntoCopyLeavesTheLiveStateAlone) {
   JointMerger merger(kJoints, kTimeout_s);
   MergeAll(&merger, 1.0);

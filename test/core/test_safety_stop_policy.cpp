@@ -88,7 +88,8 @@ TEST_F(StopPolicyTest, StartsStoppedUntilTheModelIsComplete) {
   Cycle(1.0, CleanReport());
   EXPECT_TRUE(policy_.stop());
   EXPECT_EQ(policy_.status(), SafetyStatus::kIncomplete);
-  EXPECT_EQ(policy_.reason(), "joint 'b1' never received");
+  EXPECT_EQ(policy_.reason(), std::string("joint 'b1' never received (") + kJointDefaultsHint +
+                                  ")");
   // Complete: cleared only after the hold from the last incomplete cycle.
   EXPECT_EQ(ClearedAt(1.0 + kStep_s), 1.0 + kHold_s);
   EXPECT_EQ(policy_.status(), SafetyStatus::kOk);

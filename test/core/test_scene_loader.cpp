@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "arm_collision_monitor/scene/workcell.h"
@@ -316,6 +318,34 @@ TEST(SceneLoader, JointLimitOverrides) {
                    {"joint_limits.knee", "unknown joint"});
 }
 
+TEST(SceneLoader, JointDefaults) {
+  const Workcell w = LoadWorkcell(
+      kArmUrdf, WriteTempFile("defaults.yaml", kWorldLine +
+                                                   "joint_limits: {elbow: {lower: -1.0}}\n"
+                                                   "joint_defaults: {slide: 0.05, spin: -7.5}\n"));
+  const auto q_index = [&](const char* joint) {
+    return w.kinematics.joint(w.kinematics.FindJointChildLink(joint)).q_index;
+  };
+  const std::vector<std::pair<int, double>> expected = {{q_index("slide"), 0.05},
+                                                        {q_index("spin"), -7.5}};
+  EXPECT_EQ(w.joint_defaults, expected);
+  EXPECT_TRUE(LoadWorkcell(kArmUrdf, WriteTempFile("no_defaults.yaml", kWorldLine))
+                  .joint_defaults.empty());
+  // Within the limits, the soft ones included; an actuated joint (a mimic joint follows its
+  // target); a number.
+  const std::vector<std::pair<std::string, std::vector<std::string>>> bad = {
+      {"joint_defaults: {slide: 0.3}\n", {"joint_defaults.slide", "within the joint's limits"}},
+      {"joint_limits: {elbow: {lower: -1.0}}\njoint_defaults: {elbow: -1.5}\n",
+       {"joint_defaults.elbow", "within the joint's limits"}},
+      {"joint_defaults: {finger_mimic: 0}\n", {"joint_defaults.finger_mimic", "unknown joint"}},
+      {"joint_defaults: {tool_joint: 0}\n", {"joint_defaults.tool_joint", "unknown joint"}},
+      {"joint_defaults: {elbow: open}\n", {"joint_defaults.elbow"}},
+      {"joint_defaults: {elbow: .nan}\n", {"joint_defaults.elbow"}},
+  };
+  for (const auto& [scene, parts] : bad) ExpectSceneError(kArmUrdf, kWorldLine + scene, parts);
+  ExpectSceneError(kArmUrdf, kWorldLine + "joint_defaults: [elbow, 0]\n", {"joint_defaults"});
+}
+
 TEST(SceneLoader, ValidateCatchesBrokenInvariants) {
   Workcell w = LoadWorkcell(kUrdf, kScene);
   std::string why;
@@ -324,6 +354,15 @@ TEST(SceneLoader, ValidateCatchesBrokenInvariants) {
   renamed.primitives[3].name = renamed.primitives[2].name;
   EXPECT_FALSE(renamed.Validate(&why));
   EXPECT_NE(why.find("duplicate name"), std::string::npos) << why;
+  for (const std::pair<int, double>& bad : {std::pair<int, double>{14, 0.0}, {-1, 0.0},
+                                            {0, std::numeric_limits<double>::quiet_NaN()}}) {
+    Workcell defaulted = w;
+    defaulted.joint_defaults = {{1, 0.0}};
+    EXPECT_TRUE(defaulted.Validate(&why)) << why;
+    defaulted.joint_defaults.push_back(bad);
+    EXPECT_FALSE(defaulted.Validate(&why)) << bad.first;
+    EXPECT_NE(why.find("joint default"), std::string::npos) << why;
+  }
   Workcell orphan = w;
   orphan.objects[0].primitive = 0;
   EXPECT_FALSE(orphan.Validate(&why));

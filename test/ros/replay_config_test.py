@@ -3,16 +3,21 @@
 and gives LoadWorkcell its tolerance_m, as the node does, so a config with a wider tolerance
 makes replay warn where the default config does not; it prints the workcell's start-up findings
 on stderr before the run; --help and -h print the usage on stdout and exit 0, while a usage error
-goes to stderr with exit 2."""
+goes to stderr with exit 2; a recording that never names a model joint is refused with a message
+naming it, and replays once the scene file's joint_defaults give it."""
 import json
 import os
+import tempfile
 import unittest
 
+import rosbag
 import rospkg
+import rospy
 import rostest
 import yaml
+from sensor_msgs.msg import JointState
 
-from acm_test_util import rosrun
+from acm_test_util import LEFT_JOINTS, RIGHT_JOINTS, rosrun
 
 PKG = 'arm_collision_monitor'
 # The finding LoadWorkcell reports for test/data/replay_scene.yaml: cable_guide lies inside
@@ -31,6 +36,7 @@ class ReplayConfigTest(unittest.TestCase):
         cls.scene = os.path.join(package, 'test', 'data', 'replay_scene.yaml')
         cls.default_config = os.path.join(package, 'config', 'monitor.yaml')
         cls.wide_config = os.path.join(package, 'test', 'data', 'replay_wide_tolerance.yaml')
+        cls.bundled_scene = os.path.join(package, 'config', 'scene.yaml')
 
     def replay(self, config):
         result = rosrun('replay', '--task', '3', '--json', '--scene', self.scene,
@@ -78,6 +84,33 @@ class ReplayConfigTest(unittest.TestCase):
         self.assertIn('would warn in every cycle', lines[0])
         self.assertTrue(lines[0].startswith('replay: '), lines[0])
         self.assertEqual(report['cycles'], 2000)  # stdout is still the report alone
+
+    def test_joint_defaults_fill_a_recording_of_one_arm(self):
+        # A path recorded or planned for the left arm alone, 20 samples at 20 Hz.
+        directory = tempfile.mkdtemp(prefix='acm_joint_defaults_')
+        bag_path = os.path.join(directory, 'left_only.bag')
+        with rosbag.Bag(bag_path, 'w') as bag:
+            for k in range(20):
+                msg = JointState(name=LEFT_JOINTS, position=[0.01 * k] * len(LEFT_JOINTS))
+                msg.header.stamp = rospy.Time(100) + rospy.Duration(0.05 * k)
+                bag.write('/left_arm/joint_states', msg, msg.header.stamp)
+        refused = rosrun('replay', '--json', '--scene', self.bundled_scene, bag_path)
+        self.assertEqual(refused.returncode, 1, refused.stderr)
+        self.assertIn("model joint 'right_joint1' is in no accepted sensor_msgs/JointState",
+                      refused.stderr)
+        self.assertIn('joint_defaults', refused.stderr)
+        # The same scene with the right arm held at 0.
+        scene_path = os.path.join(directory, 'scene.yaml')
+        with open(self.bundled_scene) as f:
+            scene = f.read()
+        with open(scene_path, 'w') as f:
+            f.write(scene + '\njoint_defaults: {%s}\n' %
+                    ', '.join('%s: 0.0' % joint for joint in RIGHT_JOINTS))
+        result = rosrun('replay', '--json', '--scene', scene_path, bag_path)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        report = json.loads(result.stdout)
+        self.assertEqual(report['cycles'], 20)
+        self.assertEqual(report['incomplete_cycles'], 0)
 
     def test_help_goes_to_stdout(self):
         for flag in ('--help', '-h'):

@@ -74,6 +74,26 @@ TEST(JointCsv, WithoutTimeColumnRowsAreOneCycleApart) {
   EXPECT_EQ(rows[1][1], 3.0);
 }
 
+// A planned path of some joints only: the scene file's joint_defaults fill the others.
+TEST(JointCsv, JointDefaultsFillMissingColumns) {
+  const JointCsv csv = ReadJointCsv(WriteFile("partial", "c, a\n1, 2\n3, 4\n"));
+  const std::vector<Eigen::VectorXd> rows =
+      JointCsvInModelOrder(csv, {"a", "b", "c"}, {{1, 0.5}});
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[1], Eigen::Vector3d(4.0, 0.5, 3.0));
+  // A default does not override a column.
+  EXPECT_EQ(JointCsvInModelOrder(csv, {"a", "b", "c"}, {{1, 0.5}, {0, -1.0}})[0],
+            Eigen::Vector3d(2.0, 0.5, 1.0));
+  try {
+    JointCsvInModelOrder(csv, {"a", "b", "c"});
+    ADD_FAILURE() << "no error for the missing column";
+  } catch (const LoadError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("no column for model joint 'b'"), std::string::npos) << what;
+    EXPECT_NE(what.find("joint_defaults"), std::string::npos) << what;
+  }
+}
+
 TEST(JointCsv, MalformedFilesAreRejectedWithFileLineAndColumn) {
   EXPECT_NE(ErrorOf("missing", "a\n1\n").find("no column for model joint 'b'"), std::string::npos);
   EXPECT_NE(ErrorOf("unknown", "a,b,c\n1,2,3\n").find("'c' is not a joint of the model"),

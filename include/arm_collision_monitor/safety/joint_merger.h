@@ -41,6 +41,10 @@ inline SafetyStatus ToSafetyStatus(MergeStatus status) {
 /// Short lower-case name of a status ("accepted", "wrong_size", ...), for logs and diagnostics.
 const char* MergeStatusName(MergeStatus status);
 
+/// What to do about a model joint that no input gives, for the messages that name one.
+inline constexpr char kJointDefaultsHint[] =
+    "publish it, or give it a position in the scene file's joint_defaults";
+
 /// One message's named positions, borrowed from the caller for the duration of a call.
 struct NamedPositions {
   const std::vector<std::string>& names;
@@ -55,6 +59,12 @@ class JointMerger {
   /// refused as stale, one stamped further ahead as from the future (one such message would
   /// otherwise make every later one look "backwards").
   JointMerger(const std::vector<std::string>& joint_names, double input_timeout_s);
+
+  /// Joint `index` is at `position_rad_or_m` until a message gives it: it counts as received
+  /// for is_complete() but has no age, so it is never stale, until then; from the first
+  /// message on it is an input joint like the others (the scene file's joint_defaults: joints
+  /// that the input may leave out, e.g. a gripper's in a planned arm path).
+  void SetDefault(int index, double position_rad_or_m);
 
   /// Validates `input` (received at `now_s`, the same clock as its stamps) and, if it is
   /// acceptable, writes its model joints into q. Names that are not model joints are ignored and
@@ -73,9 +83,9 @@ class JointMerger {
   void OnTimeWentBackwards(double now_s);
 
   const Eigen::VectorXd& q() const { return q_; }
-  /// Every model joint has been received at least once.
+  /// Every model joint has been received at least once or has a default (SetDefault).
   bool is_complete() const { return missing_count_ == 0; }
-  /// Index of the first model joint never received, -1 when complete.
+  /// Index of the first model joint never received and without a default, -1 when complete.
   int FirstMissingJoint() const;
   /// Index of the first model joint never received and not in `names`, -1 if none: a request
   /// naming it could complete the model (the check service's rule).
@@ -122,7 +132,8 @@ class JointMerger {
   std::vector<double> stamp_s_;     ///< newest accepted stamp per joint (-inf: none)
   std::vector<double> received_s_;  ///< receipt time of that message per joint
   std::vector<bool> is_received_;
-  int missing_count_;
+  std::vector<bool> has_default_;   ///< SetDefault's joints
+  int missing_count_;               ///< joints neither received nor with a default
   std::vector<bool> is_awaiting_;   ///< received before the clock went back, not since
   int awaiting_count_ = 0;
   std::vector<Layout> layouts_;     ///< small: one per distinct publisher layout

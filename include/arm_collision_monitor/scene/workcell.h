@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "arm_collision_monitor/broadphase/compatibility_matrix.h"
@@ -85,6 +86,8 @@ struct Workcell {
   Aabb world_W;  ///< the world cube the spatial index covers
   KinematicModel kinematics;
   std::vector<std::string> joint_names;   ///< actuated joints, in the order of Monitor's q
+  /// The scene file's joint_defaults: (q index, position) of joints the input may leave out.
+  std::vector<std::pair<int, double>> joint_defaults;
   std::vector<PrimitiveSpec> primitives;  ///< PrimitiveId = index
   CompatibilityMatrix compatible;         ///< pairs excused at start-up
   std::vector<ArmSpec> arms;
@@ -107,9 +110,10 @@ struct Workcell {
   std::vector<std::string> notices;
   MeshFitCounts mesh_fits;
 
-  /// Checks the invariants: the kinematics' own, one compatibility row per primitive, unique
-  /// primitive names, owners and indices that point at each other, finite non-negative sizes
-  /// and tolerances, joint_names matching the kinematics. False with a reason otherwise.
+  /// Checks the invariants: the kinematics' own, joint defaults of valid q indices and finite,
+  /// one compatibility row per primitive, unique primitive names, owners and indices that point
+  /// at each other, finite non-negative sizes and tolerances, joint_names matching the
+  /// kinematics. False with a reason otherwise.
   bool Validate(std::string* why) const;
 
   /// Index of the primitive, object or variant with that name; -1 if none.

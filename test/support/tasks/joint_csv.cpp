@@ -9,6 +9,7 @@
 
 #include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/core/load_error.h"
+#include "arm_collision_monitor/safety/joint_merger.h"
 
 namespace arm_collision_monitor {
 namespace {
@@ -107,7 +108,8 @@ JointCsv ReadJointCsv(const std::string& path) {
 }
 
 std::vector<Eigen::VectorXd> JointCsvInModelOrder(
-    const JointCsv& csv, const std::vector<std::string>& model_joint_names) {
+    const JointCsv& csv, const std::vector<std::string>& model_joint_names,
+    const std::vector<std::pair<int, double>>& defaults) {
   std::unordered_map<std::string, int> model_index;
   for (std::size_t j = 0; j < model_joint_names.size(); ++j) {
     model_index.emplace(model_joint_names[j], static_cast<int>(j));
@@ -121,17 +123,25 @@ std::vector<Eigen::VectorXd> JointCsvInModelOrder(
     }
     column_of[it->second] = static_cast<int>(c);
   }
+  Eigen::VectorXd q_default = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(column_of.size()));
+  std::vector<bool> has_default(column_of.size(), false);
+  for (const auto& [q_index, position] : defaults) {
+    q_default[q_index] = position;
+    has_default[static_cast<std::size_t>(q_index)] = true;
+  }
   for (std::size_t j = 0; j < model_joint_names.size(); ++j) {
-    if (column_of[j] < 0) {
+    if (column_of[j] < 0 && !has_default[j]) {
       throw LoadError(csv.path + ": header: no column for model joint '" +
-                      model_joint_names[j] + "'");
+                      model_joint_names[j] + "' (" + kJointDefaultsHint + ")");
     }
   }
   std::vector<Eigen::VectorXd> rows;
   rows.reserve(csv.rows.size());
   for (const Eigen::VectorXd& row : csv.rows) {
     Eigen::VectorXd q(static_cast<Eigen::Index>(model_joint_names.size()));
-    for (std::size_t j = 0; j < model_joint_names.size(); ++j) q[j] = row[column_of[j]];
+    for (std::size_t j = 0; j < model_joint_names.size(); ++j) {
+      q[j] = column_of[j] >= 0 ? row[column_of[j]] : q_default[j];
+    }
     rows.push_back(q);
   }
   return rows;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -24,9 +25,11 @@ struct JointCsv {
 JointCsv ReadJointCsv(const std::string& path);
 
 /// The rows re-ordered as `model_joint_names` (Workcell::joint_names), matched by name. Done
-/// once at start-up, so every column must be a model joint and every model joint a column;
+/// once at start-up, so every column must be a model joint and every model joint a column or
+/// in `defaults` ((q index, position), Workcell::joint_defaults: the position in every row);
 /// otherwise throws LoadError naming the file and the joint.
 std::vector<Eigen::VectorXd> JointCsvInModelOrder(
-    const JointCsv& csv, const std::vector<std::string>& model_joint_names);
+    const JointCsv& csv, const std::vector<std::string>& model_joint_names,
+    const std::vector<std::pair<int, double>>& defaults = {});
 
 }  // namespace arm_collision_monitor
