@@ -1,18 +1,22 @@
 // replay: checks a recorded or planned trajectory offline, without ROS running. Reads a bag of
-// sensor_msgs/JointState (any topics, merged by joint name with the node's JointMerger) or
-// a joint CSV file (tasks/joint_csv.h), runs the Monitor (or a peer checker) once per cycle and
-// prints the warnings, the cycle times and the broad-phase counters, as text or JSON
+// sensor_msgs/JointState and trajectory_msgs/JointTrajectory (any topics, merged by joint name
+// with the node's JointMerger; a trajectory's points are samples, in order) or a joint CSV file
+// (tasks/joint_csv.h), runs the Monitor (or a peer checker) once per cycle and prints the
+// warnings, the cycle times and the broad-phase counters, as text or JSON
 // (replay/replay_output.cpp).
 //
 //   rosrun arm_collision_monitor replay [options] <file.bag | file.csv>
 //
 // Start-up is the node's (MonitorNode): the config's tolerance_m reaches LoadWorkcell and the
 // workcell's start-up findings are printed (on stderr) before the run.
-// A bag cycle is one sample of every arm: consecutive messages with the same header stamp are
-// merged, then the Monitor runs once (the node instead runs once per message; see README).
+// A bag cycle is one sample of every arm: consecutive samples (messages, trajectory points) with
+// the same stamp are merged, then the Monitor runs once (the node instead runs once per message;
+// see README).
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <exception>
+#include <limits>
 #include <memory>
 #include <string>
 #include <utility>
@@ -22,6 +26,7 @@
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
 #include <sensor_msgs/JointState.h>
+#include <trajectory_msgs/JointTrajectory.h>
 
 #include "arm_collision_monitor/geometry/distance.h"
 #include "arm_collision_monitor/monitor/monitor.h"
@@ -48,8 +53,10 @@ const char* kUsage =
     "usage: replay [options] <file.bag | file.csv>\n"
     "  Runs the collision monitor offline over a trajectory and reports, per cycle, every pair\n"
     "  closer than its tolerances, plus cycle times and broad-phase counters.\n"
-    "  file.bag: sensor_msgs/JointState on any topics, merged by joint name; messages with\n"
-    "            equal header stamps form one cycle.\n"
+    "  file.bag: sensor_msgs/JointState and trajectory_msgs/JointTrajectory (a planned path:\n"
+    "            each point a sample at header.stamp, or the bag's time when 0, plus its\n"
+    "            time_from_start) on any topics, merged by joint name in bag order;\n"
+    "            consecutive samples with equal stamps form one cycle.\n"
     "  file.csv: a header row of joint names (optionally 'time_s' first), one row per cycle.\n"
     "options:\n"
     "  --urdf F --scene F --config F   workcell and monitor options (default: the package's\n"
@@ -131,11 +138,28 @@ bool EndsWith(const std::string& s, const std::string& suffix) {
          s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
+// The stamp of `point` of a trajectory that starts at `start`, or false when it is out of
+// ros::Time's range (ros::Time's own arithmetic would throw).
+bool PointStamp(const ros::Time& start, const trajectory_msgs::JointTrajectoryPoint& point,
+                ros::Time* stamp) {
+  const std::int64_t ns =
+      static_cast<std::int64_t>(start.toNSec()) + point.time_from_start.toNSec();
+  constexpr std::int64_t kLastNs = std::int64_t{std::numeric_limits<std::uint32_t>::max()} *
+                                       1000000000 + 999999999;
+  if (ns < 0 || ns > kLastNs) return false;
+  stamp->fromNSec(static_cast<std::uint64_t>(ns));
+  return true;
+}
+
 Input ReadBag(const std::string& path, const Workcell& workcell) {
   rosbag::Bag bag(path, rosbag::bagmode::Read);
-  rosbag::View view(bag, rosbag::TypeQuery("sensor_msgs/JointState"));
-  if (view.size() == 0) throw LoadError(path + ": no sensor_msgs/JointState message");
-  // The stamp checks compare each message with its own stamp as "now": offline, time is the
+  rosbag::View view(bag, rosbag::TypeQuery(std::vector<std::string>{
+                             "sensor_msgs/JointState", "trajectory_msgs/JointTrajectory"}));
+  if (view.size() == 0) {
+    throw LoadError(path +
+                    ": no sensor_msgs/JointState or trajectory_msgs/JointTrajectory message");
+  }
+  // The stamp checks compare each sample with its own stamp as "now": offline, time is the
   // bag's. The timeout only bounds stamps going backwards, which is still refused.
   JointMerger input(workcell.joint_names, 1.0);
   for (const auto& [q_index, position] : workcell.joint_defaults) {
@@ -154,24 +178,42 @@ Input ReadBag(const std::string& path, const Workcell& workcell) {
     result.q.push_back(input.q());
     result.time_s.push_back((group_stamp - first_stamp).toSec());
   };
-  for (const rosbag::MessageInstance& m : view) {
-    const sensor_msgs::JointState::ConstPtr msg = m.instantiate<sensor_msgs::JointState>();
-    if (!msg) continue;
+  // One sample: a JointState message or a trajectory point, in bag order.
+  auto merge = [&](const NamedPositions& sample, const ros::Time& stamp) {
     ++result.messages;
-    if (has_group && msg->header.stamp != group_stamp) flush();
-    if (!has_group || msg->header.stamp != group_stamp) {
-      group_stamp = msg->header.stamp;
+    if (has_group && stamp != group_stamp) flush();
+    if (!has_group || stamp != group_stamp) {
+      group_stamp = stamp;
       has_group = true;
     }
-    const MergeStatus status =
-        input.Merge(ToNamedPositions(*msg), msg->header.stamp.toSec());
+    const MergeStatus status = input.Merge(sample, stamp.toSec());
     if (status != MergeStatus::kAccepted) ++result.refused[MergeStatusName(status)];
+  };
+  for (const rosbag::MessageInstance& m : view) {
+    if (const auto msg = m.instantiate<sensor_msgs::JointState>()) {
+      merge(ToNamedPositions(*msg), msg->header.stamp);
+      continue;
+    }
+    const auto plan = m.instantiate<trajectory_msgs::JointTrajectory>();
+    if (!plan) continue;
+    // A planned path: each point is a sample of the trajectory's joints at header.stamp +
+    // time_from_start; a stamp of 0 (MoveIt's "start now") is the time the bag recorded it.
+    const ros::Time start = plan->header.stamp.isZero() ? m.getTime() : plan->header.stamp;
+    for (const trajectory_msgs::JointTrajectoryPoint& point : plan->points) {
+      ros::Time stamp;
+      if (!PointStamp(start, point, &stamp)) {
+        ++result.messages;
+        ++result.refused["time_out_of_range"];
+        continue;
+      }
+      merge(NamedPositions{plan->joint_names, point.positions, stamp.toSec()}, stamp);
+    }
   }
   flush();
   if (!input.is_complete()) {
     throw LoadError(path + ": model joint '" + input.joint_name(input.FirstMissingJoint()) +
-                    "' is in no accepted sensor_msgs/JointState message (" + kJointDefaultsHint +
-                    ")");
+                    "' is in no accepted sensor_msgs/JointState message or "
+                    "trajectory_msgs/JointTrajectory point (" + kJointDefaultsHint + ")");
   }
   return result;
 }

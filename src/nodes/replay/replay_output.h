@@ -32,8 +32,9 @@ struct Options {
 struct Input {
   std::vector<Eigen::VectorXd> q;
   std::vector<double> time_s;  ///< since the first cycle
-  std::uint64_t messages = 0;
-  std::map<std::string, std::uint64_t> refused;  ///< MergeStatusName -> count
+  std::uint64_t messages = 0;  ///< samples read: JointState messages, trajectory points, rows
+  /// MergeStatusName (or "time_out_of_range": a trajectory point's stamp) -> count
+  std::map<std::string, std::uint64_t> refused;
   std::uint64_t incomplete_cycles = 0;           ///< before every joint was received
 };
 

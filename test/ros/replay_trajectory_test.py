@@ -1,0 +1,176 @@
+#!/usr/bin/python3
+"""replay checks planned paths (test/ros/replay_trajectory.test): a bag of
+trajectory_msgs/JointTrajectory, each point a sample at header.stamp (the bag's time when 0) plus
+its time_from_start. The seed's task 2, written as one trajectory of both arms, replays as the
+same cycles, times and warnings as its recording of sensor_msgs/JointState; every tenth point
+alone (a sparse plan) still warns every pair the dense run warns; a plan of two points warns,
+between them, a pair that neither point comes near (the swept check); a plan of
+one arm joins the other arm's state recorded at its start; a point of the wrong size or whose
+stamp is out of ros::Time's range is refused and counted, the others replay."""
+import json
+import os
+import tempfile
+import unittest
+
+import rosbag
+import rospkg
+import rospy
+import rostest
+from sensor_msgs.msg import JointState
+from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
+
+from acm_test_util import LEFT_JOINTS, RIGHT_JOINTS, rosrun
+
+PKG = 'arm_collision_monitor'
+
+
+def both_arm_samples(bag_path):
+    """[(stamp, positions in LEFT_JOINTS + RIGHT_JOINTS order)] of a recording of both arms whose
+    two messages of a cycle share their stamp."""
+    by_stamp = {}
+    with rosbag.Bag(bag_path) as bag:
+        for _, msg, _ in bag.read_messages():
+            by_stamp.setdefault(msg.header.stamp, {}).update(zip(msg.name, msg.position))
+    return [(stamp, [joints[name] for name in LEFT_JOINTS + RIGHT_JOINTS])
+            for stamp, joints in sorted(by_stamp.items())]
+
+
+def write_plan(path, samples, bad_points=()):
+    """One JointTrajectory of both arms with the samples as points, header.stamp 0 (MoveIt's
+    'start now'), recorded at the first sample's time; `bad_points` are appended after them."""
+    start = samples[0][0]
+    plan = JointTrajectory(joint_names=LEFT_JOINTS + RIGHT_JOINTS)
+    for stamp, positions in samples:
+        plan.points.append(JointTrajectoryPoint(positions=positions,
+                                                time_from_start=stamp - start))
+    plan.points.extend(bad_points)
+    with rosbag.Bag(path, 'w') as bag:
+        bag.write('/move_group/planned_path', plan, start)
+
+
+class ReplayTrajectoryTest(unittest.TestCase):
+
+    @classmethod
+    def setUpClass(cls):
+        package = rospkg.RosPack().get_path(PKG)
+        cls.recording = os.path.join(package, 'test', 'bags', 'task2.bag')
+        cls.recording_task3 = os.path.join(package, 'test', 'bags', 'task3.bag')
+        cls.samples = both_arm_samples(cls.recording)
+        cls.directory = tempfile.mkdtemp(prefix='acm_replay_trajectory_')
+
+    @staticmethod
+    def replay(bag_path):
+        result = rosrun('replay', '--task', '2', '--json', bag_path)
+        return result, (json.loads(result.stdout) if result.returncode == 0 else None)
+
+    @staticmethod
+    def warned_pairs(report, key):
+        return [sorted((w[0], w[1]) for w in cycle[key]) for cycle in report['per_cycle']]
+
+    def test_a_plan_replays_as_its_recording(self):
+        recorded, recorded_report = self.replay(self.recording)
+        self.assertEqual(recorded.returncode, 0, recorded.stderr)
+        plan_path = os.path.join(self.directory, 'plan.bag')
+        write_plan(plan_path, self.samples)
+        planned, report = self.replay(plan_path)
+        self.assertEqual(planned.returncode, 0, planned.stderr)
+        self.assertEqual(len(self.samples), 150)
+        self.assertEqual(report['cycles'], 150)
+        self.assertEqual(report['messages'], 150)  # one sample a point
+        self.assertEqual(report['refused_messages'], {})
+        self.assertEqual(report['incomplete_cycles'], 0)
+        self.assertEqual([c['time_s'] for c in report['per_cycle']],
+                         [c['time_s'] for c in recorded_report['per_cycle']])
+        self.assertGreater(recorded_report['warning_cycles'], 0)
+        self.assertEqual(self.warned_pairs(report, 'warnings'),
+                         self.warned_pairs(recorded_report, 'warnings'))
+        self.assertEqual(self.warned_pairs(report, 'between_samples'),
+                         self.warned_pairs(recorded_report, 'between_samples'))
+
+    def test_a_sparse_plan_still_warns_every_pair(self):
+        _, dense = self.replay(self.recording)
+        sparse_path = os.path.join(self.directory, 'sparse.bag')
+        write_plan(sparse_path, self.samples[::10])
+        result, sparse = self.replay(sparse_path)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertEqual(sparse['cycles'], 15)
+        dense_pairs = {pair for cycle in self.warned_pairs(dense, 'warnings') for pair in cycle}
+        at_samples = {pair for cycle in self.warned_pairs(sparse, 'warnings') for pair in cycle}
+        between = {pair for cycle in self.warned_pairs(sparse, 'between_samples')
+                   for pair in cycle}
+        self.assertTrue(dense_pairs)
+        self.assertEqual(dense_pairs - (at_samples | between), set())
+
+    def test_what_lies_between_two_points_is_warned(self):
+        # Task 3's right arm at a pose beside front_box (its cycle 515: right_link7 touches the
+        # table), planned from right_joint1 - 0.6 rad to + 0.6 rad in one step: at both points it
+        # touches the table only; on the way right_link6 sweeps through front_box.
+        stamp, pose = both_arm_samples(self.recording_task3)[515]
+        joint = (LEFT_JOINTS + RIGHT_JOINTS).index('right_joint1')
+        start, end = list(pose), list(pose)
+        start[joint] -= 0.6
+        end[joint] += 0.6
+        path = os.path.join(self.directory, 'two_points.bag')
+        write_plan(path, [(stamp, start), (stamp + rospy.Duration(1.0), end)])
+        result = rosrun('replay', '--task', '3', '--json', path)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        report = json.loads(result.stdout)
+        self.assertEqual(report['cycles'], 2)
+        for cycle in report['per_cycle']:
+            self.assertEqual([(w[0], w[1]) for w in cycle['warnings']],
+                             [('right_link7', 'front_table_top')])
+        between = report['per_cycle'][1]['between_samples']
+        self.assertEqual([(w[0], w[1]) for w in between], [('right_link6', 'front_box')])
+        self.assertTrue(0.0 < between[0][3] < 1.0, between)  # the step fraction
+
+    def test_a_one_arm_plan_starts_where_the_other_arm_was_recorded(self):
+        # The right arm's state at the plan's start, then a plan of the left arm alone: the
+        # plan's first point has the state's stamp (header.stamp 0: the time the bag recorded
+        # the plan; or header.stamp itself, recorded later), so the two make the first cycle.
+        start = self.samples[0][0]
+        for header_stamp, recorded_at in ((rospy.Time(0), start),
+                                          (start, start + rospy.Duration(5.0))):
+            state = JointState(name=RIGHT_JOINTS, position=self.samples[0][1][7:])
+            state.header.stamp = start
+            plan = JointTrajectory(joint_names=LEFT_JOINTS)
+            plan.header.stamp = header_stamp
+            for stamp, positions in self.samples[:20]:
+                plan.points.append(JointTrajectoryPoint(positions=positions[:7],
+                                                        time_from_start=stamp - start))
+            path = os.path.join(self.directory, 'left_plan.bag')
+            with rosbag.Bag(path, 'w') as bag:
+                # recorded just before the plan (a bag need not keep the order of equal times)
+                bag.write('/right_arm/joint_states', state, start - rospy.Duration(0.01))
+                bag.write('/move_group/planned_path', plan, recorded_at)
+            result, report = self.replay(path)
+            self.assertEqual(result.returncode, 0, result.stderr)
+            self.assertEqual(report['messages'], 21)
+            self.assertEqual(report['incomplete_cycles'], 0, header_stamp)
+            self.assertEqual(report['cycles'], 20, header_stamp)
+            self.assertEqual(report['refused_messages'], {})
+
+    def test_bad_points_are_refused_and_counted(self):
+        short = JointTrajectoryPoint(positions=self.samples[-1][1][:7],
+                                     time_from_start=rospy.Duration(100.0))
+        before_time = JointTrajectoryPoint(positions=self.samples[-1][1],
+                                           time_from_start=rospy.Duration(-2.0e9))
+        path = os.path.join(self.directory, 'bad_points.bag')
+        write_plan(path, self.samples[:20], bad_points=[short, before_time])
+        result, report = self.replay(path)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertEqual(report['messages'], 22)
+        self.assertEqual(report['refused_messages'], {'wrong_size': 1, 'time_out_of_range': 1})
+        self.assertEqual(report['cycles'], 21)  # the short point's cycle repeats the last q
+
+    def test_a_bag_without_joint_input_names_both_types(self):
+        path = os.path.join(self.directory, 'empty.bag')
+        with rosbag.Bag(path, 'w'):
+            pass
+        result, _ = self.replay(path)
+        self.assertEqual(result.returncode, 1)
+        self.assertIn('empty.bag: no sensor_msgs/JointState or trajectory_msgs/JointTrajectory '
+                      'message', result.stderr)
+
+
+if __name__ == '__main__':
+    rostest.rosrun(PKG, 'replay_trajectory', ReplayTrajectoryTest)
