@@ -1,9 +1,9 @@
 // replay: checks a recorded or planned trajectory offline, without ROS running. Reads a bag of
-// sensor_msgs/JointState and trajectory_msgs/JointTrajectory (any topics, merged by joint name
-// with the node's JointMerger; a trajectory's points are samples, in order) or a joint CSV file
-// (tasks/joint_csv.h), runs the Monitor (or a peer checker) once per cycle and prints the
-// warnings, the cycle times and the broad-phase counters, as text or JSON
-// (replay/replay_output.cpp).
+// sensor_msgs/JointState, trajectory_msgs/JointTrajectory and moveit_msgs/DisplayTrajectory (any
+// topics, merged by joint name with the node's JointMerger; a trajectory's points are samples,
+// in order) or a joint CSV file (tasks/joint_csv.h), runs the Monitor (or a peer checker) once
+// per cycle and prints the warnings, the cycle times and the broad-phase counters, as text or
+// JSON (replay/replay_output.cpp).
 //
 //   rosrun arm_collision_monitor replay [options] <file.bag | file.csv>
 //
@@ -23,6 +23,7 @@
 #include <vector>
 
 #include <ros/package.h>
+#include <ros/serialization.h>
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
 #include <sensor_msgs/JointState.h>
@@ -32,6 +33,7 @@
 #include "arm_collision_monitor/monitor/monitor.h"
 #include "arm_collision_monitor/monitor/monitor_startup.h"
 #include "arm_collision_monitor/ros/conversions.h"
+#include "arm_collision_monitor/ros/display_trajectory.h"
 #include "arm_collision_monitor/ros/resource_fetch_ros.h"
 #include "arm_collision_monitor/scene/workcell.h"
 #include "arm_collision_monitor/scene/workcell_shapes.h"
@@ -53,10 +55,12 @@ const char* kUsage =
     "usage: replay [options] <file.bag | file.csv>\n"
     "  Runs the collision monitor offline over a trajectory and reports, per cycle, every pair\n"
     "  closer than its tolerances, plus cycle times and broad-phase counters.\n"
-    "  file.bag: sensor_msgs/JointState and trajectory_msgs/JointTrajectory (a planned path:\n"
+    "  file.bag: sensor_msgs/JointState, trajectory_msgs/JointTrajectory (a planned path:\n"
     "            each point a sample at header.stamp, or the bag's time when 0, plus its\n"
-    "            time_from_start) on any topics, merged by joint name in bag order;\n"
-    "            consecutive samples with equal stamps form one cycle.\n"
+    "            time_from_start) and moveit_msgs/DisplayTrajectory (move_group's\n"
+    "            display_planned_path: its start state, then its trajectories in turn) on any\n"
+    "            topics, merged by joint name in bag order; consecutive samples with equal\n"
+    "            stamps form one cycle.\n"
     "  file.csv: a header row of joint names (optionally 'time_s' first), one row per cycle.\n"
     "options:\n"
     "  --urdf F --scene F --config F   workcell and monitor options (default: the package's\n"
@@ -138,84 +142,136 @@ bool EndsWith(const std::string& s, const std::string& suffix) {
          s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-// The stamp of `point` of a trajectory that starts at `start`, or false when it is out of
-// ros::Time's range (ros::Time's own arithmetic would throw).
-bool PointStamp(const ros::Time& start, const trajectory_msgs::JointTrajectoryPoint& point,
-                ros::Time* stamp) {
-  const std::int64_t ns =
-      static_cast<std::int64_t>(start.toNSec()) + point.time_from_start.toNSec();
-  constexpr std::int64_t kLastNs = std::int64_t{std::numeric_limits<std::uint32_t>::max()} *
-                                       1000000000 + 999999999;
-  if (ns < 0 || ns > kLastNs) return false;
-  stamp->fromNSec(static_cast<std::uint64_t>(ns));
-  return true;
+// A bag's samples (JointState messages, trajectory points) merged into cycles, in bag order:
+// consecutive samples with the same stamp form one cycle.
+class BagCycles {
+ public:
+  // The stamp checks compare each sample with its own stamp as "now": offline, time is the
+  // bag's. The timeout only bounds stamps going backwards, which is still refused.
+  explicit BagCycles(const Workcell& workcell) : input_(workcell.joint_names, 1.0) {
+    for (const auto& [q_index, position] : workcell.joint_defaults) {
+      input_.SetDefault(q_index, position);
+    }
+  }
+
+  void Merge(const NamedPositions& sample, const ros::Time& stamp) {
+    ++result_.messages;
+    if (!has_group_ || stamp != group_stamp_) {
+      Flush();
+      group_stamp_ = stamp;
+      has_group_ = true;
+    }
+    const MergeStatus status = input_.Merge(sample, stamp.toSec());
+    if (status != MergeStatus::kAccepted) ++result_.refused[MergeStatusName(status)];
+  }
+
+  /// A planned path: each point is a sample of the trajectory's joints at `start` +
+  /// time_from_start. Returns the last point's stamp (`start` without points).
+  ros::Time MergeTrajectory(const trajectory_msgs::JointTrajectory& plan, const ros::Time& start) {
+    ros::Time last = start;
+    for (const trajectory_msgs::JointTrajectoryPoint& point : plan.points) {
+      ros::Time stamp;
+      if (!PointStamp(start, point, &stamp)) {
+        ++result_.messages;
+        ++result_.refused["time_out_of_range"];
+        continue;
+      }
+      Merge(NamedPositions{plan.joint_names, point.positions, stamp.toSec()}, stamp);
+      last = stamp;
+    }
+    return last;
+  }
+
+  /// The cycles; a LoadError naming the bag at `path` if some joint was never given.
+  Input Finish(const std::string& path) {
+    Flush();
+    if (!input_.is_complete()) {
+      throw LoadError(path + ": model joint '" + input_.joint_name(input_.FirstMissingJoint()) +
+                      "' is in no accepted sensor_msgs/JointState message or trajectory point (" +
+                      kJointDefaultsHint + ")");
+    }
+    return std::move(result_);
+  }
+
+ private:
+  // The stamp of `point` of a trajectory that starts at `start`, or false when it is out of
+  // ros::Time's range (ros::Time's own arithmetic would throw).
+  static bool PointStamp(const ros::Time& start,
+                         const trajectory_msgs::JointTrajectoryPoint& point, ros::Time* stamp) {
+    const std::int64_t ns =
+        static_cast<std::int64_t>(start.toNSec()) + point.time_from_start.toNSec();
+    constexpr std::int64_t kLastNs =
+        std::int64_t{std::numeric_limits<std::uint32_t>::max()} * 1000000000 + 999999999;
+    if (ns < 0 || ns > kLastNs) return false;
+    stamp->fromNSec(static_cast<std::uint64_t>(ns));
+    return true;
+  }
+
+  // Ends the cycle of the samples so far (counted as incomplete before every joint is known).
+  void Flush() {
+    if (!has_group_) return;
+    if (!input_.is_complete()) {
+      ++result_.incomplete_cycles;
+      return;
+    }
+    if (result_.q.empty()) first_stamp_ = group_stamp_;
+    result_.q.push_back(input_.q());
+    result_.time_s.push_back((group_stamp_ - first_stamp_).toSec());
+  }
+
+  JointMerger input_;
+  Input result_;
+  ros::Time group_stamp_, first_stamp_;
+  bool has_group_ = false;
+};
+
+// The moveit_msgs/DisplayTrajectory `m` of the bag at `path`; a LoadError naming the message
+// when it cannot be read.
+DisplayedPlan ReadDisplayed(const std::string& path, const rosbag::MessageInstance& m) {
+  std::vector<std::uint8_t> bytes(m.size());
+  ros::serialization::OStream stream(bytes.data(), static_cast<std::uint32_t>(bytes.size()));
+  m.write(stream);
+  try {
+    return ReadDisplayTrajectory(m.getMessageDefinition(), bytes.data(), bytes.size());
+  } catch (const std::runtime_error& e) {
+    throw LoadError(path + ": " + kDisplayTrajectoryType + " on " + m.getTopic() +
+                    " at bag time " + std::to_string(m.getTime().toSec()) + ": " + e.what());
+  }
 }
 
 Input ReadBag(const std::string& path, const Workcell& workcell) {
   rosbag::Bag bag(path, rosbag::bagmode::Read);
   rosbag::View view(bag, rosbag::TypeQuery(std::vector<std::string>{
-                             "sensor_msgs/JointState", "trajectory_msgs/JointTrajectory"}));
+                             "sensor_msgs/JointState", "trajectory_msgs/JointTrajectory",
+                             kDisplayTrajectoryType}));
   if (view.size() == 0) {
-    throw LoadError(path +
-                    ": no sensor_msgs/JointState or trajectory_msgs/JointTrajectory message");
+    throw LoadError(path + ": no sensor_msgs/JointState, trajectory_msgs/JointTrajectory or " +
+                    kDisplayTrajectoryType + " message");
   }
-  // The stamp checks compare each sample with its own stamp as "now": offline, time is the
-  // bag's. The timeout only bounds stamps going backwards, which is still refused.
-  JointMerger input(workcell.joint_names, 1.0);
-  for (const auto& [q_index, position] : workcell.joint_defaults) {
-    input.SetDefault(q_index, position);
-  }
-  Input result;
-  ros::Time group_stamp, first_stamp;
-  bool has_group = false;
-  auto flush = [&] {
-    if (!has_group) return;
-    if (!input.is_complete()) {
-      ++result.incomplete_cycles;
-      return;
-    }
-    if (result.q.empty()) first_stamp = group_stamp;
-    result.q.push_back(input.q());
-    result.time_s.push_back((group_stamp - first_stamp).toSec());
-  };
-  // One sample: a JointState message or a trajectory point, in bag order.
-  auto merge = [&](const NamedPositions& sample, const ros::Time& stamp) {
-    ++result.messages;
-    if (has_group && stamp != group_stamp) flush();
-    if (!has_group || stamp != group_stamp) {
-      group_stamp = stamp;
-      has_group = true;
-    }
-    const MergeStatus status = input.Merge(sample, stamp.toSec());
-    if (status != MergeStatus::kAccepted) ++result.refused[MergeStatusName(status)];
-  };
+  BagCycles cycles(workcell);
   for (const rosbag::MessageInstance& m : view) {
     if (const auto msg = m.instantiate<sensor_msgs::JointState>()) {
-      merge(ToNamedPositions(*msg), msg->header.stamp);
-      continue;
-    }
-    const auto plan = m.instantiate<trajectory_msgs::JointTrajectory>();
-    if (!plan) continue;
-    // A planned path: each point is a sample of the trajectory's joints at header.stamp +
-    // time_from_start; a stamp of 0 (MoveIt's "start now") is the time the bag recorded it.
-    const ros::Time start = plan->header.stamp.isZero() ? m.getTime() : plan->header.stamp;
-    for (const trajectory_msgs::JointTrajectoryPoint& point : plan->points) {
-      ros::Time stamp;
-      if (!PointStamp(start, point, &stamp)) {
-        ++result.messages;
-        ++result.refused["time_out_of_range"];
-        continue;
+      cycles.Merge(ToNamedPositions(*msg), msg->header.stamp);
+    } else if (const auto plan = m.instantiate<trajectory_msgs::JointTrajectory>()) {
+      // A header.stamp of 0 (MoveIt's "start now") is the time the bag recorded it.
+      cycles.MergeTrajectory(*plan,
+                             plan->header.stamp.isZero() ? m.getTime() : plan->header.stamp);
+    } else if (m.getDataType() == kDisplayTrajectoryType) {
+      // MoveIt's display of a plan, at the time the bag recorded it: the start state (the
+      // joints the trajectories leave out too), then the trajectories one after the other.
+      const DisplayedPlan displayed = ReadDisplayed(path, m);
+      ros::Time start = m.getTime();
+      const sensor_msgs::JointState& state = displayed.start_state;
+      if (!state.name.empty()) {
+        cycles.Merge(NamedPositions{state.name, state.position, start.toSec()}, start);
       }
-      merge(NamedPositions{plan->joint_names, point.positions, stamp.toSec()}, stamp);
+      for (const trajectory_msgs::JointTrajectory& plan : displayed.trajectories) {
+        start = cycles.MergeTrajectory(plan,
+                                       plan.header.stamp.isZero() ? start : plan.header.stamp);
+      }
     }
   }
-  flush();
-  if (!input.is_complete()) {
-    throw LoadError(path + ": model joint '" + input.joint_name(input.FirstMissingJoint()) +
-                    "' is in no accepted sensor_msgs/JointState message or "
-                    "trajectory_msgs/JointTrajectory point (" + kJointDefaultsHint + ")");
-  }
-  return result;
+  return cycles.Finish(path);
 }
 
 Input ReadCsv(const std::string& path, const Workcell& workcell) {

@@ -1,14 +1,20 @@
 #!/usr/bin/python3
-"""replay checks planned paths (test/ros/replay_trajectory.test): a bag of
-trajectory_msgs/JointTrajectory, each point a sample at header.stamp (the bag's time when 0) plus
-its time_from_start. The seed's task 2, written as one trajectory of both arms, replays as the
-same cycles, times and warnings as its recording of sensor_msgs/JointState; every tenth point
-alone (a sparse plan) still warns every pair the dense run warns; a plan of two points warns,
-between them, a pair that neither point comes near (the swept check); a plan of
-one arm joins the other arm's state recorded at its start; a point of the wrong size or whose
-stamp is out of ros::Time's range is refused and counted, the others replay."""
+"""replay checks planned paths (test/ros/replay_trajectory.test). A bag of
+trajectory_msgs/JointTrajectory: each point a sample at header.stamp (the bag's time when 0)
+plus its time_from_start. The seed's task 2, written as one trajectory of both arms, replays as
+the same cycles, times and warnings as its recording of sensor_msgs/JointState; every tenth
+point alone (a sparse plan) still warns every pair the dense run warns; a plan of two points
+warns, between them, a pair that neither point comes near (the swept check); a plan of one arm
+joins the other arm's state recorded at its start; a point of the wrong size or whose stamp is
+out of ros::Time's range is refused and counted, the others replay. MoveIt's display of a plan
+(moveit_msgs/DisplayTrajectory, written raw with the definition a bag carries, as this machine
+has no moveit_msgs) replays as its recording in either layout of RobotTrajectory, a plan of one
+arm taking the other from its start state; one cut short or whose definition differs from this
+build's is an error naming the bag, the message and the field."""
+import io
 import json
 import os
+import struct
 import tempfile
 import unittest
 
@@ -16,8 +22,8 @@ import rosbag
 import rospkg
 import rospy
 import rostest
-from sensor_msgs.msg import JointState
-from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
+from sensor_msgs.msg import JointState, MultiDOFJointState
+from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint, MultiDOFJointTrajectory
 
 from acm_test_util import LEFT_JOINTS, RIGHT_JOINTS, rosrun
 
@@ -46,6 +52,100 @@ def write_plan(path, samples, bad_points=()):
     plan.points.extend(bad_points)
     with rosbag.Bag(path, 'w') as bag:
         bag.write('/move_group/planned_path', plan, start)
+
+
+# moveit_msgs/DisplayTrajectory without moveit_msgs: the definition a bag carries for it (the
+# type's fields, then each type it uses after a separator line), written from moveit_msgs' .msg
+# files; `group_name` is in RobotTrajectory from MoveIt 1.1 on. AttachedCollisionObject is
+# abridged to three of its fields: the reader skips it by whatever definition the bag gives.
+SEPARATOR = '=' * 80 + '\n'
+MOVEIT_DEFINITIONS = {
+    'moveit_msgs/DisplayTrajectory':
+        '# The model id\nstring model_id\nRobotTrajectory[] trajectory\n'
+        'RobotState trajectory_start\n',
+    'moveit_msgs/RobotTrajectory':
+        'trajectory_msgs/JointTrajectory joint_trajectory\n'
+        'trajectory_msgs/MultiDOFJointTrajectory multi_dof_joint_trajectory\n',
+    'moveit_msgs/RobotState':
+        'sensor_msgs/JointState joint_state\nsensor_msgs/MultiDOFJointState multi_dof_joint_state\n'
+        'AttachedCollisionObject[] attached_collision_objects\nbool is_diff\n',
+    'moveit_msgs/AttachedCollisionObject':
+        'string link_name\nstring[] touch_links\nfloat64 weight\n',
+}
+
+
+def sections(main_type, full_text):
+    """{type: its own fields} of a generated message's full definition text."""
+    parts = full_text.split(SEPARATOR)
+    found = {main_type: parts[0]}
+    for part in parts[1:]:
+        first, _, body = part.partition('\n')
+        found[first[len('MSG: '):].strip()] = body
+    return found
+
+
+def display_definition(group_name, joint_trajectory_text=None):
+    definitions = dict(MOVEIT_DEFINITIONS)
+    if group_name:
+        definitions['moveit_msgs/RobotTrajectory'] += 'string group_name\n'
+    for main_type, cls in (('trajectory_msgs/JointTrajectory', JointTrajectory),
+                           ('trajectory_msgs/MultiDOFJointTrajectory', MultiDOFJointTrajectory),
+                           ('sensor_msgs/JointState', JointState),
+                           ('sensor_msgs/MultiDOFJointState', MultiDOFJointState)):
+        definitions.update(sections(main_type, cls._full_text))
+    if joint_trajectory_text is not None:
+        definitions['trajectory_msgs/JointTrajectoryPoint'] = joint_trajectory_text
+    main = definitions.pop('moveit_msgs/DisplayTrajectory')
+    return main + ''.join('%sMSG: %s\n%s' % (SEPARATOR, name, body)
+                          for name, body in definitions.items())
+
+
+def serialized_string(text):
+    data = text.encode()
+    return struct.pack('<I', len(data)) + data
+
+
+def display_bytes(trajectories, start_state, group_name):
+    """A DisplayTrajectory serialized by display_definition(group_name), with one attached
+    object in its start state."""
+    buff = io.BytesIO()
+    buff.write(serialized_string('dual_arm'))
+    buff.write(struct.pack('<I', len(trajectories)))
+    for trajectory in trajectories:
+        trajectory.serialize(buff)
+        MultiDOFJointTrajectory().serialize(buff)
+        if group_name:
+            buff.write(serialized_string('both_arms'))
+    start_state.serialize(buff)
+    MultiDOFJointState().serialize(buff)
+    buff.write(struct.pack('<I', 1) + serialized_string('left_link7') + struct.pack('<I', 2) +
+               serialized_string('left_link6') + serialized_string('left_link5') +
+               struct.pack('<d', 0.5))
+    buff.write(struct.pack('<B', 0))  # is_diff
+    return buff.getvalue()
+
+
+class DisplayTrajectoryType:
+    """What rosbag's raw write needs of a message class it does not have."""
+    _md5sum = '*'
+
+
+def write_display(path, data, definition, recorded_at):
+    topic = '/move_group/display_planned_path'
+    header = {'topic': topic, 'type': 'moveit_msgs/DisplayTrajectory', 'md5sum': '*',
+              'message_definition': definition}
+    with rosbag.Bag(path, 'w') as bag:
+        bag.write(topic, ('moveit_msgs/DisplayTrajectory', data, '*', DisplayTrajectoryType),
+                  recorded_at, raw=True, connection_header=header)
+
+
+def trajectory_of(samples, joints, start):
+    """The samples' positions of `joints` (a slice of LEFT_JOINTS + RIGHT_JOINTS) from `start`."""
+    plan = JointTrajectory(joint_names=(LEFT_JOINTS + RIGHT_JOINTS)[joints])
+    for stamp, positions in samples:
+        plan.points.append(JointTrajectoryPoint(positions=positions[joints],
+                                                time_from_start=stamp - start))
+    return plan
 
 
 class ReplayTrajectoryTest(unittest.TestCase):
@@ -149,6 +249,74 @@ class ReplayTrajectoryTest(unittest.TestCase):
             self.assertEqual(report['cycles'], 20, header_stamp)
             self.assertEqual(report['refused_messages'], {})
 
+    def test_a_moveit_display_replays_as_its_recording(self):
+        # Task 2 as move_group would display a plan of both arms in two trajectories (the second
+        # timed from the first's end), its start state the first sample; both layouts of
+        # RobotTrajectory.
+        _, recorded = self.replay(self.recording)
+        half = len(self.samples) // 2
+        first = trajectory_of(self.samples[:half], slice(0, 14), self.samples[0][0])
+        second = trajectory_of(self.samples[half:], slice(0, 14), self.samples[half - 1][0])
+        start_state = JointState(name=LEFT_JOINTS + RIGHT_JOINTS, position=self.samples[0][1])
+        for group_name in (False, True):
+            path = os.path.join(self.directory, 'display.bag')
+            write_display(path, display_bytes([first, second], start_state, group_name),
+                          display_definition(group_name), self.samples[0][0])
+            result, report = self.replay(path)
+            self.assertEqual(result.returncode, 0, result.stderr)
+            self.assertEqual(report['messages'], 151, group_name)  # the start state + points
+            self.assertEqual(report['cycles'], 150, group_name)
+            self.assertEqual(report['refused_messages'], {})
+            self.assertEqual(report['incomplete_cycles'], 0)
+            self.assertEqual([c['time_s'] for c in report['per_cycle']],
+                             [c['time_s'] for c in recorded['per_cycle']])
+            self.assertEqual(self.warned_pairs(report, 'warnings'),
+                             self.warned_pairs(recorded, 'warnings'))
+
+    def test_a_moveit_display_of_one_arm_takes_the_other_from_its_start_state(self):
+        start_state = JointState(name=LEFT_JOINTS + RIGHT_JOINTS, position=self.samples[0][1])
+        left = trajectory_of(self.samples[:30], slice(0, 7), self.samples[0][0])
+        path = os.path.join(self.directory, 'display_left.bag')
+        write_display(path, display_bytes([left], start_state, True), display_definition(True),
+                      self.samples[0][0])
+        result, report = self.replay(path)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertEqual((report['cycles'], report['incomplete_cycles']), (30, 0))
+        # Without its start state's right arm, the plan of the left arm is refused, naming one.
+        left_state = JointState(name=LEFT_JOINTS, position=self.samples[0][1][:7])
+        write_display(path, display_bytes([left], left_state, True), display_definition(True),
+                      self.samples[0][0])
+        result, _ = self.replay(path)
+        self.assertEqual(result.returncode, 1)
+        self.assertIn("model joint 'right_joint1' is in no accepted", result.stderr)
+
+    def test_an_unreadable_display_names_the_message_and_field(self):
+        start_state = JointState(name=LEFT_JOINTS + RIGHT_JOINTS, position=self.samples[0][1])
+        plan = trajectory_of(self.samples[:5], slice(0, 14), self.samples[0][0])
+        data = display_bytes([plan], start_state, False)
+        path = os.path.join(self.directory, 'display_bad.bag')
+        where = ('display_bad.bag: moveit_msgs/DisplayTrajectory on '
+                 '/move_group/display_planned_path at bag time ')
+        # Cut short inside the start state.
+        write_display(path, data[:-40], display_definition(False), self.samples[0][0])
+        result, _ = self.replay(path)
+        self.assertEqual(result.returncode, 1)
+        self.assertIn(where, result.stderr)
+        self.assertIn('trajectory_start', result.stderr)
+        self.assertIn('the message ends early', result.stderr)
+        # A definition whose trajectory points differ from this build's.
+        point = sections('trajectory_msgs/JointTrajectoryPoint',
+                         JointTrajectoryPoint._full_text)['trajectory_msgs/JointTrajectoryPoint']
+        write_display(path, data, display_definition(
+            False, point.replace('float64[] positions', 'float32[] positions')),
+            self.samples[0][0])
+        result, _ = self.replay(path)
+        self.assertEqual(result.returncode, 1)
+        self.assertIn(where, result.stderr)
+        self.assertIn('trajectory[0].joint_trajectory: trajectory_msgs/JointTrajectoryPoint is',
+                      result.stderr)
+        self.assertIn('in this build', result.stderr)
+
     def test_bad_points_are_refused_and_counted(self):
         short = JointTrajectoryPoint(positions=self.samples[-1][1][:7],
                                      time_from_start=rospy.Duration(100.0))
@@ -168,8 +336,8 @@ class ReplayTrajectoryTest(unittest.TestCase):
             pass
         result, _ = self.replay(path)
         self.assertEqual(result.returncode, 1)
-        self.assertIn('empty.bag: no sensor_msgs/JointState or trajectory_msgs/JointTrajectory '
-                      'message', result.stderr)
+        self.assertIn('empty.bag: no sensor_msgs/JointState, trajectory_msgs/JointTrajectory or '
+                      'moveit_msgs/DisplayTrajectory message', result.stderr)
 
 
 if __name__ == '__main__':

@@ -1,0 +1,39 @@
+// MoveIt's planned path as move_group publishes it for display (moveit_msgs/DisplayTrajectory on
+// display_planned_path), read from a bag without moveit_msgs: a bag carries the full definition
+// of each message type, and the reader walks the serialized bytes by that definition. It takes
+// out each trajectory's joint_trajectory and the start state's joint_state, whose layouts must
+// equal this build's trajectory_msgs/JointTrajectory and sensor_msgs/JointState field by field;
+// every other field is skipped by its definition, so the versions of moveit_msgs that differ
+// elsewhere (RobotTrajectory's group_name, RobotState's attached objects) read alike.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <sensor_msgs/JointState.h>
+#include <trajectory_msgs/JointTrajectory.h>
+
+namespace arm_collision_monitor {
+
+inline constexpr char kDisplayTrajectoryType[] = "moveit_msgs/DisplayTrajectory";
+
+/// What replay takes from a moveit_msgs/DisplayTrajectory.
+struct DisplayedPlan {
+  /// trajectory_start.joint_state: where the joints are at the start, those the trajectories
+  /// leave out included
+  sensor_msgs::JointState start_state;
+  /// trajectory[k].joint_trajectory in order (executed one after the other)
+  std::vector<trajectory_msgs::JointTrajectory> trajectories;
+};
+
+/// Reads the `size` bytes at `data`, a message of type kDisplayTrajectoryType serialized by
+/// `definition` (the bag connection's message definition: the type's fields, then each type it
+/// uses after a line of '=' and "MSG: <package>/<Type>"). Throws std::runtime_error naming the
+/// field (as a path, e.g. "trajectory[1].joint_trajectory") where the definition lacks what
+/// is read, differs from this build's, or the bytes end early or leave some over.
+DisplayedPlan ReadDisplayTrajectory(const std::string& definition, const std::uint8_t* data,
+                                    std::size_t size);
+
+}  // namespace arm_collision_monitor

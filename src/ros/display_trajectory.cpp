@@ -1,0 +1,295 @@
+#include "arm_collision_monitor/ros/display_trajectory.h"
+
+#include <cstring>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include <ros/message_traits.h>
+#include <ros/serialization.h>
+
+namespace arm_collision_monitor {
+namespace {
+
+// One field of a message definition. Constants are left out: they are not serialized.
+struct Field {
+  std::string type;  ///< a built-in type or "<package>/<Type>"
+  std::string name;
+  bool is_array = false;
+  bool is_fixed = false;         ///< T[N]: no count in the bytes
+  std::uint32_t fixed_count = 0;  ///< N of T[N]
+};
+using Definitions = std::map<std::string, std::vector<Field>>;
+
+// Deeper nesting than any message needs: a definition whose type contains itself stops here.
+constexpr int kMaxDepth = 32;
+// A serialized size larger than any message (1 TiB): fixed sizes are clamped to it.
+constexpr long kTooLarge = 1L << 40;
+
+std::runtime_error Error(const std::string& path, const std::string& what) {
+  return std::runtime_error((path.empty() ? std::string(kDisplayTrajectoryType) : path) + ": " +
+                            what);
+}
+
+// Serialized size of a built-in type, 0 for string (a length, then its bytes), -1 for a message
+// type.
+int BuiltinSize(const std::string& type) {
+  static const std::map<std::string, int> kSizes = {
+      {"bool", 1},    {"int8", 1},    {"uint8", 1},   {"byte", 1},    {"char", 1},
+      {"int16", 2},   {"uint16", 2},  {"int32", 4},   {"uint32", 4},  {"float32", 4},
+      {"int64", 8},   {"uint64", 8},  {"float64", 8}, {"time", 8},    {"duration", 8},
+      {"string", 0}};
+  const auto it = kSizes.find(type);
+  return it == kSizes.end() ? -1 : it->second;
+}
+
+// A field's type as written in the definition of `owner`, made "<package>/<Type>".
+std::string ResolveType(const std::string& type, const std::string& owner) {
+  if (BuiltinSize(type) >= 0 || type.find('/') != std::string::npos) return type;
+  if (type == "Header") return "std_msgs/Header";
+  return owner.substr(0, owner.find('/') + 1) + type;
+}
+
+// The fields of `main_type` and of each type after a line of '=' and "MSG: <package>/<Type>".
+Definitions ParseDefinitions(const std::string& main_type, const std::string& text) {
+  Definitions definitions;
+  std::string owner = main_type;
+  definitions[owner];
+  std::istringstream lines(text);
+  std::string line;
+  for (int number = 1; std::getline(lines, line); ++number) {
+    line = line.substr(0, line.find('#'));
+    std::istringstream tokens(line);
+    std::string type, name;
+    if (!(tokens >> type)) continue;
+    const std::string where = "message definition line " + std::to_string(number);
+    if (type.find_first_not_of('=') == std::string::npos) {
+      owner.clear();
+      continue;
+    }
+    if (type == "MSG:") {
+      if (!(tokens >> owner) || owner.find('/') == std::string::npos) {
+        throw std::runtime_error(where + ": 'MSG:' without a <package>/<Type>");
+      }
+      definitions[owner];
+      continue;
+    }
+    if (owner.empty()) throw std::runtime_error(where + ": a field before its type's 'MSG:' line");
+    if (!(tokens >> name)) throw std::runtime_error(where + ": a field without a name");
+    if (line.find('=') != std::string::npos) continue;  // a constant
+    Field field;
+    field.name = name;
+    const std::size_t bracket = type.find('[');
+    if (bracket != std::string::npos) {
+      const std::string count = type.substr(bracket + 1, type.size() - bracket - 2);
+      if (type.back() != ']' || count.size() > 9 ||
+          count.find_first_not_of("0123456789") != std::string::npos) {
+        throw std::runtime_error(where + ": bad array type '" + type + "'");
+      }
+      field.is_array = true;
+      field.is_fixed = !count.empty();
+      field.fixed_count = field.is_fixed ? static_cast<std::uint32_t>(std::stoul(count)) : 0;
+    }
+    field.type = ResolveType(type.substr(0, bracket), owner);
+    definitions[owner].push_back(field);
+  }
+  return definitions;
+}
+
+// Walks serialized bytes by a message definition.
+class Reader {
+ public:
+  Reader(const Definitions& definitions, const std::uint8_t* data, std::size_t size)
+      : definitions_(definitions), at_(data), end_(data + size) {}
+
+  std::size_t remaining() const { return static_cast<std::size_t>(end_ - at_); }
+
+  const std::vector<Field>& FieldsOf(const std::string& type, const std::string& path) const {
+    const auto it = definitions_.find(type);
+    if (it == definitions_.end()) throw Error(path, "type " + type + " is not in the definition");
+    return it->second;
+  }
+
+  std::uint32_t ReadCount(const std::string& path) {
+    Take(4, path);
+    std::uint32_t count = 0;
+    std::memcpy(&count, at_ - 4, 4);  // little-endian, as ROS serializes (x86 and ARM alike)
+    return count;
+  }
+
+  // The number of elements of `field` (read from the bytes unless fixed); at most the bytes
+  // left, as every element of a type that is not empty takes at least one.
+  std::uint32_t ReadArrayCount(const Field& field, const std::string& path) {
+    const std::uint32_t count = field.is_fixed ? field.fixed_count : ReadCount(path);
+    if (count > remaining()) {
+      throw Error(path, std::to_string(count) + " elements, with " + std::to_string(remaining()) +
+                            " bytes left");
+    }
+    return count;
+  }
+
+  void SkipField(const Field& field, const std::string& owner_path, int depth) {
+    const std::string path = owner_path.empty() ? field.name : owner_path + "." + field.name;
+    if (!field.is_array) {
+      SkipValue(field.type, path, depth);
+      return;
+    }
+    const std::uint32_t count = ReadArrayCount(field, path);
+    const long size = FixedSize(field.type, depth);
+    if (size >= 0) {
+      if (size > 0 && count > remaining() / static_cast<std::size_t>(size)) {
+        throw Error(path, "the message ends early");
+      }
+      Take(static_cast<std::size_t>(size) * count, path);
+      return;
+    }
+    for (std::uint32_t k = 0; k < count; ++k) {
+      SkipValue(field.type, path + "[" + std::to_string(k) + "]", depth);
+    }
+  }
+
+  void SkipValue(const std::string& type, const std::string& path, int depth) {
+    const int builtin = BuiltinSize(type);
+    if (builtin > 0) {
+      Take(static_cast<std::size_t>(builtin), path);
+    } else if (builtin == 0) {
+      Take(ReadCount(path), path);
+    } else {
+      if (depth >= kMaxDepth) throw Error(path, "types nested too deep");
+      for (const Field& field : FieldsOf(type, path)) SkipField(field, path, depth + 1);
+    }
+  }
+
+  // Deserializes a value of `type` into `msg` (this build's type of that name) after checking
+  // that the definition lays it out as this build does; the bytes are walked by the definition
+  // first, so that no count in them can make the deserializer allocate more than they hold.
+  template <typename Msg>
+  void ReadTyped(const std::string& type, const std::string& path, Msg* msg) {
+    const Definitions own =
+        ParseDefinitions(type, ros::message_traits::Definition<Msg>::value());
+    CheckSameLayout(own, type, path, 0);
+    const std::uint8_t* const start = at_;
+    SkipValue(type, path, 0);
+    ros::serialization::IStream stream(const_cast<std::uint8_t*>(start),
+                                       static_cast<std::uint32_t>(at_ - start));
+    ros::serialization::deserialize(stream, *msg);
+    if (stream.getData() != at_) throw Error(path, "bytes not as its definition lays them out");
+  }
+
+ private:
+  void Take(std::size_t bytes, const std::string& path) {
+    if (bytes > remaining()) throw Error(path, "the message ends early");
+    at_ += bytes;
+  }
+
+  // Serialized size of every value of `type`, or -1 when it varies (strings, arrays).
+  long FixedSize(const std::string& type, int depth) const {
+    const int builtin = BuiltinSize(type);
+    if (builtin >= 0) return builtin > 0 ? builtin : -1;
+    const auto it = definitions_.find(type);
+    if (it == definitions_.end() || depth >= kMaxDepth) return -1;
+    long size = 0;
+    for (const Field& field : it->second) {
+      if (field.is_array && !field.is_fixed) return -1;
+      const long element = FixedSize(field.type, depth + 1);
+      if (element < 0) return -1;
+      const long count = field.is_array ? field.fixed_count : 1;
+      // Past kTooLarge the bytes run out anyway: no overflow on the way there.
+      size += count > 0 && element > kTooLarge / count ? kTooLarge : element * count;
+      if (size > kTooLarge) size = kTooLarge;
+    }
+    return size;
+  }
+
+  void CheckSameLayout(const Definitions& own, const std::string& type, const std::string& path,
+                       int depth) const {
+    const std::vector<Field>& fields = FieldsOf(type, path);
+    const std::vector<Field>& expected = own.at(type);
+    auto text = [](const std::vector<Field>& list) {
+      std::string out;
+      for (const Field& f : list) {
+        out += (out.empty() ? "" : "; ") + f.type +
+               (f.is_array ? "[" + (f.is_fixed ? std::to_string(f.fixed_count) : "") + "]" : "") +
+               " " + f.name;
+      }
+      return out;
+    };
+    if (text(fields) != text(expected)) {
+      throw Error(path, type + " is '" + text(fields) + "' in the bag, '" + text(expected) +
+                            "' in this build");
+    }
+    if (depth >= kMaxDepth) throw Error(path, "types nested too deep");
+    for (const Field& field : fields) {
+      if (BuiltinSize(field.type) < 0) CheckSameLayout(own, field.type, path, depth + 1);
+    }
+  }
+
+  const Definitions& definitions_;
+  const std::uint8_t* at_;
+  const std::uint8_t* const end_;
+};
+
+// Whether `type` has the field `name` of `field_type` (an array or not, as `is_array`).
+bool HasField(const Reader& reader, const std::string& type, const std::string& name,
+              const std::string& field_type, bool is_array, const std::string& path) {
+  for (const Field& field : reader.FieldsOf(type, path)) {
+    if (field.name == name && field.type == field_type && field.is_array == is_array) return true;
+  }
+  return false;
+}
+
+// Reads the value of `type` at the reader, taking its field `wanted` (of type Msg, when it has
+// one) into *msg.
+template <typename Msg>
+void ReadPart(Reader* reader, const std::string& type, const std::string& path,
+              const std::string& wanted, Msg* msg) {
+  const std::string wanted_type = ros::message_traits::DataType<Msg>::value();
+  for (const Field& field : reader->FieldsOf(type, path)) {
+    if (!field.is_array && field.name == wanted && field.type == wanted_type) {
+      reader->ReadTyped(field.type, path + "." + wanted, msg);
+    } else {
+      reader->SkipField(field, path, 1);
+    }
+  }
+}
+
+}  // namespace
+
+DisplayedPlan ReadDisplayTrajectory(const std::string& definition, const std::uint8_t* data,
+                                    std::size_t size) {
+  const Definitions definitions = ParseDefinitions(kDisplayTrajectoryType, definition);
+  Reader reader(definitions, data, size);
+  // What is read must be there before any byte is.
+  if (!HasField(reader, kDisplayTrajectoryType, "trajectory", "moveit_msgs/RobotTrajectory", true,
+                "")) {
+    throw Error("", "no field 'moveit_msgs/RobotTrajectory[] trajectory' in its definition");
+  }
+  if (!HasField(reader, "moveit_msgs/RobotTrajectory", "joint_trajectory",
+                "trajectory_msgs/JointTrajectory", false, "trajectory")) {
+    throw Error("trajectory", "moveit_msgs/RobotTrajectory has no field "
+                              "'trajectory_msgs/JointTrajectory joint_trajectory'");
+  }
+  DisplayedPlan plan;
+  for (const Field& field : reader.FieldsOf(kDisplayTrajectoryType, "")) {
+    if (field.name == "trajectory" && field.type == "moveit_msgs/RobotTrajectory" &&
+        field.is_array) {
+      const std::uint32_t count = reader.ReadArrayCount(field, field.name);
+      for (std::uint32_t k = 0; k < count; ++k) {
+        plan.trajectories.emplace_back();
+        ReadPart(&reader, field.type, "trajectory[" + std::to_string(k) + "]", "joint_trajectory",
+                 &plan.trajectories.back());
+      }
+    } else if (field.name == "trajectory_start" && field.type == "moveit_msgs/RobotState" &&
+               !field.is_array) {
+      ReadPart(&reader, field.type, field.name, "joint_state", &plan.start_state);
+    } else {
+      reader.SkipField(field, "", 0);
+    }
+  }
+  if (reader.remaining() != 0) {
+    throw Error("", std::to_string(reader.remaining()) + " bytes left after the last field");
+  }
+  return plan;
+}
+
+}  // namespace arm_collision_monitor

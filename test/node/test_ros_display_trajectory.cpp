@@ -1,0 +1,191 @@
+// ReadDisplayTrajectory: a moveit_msgs/DisplayTrajectory walked by the definition its bag
+// carries. What was written is read back, with or without RobotTrajectory's group_name; every
+// truncation and every corrupted byte gives a runtime_error naming a field, never a crash or an
+// allocation as large as a corrupted count; definitions that lack what is read, that differ
+// from this build's, or whose type contains itself are refused.
+#include <cstdint>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <ros/message_traits.h>
+#include <ros/serialization.h>
+#include <sensor_msgs/MultiDOFJointState.h>
+#include <trajectory_msgs/MultiDOFJointTrajectory.h>
+
+#include "arm_collision_monitor/ros/display_trajectory.h"
+
+namespace arm_collision_monitor {
+namespace {
+
+const std::string kSeparator = std::string(80, '=') + "\n";
+
+// {type: its own fields} of a generated message's full definition.
+template <typename Msg>
+void AddSections(std::map<std::string, std::string>* sections) {
+  const std::string text = ros::message_traits::Definition<Msg>::value();
+  std::string type = ros::message_traits::DataType<Msg>::value();
+  std::size_t at = 0;
+  while (true) {
+    const std::size_t next = text.find(kSeparator, at);
+    (*sections)[type] = text.substr(at, next == std::string::npos ? std::string::npos : next - at);
+    if (next == std::string::npos) return;
+    at = next + kSeparator.size();
+    const std::size_t line_end = text.find('\n', at);
+    type = text.substr(at + 5, line_end - at - 5);  // after "MSG: "
+    at = line_end + 1;
+  }
+}
+
+// The definition of a DisplayTrajectory (moveit_msgs' .msg files; AttachedCollisionObject
+// abridged) with `overrides` replacing types' fields.
+std::string Definition(bool group_name, const std::map<std::string, std::string>& overrides = {}) {
+  std::map<std::string, std::string> sections = {
+      {"moveit_msgs/RobotTrajectory",
+       "trajectory_msgs/JointTrajectory joint_trajectory\n"
+       "trajectory_msgs/MultiDOFJointTrajectory multi_dof_joint_trajectory\n" +
+           std::string(group_name ? "string group_name\n" : "")},
+      {"moveit_msgs/RobotState",
+       "sensor_msgs/JointState joint_state\n"
+       "sensor_msgs/MultiDOFJointState multi_dof_joint_state\n"
+       "AttachedCollisionObject[] attached_collision_objects\nbool is_diff\n"},
+      {"moveit_msgs/AttachedCollisionObject",
+       "string link_name\nstring[] touch_links\nfloat64 weight\nbyte ADD=0 # a constant\n"}};
+  AddSections<trajectory_msgs::JointTrajectory>(&sections);
+  AddSections<trajectory_msgs::MultiDOFJointTrajectory>(&sections);
+  AddSections<sensor_msgs::JointState>(&sections);
+  AddSections<sensor_msgs::MultiDOFJointState>(&sections);
+  for (const auto& [type, fields] : overrides) sections[type] = fields;
+  std::string text = overrides.count("moveit_msgs/DisplayTrajectory")
+                         ? overrides.at("moveit_msgs/DisplayTrajectory")
+                         : "# The model id\nstring model_id\nRobotTrajectory[] trajectory\n"
+                           "RobotState trajectory_start\n";
+  for (const auto& [type, fields] : sections) {
+    if (type == "moveit_msgs/DisplayTrajectory") continue;
+    text += kSeparator + "MSG: " + type + "\n" + fields;
+  }
+  return text;
+}
+
+trajectory_msgs::JointTrajectory Trajectory(double offset) {
+  trajectory_msgs::JointTrajectory plan;
+  plan.header.stamp = ros::Time(offset > 0 ? 7 : 0, 0);
+  plan.joint_names = {"a", "b"};
+  for (int k = 0; k < 3; ++k) {
+    trajectory_msgs::JointTrajectoryPoint point;
+    point.positions = {offset + k, offset - k};
+    point.velocities = {0.5, 0.25};
+    point.time_from_start = ros::Duration(0.1 * k);
+    plan.points.push_back(point);
+  }
+  return plan;
+}
+
+// The bytes of a DisplayTrajectory laid out as Definition(group_name).
+std::vector<std::uint8_t> Bytes(bool group_name) {
+  namespace ser = ros::serialization;
+  std::vector<std::uint8_t> bytes(4096);
+  ser::OStream out(bytes.data(), static_cast<std::uint32_t>(bytes.size()));
+  ser::serialize(out, std::string("robot"));
+  ser::serialize(out, std::uint32_t{2});
+  for (const double offset : {0.0, 10.0}) {
+    ser::serialize(out, Trajectory(offset));
+    ser::serialize(out, trajectory_msgs::MultiDOFJointTrajectory());
+    if (group_name) ser::serialize(out, std::string("arms"));
+  }
+  sensor_msgs::JointState start;
+  start.name = {"a", "b", "c"};
+  start.position = {1.0, 2.0, 3.0};
+  ser::serialize(out, start);
+  ser::serialize(out, sensor_msgs::MultiDOFJointState());
+  ser::serialize(out, std::uint32_t{1});  // one attached object
+  ser::serialize(out, std::string("hand"));
+  ser::serialize(out, std::vector<std::string>{"finger", "palm"});
+  ser::serialize(out, 0.5);
+  ser::serialize(out, std::uint8_t{0});  // is_diff
+  bytes.resize(static_cast<std::size_t>(out.getData() - bytes.data()));
+  return bytes;
+}
+
+TEST(DisplayTrajectory, ReadsWhatWasWritten) {
+  for (const bool group_name : {false, true}) {
+    const std::vector<std::uint8_t> bytes = Bytes(group_name);
+    const DisplayedPlan plan = ReadDisplayTrajectory(Definition(group_name), bytes.data(),
+                                                     bytes.size());
+    ASSERT_EQ(plan.trajectories.size(), 2u);
+    EXPECT_EQ(plan.trajectories[0], Trajectory(0.0));
+    EXPECT_EQ(plan.trajectories[1], Trajectory(10.0));
+    EXPECT_EQ(plan.start_state.name, (std::vector<std::string>{"a", "b", "c"}));
+    EXPECT_EQ(plan.start_state.position, (std::vector<double>{1.0, 2.0, 3.0}));
+    // The other layout's definition does not fit these bytes.
+    EXPECT_THROW(ReadDisplayTrajectory(Definition(!group_name), bytes.data(), bytes.size()),
+                 std::runtime_error);
+  }
+}
+
+TEST(DisplayTrajectory, EveryTruncationIsRefused) {
+  const std::vector<std::uint8_t> bytes = Bytes(true);
+  const std::string definition = Definition(true);
+  for (std::size_t size = 0; size < bytes.size(); ++size) {
+    EXPECT_THROW(ReadDisplayTrajectory(definition, bytes.data(), size), std::runtime_error)
+        << size << " of " << bytes.size() << " bytes";
+  }
+}
+
+TEST(DisplayTrajectory, CorruptBytesAreReadOrRefusedNeverCrash) {
+  const std::vector<std::uint8_t> good = Bytes(true);
+  const std::string definition = Definition(true);
+  int refused = 0;
+  for (std::size_t at = 0; at < good.size(); ++at) {
+    for (const std::uint8_t value : {std::uint8_t{0xff}, std::uint8_t{0x7f}}) {
+      std::vector<std::uint8_t> bytes = good;
+      bytes[at] = value;
+      // Any other exception (std::bad_alloc from a count taken at its word) fails the test.
+      try {
+        ReadDisplayTrajectory(definition, bytes.data(), bytes.size());
+      } catch (const std::runtime_error&) {
+        ++refused;
+      }
+    }
+  }
+  // Counts and string lengths corrupted: most of the bytes are counts or lengths' bytes.
+  EXPECT_GT(refused, static_cast<int>(good.size()) / 2);
+}
+
+TEST(DisplayTrajectory, BadDefinitionsAreRefusedNamingWhat) {
+  const std::vector<std::uint8_t> bytes = Bytes(false);
+  auto message = [&](const std::string& definition) {
+    try {
+      ReadDisplayTrajectory(definition, bytes.data(), bytes.size());
+    } catch (const std::runtime_error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message(Definition(false, {{"moveit_msgs/DisplayTrajectory",
+                                        "string model_id\nRobotState trajectory_start\n"}}))
+                .find("no field 'moveit_msgs/RobotTrajectory[] trajectory'"),
+            std::string::npos);
+  EXPECT_NE(message(Definition(false, {{"moveit_msgs/RobotTrajectory",
+                                        "trajectory_msgs/MultiDOFJointTrajectory other\n"}}))
+                .find("trajectory: moveit_msgs/RobotTrajectory has no field"),
+            std::string::npos);
+  EXPECT_NE(message(Definition(false, {{"moveit_msgs/RobotState", "RobotState inner\n"}}))
+                .find("nested too deep"),
+            std::string::npos);
+  EXPECT_NE(message(Definition(false, {{"moveit_msgs/AttachedCollisionObject",
+                                        "float64[x] weights\n"}}))
+                .find("bad array type 'float64[x]'"),
+            std::string::npos);
+  EXPECT_NE(message("string model_id\n" + kSeparator + "int32 orphan\n")
+                .find("a field before its type's 'MSG:' line"),
+            std::string::npos);
+  EXPECT_NE(message(Definition(false, {{"moveit_msgs/RobotState", "Missing thing\n"}}))
+                .find("type moveit_msgs/Missing is not in the definition"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace arm_collision_monitor
