@@ -149,9 +149,7 @@ class BagCycles {
   // The stamp checks compare each sample with its own stamp as "now": offline, time is the
   // bag's. The timeout only bounds stamps going backwards, which is still refused.
   explicit BagCycles(const Workcell& workcell) : input_(workcell.joint_names, 1.0) {
-    for (const auto& [q_index, position] : workcell.joint_defaults) {
-      input_.SetDefault(q_index, position);
-    }
+    input_.SetDefaults(workcell.joint_defaults);
   }
 
   void Merge(const NamedPositions& sample, const ros::Time& stamp) {

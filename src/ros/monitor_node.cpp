@@ -102,9 +102,7 @@ MonitorNode::MonitorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   fixed_frame_ =
       options_.fixed_frame.empty() ? monitor_options.fixed_frame : options_.fixed_frame;
   input_ = std::make_unique<JointMerger>(workcell_->joint_names, options_.input_timeout_s);
-  for (const auto& [q_index, position] : workcell_->joint_defaults) {
-    input_->SetDefault(q_index, position);
-  }
+  input_->SetDefaults(workcell_->joint_defaults);
   markers_ = std::make_unique<MarkerBuilder>(*monitor_, fixed_frame_);
   for (const ObjectSpec& object : workcell_->objects) {
     if (!object.frame.empty()) {

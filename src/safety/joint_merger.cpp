@@ -34,12 +34,14 @@ JointMerger::JointMerger(const std::vector<std::string>& joint_names, double inp
   layouts_.reserve(kMaxLayouts);
 }
 
-void JointMerger::SetDefault(int index, double position_rad_or_m) {
-  if (!is_received_[index]) {
-    q_[index] = position_rad_or_m;
-    if (!has_default_[index]) --missing_count_;
+void JointMerger::SetDefaults(const std::vector<std::pair<int, double>>& defaults) {
+  for (const auto& [index, position_rad_or_m] : defaults) {
+    if (!is_received_[index]) {
+      q_[index] = position_rad_or_m;
+      if (!has_default_[index]) --missing_count_;
+    }
+    has_default_[index] = true;
   }
-  has_default_[index] = true;
 }
 
 JointMerger::Layout JointMerger::BuildLayout(const std::vector<std::string>& names) const {

@@ -144,7 +144,7 @@ TEST(JointMerger, ClockGoingBackAwaitsEveryJointAgain) {
 // until a message gives it; from then on it is an input joint like the others.
 TEST(JointMerger, DefaultedJointCountsAsReceivedUntilAMessageGivesIt) {
   JointMerger merger(kJoints, kTimeout_s);
-  merger.SetDefault(2, 0.75);
+  merger.SetDefaults({{2, 0.75}});
   EXPECT_FALSE(merger.is_complete());
   EXPECT_EQ(merger.FirstMissingJoint(), 0);
   EXPECT_EQ(merger.FirstMissingJointNotIn({"a1", "a2"}), -1);
@@ -171,7 +171,7 @@ TEST(JointMerger, DefaultedJointCountsAsReceivedUntilAMessageGivesIt) {
   EXPECT_EQ(merger.OldestJoint(), 2);
   EXPECT_TRUE(merger.IsStale(5.0 + kTimeout_s + 0.001));
   // A default set again later leaves the received value alone.
-  merger.SetDefault(2, 0.75);
+  merger.SetDefaults({{2, 0.75}});
   EXPECT_EQ(merger.q()[2], -0.5);
   EXPECT_TRUE(merger.is_complete());
 }

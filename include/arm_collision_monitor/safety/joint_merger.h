@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <string>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -60,11 +61,12 @@ class JointMerger {
   /// otherwise make every later one look "backwards").
   JointMerger(const std::vector<std::string>& joint_names, double input_timeout_s);
 
-  /// Joint `index` is at `position_rad_or_m` until a message gives it: it counts as received
-  /// for is_complete() but has no age, so it is never stale, until then; from the first
-  /// message on it is an input joint like the others (the scene file's joint_defaults: joints
-  /// that the input may leave out, e.g. a gripper's in a planned arm path).
-  void SetDefault(int index, double position_rad_or_m);
+  /// Each (joint index, position in rad or m) of `defaults`: the joint is at that position
+  /// until a message gives it; it counts as received for is_complete() but has no age, so it is
+  /// never stale, until then; from the first message on it is an input joint like the others
+  /// (the scene file's joint_defaults, Workcell::joint_defaults: joints that the input may
+  /// leave out, e.g. a gripper's in a planned arm path).
+  void SetDefaults(const std::vector<std::pair<int, double>>& defaults);
 
   /// Validates `input` (received at `now_s`, the same clock as its stamps) and, if it is
   /// acceptable, writes its model joints into q. Names that are not model joints are ignored and
@@ -83,7 +85,7 @@ class JointMerger {
   void OnTimeWentBackwards(double now_s);
 
   const Eigen::VectorXd& q() const { return q_; }
-  /// Every model joint has been received at least once or has a default (SetDefault).
+  /// Every model joint has been received at least once or has a default (SetDefaults).
   bool is_complete() const { return missing_count_ == 0; }
   /// Index of the first model joint never received and without a default, -1 when complete.
   int FirstMissingJoint() const;
@@ -132,7 +134,7 @@ class JointMerger {
   std::vector<double> stamp_s_;     ///< newest accepted stamp per joint (-inf: none)
   std::vector<double> received_s_;  ///< receipt time of that message per joint
   std::vector<bool> is_received_;
-  std::vector<bool> has_default_;   ///< SetDefault's joints
+  std::vector<bool> has_default_;   ///< SetDefaults' joints
   int missing_count_;               ///< joints neither received nor with a default
   std::vector<bool> is_awaiting_;   ///< received before the clock went back, not since
   int awaiting_count_ = 0;
