@@ -135,7 +135,7 @@ class Reader {
       return;
     }
     const std::uint32_t count = ReadArrayCount(field, path);
-    const long size = FixedSize(field.type, depth);
+    const long size = FixedSize(field.type);
     if (size >= 0) {
       if (size > 0 && count > remaining() / static_cast<std::size_t>(size)) {
         throw Error(path, "the message ends early");
@@ -148,11 +148,14 @@ class Reader {
     }
   }
 
+  // A value of fixed size is taken at once: a definition whose fields fan out over types of
+  // fixed (or no) size costs no more than its bytes. Every other value holds a length or a
+  // count, so the walk is bounded by the bytes too.
   void SkipValue(const std::string& type, const std::string& path, int depth) {
-    const int builtin = BuiltinSize(type);
-    if (builtin > 0) {
-      Take(static_cast<std::size_t>(builtin), path);
-    } else if (builtin == 0) {
+    const long size = FixedSize(type);
+    if (size >= 0) {
+      Take(static_cast<std::size_t>(size), path);
+    } else if (type == "string") {
       Take(ReadCount(path), path);
     } else {
       if (depth >= kMaxDepth) throw Error(path, "types nested too deep");
@@ -182,22 +185,28 @@ class Reader {
     at_ += bytes;
   }
 
-  // Serialized size of every value of `type`, or -1 when it varies (strings, arrays).
-  long FixedSize(const std::string& type, int depth) const {
+  // Serialized size of every value of `type`, or -1 when it varies (strings, arrays, a type
+  // that contains itself) or is nested deeper than kMaxDepth (which SkipValue refuses). Each
+  // type's is computed once.
+  long FixedSize(const std::string& type, int depth = 0) const {
     const int builtin = BuiltinSize(type);
     if (builtin >= 0) return builtin > 0 ? builtin : -1;
+    const auto known = fixed_size_.find(type);
+    if (known != fixed_size_.end()) return known->second;
     const auto it = definitions_.find(type);
     if (it == definitions_.end() || depth >= kMaxDepth) return -1;
+    fixed_size_[type] = -1;  // while it is computed: a type within itself varies
     long size = 0;
     for (const Field& field : it->second) {
-      if (field.is_array && !field.is_fixed) return -1;
-      const long element = FixedSize(field.type, depth + 1);
+      const long element =
+          field.is_array && !field.is_fixed ? -1 : FixedSize(field.type, depth + 1);
       if (element < 0) return -1;
       const long count = field.is_array ? field.fixed_count : 1;
       // Past kTooLarge the bytes run out anyway: no overflow on the way there.
       size += count > 0 && element > kTooLarge / count ? kTooLarge : element * count;
       if (size > kTooLarge) size = kTooLarge;
     }
+    fixed_size_[type] = size;
     return size;
   }
 
@@ -225,6 +234,7 @@ class Reader {
   }
 
   const Definitions& definitions_;
+  mutable std::map<std::string, long> fixed_size_;  ///< FixedSize's, per message type
   const std::uint8_t* at_;
   const std::uint8_t* const end_;
 };

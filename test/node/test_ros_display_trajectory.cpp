@@ -1,8 +1,9 @@
 // ReadDisplayTrajectory: a moveit_msgs/DisplayTrajectory walked by the definition its bag
 // carries. What was written is read back, with or without RobotTrajectory's group_name; every
 // truncation and every corrupted byte gives a runtime_error naming a field, never a crash or an
-// allocation as large as a corrupted count; definitions that lack what is read, that differ
-// from this build's, or whose type contains itself are refused.
+// allocation as large as a corrupted count; a definition that fans out over empty types costs
+// no more than its bytes; definitions that lack what is read, that differ from this build's,
+// or whose type contains itself are refused.
 #include <cstdint>
 #include <map>
 #include <stdexcept>
@@ -152,6 +153,26 @@ TEST(DisplayTrajectory, CorruptBytesAreReadOrRefusedNeverCrash) {
   }
   // Counts and string lengths corrupted: most of the bytes are counts or lengths' bytes.
   EXPECT_GT(refused, static_cast<int>(good.size()) / 2);
+}
+
+// Types that fan out (eight fields of the next type, twenty deep) over a type without fields:
+// 8^20 values of no size, each taken at once by its size rather than visited.
+TEST(DisplayTrajectory, FanningOutDefinitionsCostNoMoreThanTheirBytes) {
+  std::map<std::string, std::string> overrides = {
+      {"moveit_msgs/AttachedCollisionObject",
+       "string link_name\nstring[] touch_links\nfloat64 weight\nFan0 fan\n"},
+      {"moveit_msgs/Fan20", ""}};
+  for (int level = 0; level < 20; ++level) {
+    std::string fields;
+    for (int k = 0; k < 8; ++k) {
+      fields += "Fan" + std::to_string(level + 1) + " f" + std::to_string(k) + "\n";
+    }
+    overrides["moveit_msgs/Fan" + std::to_string(level)] = fields;
+  }
+  const std::vector<std::uint8_t> bytes = Bytes(false);
+  const DisplayedPlan plan =
+      ReadDisplayTrajectory(Definition(false, overrides), bytes.data(), bytes.size());
+  EXPECT_EQ(plan.trajectories.size(), 2u);
 }
 
 TEST(DisplayTrajectory, BadDefinitionsAreRefusedNamingWhat) {
