@@ -1,5 +1,6 @@
 #include "arm_collision_monitor/ros/display_trajectory.h"
 
+#include <algorithm>
 #include <cstring>
 #include <map>
 #include <sstream>
@@ -103,6 +104,29 @@ class Reader {
       : definitions_(definitions), at_(data), end_(data + size) {}
 
   std::size_t remaining() const { return static_cast<std::size_t>(end_ - at_); }
+
+  /// Refuses, before any byte is read, a definition in which a type contains itself (no ROS
+  /// message does) or in which types nest deeper than kMaxDepth below `type`; returns how deep
+  /// they nest.
+  int CheckNesting(const std::string& type, int depth = 0) {
+    if (BuiltinSize(type) >= 0) return 0;
+    if (depth > kMaxDepth) throw Error("", "types nested too deep");
+    const auto [known, is_new] = nesting_.emplace(type, -1);
+    if (!is_new) {
+      if (known->second < 0) throw Error("", "type " + type + " contains itself");
+      return known->second;
+    }
+    int height = 0;
+    const auto it = definitions_.find(type);
+    if (it != definitions_.end()) {
+      for (const Field& field : it->second) {
+        height = std::max(height, 1 + CheckNesting(field.type, depth + 1));
+      }
+    }
+    if (depth + height > kMaxDepth) throw Error("", "types nested too deep");
+    known->second = height;
+    return height;
+  }
 
   const std::vector<Field>& FieldsOf(const std::string& type, const std::string& path) const {
     const auto it = definitions_.find(type);
@@ -235,6 +259,7 @@ class Reader {
 
   const Definitions& definitions_;
   mutable std::map<std::string, long> fixed_size_;  ///< FixedSize's, per message type
+  std::map<std::string, int> nesting_;  ///< CheckNesting's heights (-1: being checked)
   const std::uint8_t* at_;
   const std::uint8_t* const end_;
 };
@@ -269,6 +294,7 @@ DisplayedPlan ReadDisplayTrajectory(const std::string& definition, const std::ui
                                     std::size_t size) {
   const Definitions definitions = ParseDefinitions(kDisplayTrajectoryType, definition);
   Reader reader(definitions, data, size);
+  reader.CheckNesting(kDisplayTrajectoryType);
   // What is read must be there before any byte is.
   if (!HasField(reader, kDisplayTrajectoryType, "trajectory", "moveit_msgs/RobotTrajectory", true,
                 "")) {

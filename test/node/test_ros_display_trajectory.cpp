@@ -3,7 +3,7 @@
 // truncation and every corrupted byte gives a runtime_error naming a field, never a crash or an
 // allocation as large as a corrupted count; a definition that fans out over empty types costs
 // no more than its bytes; definitions that lack what is read, that differ from this build's,
-// or whose type contains itself are refused.
+// whose type contains itself or that nest too deep are refused before any byte is read.
 #include <cstdint>
 #include <map>
 #include <stdexcept>
@@ -194,8 +194,22 @@ TEST(DisplayTrajectory, BadDefinitionsAreRefusedNamingWhat) {
                 .find("trajectory: moveit_msgs/RobotTrajectory has no field"),
             std::string::npos);
   EXPECT_NE(message(Definition(false, {{"moveit_msgs/RobotState", "RobotState inner\n"}}))
-                .find("nested too deep"),
+                .find("type moveit_msgs/RobotState contains itself"),
             std::string::npos);
+  // Eight fields of itself, in an array the bytes hold one element of.
+  EXPECT_NE(message(Definition(false, {{"moveit_msgs/AttachedCollisionObject",
+                                        "AttachedCollisionObject a\nAttachedCollisionObject b\n"
+                                        "AttachedCollisionObject c\nAttachedCollisionObject d\n"
+                                        "AttachedCollisionObject e\nAttachedCollisionObject f\n"
+                                        "AttachedCollisionObject g\nAttachedCollisionObject h\n"}}))
+                .find("contains itself"),
+            std::string::npos);
+  std::map<std::string, std::string> deep = {{"moveit_msgs/RobotState", "Deep0 d\n"}};
+  for (int level = 0; level < 40; ++level) {
+    deep["moveit_msgs/Deep" + std::to_string(level)] =
+        "Deep" + std::to_string(level + 1) + " d\n";
+  }
+  EXPECT_NE(message(Definition(false, deep)).find("types nested too deep"), std::string::npos);
   EXPECT_NE(message(Definition(false, {{"moveit_msgs/AttachedCollisionObject",
                                         "float64[x] weights\n"}}))
                 .find("bad array type 'float64[x]'"),
