@@ -22,7 +22,7 @@ struct Field {
 };
 using Definitions = std::map<std::string, std::vector<Field>>;
 
-// Deeper nesting than any message needs: a definition whose type contains itself stops here.
+// Deeper nesting than any message needs (CheckNesting refuses more).
 constexpr int kMaxDepth = 32;
 // A serialized size larger than any message (1 TiB): fixed sizes are clamped to it.
 constexpr long kTooLarge = 1L << 40;
@@ -97,36 +97,17 @@ Definitions ParseDefinitions(const std::string& main_type, const std::string& te
   return definitions;
 }
 
-// Walks serialized bytes by a message definition.
+// Walks serialized bytes by a message definition. The walk recurses only as deep as the types
+// nest below `main_type`, which the constructor bounds (CheckNesting).
 class Reader {
  public:
-  Reader(const Definitions& definitions, const std::uint8_t* data, std::size_t size)
-      : definitions_(definitions), at_(data), end_(data + size) {}
+  Reader(const Definitions& definitions, const std::string& main_type, const std::uint8_t* data,
+         std::size_t size)
+      : definitions_(definitions), at_(data), end_(data + size) {
+    CheckNesting(main_type);
+  }
 
   std::size_t remaining() const { return static_cast<std::size_t>(end_ - at_); }
-
-  /// Refuses, before any byte is read, a definition in which a type contains itself (no ROS
-  /// message does) or in which types nest deeper than kMaxDepth below `type`; returns how deep
-  /// they nest.
-  int CheckNesting(const std::string& type, int depth = 0) {
-    if (BuiltinSize(type) >= 0) return 0;
-    if (depth > kMaxDepth) throw Error("", "types nested too deep");
-    const auto [known, is_new] = nesting_.emplace(type, -1);
-    if (!is_new) {
-      if (known->second < 0) throw Error("", "type " + type + " contains itself");
-      return known->second;
-    }
-    int height = 0;
-    const auto it = definitions_.find(type);
-    if (it != definitions_.end()) {
-      for (const Field& field : it->second) {
-        height = std::max(height, 1 + CheckNesting(field.type, depth + 1));
-      }
-    }
-    if (depth + height > kMaxDepth) throw Error("", "types nested too deep");
-    known->second = height;
-    return height;
-  }
 
   const std::vector<Field>& FieldsOf(const std::string& type, const std::string& path) const {
     const auto it = definitions_.find(type);
@@ -152,10 +133,10 @@ class Reader {
     return count;
   }
 
-  void SkipField(const Field& field, const std::string& owner_path, int depth) {
+  void SkipField(const Field& field, const std::string& owner_path) {
     const std::string path = owner_path.empty() ? field.name : owner_path + "." + field.name;
     if (!field.is_array) {
-      SkipValue(field.type, path, depth);
+      SkipValue(field.type, path);
       return;
     }
     const std::uint32_t count = ReadArrayCount(field, path);
@@ -168,22 +149,21 @@ class Reader {
       return;
     }
     for (std::uint32_t k = 0; k < count; ++k) {
-      SkipValue(field.type, path + "[" + std::to_string(k) + "]", depth);
+      SkipValue(field.type, path + "[" + std::to_string(k) + "]");
     }
   }
 
   // A value of fixed size is taken at once: a definition whose fields fan out over types of
   // fixed (or no) size costs no more than its bytes. Every other value holds a length or a
   // count, so the walk is bounded by the bytes too.
-  void SkipValue(const std::string& type, const std::string& path, int depth) {
+  void SkipValue(const std::string& type, const std::string& path) {
     const long size = FixedSize(type);
     if (size >= 0) {
       Take(static_cast<std::size_t>(size), path);
     } else if (type == "string") {
       Take(ReadCount(path), path);
     } else {
-      if (depth >= kMaxDepth) throw Error(path, "types nested too deep");
-      for (const Field& field : FieldsOf(type, path)) SkipField(field, path, depth + 1);
+      for (const Field& field : FieldsOf(type, path)) SkipField(field, path);
     }
   }
 
@@ -194,9 +174,9 @@ class Reader {
   void ReadTyped(const std::string& type, const std::string& path, Msg* msg) {
     const Definitions own =
         ParseDefinitions(type, ros::message_traits::Definition<Msg>::value());
-    CheckSameLayout(own, type, path, 0);
+    CheckSameLayout(own, type, path);
     const std::uint8_t* const start = at_;
-    SkipValue(type, path, 0);
+    SkipValue(type, path);
     ros::serialization::IStream stream(const_cast<std::uint8_t*>(start),
                                        static_cast<std::uint32_t>(at_ - start));
     ros::serialization::deserialize(stream, *msg);
@@ -204,27 +184,47 @@ class Reader {
   }
 
  private:
+  /// Refuses, before any byte is read, a definition in which a type contains itself (no ROS
+  /// message does) or in which types nest deeper than kMaxDepth below `type`; returns how deep
+  /// they nest.
+  int CheckNesting(const std::string& type, int depth = 0) {
+    if (BuiltinSize(type) >= 0) return 0;
+    if (depth > kMaxDepth) throw Error("", "types nested too deep");
+    const auto [known, is_new] = nesting_.emplace(type, -1);
+    if (!is_new) {
+      if (known->second < 0) throw Error("", "type " + type + " contains itself");
+      return known->second;
+    }
+    int height = 0;
+    const auto it = definitions_.find(type);
+    if (it != definitions_.end()) {
+      for (const Field& field : it->second) {
+        height = std::max(height, 1 + CheckNesting(field.type, depth + 1));
+      }
+    }
+    if (depth + height > kMaxDepth) throw Error("", "types nested too deep");
+    known->second = height;
+    return height;
+  }
+
   void Take(std::size_t bytes, const std::string& path) {
     if (bytes > remaining()) throw Error(path, "the message ends early");
     at_ += bytes;
   }
 
-  // Serialized size of every value of `type`, or -1 when it varies (strings, arrays, a type
-  // that contains itself) or is nested deeper than kMaxDepth (which SkipValue refuses). Each
+  // Serialized size of every value of `type`, or -1 when it varies (strings, arrays). Each
   // type's is computed once.
-  long FixedSize(const std::string& type, int depth = 0) const {
+  long FixedSize(const std::string& type) const {
     const int builtin = BuiltinSize(type);
     if (builtin >= 0) return builtin > 0 ? builtin : -1;
     const auto known = fixed_size_.find(type);
     if (known != fixed_size_.end()) return known->second;
     const auto it = definitions_.find(type);
-    if (it == definitions_.end() || depth >= kMaxDepth) return -1;
-    fixed_size_[type] = -1;  // while it is computed: a type within itself varies
+    if (it == definitions_.end()) return -1;
     long size = 0;
     for (const Field& field : it->second) {
-      const long element =
-          field.is_array && !field.is_fixed ? -1 : FixedSize(field.type, depth + 1);
-      if (element < 0) return -1;
+      const long element = field.is_array && !field.is_fixed ? -1 : FixedSize(field.type);
+      if (element < 0) return fixed_size_[type] = -1;
       const long count = field.is_array ? field.fixed_count : 1;
       // Past kTooLarge the bytes run out anyway: no overflow on the way there.
       size += count > 0 && element > kTooLarge / count ? kTooLarge : element * count;
@@ -234,8 +234,8 @@ class Reader {
     return size;
   }
 
-  void CheckSameLayout(const Definitions& own, const std::string& type, const std::string& path,
-                       int depth) const {
+  void CheckSameLayout(const Definitions& own, const std::string& type,
+                       const std::string& path) const {
     const std::vector<Field>& fields = FieldsOf(type, path);
     const std::vector<Field>& expected = own.at(type);
     auto text = [](const std::vector<Field>& list) {
@@ -251,9 +251,8 @@ class Reader {
       throw Error(path, type + " is '" + text(fields) + "' in the bag, '" + text(expected) +
                             "' in this build");
     }
-    if (depth >= kMaxDepth) throw Error(path, "types nested too deep");
     for (const Field& field : fields) {
-      if (BuiltinSize(field.type) < 0) CheckSameLayout(own, field.type, path, depth + 1);
+      if (BuiltinSize(field.type) < 0) CheckSameLayout(own, field.type, path);
     }
   }
 
@@ -283,7 +282,7 @@ void ReadPart(Reader* reader, const std::string& type, const std::string& path,
     if (!field.is_array && field.name == wanted && field.type == wanted_type) {
       reader->ReadTyped(field.type, path + "." + wanted, msg);
     } else {
-      reader->SkipField(field, path, 1);
+      reader->SkipField(field, path);
     }
   }
 }
@@ -293,8 +292,7 @@ void ReadPart(Reader* reader, const std::string& type, const std::string& path,
 DisplayedPlan ReadDisplayTrajectory(const std::string& definition, const std::uint8_t* data,
                                     std::size_t size) {
   const Definitions definitions = ParseDefinitions(kDisplayTrajectoryType, definition);
-  Reader reader(definitions, data, size);
-  reader.CheckNesting(kDisplayTrajectoryType);
+  Reader reader(definitions, kDisplayTrajectoryType, data, size);
   // What is read must be there before any byte is.
   if (!HasField(reader, kDisplayTrajectoryType, "trajectory", "moveit_msgs/RobotTrajectory", true,
                 "")) {
@@ -319,7 +317,7 @@ DisplayedPlan ReadDisplayTrajectory(const std::string& definition, const std::ui
                !field.is_array) {
       ReadPart(&reader, field.type, field.name, "joint_state", &plan.start_state);
     } else {
-      reader.SkipField(field, "", 0);
+      reader.SkipField(field, "");
     }
   }
   if (reader.remaining() != 0) {
