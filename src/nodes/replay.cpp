@@ -1,9 +1,9 @@
 // replay: checks a recorded or planned trajectory offline, without ROS running. Reads a bag of
 // sensor_msgs/JointState, trajectory_msgs/JointTrajectory and moveit_msgs/DisplayTrajectory (any
-// topics, merged by joint name with the node's JointMerger; a trajectory's points are samples,
-// in order) or a joint CSV file (tasks/joint_csv.h), runs the Monitor (or a peer checker) once
-// per cycle and prints the warnings, the cycle times and the broad-phase counters, as text or
-// JSON (replay/replay_output.cpp).
+// topics, merged by joint name with the node's JointMerger: replay/replay_bag.h) or a joint CSV
+// file (tasks/joint_csv.h), runs the Monitor (or a peer checker) once per cycle and prints the
+// warnings, the cycle times and the broad-phase counters, as text or JSON
+// (replay/replay_output.cpp).
 //
 //   rosrun arm_collision_monitor replay [options] <file.bag | file.csv>
 //
@@ -16,24 +16,16 @@
 #include <cstdint>
 #include <cstdio>
 #include <exception>
-#include <limits>
 #include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include <ros/package.h>
-#include <ros/serialization.h>
-#include <rosbag/bag.h>
-#include <rosbag/view.h>
-#include <sensor_msgs/JointState.h>
-#include <trajectory_msgs/JointTrajectory.h>
 
 #include "arm_collision_monitor/geometry/distance.h"
 #include "arm_collision_monitor/monitor/monitor.h"
 #include "arm_collision_monitor/monitor/monitor_startup.h"
-#include "arm_collision_monitor/ros/conversions.h"
-#include "arm_collision_monitor/ros/display_trajectory.h"
 #include "arm_collision_monitor/ros/resource_fetch_ros.h"
 #include "arm_collision_monitor/scene/workcell.h"
 #include "arm_collision_monitor/scene/workcell_shapes.h"
@@ -42,6 +34,7 @@
 #ifdef ACM_HAVE_PEERS
 #include "arm_collision_monitor/peers/peer_checker.h"
 #endif
+#include "replay/replay_bag.h"
 #include "replay/replay_output.h"
 
 namespace arm_collision_monitor {
@@ -59,8 +52,9 @@ const char* kUsage =
     "            each point a sample at header.stamp, or the bag's time when 0, plus its\n"
     "            time_from_start) and moveit_msgs/DisplayTrajectory (move_group's\n"
     "            display_planned_path: its start state, then its trajectories in turn) on any\n"
-    "            topics, merged by joint name in bag order; consecutive samples with equal\n"
-    "            stamps form one cycle.\n"
+    "            topics, merged by joint name: the states in bag order, the planned points in\n"
+    "            time order, merged by stamp; a plan supersedes earlier plans of its joints\n"
+    "            after its start. Consecutive samples with equal stamps form one cycle.\n"
     "  file.csv: a header row of joint names (optionally 'time_s' first), one row per cycle.\n"
     "options:\n"
     "  --urdf F --scene F --config F   workcell and monitor options (default: the package's\n"
@@ -140,136 +134,6 @@ bool ParseOptions(int argc, char** argv, Options* options, std::string* error) {
 bool EndsWith(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() &&
          s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
-// A bag's samples (JointState messages, trajectory points) merged into cycles, in bag order:
-// consecutive samples with the same stamp form one cycle.
-class BagCycles {
- public:
-  // The stamp checks compare each sample with its own stamp as "now": offline, time is the
-  // bag's. The timeout only bounds stamps going backwards, which is still refused.
-  explicit BagCycles(const Workcell& workcell) : input_(workcell.joint_names, 1.0) {
-    input_.SetDefaults(workcell.joint_defaults);
-  }
-
-  void Merge(const NamedPositions& sample, const ros::Time& stamp) {
-    ++result_.messages;
-    if (!has_group_ || stamp != group_stamp_) {
-      Flush();
-      group_stamp_ = stamp;
-      has_group_ = true;
-    }
-    const MergeStatus status = input_.Merge(sample, stamp.toSec());
-    if (status != MergeStatus::kAccepted) ++result_.refused[MergeStatusName(status)];
-  }
-
-  /// A planned path: each point is a sample of the trajectory's joints at `start` +
-  /// time_from_start. Returns the last point's stamp (`start` without points).
-  ros::Time MergeTrajectory(const trajectory_msgs::JointTrajectory& plan, const ros::Time& start) {
-    ros::Time last = start;
-    for (const trajectory_msgs::JointTrajectoryPoint& point : plan.points) {
-      ros::Time stamp;
-      if (!PointStamp(start, point, &stamp)) {
-        ++result_.messages;
-        ++result_.refused["time_out_of_range"];
-        continue;
-      }
-      Merge(NamedPositions{plan.joint_names, point.positions, stamp.toSec()}, stamp);
-      last = stamp;
-    }
-    return last;
-  }
-
-  /// The cycles; a LoadError naming the bag at `path` if some joint was never given.
-  Input Finish(const std::string& path) {
-    Flush();
-    if (!input_.is_complete()) {
-      throw LoadError(path + ": model joint '" + input_.joint_name(input_.FirstMissingJoint()) +
-                      "' is in no accepted sensor_msgs/JointState message or trajectory point (" +
-                      kJointDefaultsHint + ")");
-    }
-    return std::move(result_);
-  }
-
- private:
-  // The stamp of `point` of a trajectory that starts at `start`, or false when it is out of
-  // ros::Time's range (ros::Time's own arithmetic would throw).
-  static bool PointStamp(const ros::Time& start,
-                         const trajectory_msgs::JointTrajectoryPoint& point, ros::Time* stamp) {
-    const std::int64_t ns =
-        static_cast<std::int64_t>(start.toNSec()) + point.time_from_start.toNSec();
-    constexpr std::int64_t kLastNs =
-        std::int64_t{std::numeric_limits<std::uint32_t>::max()} * 1000000000 + 999999999;
-    if (ns < 0 || ns > kLastNs) return false;
-    stamp->fromNSec(static_cast<std::uint64_t>(ns));
-    return true;
-  }
-
-  // Ends the cycle of the samples so far (counted as incomplete before every joint is known).
-  void Flush() {
-    if (!has_group_) return;
-    if (!input_.is_complete()) {
-      ++result_.incomplete_cycles;
-      return;
-    }
-    if (result_.q.empty()) first_stamp_ = group_stamp_;
-    result_.q.push_back(input_.q());
-    result_.time_s.push_back((group_stamp_ - first_stamp_).toSec());
-  }
-
-  JointMerger input_;
-  Input result_;
-  ros::Time group_stamp_, first_stamp_;
-  bool has_group_ = false;
-};
-
-// The moveit_msgs/DisplayTrajectory `m` of the bag at `path`; a LoadError naming the message
-// when it cannot be read.
-DisplayedPlan ReadDisplayed(const std::string& path, const rosbag::MessageInstance& m) {
-  std::vector<std::uint8_t> bytes(m.size());
-  ros::serialization::OStream stream(bytes.data(), static_cast<std::uint32_t>(bytes.size()));
-  m.write(stream);
-  try {
-    return ReadDisplayTrajectory(m.getMessageDefinition(), bytes.data(), bytes.size());
-  } catch (const std::runtime_error& e) {
-    throw LoadError(path + ": " + kDisplayTrajectoryType + " on " + m.getTopic() +
-                    " at bag time " + std::to_string(m.getTime().toSec()) + ": " + e.what());
-  }
-}
-
-Input ReadBag(const std::string& path, const Workcell& workcell) {
-  rosbag::Bag bag(path, rosbag::bagmode::Read);
-  rosbag::View view(bag, rosbag::TypeQuery(std::vector<std::string>{
-                             "sensor_msgs/JointState", "trajectory_msgs/JointTrajectory",
-                             kDisplayTrajectoryType}));
-  if (view.size() == 0) {
-    throw LoadError(path + ": no sensor_msgs/JointState, trajectory_msgs/JointTrajectory or " +
-                    kDisplayTrajectoryType + " message");
-  }
-  BagCycles cycles(workcell);
-  for (const rosbag::MessageInstance& m : view) {
-    if (const auto msg = m.instantiate<sensor_msgs::JointState>()) {
-      cycles.Merge(ToNamedPositions(*msg), msg->header.stamp);
-    } else if (const auto plan = m.instantiate<trajectory_msgs::JointTrajectory>()) {
-      // A header.stamp of 0 (MoveIt's "start now") is the time the bag recorded it.
-      cycles.MergeTrajectory(*plan,
-                             plan->header.stamp.isZero() ? m.getTime() : plan->header.stamp);
-    } else if (m.getDataType() == kDisplayTrajectoryType) {
-      // MoveIt's display of a plan, at the time the bag recorded it: the start state (the
-      // joints the trajectories leave out too), then the trajectories one after the other.
-      const DisplayedPlan displayed = ReadDisplayed(path, m);
-      ros::Time start = m.getTime();
-      const sensor_msgs::JointState& state = displayed.start_state;
-      if (!state.name.empty()) {
-        cycles.Merge(NamedPositions{state.name, state.position, start.toSec()}, start);
-      }
-      for (const trajectory_msgs::JointTrajectory& plan : displayed.trajectories) {
-        start = cycles.MergeTrajectory(plan,
-                                       plan.header.stamp.isZero() ? start : plan.header.stamp);
-      }
-    }
-  }
-  return cycles.Finish(path);
 }
 
 Input ReadCsv(const std::string& path, const Workcell& workcell) {
@@ -426,7 +290,7 @@ int Run(const Options& options) {
   }
   const std::unique_ptr<Checker> checker = MakeChecker(options, workcell, monitor_options);
   const Input input = EndsWith(options.input, ".csv") ? ReadCsv(options.input, *workcell)
-                                                      : ReadBag(options.input, *workcell);
+                                                      : replay::ReadBag(options.input, *workcell);
   std::vector<CycleResult> cycles(input.q.size());
   for (std::size_t k = 0; k < input.q.size(); ++k) {
     checker->Run(input.q[k], &cycles[k]);

@@ -5,7 +5,9 @@ plus its time_from_start. The seed's task 2, written as one trajectory of both a
 the same cycles, times and warnings as its recording of sensor_msgs/JointState; every tenth
 point alone (a sparse plan) still warns every pair the dense run warns; a plan of two points
 warns, between them, a pair that neither point comes near (the swept check); a plan of one arm
-joins the other arm's state recorded at its start; a point of the wrong size or whose stamp is
+joins the other arm's state recorded at its start; plans of each arm replay side by side, in
+time order; a later plan supersedes, for its joints, an earlier one's points after its start; a
+point of the wrong size or whose stamp is
 out of ros::Time's range is refused and counted, the others replay. MoveIt's display of a plan
 (moveit_msgs/DisplayTrajectory, written raw with the definition a bag carries, as this machine
 has no moveit_msgs) replays as its recording in either layout of RobotTrajectory, a plan of one
@@ -249,6 +251,63 @@ class ReplayTrajectoryTest(unittest.TestCase):
             self.assertEqual(report['cycles'], 20, header_stamp)
             self.assertEqual(report['refused_messages'], {})
 
+    def test_two_one_arm_plans_replay_side_by_side(self):
+        # Task 2 as a plan of each arm, recorded one after the other with the same start: their
+        # points are taken in time order, not all the left arm's first.
+        _, recorded = self.replay(self.recording)
+        start = self.samples[0][0]
+        path = os.path.join(self.directory, 'two_plans.bag')
+        with rosbag.Bag(path, 'w') as bag:
+            for joints in (slice(0, 7), slice(7, 14)):
+                bag.write('/move_group/planned_path', trajectory_of(self.samples, joints, start),
+                          start)
+        result, report = self.replay(path)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertEqual((report['messages'], report['cycles']), (300, 150))
+        self.assertEqual((report['superseded_points'], report['incomplete_cycles']), (0, 0))
+        self.assertEqual([c['time_s'] for c in report['per_cycle']],
+                         [c['time_s'] for c in recorded['per_cycle']])
+        self.assertEqual(self.warned_pairs(report, 'warnings'),
+                         self.warned_pairs(recorded, 'warnings'))
+
+    def test_a_later_plan_supersedes_an_earlier_one_after_its_start(self):
+        # Task 2 as one plan of both arms; then, from its cycle 50 on, a plan that holds the left
+        # arm at its pose there, with a point every 0.5 s. The left arm's points of the first plan
+        # after that start go (its right arm's stay): the run is the one of task 2 with the left
+        # arm stopped at cycle 50, which never reaches the table (cycles 108 on in task 2).
+        _, recorded = self.replay(self.recording)
+        self.assertIn(['left_link7', 'front_table_top'],
+                      [[w[0], w[1]] for w in recorded['per_cycle'][108]['warnings']])
+        cut = 50
+        held = self.samples[cut][1][:7]
+        stopped = [(stamp, (held if k > cut else positions[:7]) + positions[7:])
+                   for k, (stamp, positions) in enumerate(self.samples)]
+        expected_path = os.path.join(self.directory, 'stopped.bag')
+        write_plan(expected_path, stopped)
+        _, expected = self.replay(expected_path)
+        start, cut_stamp = self.samples[0][0], self.samples[cut][0]
+        hold = JointTrajectory(joint_names=LEFT_JOINTS)
+        hold.header.stamp = cut_stamp
+        for k in range(cut, len(self.samples), 10):
+            hold.points.append(JointTrajectoryPoint(positions=held,
+                                                    time_from_start=self.samples[k][0] - cut_stamp))
+        path = os.path.join(self.directory, 'replanned.bag')
+        with rosbag.Bag(path, 'w') as bag:
+            bag.write('/move_group/planned_path', trajectory_of(self.samples, slice(0, 14), start),
+                      start)
+            bag.write('/move_group/planned_path', hold, cut_stamp)
+        result, report = self.replay(path)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertEqual(report['messages'], 150 + len(hold.points))
+        self.assertEqual(report['superseded_points'], 150 - cut - 1)
+        self.assertEqual(report['cycles'], 150)
+        self.assertEqual([c['time_s'] for c in report['per_cycle']],
+                         [c['time_s'] for c in expected['per_cycle']])
+        self.assertEqual(self.warned_pairs(report, 'warnings'),
+                         self.warned_pairs(expected, 'warnings'))
+        self.assertNotEqual(self.warned_pairs(report, 'warnings'),
+                            self.warned_pairs(recorded, 'warnings'))
+
     def test_a_moveit_display_replays_as_its_recording(self):
         # Task 2 as move_group would display a plan of both arms in two trajectories (the second
         # timed from the first's end), its start state the first sample; both layouts of
@@ -328,7 +387,7 @@ class ReplayTrajectoryTest(unittest.TestCase):
         self.assertEqual(result.returncode, 0, result.stderr)
         self.assertEqual(report['messages'], 22)
         self.assertEqual(report['refused_messages'], {'wrong_size': 1, 'time_out_of_range': 1})
-        self.assertEqual(report['cycles'], 21)  # the short point's cycle repeats the last q
+        self.assertEqual(report['cycles'], 20)  # refused points make no cycle
 
     def test_a_bag_without_joint_input_names_both_types(self):
         path = os.path.join(self.directory, 'empty.bag')

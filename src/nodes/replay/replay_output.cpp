@@ -63,7 +63,9 @@ void PrintJsonCounts(const Options& options, const Input& input, std::size_t cyc
                 static_cast<unsigned long long>(count));
     comma = true;
   }
-  std::printf("},\n  \"incomplete_cycles\": %llu,\n  \"cycles\": %zu,\n"
+  std::printf("},\n  \"superseded_points\": %llu,\n",
+              static_cast<unsigned long long>(input.superseded_points));
+  std::printf("  \"incomplete_cycles\": %llu,\n  \"cycles\": %zu,\n"
               "  \"refused_cycles\": %llu,\n  \"warning_cycles\": %llu,\n"
               "  \"between_samples_cycles\": %llu,\n  \"jumped_cycles\": %llu,\n",
               static_cast<unsigned long long>(input.incomplete_cycles), cycle_count,
@@ -217,6 +219,11 @@ void PrintText(const Options& options, const Workcell& wc, const Input& input,
                 "monitor\n",
                 static_cast<unsigned long long>(input.incomplete_cycles),
                 static_cast<unsigned long long>(summary.refused_cycles));
+  }
+  if (input.superseded_points > 0) {
+    std::printf("input: %llu planned points superseded (for some or all of their joints) by a "
+                "later plan\n",
+                static_cast<unsigned long long>(input.superseded_points));
   }
   PrintWarningRuns(wc, input, cycles);
   if (is_swept) PrintBetweenSamples(wc, input, cycles, summary);

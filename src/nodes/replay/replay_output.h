@@ -36,6 +36,7 @@ struct Input {
   /// MergeStatusName (or "time_out_of_range": a trajectory point's stamp) -> count
   std::map<std::string, std::uint64_t> refused;
   std::uint64_t incomplete_cycles = 0;           ///< before every joint was received
+  std::uint64_t superseded_points = 0;  ///< planned points (partly) replaced by a later plan
 };
 
 // One cycle's outcome: warning pairs with their distances at the cycle's q, those the swept

@@ -1,0 +1,271 @@
+// replay's bag input (replay_bag.h): a first pass gathers the planned points, a second takes
+// the recorded states in bag order with the planned points merged in by stamp.
+#include "replay_bag.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <limits>
+#include <utility>
+#include <vector>
+
+#include <ros/serialization.h>
+#include <rosbag/bag.h>
+#include <rosbag/view.h>
+#include <sensor_msgs/JointState.h>
+#include <trajectory_msgs/JointTrajectory.h>
+
+#include "arm_collision_monitor/core/load_error.h"
+#include "arm_collision_monitor/ros/conversions.h"
+#include "arm_collision_monitor/ros/display_trajectory.h"
+#include "arm_collision_monitor/safety/joint_merger.h"
+
+namespace arm_collision_monitor {
+namespace replay {
+namespace {
+
+const char kJointStateType[] = "sensor_msgs/JointState";
+const char kJointTrajectoryType[] = "trajectory_msgs/JointTrajectory";
+
+// The stamp of `point` of a trajectory that starts at `start`, or false when it is out of
+// ros::Time's range (ros::Time's own arithmetic would throw).
+bool PointStamp(const ros::Time& start, const trajectory_msgs::JointTrajectoryPoint& point,
+                ros::Time* stamp) {
+  const std::int64_t ns =
+      static_cast<std::int64_t>(start.toNSec()) + point.time_from_start.toNSec();
+  constexpr std::int64_t kLastNs =
+      std::int64_t{std::numeric_limits<std::uint32_t>::max()} * 1000000000 + 999999999;
+  if (ns < 0 || ns > kLastNs) return false;
+  stamp->fromNSec(static_cast<std::uint64_t>(ns));
+  return true;
+}
+
+// A bag's planned samples: per plan, its points of its joints. A later plan supersedes, for
+// its joints, the earlier plans' points after its start (a trajectory controller's
+// replacement); their other joints stay.
+class Plans {
+ public:
+  struct Point {
+    ros::Time stamp;
+    std::uint64_t order;            // read order, which decides between equal stamps
+    std::vector<double> positions;  // one per name of its Joints
+  };
+  struct Joints {
+    std::vector<std::string> names;
+    std::vector<Point> points;
+    ros::Time last;  // no point is later
+  };
+
+  /// `counts`: its messages (points read) and refused and superseded points are counted.
+  explicit Plans(Input* counts) : counts_(counts) {}
+
+  /// A trajectory starting at `start`. Returns its last point's stamp (`start` without one).
+  ros::Time AddTrajectory(const trajectory_msgs::JointTrajectory& plan, const ros::Time& start) {
+    Supersede(plan.joint_names, start);
+    Joints joints{plan.joint_names, {}, start};
+    ros::Time end = start;
+    for (const trajectory_msgs::JointTrajectoryPoint& point : plan.points) {
+      ros::Time stamp;
+      if (!IsReadable(joints.names, point.positions) || !IsInRange(start, point, &stamp)) {
+        continue;
+      }
+      joints.points.push_back({stamp, next_order_++, point.positions});
+      joints.last = std::max(joints.last, stamp);
+      end = stamp;
+    }
+    if (!joints.points.empty()) plans_.push_back(std::move(joints));
+    return end;
+  }
+
+  /// A planned state (a DisplayTrajectory's start state) at `stamp`: it supersedes nothing.
+  void AddState(const sensor_msgs::JointState& state, const ros::Time& stamp) {
+    if (!IsReadable(state.name, state.position)) return;
+    plans_.push_back({state.name, {{stamp, next_order_++, state.position}}, stamp});
+  }
+
+  /// Every point with its joints, by stamp, then in read order.
+  std::vector<std::pair<const Joints*, const Point*>> InTimeOrder() const {
+    std::vector<std::pair<const Joints*, const Point*>> all;
+    for (const Joints& joints : plans_) {
+      for (const Point& point : joints.points) all.emplace_back(&joints, &point);
+    }
+    std::sort(all.begin(), all.end(), [](const auto& x, const auto& y) {
+      return x.second->stamp < y.second->stamp ||
+             (x.second->stamp == y.second->stamp && x.second->order < y.second->order);
+    });
+    return all;
+  }
+
+ private:
+  // Whether a sample's positions match its names (one read message, refused if not).
+  bool IsReadable(const std::vector<std::string>& names, const std::vector<double>& positions) {
+    ++counts_->messages;
+    if (positions.size() == names.size()) return true;
+    ++counts_->refused[MergeStatusName(MergeStatus::kWrongSize)];
+    return false;
+  }
+
+  bool IsInRange(const ros::Time& start, const trajectory_msgs::JointTrajectoryPoint& point,
+                 ros::Time* stamp) {
+    if (PointStamp(start, point, stamp)) return true;
+    ++counts_->refused["time_out_of_range"];
+    return false;
+  }
+
+  // The earlier plans' points after `start` lose the joints `names`; a point left without
+  // joints goes.
+  void Supersede(const std::vector<std::string>& names, const ros::Time& start) {
+    const std::size_t count = plans_.size();  // the parts split off below are already cut
+    for (std::size_t k = 0; k < count; ++k) {
+      if (!(plans_[k].last > start)) continue;
+      std::vector<std::size_t> kept;  // the indices of the names that stay
+      const std::vector<std::string>& old_names = plans_[k].names;
+      for (std::size_t j = 0; j < old_names.size(); ++j) {
+        if (std::find(names.begin(), names.end(), old_names[j]) == names.end()) kept.push_back(j);
+      }
+      if (kept.size() == old_names.size()) continue;
+      std::vector<Point>& points = plans_[k].points;
+      const auto after = std::stable_partition(points.begin(), points.end(),
+                                               [&](const Point& p) { return !(p.stamp > start); });
+      counts_->superseded_points += static_cast<std::uint64_t>(points.end() - after);
+      Joints rest{{}, {}, plans_[k].last};
+      for (const std::size_t j : kept) rest.names.push_back(old_names[j]);
+      for (auto point = after; !kept.empty() && point != points.end(); ++point) {
+        Point part{point->stamp, point->order, {}};
+        for (const std::size_t j : kept) part.positions.push_back(point->positions[j]);
+        rest.points.push_back(std::move(part));
+      }
+      points.erase(after, points.end());
+      plans_[k].last = start;
+      if (!rest.points.empty()) plans_.push_back(std::move(rest));
+    }
+  }
+
+  std::vector<Joints> plans_;
+  std::uint64_t next_order_ = 0;
+  Input* counts_;
+};
+
+// Samples merged into cycles: consecutive samples with the same stamp form one cycle. The stamp
+// checks compare each sample with its own stamp as "now": offline, time is the bag's. The
+// timeout only bounds stamps going backwards, which is still refused.
+class Cycles {
+ public:
+  Cycles(const Workcell& workcell, Input* result)
+      : input_(workcell.joint_names, 1.0), result_(result) {
+    input_.SetDefaults(workcell.joint_defaults);
+  }
+
+  void Add(const NamedPositions& sample, const ros::Time& stamp) {
+    if (!has_group_ || stamp != group_stamp_) {
+      Flush();
+      group_stamp_ = stamp;
+      has_group_ = true;
+    }
+    const MergeStatus status = input_.Merge(sample, stamp.toSec());
+    if (status != MergeStatus::kAccepted) ++result_->refused[MergeStatusName(status)];
+  }
+
+  /// Ends the last cycle; a LoadError naming the bag at `path` if some joint was never given.
+  void Finish(const std::string& path) {
+    Flush();
+    if (!input_.is_complete()) {
+      throw LoadError(path + ": model joint '" + input_.joint_name(input_.FirstMissingJoint()) +
+                      "' is in no accepted sensor_msgs/JointState message or trajectory point (" +
+                      kJointDefaultsHint + ")");
+    }
+  }
+
+ private:
+  // Ends the cycle of the samples so far (counted as incomplete before every joint is known).
+  void Flush() {
+    if (!has_group_) return;
+    if (!input_.is_complete()) {
+      ++result_->incomplete_cycles;
+      return;
+    }
+    if (result_->q.empty()) first_stamp_ = group_stamp_;
+    result_->q.push_back(input_.q());
+    result_->time_s.push_back((group_stamp_ - first_stamp_).toSec());
+  }
+
+  JointMerger input_;
+  Input* result_;
+  ros::Time group_stamp_, first_stamp_;
+  bool has_group_ = false;
+};
+
+// The moveit_msgs/DisplayTrajectory `m` of the bag at `path`; a LoadError naming the message
+// when it cannot be read.
+DisplayedPlan ReadDisplayed(const std::string& path, const rosbag::MessageInstance& m) {
+  std::vector<std::uint8_t> bytes(m.size());
+  ros::serialization::OStream stream(bytes.data(), static_cast<std::uint32_t>(bytes.size()));
+  m.write(stream);
+  try {
+    return ReadDisplayTrajectory(m.getMessageDefinition(), bytes.data(), bytes.size());
+  } catch (const std::runtime_error& e) {
+    throw LoadError(path + ": " + kDisplayTrajectoryType + " on " + m.getTopic() +
+                    " at bag time " + std::to_string(m.getTime().toSec()) + ": " + e.what());
+  }
+}
+
+// The plans of the bag at `path`, in bag order.
+void ReadPlans(const std::string& path, const rosbag::Bag& bag, Plans* plans) {
+  rosbag::View view(bag, rosbag::TypeQuery(std::vector<std::string>{kJointTrajectoryType,
+                                                                    kDisplayTrajectoryType}));
+  for (const rosbag::MessageInstance& m : view) {
+    if (const auto plan = m.instantiate<trajectory_msgs::JointTrajectory>()) {
+      // A header.stamp of 0 (MoveIt's "start now") is the time the bag recorded it.
+      plans->AddTrajectory(*plan, plan->header.stamp.isZero() ? m.getTime() : plan->header.stamp);
+    } else if (m.getDataType() == kDisplayTrajectoryType) {
+      // MoveIt's display of a plan, at the time the bag recorded it: the start state (the
+      // joints the trajectories leave out too), then the trajectories one after the other.
+      const DisplayedPlan displayed = ReadDisplayed(path, m);
+      ros::Time start = m.getTime();
+      if (!displayed.start_state.name.empty()) plans->AddState(displayed.start_state, start);
+      for (const trajectory_msgs::JointTrajectory& plan : displayed.trajectories) {
+        start = plans->AddTrajectory(plan, plan.header.stamp.isZero() ? start : plan.header.stamp);
+      }
+    }
+  }
+}
+
+}  // namespace
+
+Input ReadBag(const std::string& path, const Workcell& workcell) {
+  rosbag::Bag bag(path, rosbag::bagmode::Read);
+  if (rosbag::View(bag, rosbag::TypeQuery(std::vector<std::string>{
+                            kJointStateType, kJointTrajectoryType, kDisplayTrajectoryType}))
+          .size() == 0) {
+    throw LoadError(path + ": no " + kJointStateType + ", " + kJointTrajectoryType + " or " +
+                    kDisplayTrajectoryType + " message");
+  }
+  Input result;
+  Plans plans(&result);
+  ReadPlans(path, bag, &plans);
+  const auto planned = plans.InTimeOrder();
+  Cycles cycles(workcell, &result);
+  // The planned points before `stamp` (all that are left when null); at equal stamps the
+  // recorded state comes first, in the same cycle.
+  std::size_t next = 0;
+  auto add_planned_before = [&](const ros::Time* stamp) {
+    for (; next < planned.size() && (stamp == nullptr || planned[next].second->stamp < *stamp);
+         ++next) {
+      const auto& [joints, point] = planned[next];
+      cycles.Add(NamedPositions{joints->names, point->positions, point->stamp.toSec()},
+                 point->stamp);
+    }
+  };
+  for (const rosbag::MessageInstance& m : rosbag::View(bag, rosbag::TypeQuery(kJointStateType))) {
+    const auto msg = m.instantiate<sensor_msgs::JointState>();
+    if (msg == nullptr) continue;
+    ++result.messages;
+    add_planned_before(&msg->header.stamp);
+    cycles.Add(ToNamedPositions(*msg), msg->header.stamp);
+  }
+  add_planned_before(nullptr);
+  cycles.Finish(path);
+  return result;
+}
+
+}  // namespace replay
+}  // namespace arm_collision_monitor

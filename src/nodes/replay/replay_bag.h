@@ -1,0 +1,23 @@
+// replay's bag input: sensor_msgs/JointState, trajectory_msgs/JointTrajectory and
+// moveit_msgs/DisplayTrajectory messages merged into cycles (src/nodes/replay.cpp runs them).
+#pragma once
+
+#include <string>
+
+#include "arm_collision_monitor/scene/workcell.h"
+#include "replay_output.h"
+
+namespace arm_collision_monitor {
+namespace replay {
+
+// The cycles of the bag at `path` for `workcell`'s joints. The recorded states (JointState) are
+// taken in bag order, as the node receives them; the planned points (each trajectory point a
+// sample at its start plus time_from_start, a DisplayTrajectory's start state one at the bag's
+// time) in time order, merged with the states by stamp. A plan supersedes, for its joints, the
+// points of earlier plans after its start, as a trajectory controller replaces a trajectory.
+// Consecutive samples with equal stamps form one cycle. A LoadError names the bag (and the
+// message) when it cannot be read or some joint is never given.
+Input ReadBag(const std::string& path, const Workcell& workcell);
+
+}  // namespace replay
+}  // namespace arm_collision_monitor
