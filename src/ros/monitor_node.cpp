@@ -176,6 +176,8 @@ void MonitorNode::OnJointState(const sensor_msgs::JointState::ConstPtr& msg) {
   const ros::Time now = ClockNow();
   ++messages_;
   const MergeStatus status = input_->Merge(ToNamedPositions(*msg), now.toSec());
+  // Nothing to merge: no cycle (the merger counts it; DiagnoseInput reports the count).
+  if (status == MergeStatus::kNoPositions) return;
   if (status == MergeStatus::kAccepted) {
     newest_input_stamp_ = msg->header.stamp.isZero() ? now : msg->header.stamp;
   } else {
@@ -477,6 +479,7 @@ void MonitorNode::DiagnoseInput(diagnostic_updater::DiagnosticStatusWrapper& sta
     status.add(std::string("refused: ") + MergeStatusName(code), input_->refused_with(code));
   }
   status.add("unknown joint names (total)", input_->total_unknown_joints());
+  status.add("position-less messages (ignored)", input_->position_less());
   status.addf("oldest joint age (s)", "%.3f", oldest_age_s);
   status.addf("input timeout (s)", "%.3f", options_.input_timeout_s);
   status.add("stale episodes", stale_episodes_);

@@ -15,6 +15,7 @@ constexpr double kNoStamp_s = -std::numeric_limits<double>::infinity();
 }  // namespace
 
 const char* MergeStatusName(MergeStatus status) {
+  if (status == MergeStatus::kNoPositions) return "no_positions";
   return status == MergeStatus::kAccepted ? "accepted" : SafetyStatusName(ToSafetyStatus(status));
 }
 
@@ -125,6 +126,10 @@ MergeStatus JointMerger::Refuse(MergeStatus status) {
 }
 
 MergeStatus JointMerger::Merge(const NamedPositions& input, double now_s) {
+  if (GivesNoPositions(input)) {
+    ++position_less_;
+    return MergeStatus::kNoPositions;
+  }
   const Layout& layout = FindOrAddLayout(input.names);
   last_unknown_joints_ = layout.unknown_count;
   total_unknown_joints_ += layout.unknown_count;
@@ -229,7 +234,8 @@ bool JointMerger::IsStale(double now_s) const {
 }
 
 std::uint64_t JointMerger::refused_with(MergeStatus status) const {
-  return refused_by_status_[static_cast<int>(status)];
+  const int i = static_cast<int>(status);
+  return i < kSafetyStatusCount ? refused_by_status_[i] : 0;  // kNoPositions is no refusal
 }
 
 }  // namespace arm_collision_monitor

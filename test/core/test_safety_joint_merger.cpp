@@ -103,6 +103,28 @@ TEST(JointMerger, UnknownNamesAreIgnoredAndCounted) {
   EXPECT_EQ(merger.q(), Eigen::Vector3d(1.0, 2.0, 3.0));
 }
 
+TEST(JointMerger, MessagesWithoutPositionsAreIgnoredNotRefused) {
+  // JointState's arrays may be empty: a driver publishing efforts only names its joints with no
+  // position. Nothing is merged, nothing refused; a joint only such messages name goes stale.
+  JointMerger merger(kJoints, kTimeout_s);
+  MergeAll(&merger, 10.0);
+  const Eigen::VectorXd q_before = merger.q();
+  for (const double now_s : {10.1, 10.2, 10.0 + kTimeout_s + 0.1}) {
+    EXPECT_EQ(MergeAt(&merger, {"a1", "a2", "b1"}, {}, now_s, now_s), MergeStatus::kNoPositions);
+  }
+  EXPECT_EQ(merger.position_less(), 3u);
+  EXPECT_EQ(merger.refused(), 0u);
+  EXPECT_EQ(merger.refused_with(MergeStatus::kNoPositions), 0u);
+  EXPECT_EQ(merger.q(), q_before);
+  EXPECT_TRUE(merger.IsStale(10.0 + kTimeout_s + 0.1));
+  EXPECT_STREQ(MergeStatusName(MergeStatus::kNoPositions), "no_positions");
+  // Positions of a different count than the names are still refused, and so is a message
+  // naming nothing.
+  EXPECT_EQ(MergeAt(&merger, {"a1"}, {1.0, 2.0}, 10.3, 10.3), MergeStatus::kWrongSize);
+  EXPECT_EQ(MergeAt(&merger, {}, {}, 10.3, 10.3), MergeStatus::kNoKnownJoints);
+  EXPECT_EQ(merger.refused(), 2u);
+}
+
 TEST(JointMerger, ZeroStampMeansReceiptTime) {
   JointMerger merger(kJoints, kTimeout_s);
   // Stamp 0 at receipt time 100 s: neither stale nor backwards.

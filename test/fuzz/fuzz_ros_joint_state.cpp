@@ -201,6 +201,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       continue;
     }
     const MergeStatus status = input.Merge(ToNamedPositions(msg), now.toSec());
+    // Names without positions: ignored, no cycle (MonitorNode::OnJointState).
+    if (status == MergeStatus::kNoPositions) {
+      Require(msg.position.empty() && !msg.name.empty());
+      continue;
+    }
     if (!policy.BeginCycle(status, input)) {
       // Refused or incomplete: the node requests a stop without running the Monitor.
       policy.EndCycle(now.toSec());

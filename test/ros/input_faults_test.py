@@ -138,6 +138,23 @@ class InputFaultsTest(unittest.TestCase):
         self.assertEqual(report.input_status, MonitorReport.INPUT_OK)
         self.assertFalse(report.stop)
 
+    def test_10b_position_less_messages_ignored(self):
+        # JointState's arrays may be empty: a driver publishing efforts only. Not a refusal, and
+        # no stop: the next good message's report has the same refusal count.
+        c = self.client
+        clear = c.go_clear()
+        self.assertIsNotNone(clear)
+        efforts_only = left_only([])
+        efforts_only.effort = [0.5] * 7
+        for _ in range(5):
+            c.publishers[0].publish(efforts_only)
+            time.sleep(0.02)
+        report = c.go_clear()
+        self.assertIsNotNone(report)
+        self.assertFalse(report.stop)
+        self.assertEqual(report.input_status, MonitorReport.INPUT_OK)
+        self.assertEqual(report.refused_inputs, clear.refused_inputs)
+
     def test_11_silence_goes_stale(self):
         c = self.client
         self.assertIsNotNone(c.go_clear())
@@ -251,7 +268,7 @@ class InputFaultsTest(unittest.TestCase):
         clear = c.go_clear()
         self.assertIsNotNone(clear)
         garbage_start = c.report_count()
-        sent = 0
+        sent = 0  # messages that make a cycle: not those naming joints without positions
         for _ in range(300):
             msg = JointState()
             k = rng.randint(0, 16)
@@ -267,7 +284,7 @@ class InputFaultsTest(unittest.TestCase):
             else:
                 msg.header.stamp = rospy.Time(rng.randint(0, 2**32 - 1), rng.randint(0, 999999999))
             rng.choice(c.publishers).publish(msg)
-            sent += 1
+            sent += 1 if msg.position or not msg.name else 0
             time.sleep(0.001)
         # The node stamps an unstamped message with the time it reads it, so a sentinel stamped
         # before the node read the last of the garbage would rightly be refused (stamp going
@@ -338,6 +355,7 @@ class InputFaultsTest(unittest.TestCase):
         self.assertGreater(int(inputs['refused (total)']), 0)
         self.assertGreater(int(inputs['refused: non_finite']), 0)
         self.assertGreater(int(inputs['unknown joint names (total)']), 0)
+        self.assertGreaterEqual(int(inputs['position-less messages (ignored)']), 5)
         self.assertGreater(int(inputs['stale episodes']), 0)
         self.assertIn('message rate (Hz)', inputs)
         self.assertGreater(int(cycle['re-insert fallbacks (total)']), 0)

@@ -381,11 +381,15 @@ class ReplayTrajectoryTest(unittest.TestCase):
                                      time_from_start=rospy.Duration(100.0))
         before_time = JointTrajectoryPoint(positions=self.samples[-1][1],
                                            time_from_start=rospy.Duration(-2.0e9))
+        # Velocities alone (a point may leave positions out): ignored and counted, not refused.
+        velocities_only = JointTrajectoryPoint(velocities=[0.1] * 14,
+                                               time_from_start=rospy.Duration(101.0))
         path = os.path.join(self.directory, 'bad_points.bag')
-        write_plan(path, self.samples[:20], bad_points=[short, before_time])
+        write_plan(path, self.samples[:20], bad_points=[short, before_time, velocities_only])
         result, report = self.replay(path)
         self.assertEqual(result.returncode, 0, result.stderr)
-        self.assertEqual(report['messages'], 22)
+        self.assertEqual(report['messages'], 23)
+        self.assertEqual(report['position_less_messages'], 1)
         self.assertEqual(report['refused_messages'], {'wrong_size': 1, 'time_out_of_range': 1})
         self.assertEqual(report['cycles'], 20)  # refused points make no cycle
 

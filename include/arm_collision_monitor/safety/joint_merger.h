@@ -18,7 +18,7 @@
 namespace arm_collision_monitor {
 
 /// Outcome of merging one message: a subset of SafetyStatus, with its values (so of
-/// MonitorReport's INPUT_* constants too).
+/// MonitorReport's INPUT_* constants too), and kNoPositions, which is not a refusal.
 enum class MergeStatus : std::uint8_t {
   kAccepted = static_cast<std::uint8_t>(SafetyStatus::kOk),
   /// name and position arrays of different lengths, or a name twice
@@ -33,8 +33,13 @@ enum class MergeStatus : std::uint8_t {
   kNoKnownJoints = static_cast<std::uint8_t>(SafetyStatus::kNoKnownJoints),
   /// stamped further ahead of now than the input timeout
   kFutureStamp = static_cast<std::uint8_t>(SafetyStatus::kFutureStamp),
+  /// names joints but gives no positions (JointState's arrays may be empty: a driver that
+  /// publishes efforts only): nothing to merge, the message is counted and ignored, not refused
+  /// (joints that only such messages name go stale)
+  kNoPositions = 255,
 };
 
+/// The SafetyStatus of a refusal (not of kNoPositions).
 inline SafetyStatus ToSafetyStatus(MergeStatus status) {
   return static_cast<SafetyStatus>(status);
 }
@@ -112,6 +117,12 @@ class JointMerger {
   /// Messages refused by Merge() so far, in all and per status (indexed by its value).
   std::uint64_t refused() const { return refused_; }
   std::uint64_t refused_with(MergeStatus status) const;
+  /// Messages Merge() ignored as giving no positions (MergeStatus::kNoPositions) so far.
+  std::uint64_t position_less() const { return position_less_; }
+  /// Whether `input` names joints but gives no positions (MergeStatus::kNoPositions).
+  static bool GivesNoPositions(const NamedPositions& input) {
+    return input.positions.empty() && !input.names.empty();
+  }
 
  private:
   /// A name layout seen on the input: the model index of each entry of names (-1 unknown).
@@ -144,6 +155,7 @@ class JointMerger {
   std::uint64_t total_unknown_joints_ = 0;
   std::uint64_t refused_ = 0;
   std::uint64_t refused_by_status_[kSafetyStatusCount] = {};
+  std::uint64_t position_less_ = 0;
 };
 
 }  // namespace arm_collision_monitor

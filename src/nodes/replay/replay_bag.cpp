@@ -96,10 +96,15 @@ class Plans {
   }
 
  private:
-  // Whether a sample's positions match its names (one read message, refused if not).
+  // Whether a sample's positions match its names (one read message, refused if not; one
+  // without positions is counted apart, JointMerger::GivesNoPositions).
   bool IsReadable(const std::vector<std::string>& names, const std::vector<double>& positions) {
     ++counts_->messages;
     if (positions.size() == names.size()) return true;
+    if (JointMerger::GivesNoPositions(NamedPositions{names, positions})) {
+      ++counts_->position_less;
+      return false;
+    }
     ++counts_->refused[MergeStatusName(MergeStatus::kWrongSize)];
     return false;
   }
@@ -156,6 +161,10 @@ class Cycles {
   }
 
   void Add(const NamedPositions& sample, const ros::Time& stamp) {
+    if (JointMerger::GivesNoPositions(sample)) {  // nothing to merge, and no cycle of its own
+      ++result_->position_less;
+      return;
+    }
     if (!has_group_ || stamp != group_stamp_) {
       Flush();
       group_stamp_ = stamp;

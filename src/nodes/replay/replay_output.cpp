@@ -63,8 +63,9 @@ void PrintJsonCounts(const Options& options, const Input& input, std::size_t cyc
                 static_cast<unsigned long long>(count));
     comma = true;
   }
-  std::printf("},\n  \"superseded_points\": %llu,\n",
-              static_cast<unsigned long long>(input.superseded_points));
+  std::printf("},\n  \"superseded_points\": %llu,\n  \"position_less_messages\": %llu,\n",
+              static_cast<unsigned long long>(input.superseded_points),
+              static_cast<unsigned long long>(input.position_less));
   std::printf("  \"incomplete_cycles\": %llu,\n  \"cycles\": %zu,\n"
               "  \"refused_cycles\": %llu,\n  \"warning_cycles\": %llu,\n"
               "  \"between_samples_cycles\": %llu,\n  \"jumped_cycles\": %llu,\n",
@@ -219,6 +220,10 @@ void PrintText(const Options& options, const Workcell& wc, const Input& input,
                 "monitor\n",
                 static_cast<unsigned long long>(input.incomplete_cycles),
                 static_cast<unsigned long long>(summary.refused_cycles));
+  }
+  if (input.position_less > 0) {
+    std::printf("input: %llu messages named joints without positions (ignored)\n",
+                static_cast<unsigned long long>(input.position_less));
   }
   if (input.superseded_points > 0) {
     std::printf("input: %llu planned points superseded (for some or all of their joints) by a "

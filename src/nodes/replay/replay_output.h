@@ -37,6 +37,7 @@ struct Input {
   std::map<std::string, std::uint64_t> refused;
   std::uint64_t incomplete_cycles = 0;           ///< before every joint was received
   std::uint64_t superseded_points = 0;  ///< planned points (partly) replaced by a later plan
+  std::uint64_t position_less = 0;      ///< messages and points naming joints without positions
 };
 
 // One cycle's outcome: warning pairs with their distances at the cycle's q, those the swept
