@@ -66,6 +66,8 @@ const char* kUsage =
 #endif
     "\n"
     "                 (default auto; overrides the config's broad_phase)\n"
+    "  --topic T      read only topic T of the bag (repeatable): a bag that records both the\n"
+    "                 joint states and planned paths of the same joints needs it\n"
     "  --grasp L:O    declare object O the grasp target of link L before the first cycle\n"
     "                 (repeatable)\n"
     "  --task N       the grasp targets of the seed's task N (task 3: right_link7:front_box)\n"
@@ -96,6 +98,9 @@ bool ParseOptions(int argc, char** argv, Options* options, std::string* error) {
       if (!value(&options->config)) return false;
     } else if (arg == "--method") {
       if (!value(&options->method)) return false;
+    } else if (arg == "--topic") {
+      if (!value(&v)) return false;
+      options->topics.push_back(v);
     } else if (arg == "--grasp") {
       if (!value(&v)) return false;
       const std::size_t colon = v.find(':');
@@ -289,8 +294,12 @@ int Run(const Options& options) {
     std::fprintf(stderr, "replay: %s\n", notice.c_str());
   }
   const std::unique_ptr<Checker> checker = MakeChecker(options, workcell, monitor_options);
-  const Input input = EndsWith(options.input, ".csv") ? ReadCsv(options.input, *workcell)
-                                                      : replay::ReadBag(options.input, *workcell);
+  const bool is_csv = EndsWith(options.input, ".csv");
+  if (is_csv && !options.topics.empty()) {
+    throw LoadError("--topic selects a bag's topics; " + options.input + " is a CSV file");
+  }
+  const Input input = is_csv ? ReadCsv(options.input, *workcell)
+                             : replay::ReadBag(options.input, options.topics, *workcell);
   std::vector<CycleResult> cycles(input.q.size());
   for (std::size_t k = 0; k < input.q.size(); ++k) {
     checker->Run(input.q[k], &cycles[k]);

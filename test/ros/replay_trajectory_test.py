@@ -7,6 +7,7 @@ point alone (a sparse plan) still warns every pair the dense run warns; a plan o
 warns, between them, a pair that neither point comes near (the swept check); a plan of one arm
 joins the other arm's state recorded at its start; plans of each arm replay side by side, in
 time order; a later plan supersedes, for its joints, an earlier one's points after its start; a
+bag of both recorded states and plans of the same joints is refused unless --topic picks one; a
 point of the wrong size or whose stamp is
 out of ros::Time's range is refused and counted, the others replay. MoveIt's display of a plan
 (moveit_msgs/DisplayTrajectory, written raw with the definition a bag carries, as this machine
@@ -307,6 +308,47 @@ class ReplayTrajectoryTest(unittest.TestCase):
                          self.warned_pairs(expected, 'warnings'))
         self.assertNotEqual(self.warned_pairs(report, 'warnings'),
                             self.warned_pairs(recorded, 'warnings'))
+
+    def test_states_and_plans_of_the_same_joints_need_a_topic(self):
+        # What `rosbag record -a` keeps of a robot: its joint states and the plan it was sent.
+        # Both give the same joints; replay asks which to check, and checks either.
+        _, recorded = self.replay(self.recording)
+        start = self.samples[0][0]
+        path = os.path.join(self.directory, 'states_and_plan.bag')
+        with rosbag.Bag(path, 'w') as bag, rosbag.Bag(self.recording) as states:
+            bag.write('/move_group/planned_path', trajectory_of(self.samples, slice(0, 14), start),
+                      start)
+            for topic, msg, t in states.read_messages():
+                bag.write(topic, msg, t)
+        result, _ = self.replay(path)
+        self.assertEqual(result.returncode, 1)
+        self.assertRegex(result.stderr,
+                         r"states_and_plan.bag: joint '(left|right)_joint1' has both recorded "
+                         r'states \(sensor_msgs/JointState on (left|right)_arm/joint_states\) and '
+                         r'planned paths \(on /move_group/planned_path\): replay one of them with '
+                         r'--topic')
+        for topics, messages in ((['/move_group/planned_path'], 150),
+                                 (['left_arm/joint_states', 'right_arm/joint_states'], 300)):
+            args = [arg for topic in topics for arg in ('--topic', topic)]
+            result = rosrun('replay', '--task', '2', '--json', *args, path)
+            self.assertEqual(result.returncode, 0, result.stderr)
+            report = json.loads(result.stdout)
+            self.assertEqual((report['messages'], report['cycles']), (messages, 150))
+            self.assertEqual(self.warned_pairs(report, 'warnings'),
+                             self.warned_pairs(recorded, 'warnings'))
+        result = rosrun('replay', '--topic', '/no_such_topic', path)
+        self.assertEqual(result.returncode, 1)
+        self.assertIn('states_and_plan.bag: --topic /no_such_topic: no sensor_msgs/JointState, '
+                      'trajectory_msgs/JointTrajectory or moveit_msgs/DisplayTrajectory message '
+                      'on it', result.stderr)
+        csv_path = os.path.join(self.directory, 'plan.csv')
+        with open(csv_path, 'w') as csv:
+            csv.write(','.join(LEFT_JOINTS + RIGHT_JOINTS) + '\n')
+            csv.write(','.join(str(x) for x in self.samples[0][1]) + '\n')
+        result = rosrun('replay', '--topic', '/move_group/planned_path', csv_path)
+        self.assertEqual(result.returncode, 1)
+        self.assertIn("--topic selects a bag's topics; %s is a CSV file" % csv_path,
+                      result.stderr)
 
     def test_a_moveit_display_replays_as_its_recording(self):
         # Task 2 as move_group would display a plan of both arms in two trajectories (the second

@@ -5,6 +5,9 @@
 #include <algorithm>
 #include <cstdint>
 #include <limits>
+#include <set>
+#include <string>
+#include <unordered_set>
 #include <utility>
 #include <vector>
 
@@ -217,40 +220,96 @@ DisplayedPlan ReadDisplayed(const std::string& path, const rosbag::MessageInstan
   }
 }
 
-// The plans of the bag at `path`, in bag order.
-void ReadPlans(const std::string& path, const rosbag::Bag& bag, Plans* plans) {
+// The topics the plans came on, and the joints they give.
+struct PlanSources {
+  std::set<std::string> topics;
+  std::unordered_set<std::string> joints;
+};
+
+// Whether `m` is on one of `topics` (empty: all are read).
+bool IsRead(const rosbag::MessageInstance& m, const std::vector<std::string>& topics) {
+  return topics.empty() || std::find(topics.begin(), topics.end(), m.getTopic()) != topics.end();
+}
+
+// The plans of the bag at `path` on `topics`, in bag order.
+PlanSources ReadPlans(const std::string& path, const rosbag::Bag& bag,
+                      const std::vector<std::string>& topics, Plans* plans) {
+  PlanSources sources;
   rosbag::View view(bag, rosbag::TypeQuery(std::vector<std::string>{kJointTrajectoryType,
                                                                     kDisplayTrajectoryType}));
+  auto add = [&](const trajectory_msgs::JointTrajectory& plan, const ros::Time& start) {
+    sources.joints.insert(plan.joint_names.begin(), plan.joint_names.end());
+    return plans->AddTrajectory(plan, start);
+  };
   for (const rosbag::MessageInstance& m : view) {
+    if (!IsRead(m, topics)) continue;
+    sources.topics.insert(m.getTopic());
     if (const auto plan = m.instantiate<trajectory_msgs::JointTrajectory>()) {
       // A header.stamp of 0 (MoveIt's "start now") is the time the bag recorded it.
-      plans->AddTrajectory(*plan, plan->header.stamp.isZero() ? m.getTime() : plan->header.stamp);
+      add(*plan, plan->header.stamp.isZero() ? m.getTime() : plan->header.stamp);
     } else if (m.getDataType() == kDisplayTrajectoryType) {
       // MoveIt's display of a plan, at the time the bag recorded it: the start state (the
       // joints the trajectories leave out too), then the trajectories one after the other.
       const DisplayedPlan displayed = ReadDisplayed(path, m);
       ros::Time start = m.getTime();
-      if (!displayed.start_state.name.empty()) plans->AddState(displayed.start_state, start);
+      const sensor_msgs::JointState& state = displayed.start_state;
+      if (!state.name.empty()) plans->AddState(state, start);
+      sources.joints.insert(state.name.begin(), state.name.end());
       for (const trajectory_msgs::JointTrajectory& plan : displayed.trajectories) {
-        start = plans->AddTrajectory(plan, plan.header.stamp.isZero() ? start : plan.header.stamp);
+        start = add(plan, plan.header.stamp.isZero() ? start : plan.header.stamp);
       }
     }
+  }
+  return sources;
+}
+
+// A LoadError unless each of `topics` holds a message of the three types in the bag at `path`.
+void CheckTopics(const std::string& path, rosbag::View* view,
+                 const std::vector<std::string>& topics) {
+  for (const std::string& topic : topics) {
+    bool is_found = false;
+    for (const rosbag::ConnectionInfo* connection : view->getConnections()) {
+      is_found |= connection->topic == topic;
+    }
+    if (!is_found) {
+      throw LoadError(path + ": --topic " + topic + ": no " + kJointStateType + ", " +
+                      kJointTrajectoryType + " or " + kDisplayTrajectoryType + " message on it");
+    }
+  }
+}
+
+// A LoadError when the recorded state `msg` gives a joint the plans give too (unless the topics
+// were chosen).
+void CheckNotPlanned(const std::string& path, const rosbag::MessageInstance& m,
+                     const sensor_msgs::JointState& msg, const PlanSources& plans) {
+  if (msg.position.empty()) return;
+  for (const std::string& name : msg.name) {
+    if (plans.joints.count(name) == 0) continue;
+    std::string plan_topics;
+    for (const std::string& topic : plans.topics) {
+      plan_topics += (plan_topics.empty() ? "" : ", ") + topic;
+    }
+    throw LoadError(path + ": joint '" + name + "' has both recorded states (" + kJointStateType +
+                    " on " + m.getTopic() + ") and planned paths (on " + plan_topics +
+                    "): replay one of them with --topic");
   }
 }
 
 }  // namespace
 
-Input ReadBag(const std::string& path, const Workcell& workcell) {
+Input ReadBag(const std::string& path, const std::vector<std::string>& topics,
+              const Workcell& workcell) {
   rosbag::Bag bag(path, rosbag::bagmode::Read);
-  if (rosbag::View(bag, rosbag::TypeQuery(std::vector<std::string>{
-                            kJointStateType, kJointTrajectoryType, kDisplayTrajectoryType}))
-          .size() == 0) {
+  rosbag::View all(bag, rosbag::TypeQuery(std::vector<std::string>{
+                            kJointStateType, kJointTrajectoryType, kDisplayTrajectoryType}));
+  if (all.size() == 0) {
     throw LoadError(path + ": no " + kJointStateType + ", " + kJointTrajectoryType + " or " +
                     kDisplayTrajectoryType + " message");
   }
+  CheckTopics(path, &all, topics);
   Input result;
   Plans plans(&result);
-  ReadPlans(path, bag, &plans);
+  const PlanSources sources = ReadPlans(path, bag, topics, &plans);
   const auto planned = plans.InTimeOrder();
   Cycles cycles(workcell, &result);
   // The planned points before `stamp` (all that are left when null); at equal stamps the
@@ -266,7 +325,8 @@ Input ReadBag(const std::string& path, const Workcell& workcell) {
   };
   for (const rosbag::MessageInstance& m : rosbag::View(bag, rosbag::TypeQuery(kJointStateType))) {
     const auto msg = m.instantiate<sensor_msgs::JointState>();
-    if (msg == nullptr) continue;
+    if (msg == nullptr || !IsRead(m, topics)) continue;
+    if (topics.empty()) CheckNotPlanned(path, m, *msg, sources);
     ++result.messages;
     add_planned_before(&msg->header.stamp);
     cycles.Add(ToNamedPositions(*msg), msg->header.stamp);

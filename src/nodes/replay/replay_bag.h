@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "arm_collision_monitor/scene/workcell.h"
 #include "replay_output.h"
@@ -15,9 +16,13 @@ namespace replay {
 // sample at its start plus time_from_start, a DisplayTrajectory's start state one at the bag's
 // time) in time order, merged with the states by stamp. A plan supersedes, for its joints, the
 // points of earlier plans after its start, as a trajectory controller replaces a trajectory.
-// Consecutive samples with equal stamps form one cycle. A LoadError names the bag (and the
-// message) when it cannot be read or some joint is never given.
-Input ReadBag(const std::string& path, const Workcell& workcell);
+// Consecutive samples with equal stamps form one cycle. `topics`: the topics read (empty: all);
+// without them, recorded states and planned paths of the same joint are an error (a bag
+// recorded with `rosbag record -a` holds both: what was planned and what was done). A
+// LoadError names the bag (and the message or topic) when it cannot be read, some joint is
+// never given, or a topic given holds none of the three types.
+Input ReadBag(const std::string& path, const std::vector<std::string>& topics,
+              const Workcell& workcell);
 
 }  // namespace replay
 }  // namespace arm_collision_monitor

@@ -24,6 +24,7 @@ struct Options {
   std::string method = "auto";
   bool json = false;
   std::vector<TaskGraspTarget> grasp_targets;
+  std::vector<std::string> topics;  ///< --topic: the bag topics read (empty: all)
   std::string input;
   bool help = false;  ///< -h or --help: print the usage on stdout and exit 0
 };
