@@ -184,8 +184,7 @@ bool Monitor::Impl::IsProvablyClear(const Eigen::Ref<const Eigen::VectorXd>& q, 
   if (!is_pair_gap_known) {
     smallest_pair_gap_m = std::numeric_limits<double>::infinity();
     for (const KeptPair& kept : cache.pairs()) {
-      const double gap_m = kept.kinematics_bound_m - cache.BoundMargin_m(kept.kinematics_bound_m) -
-                           (tol_now[kept.pair.a] + tol_now[kept.pair.b]);
+      const double gap_m = PairGap_m(kept);
       if (!(gap_m >= smallest_pair_gap_m)) smallest_pair_gap_m = gap_m;  // NaN stays
     }
     is_pair_gap_known = true;

@@ -69,7 +69,8 @@ struct Monitor::Impl {
   // At q_kinematics; scratch, which FollowKinematics leaves at the kinematics before.
   std::vector<Eigen::Isometry3d> X_WL, X_WL_next;
   std::vector<std::uint8_t> link_changed;  // scratch: per link, moved by the kinematics
-  // IsProvablyClear: the smallest gap over the kept pairs since the last kinematics.
+  // The smallest PairGap_m over the kept pairs since the last kinematics (SweepStep or
+  // IsProvablyClear, whichever comes first).
   bool is_pair_gap_known = false;
   double smallest_pair_gap_m = 0.0;
   std::vector<std::uint8_t> bound_known;  // IsProvablyClear after bounded cycles: per primitive,
@@ -120,6 +121,13 @@ struct Monitor::Impl {
   // still clears its threshold -- then no pair can warn. `step_m`: the step's largest bound
   // (RunCycle). Changes nothing but bound scratch.
   bool IsProvablyClear(const Eigen::Ref<const Eigen::VectorXd>& q, double step_m);
+  // A kept pair's gap: its kinematics bound less its rounding margin and threshold (a motion
+  // bound below it leaves the pair clear: PairCache::IsClear). The smallest over the kept pairs
+  // is fixed from the narrow phase to the next kinematics (smallest_pair_gap_m).
+  double PairGap_m(const KeptPair& kept) const {
+    return kept.kinematics_bound_m - cache.BoundMargin_m(kept.kinematics_bound_m) -
+           (tol_now[kept.pair.a] + tol_now[kept.pair.b]);
+  }
   // Forward kinematics at q, the moved primitives re-indexed, the kept pairs brought up to
   // date: the shapes then follow q. Returns the number of primitives that moved. `is_step`:
   // q ends the step of this cycle (RunCycle), whose bounds StepBound_m gives. `reindex_at_m`:

@@ -129,10 +129,12 @@ void Monitor::Impl::SweepStep(const Eigen::Ref<const Eigen::VectorXd>& q, CycleW
     ++work->swept_pairs;
     SweepPair(a, b, pair_motion_m, end_m, q, work);
   };
-  // The kept pairs and, merged in order, the others of primitives leaving their slack.
+  // The kept pairs and, merged in order, the others of primitives leaving their slack. A kept
+  // pair's first test is on its gap, whose smallest the next IsProvablyClear then has.
   CollectSweptPairs();
   std::size_t extra = 0;
   const std::vector<SweptPair>& others = swept.pairs;
+  double smallest_gap_m = std::numeric_limits<double>::infinity();
   for (const KeptPair& k : cache.pairs()) {
     for (; extra < others.size() && !(k.pair < others[extra].pair); ++extra) {
       const SweptPair& o = others[extra];
@@ -140,8 +142,14 @@ void Monitor::Impl::SweepStep(const Eigen::Ref<const Eigen::VectorXd>& q, CycleW
         sweep(o.pair, o.end_bound_m, false);
       }
     }
-    if (is_near(k.pair, k.kinematics_bound_m)) sweep(k.pair, k.kinematics_bound_m, k.is_exact);
+    const double gap_m = PairGap_m(k);
+    if (!(gap_m >= smallest_gap_m)) smallest_gap_m = gap_m;  // NaN stays
+    if (gap_m > two_largest_m) continue;
+    pair_motion_m = PairStepBound_m(k.pair.a, k.pair.b);
+    if (!(gap_m > pair_motion_m)) sweep(k.pair, k.kinematics_bound_m, k.is_exact);
   }
+  smallest_pair_gap_m = smallest_gap_m;
+  is_pair_gap_known = true;
   for (; extra < others.size(); ++extra) {
     const SweptPair& o = others[extra];
     if (is_near(o.pair, o.end_bound_m)) sweep(o.pair, o.end_bound_m, false);
