@@ -170,6 +170,13 @@ class ReplayTrajectoryTest(unittest.TestCase):
     def warned_pairs(report, key):
         return [sorted((w[0], w[1]) for w in cycle[key]) for cycle in report['per_cycle']]
 
+    def assert_same_cycles(self, report, expected):
+        """`report` has `expected`'s cycle times and warned pairs."""
+        self.assertEqual([c['time_s'] for c in report['per_cycle']],
+                         [c['time_s'] for c in expected['per_cycle']])
+        self.assertEqual(self.warned_pairs(report, 'warnings'),
+                         self.warned_pairs(expected, 'warnings'))
+
     def test_a_plan_replays_as_its_recording(self):
         recorded, recorded_report = self.replay(self.recording)
         self.assertEqual(recorded.returncode, 0, recorded.stderr)
@@ -182,11 +189,8 @@ class ReplayTrajectoryTest(unittest.TestCase):
         self.assertEqual(report['messages'], 150)  # one sample a point
         self.assertEqual(report['refused_messages'], {})
         self.assertEqual(report['incomplete_cycles'], 0)
-        self.assertEqual([c['time_s'] for c in report['per_cycle']],
-                         [c['time_s'] for c in recorded_report['per_cycle']])
         self.assertGreater(recorded_report['warning_cycles'], 0)
-        self.assertEqual(self.warned_pairs(report, 'warnings'),
-                         self.warned_pairs(recorded_report, 'warnings'))
+        self.assert_same_cycles(report, recorded_report)
         self.assertEqual(self.warned_pairs(report, 'between_samples'),
                          self.warned_pairs(recorded_report, 'between_samples'))
 
@@ -266,10 +270,7 @@ class ReplayTrajectoryTest(unittest.TestCase):
         self.assertEqual(result.returncode, 0, result.stderr)
         self.assertEqual((report['messages'], report['cycles']), (300, 150))
         self.assertEqual((report['superseded_points'], report['incomplete_cycles']), (0, 0))
-        self.assertEqual([c['time_s'] for c in report['per_cycle']],
-                         [c['time_s'] for c in recorded['per_cycle']])
-        self.assertEqual(self.warned_pairs(report, 'warnings'),
-                         self.warned_pairs(recorded, 'warnings'))
+        self.assert_same_cycles(report, recorded)
 
     def test_a_later_plan_supersedes_an_earlier_one_after_its_start(self):
         # Task 2 as one plan of both arms; then, from its cycle 50 on, a plan that holds the left
@@ -302,10 +303,7 @@ class ReplayTrajectoryTest(unittest.TestCase):
         self.assertEqual(report['messages'], 150 + len(hold.points))
         self.assertEqual(report['superseded_points'], 150 - cut - 1)
         self.assertEqual(report['cycles'], 150)
-        self.assertEqual([c['time_s'] for c in report['per_cycle']],
-                         [c['time_s'] for c in expected['per_cycle']])
-        self.assertEqual(self.warned_pairs(report, 'warnings'),
-                         self.warned_pairs(expected, 'warnings'))
+        self.assert_same_cycles(report, expected)
         self.assertNotEqual(self.warned_pairs(report, 'warnings'),
                             self.warned_pairs(recorded, 'warnings'))
 
@@ -334,8 +332,7 @@ class ReplayTrajectoryTest(unittest.TestCase):
             self.assertEqual(result.returncode, 0, result.stderr)
             report = json.loads(result.stdout)
             self.assertEqual((report['messages'], report['cycles']), (messages, 150))
-            self.assertEqual(self.warned_pairs(report, 'warnings'),
-                             self.warned_pairs(recorded, 'warnings'))
+            self.assert_same_cycles(report, recorded)
         result = rosrun('replay', '--topic', '/no_such_topic', path)
         self.assertEqual(result.returncode, 1)
         self.assertIn('states_and_plan.bag: --topic /no_such_topic: no sensor_msgs/JointState, '
@@ -369,10 +366,7 @@ class ReplayTrajectoryTest(unittest.TestCase):
             self.assertEqual(report['cycles'], 150, group_name)
             self.assertEqual(report['refused_messages'], {})
             self.assertEqual(report['incomplete_cycles'], 0)
-            self.assertEqual([c['time_s'] for c in report['per_cycle']],
-                             [c['time_s'] for c in recorded['per_cycle']])
-            self.assertEqual(self.warned_pairs(report, 'warnings'),
-                             self.warned_pairs(recorded, 'warnings'))
+            self.assert_same_cycles(report, recorded)
 
     def test_a_moveit_display_of_one_arm_takes_the_other_from_its_start_state(self):
         start_state = JointState(name=LEFT_JOINTS + RIGHT_JOINTS, position=self.samples[0][1])
