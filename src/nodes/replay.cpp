@@ -1,9 +1,8 @@
 // replay: checks a recorded or planned trajectory offline, without ROS running. Reads a bag of
-// sensor_msgs/JointState, trajectory_msgs/JointTrajectory and moveit_msgs/DisplayTrajectory (any
-// topics, merged by joint name with the node's JointMerger: replay/replay_bag.h) or a joint CSV
-// file (tasks/joint_csv.h), runs the Monitor (or a peer checker) once per cycle and prints the
-// warnings, the cycle times and the broad-phase counters, as text or JSON
-// (replay/replay_output.cpp).
+// joint states and planned paths (any topics, merged by joint name with the node's JointMerger:
+// replay/replay_bag.h) or a joint CSV file (tasks/joint_csv.h), runs the Monitor (or a peer
+// checker) once per cycle and prints the warnings, the cycle times and the broad-phase
+// counters, as text or JSON (replay/replay_output.cpp).
 //
 //   rosrun arm_collision_monitor replay [options] <file.bag | file.csv>
 //
@@ -51,10 +50,12 @@ const char* kUsage =
     "  file.bag: sensor_msgs/JointState, trajectory_msgs/JointTrajectory (a planned path:\n"
     "            each point a sample at header.stamp, or the bag's time when 0, plus its\n"
     "            time_from_start) and moveit_msgs/DisplayTrajectory (move_group's\n"
-    "            display_planned_path: its start state, then its trajectories in turn) on any\n"
-    "            topics, merged by joint name: the states in bag order, the planned points in\n"
-    "            time order, merged by stamp; a plan supersedes earlier plans of its joints\n"
-    "            after its start. Consecutive samples with equal stamps form one cycle.\n"
+    "            display_planned_path: its start state, then its trajectories in turn), and\n"
+    "            the trajectories of control_msgs/FollowJointTrajectoryActionGoal and\n"
+    "            moveit_msgs/ExecuteTrajectoryActionGoal, on any topics, merged by joint\n"
+    "            name: the states in bag order, the planned points in time order, merged by\n"
+    "            stamp; a plan supersedes earlier plans of its joints after its start.\n"
+    "            Consecutive samples with equal stamps form one cycle.\n"
     "  file.csv: a header row of joint names (optionally 'time_s' first), one row per cycle.\n"
     "options:\n"
     "  --urdf F --scene F --config F   workcell and monitor options (default: the package's\n"

@@ -28,8 +28,7 @@ constexpr int kMaxDepth = 32;
 constexpr long kTooLarge = 1L << 40;
 
 std::runtime_error Error(const std::string& path, const std::string& what) {
-  return std::runtime_error((path.empty() ? std::string(kDisplayTrajectoryType) : path) + ": " +
-                            what);
+  return std::runtime_error((path.empty() ? std::string("the message") : path) + ": " + what);
 }
 
 // Serialized size of a built-in type, 0 for string (a length, then its bytes), -1 for a message
@@ -287,7 +286,69 @@ void ReadPart(Reader* reader, const std::string& type, const std::string& path,
   }
 }
 
+// The fields from an action goal down to its trajectory_msgs/JointTrajectory.
+const std::vector<std::string>& GoalFields(const std::string& type) {
+  static const std::map<std::string, std::vector<std::string>> kFields = {
+      {kFollowJointTrajectoryGoalType, {"goal", "trajectory"}},
+      {kExecuteTrajectoryGoalType, {"goal", "trajectory", "joint_trajectory"}}};
+  const auto it = kFields.find(type);
+  if (it == kFields.end()) throw std::invalid_argument("no joint trajectory read from " + type);
+  return it->second;
+}
+
+// Checks, before any byte is read, that `fields` lead from `type` to a JointTrajectory.
+void CheckGoalFields(const Reader& reader, std::string type,
+                     const std::vector<std::string>& fields) {
+  std::string path;
+  for (const std::string& name : fields) {
+    const std::vector<Field>& own = reader.FieldsOf(type, path);
+    const auto field = std::find_if(own.begin(), own.end(), [&](const Field& f) {
+      return f.name == name && !f.is_array;
+    });
+    if (field == own.end()) throw Error(path, type + " has no field '" + name + "'");
+    path += (path.empty() ? "" : ".") + name;
+    type = field->type;
+  }
+  if (type != "trajectory_msgs/JointTrajectory") {
+    throw Error(path, "is " + type + ", not trajectory_msgs/JointTrajectory");
+  }
+}
+
+// Reads the value of `type` at the reader, taking the trajectory at the end of `fields` (from
+// `depth` on) into *out and skipping every other field.
+void ReadAlong(Reader* reader, const std::string& type, const std::string& path,
+               const std::vector<std::string>& fields, std::size_t depth,
+               trajectory_msgs::JointTrajectory* out) {
+  for (const Field& field : reader->FieldsOf(type, path)) {
+    if (field.is_array || field.name != fields[depth]) {
+      reader->SkipField(field, path);
+      continue;
+    }
+    const std::string field_path = path.empty() ? field.name : path + "." + field.name;
+    if (depth + 1 == fields.size()) {
+      reader->ReadTyped(field.type, field_path, out);
+    } else {
+      ReadAlong(reader, field.type, field_path, fields, depth + 1, out);
+    }
+  }
+}
+
 }  // namespace
+
+trajectory_msgs::JointTrajectory ReadGoalTrajectory(const std::string& type,
+                                                    const std::string& definition,
+                                                    const std::uint8_t* data, std::size_t size) {
+  const std::vector<std::string>& fields = GoalFields(type);
+  const Definitions definitions = ParseDefinitions(type, definition);
+  Reader reader(definitions, type, data, size);
+  CheckGoalFields(reader, type, fields);
+  trajectory_msgs::JointTrajectory trajectory;
+  ReadAlong(&reader, type, "", fields, 0, &trajectory);
+  if (reader.remaining() != 0) {
+    throw Error("", std::to_string(reader.remaining()) + " bytes left after the last field");
+  }
+  return trajectory;
+}
 
 DisplayedPlan ReadDisplayTrajectory(const std::string& definition, const std::uint8_t* data,
                                     std::size_t size) {

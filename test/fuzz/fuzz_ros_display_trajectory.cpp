@@ -1,5 +1,6 @@
-// libFuzzer harness for replay's reader of MoveIt's plan display (ReadDisplayTrajectory): a
-// moveit_msgs/DisplayTrajectory's definition and bytes as a bag could hold them, both mutated.
+// libFuzzer harness for replay's readers of MoveIt's plan display (ReadDisplayTrajectory) and of
+// the action goals that carry a trajectory (ReadGoalTrajectory): a message's definition and
+// bytes as a bag could hold them, both mutated, read as each of the three types.
 // std::runtime_error is the expected answer to bad input; any other exception (std::bad_alloc
 // from a count taken at its word), a crash, undefined behaviour, a read past the bytes, a leak,
 // a timeout (a definition whose walk does not end) or a broken invariant of the result is a
@@ -7,7 +8,8 @@
 //
 // Input: the definition (libFuzzer's random-length string: a backslash ends it, two stand for
 // one), then the message's bytes. Seeds: test/fuzz/corpus/ros_display_trajectory/, written by
-// test/ros/replay_trajectory_test.py's helpers (task 2's first samples, both layouts).
+// test/ros/replay_trajectory_test.py's helpers (task 2's first samples: a display in both
+// layouts, and a control_msgs/FollowJointTrajectoryActionGoal).
 #include <cstdint>
 #include <cstdlib>
 #include <stdexcept>
@@ -34,6 +36,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     least += 4 * plan.start_state.name.size() + 8 * plan.start_state.position.size();
     if (least > bytes.size()) std::abort();
   } catch (const std::runtime_error&) {
+  }
+  for (const char* type : {kFollowJointTrajectoryGoalType, kExecuteTrajectoryGoalType}) {
+    try {
+      const trajectory_msgs::JointTrajectory trajectory =
+          ReadGoalTrajectory(type, definition, bytes.data(), bytes.size());
+      std::size_t least = 4 * trajectory.joint_names.size();
+      for (const auto& point : trajectory.points) least += 8 * point.positions.size();
+      if (least > bytes.size()) std::abort();
+    } catch (const std::runtime_error&) {
+    }
   }
   return 0;
 }

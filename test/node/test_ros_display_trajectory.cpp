@@ -1,5 +1,5 @@
 // ReadDisplayTrajectory: a moveit_msgs/DisplayTrajectory walked by the definition its bag
-// carries. What was written is read back, with or without RobotTrajectory's group_name; every
+// carries (and ReadGoalTrajectory: the trajectory of an action goal, the same way, last). What was written is read back, with or without RobotTrajectory's group_name; every
 // truncation and every corrupted byte gives a runtime_error naming a field, never a crash or an
 // allocation as large as a corrupted count; a definition that fans out over empty types costs
 // no more than its bytes; definitions that lack what is read, that differ from this build's,
@@ -14,6 +14,7 @@
 #include <ros/message_traits.h>
 #include <ros/serialization.h>
 #include <sensor_msgs/MultiDOFJointState.h>
+#include <std_msgs/Header.h>
 #include <trajectory_msgs/MultiDOFJointTrajectory.h>
 
 #include "arm_collision_monitor/ros/display_trajectory.h"
@@ -220,6 +221,120 @@ TEST(DisplayTrajectory, BadDefinitionsAreRefusedNamingWhat) {
   EXPECT_NE(message(Definition(false, {{"moveit_msgs/RobotState", "Missing thing\n"}}))
                 .find("type moveit_msgs/Missing is not in the definition"),
             std::string::npos);
+}
+
+// The definition of an action goal of `type` (control_msgs/FollowJointTrajectoryActionGoal or
+// moveit_msgs/ExecuteTrajectoryActionGoal, from their packages' and actionlib_msgs' .msg
+// files); `overrides` replace types' fields.
+std::string GoalDefinition(const std::string& type,
+                           const std::map<std::string, std::string>& overrides = {}) {
+  const bool is_follow = type == kFollowJointTrajectoryGoalType;
+  const std::string goal = is_follow ? "FollowJointTrajectoryGoal" : "ExecuteTrajectoryGoal";
+  std::map<std::string, std::string> sections = {
+      {"actionlib_msgs/GoalID", "time stamp\nstring id\n"},
+      {"control_msgs/FollowJointTrajectoryGoal",
+       "trajectory_msgs/JointTrajectory trajectory\nJointTolerance[] path_tolerance\n"
+       "JointTolerance[] goal_tolerance\nduration goal_time_tolerance\n"},
+      {"control_msgs/JointTolerance",
+       "string name\nfloat64 position\nfloat64 velocity\nfloat64 acceleration\n"},
+      {"moveit_msgs/ExecuteTrajectoryGoal", "RobotTrajectory trajectory\n"},
+      {"moveit_msgs/RobotTrajectory",
+       "trajectory_msgs/JointTrajectory joint_trajectory\n"
+       "trajectory_msgs/MultiDOFJointTrajectory multi_dof_joint_trajectory\n"}};
+  AddSections<trajectory_msgs::JointTrajectory>(&sections);
+  AddSections<trajectory_msgs::MultiDOFJointTrajectory>(&sections);
+  for (const auto& [name, fields] : overrides) sections[name] = fields;
+  std::string text = overrides.count(type) ? overrides.at(type)
+                                           : "Header header\nactionlib_msgs/GoalID goal_id\n" +
+                                                 goal + " goal\n";
+  for (const auto& [name, fields] : sections) {
+    if (name != type) text += kSeparator + "MSG: " + name + "\n" + fields;
+  }
+  return text;
+}
+
+// The bytes of a goal of `type` laid out as GoalDefinition(type), carrying Trajectory(1.0).
+std::vector<std::uint8_t> GoalBytes(const std::string& type) {
+  namespace ser = ros::serialization;
+  std::vector<std::uint8_t> bytes(4096);
+  ser::OStream out(bytes.data(), static_cast<std::uint32_t>(bytes.size()));
+  std_msgs::Header header;
+  header.frame_id = "base";
+  ser::serialize(out, header);
+  ser::serialize(out, ros::Time(3, 0));
+  ser::serialize(out, std::string("goal-1"));
+  ser::serialize(out, Trajectory(1.0));
+  if (type == kFollowJointTrajectoryGoalType) {
+    ser::serialize(out, std::uint32_t{1});  // one path tolerance
+    ser::serialize(out, std::string("a"));
+    for (const double x : {0.1, 0.2, 0.3}) ser::serialize(out, x);
+    ser::serialize(out, std::uint32_t{0});  // no goal tolerance
+    ser::serialize(out, ros::Duration(0.5));
+  } else {
+    ser::serialize(out, trajectory_msgs::MultiDOFJointTrajectory());
+  }
+  bytes.resize(static_cast<std::size_t>(out.getData() - bytes.data()));
+  return bytes;
+}
+
+TEST(GoalTrajectory, ReadsWhatWasWrittenAndRefusesEveryTruncation) {
+  for (const std::string type : {kFollowJointTrajectoryGoalType, kExecuteTrajectoryGoalType}) {
+    const std::vector<std::uint8_t> bytes = GoalBytes(type);
+    const std::string definition = GoalDefinition(type);
+    EXPECT_EQ(ReadGoalTrajectory(type, definition, bytes.data(), bytes.size()), Trajectory(1.0))
+        << type;
+    for (std::size_t size = 0; size < bytes.size(); ++size) {
+      EXPECT_THROW(ReadGoalTrajectory(type, definition, bytes.data(), size), std::runtime_error)
+          << type << ": " << size << " of " << bytes.size() << " bytes";
+    }
+  }
+  const std::vector<std::uint8_t> bytes = GoalBytes(kExecuteTrajectoryGoalType);
+  EXPECT_THROW(ReadGoalTrajectory("moveit_msgs/MoveGroupActionGoal",
+                                  GoalDefinition(kExecuteTrajectoryGoalType), bytes.data(),
+                                  bytes.size()),
+               std::invalid_argument);
+}
+
+TEST(GoalTrajectory, CorruptBytesAreReadOrRefusedNeverCrash) {
+  const std::string type = kFollowJointTrajectoryGoalType;
+  const std::vector<std::uint8_t> good = GoalBytes(type);
+  const std::string definition = GoalDefinition(type);
+  int refused = 0;
+  for (std::size_t at = 0; at < good.size(); ++at) {
+    std::vector<std::uint8_t> bytes = good;
+    bytes[at] = 0xff;
+    try {
+      ReadGoalTrajectory(type, definition, bytes.data(), bytes.size());
+    } catch (const std::runtime_error&) {
+      ++refused;
+    }
+  }
+  // Each byte of the 22 counts and lengths (3 frame_id and id lengths, 2 names, their count,
+  // the points' count, 4 arrays in each of 3 points, the tolerances' 2 counts and name) makes
+  // it 255 or more, which the bytes cannot hold; any other byte is a value, read as it is.
+  EXPECT_EQ(refused, 4 * 22);
+}
+
+TEST(GoalTrajectory, DefinitionsWithoutTheTrajectoryAreRefusedNamingWhere) {
+  const std::string type = kExecuteTrajectoryGoalType;
+  const std::vector<std::uint8_t> bytes = GoalBytes(type);
+  auto message = [&](const std::map<std::string, std::string>& overrides) {
+    try {
+      ReadGoalTrajectory(type, GoalDefinition(type, overrides), bytes.data(), bytes.size());
+    } catch (const std::runtime_error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message({{"moveit_msgs/RobotTrajectory",
+                      "trajectory_msgs/MultiDOFJointTrajectory multi_dof_joint_trajectory\n"}}),
+            "goal.trajectory: moveit_msgs/RobotTrajectory has no field 'joint_trajectory'");
+  EXPECT_EQ(message({{"moveit_msgs/ExecuteTrajectoryGoal", "RobotTrajectory[] trajectory\n"}}),
+            "goal: moveit_msgs/ExecuteTrajectoryGoal has no field 'trajectory'");
+  EXPECT_EQ(message({{"moveit_msgs/RobotTrajectory",
+                      "trajectory_msgs/MultiDOFJointTrajectory joint_trajectory\n"}}),
+            "goal.trajectory.joint_trajectory: is trajectory_msgs/MultiDOFJointTrajectory, not "
+            "trajectory_msgs/JointTrajectory");
 }
 
 }  // namespace

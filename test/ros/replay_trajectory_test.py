@@ -8,12 +8,13 @@ warns, between them, a pair that neither point comes near (the swept check); a p
 joins the other arm's state recorded at its start; plans of each arm replay side by side, in
 time order; a later plan supersedes, for its joints, an earlier one's points after its start; a
 bag of both recorded states and plans of the same joints is refused unless --topic picks one; a
-point of the wrong size or whose stamp is
-out of ros::Time's range is refused and counted, the others replay. MoveIt's display of a plan
-(moveit_msgs/DisplayTrajectory, written raw with the definition a bag carries, as this machine
-has no moveit_msgs) replays as its recording in either layout of RobotTrajectory, a plan of one
-arm taking the other from its start state; one cut short or whose definition differs from this
-build's is an error naming the bag, the message and the field."""
+point of the wrong size or whose stamp is out of ros::Time's range is refused and counted, the
+others replay. MoveIt's display of a plan (moveit_msgs/DisplayTrajectory, written raw with the
+definition a bag carries, as this machine has no moveit_msgs) replays as its recording in either
+layout of RobotTrajectory, a plan of one arm taking the other from its start state; one cut
+short or whose definition differs from this build's is an error naming the bag, the message and
+the field. The goal sent to a trajectory controller (control_msgs/FollowJointTrajectoryActionGoal,
+written raw the same way) replays as its recording too, and one cut short is such an error."""
 import io
 import json
 import os
@@ -26,6 +27,7 @@ import rospkg
 import rospy
 import rostest
 from sensor_msgs.msg import JointState, MultiDOFJointState
+from std_msgs.msg import Header
 from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint, MultiDOFJointTrajectory
 
 from acm_test_util import LEFT_JOINTS, RIGHT_JOINTS, rosrun
@@ -128,18 +130,49 @@ def display_bytes(trajectories, start_state, group_name):
     return buff.getvalue()
 
 
-class DisplayTrajectoryType:
+class RawType:
     """What rosbag's raw write needs of a message class it does not have."""
     _md5sum = '*'
 
 
-def write_display(path, data, definition, recorded_at):
-    topic = '/move_group/display_planned_path'
-    header = {'topic': topic, 'type': 'moveit_msgs/DisplayTrajectory', 'md5sum': '*',
-              'message_definition': definition}
+def write_raw(path, topic, msg_type, data, definition, recorded_at):
+    """A bag of one message of `msg_type`, serialized as `data` by `definition`."""
+    header = {'topic': topic, 'type': msg_type, 'md5sum': '*', 'message_definition': definition}
     with rosbag.Bag(path, 'w') as bag:
-        bag.write(topic, ('moveit_msgs/DisplayTrajectory', data, '*', DisplayTrajectoryType),
-                  recorded_at, raw=True, connection_header=header)
+        bag.write(topic, (msg_type, data, '*', RawType), recorded_at, raw=True,
+                  connection_header=header)
+
+
+def write_display(path, data, definition, recorded_at):
+    write_raw(path, '/move_group/display_planned_path', 'moveit_msgs/DisplayTrajectory', data,
+              definition, recorded_at)
+
+
+# control_msgs/FollowJointTrajectoryActionGoal, from control_msgs' and actionlib_msgs' .msg files
+# (this machine has neither package).
+FOLLOW_GOAL_DEFINITIONS = {
+    'actionlib_msgs/GoalID': 'time stamp\nstring id\n',
+    'control_msgs/FollowJointTrajectoryGoal':
+        'trajectory_msgs/JointTrajectory trajectory\nJointTolerance[] path_tolerance\n'
+        'JointTolerance[] goal_tolerance\nduration goal_time_tolerance\n',
+    'control_msgs/JointTolerance':
+        'string name\nfloat64 position\nfloat64 velocity\nfloat64 acceleration\n',
+}
+
+
+def follow_goal(trajectory):
+    """(definition, bytes) of a FollowJointTrajectoryActionGoal carrying `trajectory`."""
+    definitions = dict(FOLLOW_GOAL_DEFINITIONS)
+    definitions.update(sections('trajectory_msgs/JointTrajectory', JointTrajectory._full_text))
+    definition = ('Header header\nactionlib_msgs/GoalID goal_id\nFollowJointTrajectoryGoal goal\n' +
+                  ''.join('%sMSG: %s\n%s' % (SEPARATOR, name, body)
+                          for name, body in definitions.items()))
+    buff = io.BytesIO()
+    Header(frame_id='').serialize(buff)
+    buff.write(struct.pack('<II', 5, 0) + serialized_string('goal-1'))
+    trajectory.serialize(buff)
+    buff.write(struct.pack('<IIii', 0, 0, 0, 0))  # no tolerances, goal_time_tolerance 0
+    return definition, buff.getvalue()
 
 
 def trajectory_of(samples, joints, start):
@@ -336,8 +369,9 @@ class ReplayTrajectoryTest(unittest.TestCase):
         result = rosrun('replay', '--topic', '/no_such_topic', path)
         self.assertEqual(result.returncode, 1)
         self.assertIn('states_and_plan.bag: --topic /no_such_topic: no sensor_msgs/JointState, '
-                      'trajectory_msgs/JointTrajectory or moveit_msgs/DisplayTrajectory message '
-                      'on it', result.stderr)
+                      'trajectory_msgs/JointTrajectory, moveit_msgs/DisplayTrajectory, '
+                      'control_msgs/FollowJointTrajectoryActionGoal or '
+                      'moveit_msgs/ExecuteTrajectoryActionGoal message on it', result.stderr)
         csv_path = os.path.join(self.directory, 'plan.csv')
         with open(csv_path, 'w') as csv:
             csv.write(','.join(LEFT_JOINTS + RIGHT_JOINTS) + '\n')
@@ -346,6 +380,28 @@ class ReplayTrajectoryTest(unittest.TestCase):
         self.assertEqual(result.returncode, 1)
         self.assertIn("--topic selects a bag's topics; %s is a CSV file" % csv_path,
                       result.stderr)
+
+    def test_a_trajectory_controller_goal_replays_as_its_recording(self):
+        # Task 2 as the goal MoveIt sends a trajectory controller (its trajectory's header.stamp
+        # 0: it starts when the goal is recorded).
+        _, recorded = self.replay(self.recording)
+        start = self.samples[0][0]
+        definition, data = follow_goal(trajectory_of(self.samples, slice(0, 14), start))
+        path = os.path.join(self.directory, 'follow_goal.bag')
+        write_raw(path, '/arm_controller/follow_joint_trajectory/goal',
+                  'control_msgs/FollowJointTrajectoryActionGoal', data, definition, start)
+        result, report = self.replay(path)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertEqual((report['messages'], report['cycles']), (150, 150))
+        self.assert_same_cycles(report, recorded)
+        # Cut short: an error naming the message and the field.
+        write_raw(path, '/arm_controller/follow_joint_trajectory/goal',
+                  'control_msgs/FollowJointTrajectoryActionGoal', data[:-30], definition, start)
+        result, _ = self.replay(path)
+        self.assertEqual(result.returncode, 1)
+        self.assertIn('follow_goal.bag: control_msgs/FollowJointTrajectoryActionGoal on '
+                      '/arm_controller/follow_joint_trajectory/goal at bag time ', result.stderr)
+        self.assertIn('the message ends early', result.stderr)
 
     def test_a_moveit_display_replays_as_its_recording(self):
         # Task 2 as move_group would display a plan of both arms in two trajectories (the second
@@ -435,8 +491,9 @@ class ReplayTrajectoryTest(unittest.TestCase):
             pass
         result, _ = self.replay(path)
         self.assertEqual(result.returncode, 1)
-        self.assertIn('empty.bag: no sensor_msgs/JointState, trajectory_msgs/JointTrajectory or '
-                      'moveit_msgs/DisplayTrajectory message', result.stderr)
+        self.assertIn('empty.bag: no sensor_msgs/JointState, trajectory_msgs/JointTrajectory, '
+                      'moveit_msgs/DisplayTrajectory, control_msgs/FollowJointTrajectoryActionGoal '
+                      'or moveit_msgs/ExecuteTrajectoryActionGoal message', result.stderr)
 
 
 if __name__ == '__main__':

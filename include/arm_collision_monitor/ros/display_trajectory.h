@@ -4,7 +4,9 @@
 // out each trajectory's joint_trajectory and the start state's joint_state, whose layouts must
 // equal this build's trajectory_msgs/JointTrajectory and sensor_msgs/JointState field by field;
 // every other field is skipped by its definition, so the versions of moveit_msgs that differ
-// elsewhere (RobotTrajectory's group_name, RobotState's attached objects) read alike.
+// elsewhere (RobotTrajectory's group_name, RobotState's attached objects) read alike. The action
+// goals that carry one joint trajectory (to a trajectory controller, or to move_group to
+// execute) are read the same way.
 #pragma once
 
 #include <cstddef>
@@ -18,6 +20,11 @@
 namespace arm_collision_monitor {
 
 inline constexpr char kDisplayTrajectoryType[] = "moveit_msgs/DisplayTrajectory";
+/// What MoveIt (or a script) sends a trajectory controller: its goal.trajectory.
+inline constexpr char kFollowJointTrajectoryGoalType[] =
+    "control_msgs/FollowJointTrajectoryActionGoal";
+/// What a MoveIt client sends move_group to execute: its goal.trajectory.joint_trajectory.
+inline constexpr char kExecuteTrajectoryGoalType[] = "moveit_msgs/ExecuteTrajectoryActionGoal";
 
 /// What replay takes from a moveit_msgs/DisplayTrajectory.
 struct DisplayedPlan {
@@ -35,5 +42,12 @@ struct DisplayedPlan {
 /// is read, differs from this build's, or the bytes end early or leave some over.
 DisplayedPlan ReadDisplayTrajectory(const std::string& definition, const std::uint8_t* data,
                                     std::size_t size);
+
+/// Reads the joint trajectory of an action goal of `type` (kFollowJointTrajectoryGoalType or
+/// kExecuteTrajectoryGoalType) from its `size` bytes at `data`, serialized by `definition`, as
+/// ReadDisplayTrajectory does (the same errors); std::invalid_argument for another type.
+trajectory_msgs::JointTrajectory ReadGoalTrajectory(const std::string& type,
+                                                    const std::string& definition,
+                                                    const std::uint8_t* data, std::size_t size);
 
 }  // namespace arm_collision_monitor

@@ -28,6 +28,19 @@ namespace {
 
 const char kJointStateType[] = "sensor_msgs/JointState";
 const char kJointTrajectoryType[] = "trajectory_msgs/JointTrajectory";
+// The types of planned paths read (display_trajectory.h reads the last three).
+const std::vector<std::string> kPlanTypes = {kJointTrajectoryType, kDisplayTrajectoryType,
+                                             kFollowJointTrajectoryGoalType,
+                                             kExecuteTrajectoryGoalType};
+
+// "sensor_msgs/JointState, ... or moveit_msgs/ExecuteTrajectoryActionGoal": what is read.
+std::string ReadTypesText() {
+  std::string text = kJointStateType;
+  for (std::size_t k = 0; k < kPlanTypes.size(); ++k) {
+    text += (k + 1 < kPlanTypes.size() ? ", " : " or ") + kPlanTypes[k];
+  }
+  return text;
+}
 
 // The stamp of `point` of a trajectory that starts at `start`, or false when it is out of
 // ros::Time's range (ros::Time's own arithmetic would throw).
@@ -206,17 +219,19 @@ class Cycles {
   bool has_group_ = false;
 };
 
-// The moveit_msgs/DisplayTrajectory `m` of the bag at `path`; a LoadError naming the message
-// when it cannot be read.
-DisplayedPlan ReadDisplayed(const std::string& path, const rosbag::MessageInstance& m) {
+// `read` (ReadDisplayTrajectory, or ReadGoalTrajectory's type bound) of the message `m` of the
+// bag at `path`, by the definition the bag carries; a LoadError naming the message when it
+// cannot be read.
+template <typename Read>
+auto ReadRaw(const std::string& path, const rosbag::MessageInstance& m, Read&& read) {
   std::vector<std::uint8_t> bytes(m.size());
   ros::serialization::OStream stream(bytes.data(), static_cast<std::uint32_t>(bytes.size()));
   m.write(stream);
   try {
-    return ReadDisplayTrajectory(m.getMessageDefinition(), bytes.data(), bytes.size());
+    return read(m.getMessageDefinition(), bytes.data(), bytes.size());
   } catch (const std::runtime_error& e) {
-    throw LoadError(path + ": " + kDisplayTrajectoryType + " on " + m.getTopic() +
-                    " at bag time " + std::to_string(m.getTime().toSec()) + ": " + e.what());
+    throw LoadError(path + ": " + m.getDataType() + " on " + m.getTopic() + " at bag time " +
+                    std::to_string(m.getTime().toSec()) + ": " + e.what());
   }
 }
 
@@ -235,8 +250,7 @@ bool IsRead(const rosbag::MessageInstance& m, const std::vector<std::string>& to
 PlanSources ReadPlans(const std::string& path, const rosbag::Bag& bag,
                       const std::vector<std::string>& topics, Plans* plans) {
   PlanSources sources;
-  rosbag::View view(bag, rosbag::TypeQuery(std::vector<std::string>{kJointTrajectoryType,
-                                                                    kDisplayTrajectoryType}));
+  rosbag::View view(bag, rosbag::TypeQuery(kPlanTypes));
   auto add = [&](const trajectory_msgs::JointTrajectory& plan, const ros::Time& start) {
     sources.joints.insert(plan.joint_names.begin(), plan.joint_names.end());
     return plans->AddTrajectory(plan, start);
@@ -250,7 +264,7 @@ PlanSources ReadPlans(const std::string& path, const rosbag::Bag& bag,
     } else if (m.getDataType() == kDisplayTrajectoryType) {
       // MoveIt's display of a plan, at the time the bag recorded it: the start state (the
       // joints the trajectories leave out too), then the trajectories one after the other.
-      const DisplayedPlan displayed = ReadDisplayed(path, m);
+      const DisplayedPlan displayed = ReadRaw(path, m, ReadDisplayTrajectory);
       ros::Time start = m.getTime();
       const sensor_msgs::JointState& state = displayed.start_state;
       if (!state.name.empty()) plans->AddState(state, start);
@@ -258,12 +272,20 @@ PlanSources ReadPlans(const std::string& path, const rosbag::Bag& bag,
       for (const trajectory_msgs::JointTrajectory& plan : displayed.trajectories) {
         start = add(plan, plan.header.stamp.isZero() ? start : plan.header.stamp);
       }
+    } else {
+      // An action goal's trajectory: header.stamp 0 is when the goal arrived.
+      const std::string type = m.getDataType();
+      const trajectory_msgs::JointTrajectory plan = ReadRaw(
+          path, m, [&](const std::string& definition, const std::uint8_t* data, std::size_t size) {
+            return ReadGoalTrajectory(type, definition, data, size);
+          });
+      add(plan, plan.header.stamp.isZero() ? m.getTime() : plan.header.stamp);
     }
   }
   return sources;
 }
 
-// A LoadError unless each of `topics` holds a message of the three types in the bag at `path`.
+// A LoadError unless each of `topics` holds a message of a type read in the bag at `path`.
 void CheckTopics(const std::string& path, rosbag::View* view,
                  const std::vector<std::string>& topics) {
   for (const std::string& topic : topics) {
@@ -272,8 +294,8 @@ void CheckTopics(const std::string& path, rosbag::View* view,
       is_found |= connection->topic == topic;
     }
     if (!is_found) {
-      throw LoadError(path + ": --topic " + topic + ": no " + kJointStateType + ", " +
-                      kJointTrajectoryType + " or " + kDisplayTrajectoryType + " message on it");
+      throw LoadError(path + ": --topic " + topic + ": no " + ReadTypesText() +
+                      " message on it");
     }
   }
 }
@@ -300,12 +322,10 @@ void CheckNotPlanned(const std::string& path, const rosbag::MessageInstance& m,
 Input ReadBag(const std::string& path, const std::vector<std::string>& topics,
               const Workcell& workcell) {
   rosbag::Bag bag(path, rosbag::bagmode::Read);
-  rosbag::View all(bag, rosbag::TypeQuery(std::vector<std::string>{
-                            kJointStateType, kJointTrajectoryType, kDisplayTrajectoryType}));
-  if (all.size() == 0) {
-    throw LoadError(path + ": no " + kJointStateType + ", " + kJointTrajectoryType + " or " +
-                    kDisplayTrajectoryType + " message");
-  }
+  std::vector<std::string> types = kPlanTypes;
+  types.push_back(kJointStateType);
+  rosbag::View all(bag, rosbag::TypeQuery(types));
+  if (all.size() == 0) throw LoadError(path + ": no " + ReadTypesText() + " message");
   CheckTopics(path, &all, topics);
   Input result;
   Plans plans(&result);

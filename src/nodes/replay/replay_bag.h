@@ -1,5 +1,7 @@
-// replay's bag input: sensor_msgs/JointState, trajectory_msgs/JointTrajectory and
-// moveit_msgs/DisplayTrajectory messages merged into cycles (src/nodes/replay.cpp runs them).
+// replay's bag input: recorded states (sensor_msgs/JointState) and planned paths
+// (trajectory_msgs/JointTrajectory, moveit_msgs/DisplayTrajectory, and the action goals
+// control_msgs/FollowJointTrajectoryActionGoal and moveit_msgs/ExecuteTrajectoryActionGoal)
+// merged into cycles (src/nodes/replay.cpp runs them).
 #pragma once
 
 #include <string>
@@ -20,7 +22,7 @@ namespace replay {
 // without them, recorded states and planned paths of the same joint are an error (a bag
 // recorded with `rosbag record -a` holds both: what was planned and what was done). A
 // LoadError names the bag (and the message or topic) when it cannot be read, some joint is
-// never given, or a topic given holds none of the three types.
+// never given, or a topic given holds none of the types read.
 Input ReadBag(const std::string& path, const std::vector<std::string>& topics,
               const Workcell& workcell);
 
