@@ -271,21 +271,6 @@ bool HasField(const Reader& reader, const std::string& type, const std::string& 
   return false;
 }
 
-// Reads the value of `type` at the reader, taking its field `wanted` (of type Msg, when it has
-// one) into *msg.
-template <typename Msg>
-void ReadPart(Reader* reader, const std::string& type, const std::string& path,
-              const std::string& wanted, Msg* msg) {
-  const std::string wanted_type = ros::message_traits::DataType<Msg>::value();
-  for (const Field& field : reader->FieldsOf(type, path)) {
-    if (!field.is_array && field.name == wanted && field.type == wanted_type) {
-      reader->ReadTyped(field.type, path + "." + wanted, msg);
-    } else {
-      reader->SkipField(field, path);
-    }
-  }
-}
-
 // The fields from an action goal down to its trajectory_msgs/JointTrajectory.
 const std::vector<std::string>& GoalFields(const std::string& type) {
   static const std::map<std::string, std::vector<std::string>> kFields = {
@@ -314,21 +299,23 @@ void CheckGoalFields(const Reader& reader, std::string type,
   }
 }
 
-// Reads the value of `type` at the reader, taking the trajectory at the end of `fields` (from
-// `depth` on) into *out and skipping every other field.
+// Reads the value of `type` at the reader, taking the value at the end of `fields` (from
+// `depth` on; none when that field is not of type Msg) into *msg and skipping every other field.
+template <typename Msg>
 void ReadAlong(Reader* reader, const std::string& type, const std::string& path,
-               const std::vector<std::string>& fields, std::size_t depth,
-               trajectory_msgs::JointTrajectory* out) {
+               const std::vector<std::string>& fields, std::size_t depth, Msg* msg) {
+  const bool is_last = depth + 1 == fields.size();
   for (const Field& field : reader->FieldsOf(type, path)) {
-    if (field.is_array || field.name != fields[depth]) {
+    if (field.is_array || field.name != fields[depth] ||
+        (is_last && field.type != ros::message_traits::DataType<Msg>::value())) {
       reader->SkipField(field, path);
       continue;
     }
     const std::string field_path = path.empty() ? field.name : path + "." + field.name;
-    if (depth + 1 == fields.size()) {
-      reader->ReadTyped(field.type, field_path, out);
+    if (is_last) {
+      reader->ReadTyped(field.type, field_path, msg);
     } else {
-      ReadAlong(reader, field.type, field_path, fields, depth + 1, out);
+      ReadAlong(reader, field.type, field_path, fields, depth + 1, msg);
     }
   }
 }
@@ -371,12 +358,12 @@ DisplayedPlan ReadDisplayTrajectory(const std::string& definition, const std::ui
       const std::uint32_t count = reader.ReadArrayCount(field, field.name);
       for (std::uint32_t k = 0; k < count; ++k) {
         plan.trajectories.emplace_back();
-        ReadPart(&reader, field.type, "trajectory[" + std::to_string(k) + "]", "joint_trajectory",
-                 &plan.trajectories.back());
+        ReadAlong(&reader, field.type, "trajectory[" + std::to_string(k) + "]",
+                  {"joint_trajectory"}, 0, &plan.trajectories.back());
       }
     } else if (field.name == "trajectory_start" && field.type == "moveit_msgs/RobotState" &&
                !field.is_array) {
-      ReadPart(&reader, field.type, field.name, "joint_state", &plan.start_state);
+      ReadAlong(&reader, field.type, field.name, {"joint_state"}, 0, &plan.start_state);
     } else {
       reader.SkipField(field, "");
     }
