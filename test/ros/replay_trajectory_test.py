@@ -50,10 +50,7 @@ def write_plan(path, samples, bad_points=()):
     """One JointTrajectory of both arms with the samples as points, header.stamp 0 (MoveIt's
     'start now'), recorded at the first sample's time; `bad_points` are appended after them."""
     start = samples[0][0]
-    plan = JointTrajectory(joint_names=LEFT_JOINTS + RIGHT_JOINTS)
-    for stamp, positions in samples:
-        plan.points.append(JointTrajectoryPoint(positions=positions,
-                                                time_from_start=stamp - start))
+    plan = trajectory_of(samples, slice(0, 14), start)
     plan.points.extend(bad_points)
     with rosbag.Bag(path, 'w') as bag:
         bag.write('/move_group/planned_path', plan, start)
