@@ -78,6 +78,9 @@ struct Monitor::Impl {
   // The largest displacement from its indexed copy of an indexed primitive that may move, as of
   // the last kinematics (ReindexMoved; NaN if any is), for IsProvablyClear's test of all at once.
   double largest_displacement_m = std::numeric_limits<double>::quiet_NaN();
+  // The largest motion bound since the kinematics that the last bounded cycle was proved clear
+  // with (IsProvablyClear: an upper bound for every primitive; read in the next bounded cycle).
+  double largest_since_m = 0.0;
   Eigen::VectorXd q_good;               // the last accepted q
   Eigen::VectorXd q_kinematics;         // q of the last forward kinematics
   bool has_good = false;
