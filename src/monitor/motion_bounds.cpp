@@ -50,7 +50,8 @@ MotionBounds::MotionBounds(const KinematicModel& model, std::uint32_t primitive_
   levers_.assign(static_cast<std::size_t>(primitive_count) * max_levers_, Lever{});
   lever_count_.assign(primitive_count, 0);
   undominated_.reserve(primitive_count);
-  dq_abs_ = Eigen::VectorXd::Zero(model.q_size());
+  lever_lanes_.reserve((primitive_count + kLanes - 1) / kLanes * max_levers_);
+  dq_abs_ = Eigen::VectorXd::Zero(model.q_size() + 1);
 }
 
 bool MotionBounds::Covers(PrimitiveId r, PrimitiveId p) const {
@@ -88,15 +89,43 @@ void MotionBounds::FindUndominated() {
     }
     if (!is_dominated) undominated_.push_back(p);
   }
+  const int padding_q_index = model_->q_size();
+  lever_lanes_.assign((undominated_.size() + kLanes - 1) / kLanes * max_levers_, LeverLanes{});
+  for (std::size_t row = 0; row < undominated_.size(); ++row) {
+    const PrimitiveId id = undominated_[row];
+    LeverLanes* slots = &lever_lanes_[row / kLanes * max_levers_];
+    const std::size_t lane = row % kLanes;
+    for (int k = 0; k < max_levers_; ++k) {
+      const bool is_lever = k < lever_count_[id];
+      slots[k].q_index[lane] = is_lever ? levers(id)[k].q_index : padding_q_index;
+      slots[k].m_per_unit[lane] = is_lever ? levers(id)[k].m_per_unit : 0.0;
+    }
+  }
+  for (std::size_t row = undominated_.size(); row % kLanes != 0; ++row) {
+    LeverLanes* slots = &lever_lanes_[row / kLanes * max_levers_];
+    for (int k = 0; k < max_levers_; ++k) slots[k].q_index[row % kLanes] = padding_q_index;
+  }
   is_undominated_stale_ = false;
 }
 
 double MotionBounds::ComputeLargestBound_m() {
   if (is_undominated_stale_) FindUndominated();
   double largest_m = 0.0;
-  for (const PrimitiveId id : undominated_) {
-    const double bound_m = ComputeBound_m(id);
-    if (!(bound_m <= largest_m)) largest_m = bound_m;  // NaN and inf propagate
+  const double* const dq_abs = dq_abs_.data();
+  const std::size_t rows = undominated_.size();
+  for (std::size_t first = 0; first < rows; first += kLanes) {
+    const LeverLanes* slots = &lever_lanes_[first / kLanes * max_levers_];
+    double sums_m[kLanes] = {0.0, 0.0, 0.0, 0.0};
+    for (int k = 0; k < max_levers_; ++k) {
+      for (int lane = 0; lane < kLanes; ++lane) {
+        sums_m[lane] += dq_abs[slots[k].q_index[lane]] * slots[k].m_per_unit[lane];
+      }
+    }
+    const std::size_t count = std::min<std::size_t>(kLanes, rows - first);
+    for (std::size_t lane = 0; lane < count; ++lane) {
+      // NaN and inf propagate (NaN stays).
+      if (!(sums_m[lane] <= largest_m) && !std::isnan(largest_m)) largest_m = sums_m[lane];
+    }
   }
   return largest_m;
 }

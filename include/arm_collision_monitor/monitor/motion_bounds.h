@@ -79,7 +79,7 @@ class MotionBounds {
   /// Per cycle: the joint motion |q - q_from| that the following bounds are for.
   void SetJointMotion(const Eigen::Ref<const Eigen::VectorXd>& q,
                       const Eigen::Ref<const Eigen::VectorXd>& q_from) {
-    dq_abs_ = (q - q_from).cwiseAbs();
+    dq_abs_.head(q.size()) = (q - q_from).cwiseAbs();
   }
   /// Per cycle, for a whole step: a joint motion that bounds |q - q_from| for every q on the
   /// straight path from q0 to q1, joint by joint the larger of its two ends' (|.| of an affine
@@ -87,7 +87,7 @@ class MotionBounds {
   void SetSegmentMotion(const Eigen::Ref<const Eigen::VectorXd>& q0,
                         const Eigen::Ref<const Eigen::VectorXd>& q1,
                         const Eigen::Ref<const Eigen::VectorXd>& q_from) {
-    dq_abs_ = (q0 - q_from).cwiseAbs().cwiseMax((q1 - q_from).cwiseAbs());
+    dq_abs_.head(q0.size()) = (q0 - q_from).cwiseAbs().cwiseMax((q1 - q_from).cwiseAbs());
   }
   /// Bound (m) on the motion of every point of `id` for the joint motion set last (0 without
   /// levers); keeps its partial sums for PairBound_m. NaN when a delta is NaN.
@@ -106,7 +106,9 @@ class MotionBounds {
   /// The largest ComputeBound_m over all primitives for the joint motion set last (m; 0 when
   /// none has levers), computed over the undominated ones only: a primitive each of whose
   /// levers another matches on the same joint with one no smaller never has the larger bound.
-  /// Updates the lever sums of those alone. The set is rebuilt after SetCarrier (no allocation).
+  /// The set is rebuilt after SetCarrier (no allocation). Their sums are taken kLanes at a time
+  /// (independent chains of additions, in each primitive's lever order: bit for bit its
+  /// ComputeBound_m), leaving the lever sums of PairBound_m as they were.
   double ComputeLargestBound_m();
   /// The bound ComputeBound_m(id) returned last (m).
   double bound_m(PrimitiveId id) const { return LeverSums(id)[lever_count_[id]]; }
@@ -151,8 +153,18 @@ class MotionBounds {
   std::vector<int> lever_count_;              // per primitive
   std::vector<double> lever_sums_m_;          // per primitive, max_levers_ + 1 slots
   std::vector<PrimitiveId> undominated_;      // ComputeLargestBound_m's primitives
+  // ComputeLargestBound_m's levers: undominated_ in groups of kLanes, per group max_levers_
+  // slots, slot k holding each lane's k-th lever; slots past a primitive's levers, and lanes
+  // past the last primitive, hold a 0 m lever on the extra joint motion slot (always 0).
+  static constexpr int kLanes = 4;
+  struct LeverLanes {
+    int q_index[kLanes];
+    double m_per_unit[kLanes];
+  };
+  std::vector<LeverLanes> lever_lanes_;
   bool is_undominated_stale_ = true;          // SetCarrier since they were found
-  Eigen::VectorXd dq_abs_;                    // |q - q_from| of the last SetJointMotion
+  Eigen::VectorXd dq_abs_;                    // |q - q_from| of the last SetJointMotion,
+                                              // then one 0 (the padding levers' joint)
 };
 
 }  // namespace arm_collision_monitor
