@@ -277,6 +277,23 @@ TEST(MonitorMotionBounds, LargestBoundOverUndominatedEqualsLargestOverAll) {
   }
 }
 
+// A NaN joint motion makes the largest bound NaN whichever primitive it reaches, before or
+// after the others in the undominated set: the first arm's joint (its primitives come first)
+// and the last joint.
+TEST(MonitorMotionBounds, LargestBoundIsNaNForANaNJointMotion) {
+  const auto wc = test::LoadBundledWorkcell();
+  MotionBounds bounds = BoundsOf(*wc);
+  const Eigen::VectorXd q0 = Eigen::VectorXd::Zero(wc->kinematics.q_size());
+  for (const Eigen::Index joint : {Eigen::Index{0}, q0.size() - 1}) {
+    Eigen::VectorXd q1 = Eigen::VectorXd::Constant(q0.size(), 0.1);
+    q1[joint] = std::numeric_limits<double>::quiet_NaN();
+    bounds.SetJointMotion(q1, q0);
+    EXPECT_TRUE(std::isnan(bounds.ComputeLargestBound_m())) << "joint " << joint;
+  }
+  bounds.SetJointMotion(Eigen::VectorXd::Constant(q0.size(), 0.1), q0);
+  EXPECT_GT(bounds.ComputeLargestBound_m(), 0.0);
+}
+
 TEST(MonitorMotionBounds, PointHelpers) {
   const Capsule c{Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0), 0.5};
   EXPECT_DOUBLE_EQ(MaxDistanceFromPoint_m(c, Eigen::Vector3d(-1, 0, 0)), 2.5);
