@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <sstream>
 
@@ -89,21 +90,17 @@ void MotionBounds::FindUndominated() {
     }
     if (!is_dominated) undominated_.push_back(p);
   }
-  const int padding_q_index = model_->q_size();
-  lever_lanes_.assign((undominated_.size() + kLanes - 1) / kLanes * max_levers_, LeverLanes{});
+  // Every slot a padding lever first, then each primitive's own levers over them.
+  LeverLanes padding{};
+  std::fill(std::begin(padding.q_index), std::end(padding.q_index), model_->q_size());
+  lever_lanes_.assign((undominated_.size() + kLanes - 1) / kLanes * max_levers_, padding);
   for (std::size_t row = 0; row < undominated_.size(); ++row) {
     const PrimitiveId id = undominated_[row];
     LeverLanes* slots = &lever_lanes_[row / kLanes * max_levers_];
-    const std::size_t lane = row % kLanes;
-    for (int k = 0; k < max_levers_; ++k) {
-      const bool is_lever = k < lever_count_[id];
-      slots[k].q_index[lane] = is_lever ? levers(id)[k].q_index : padding_q_index;
-      slots[k].m_per_unit[lane] = is_lever ? levers(id)[k].m_per_unit : 0.0;
+    for (int k = 0; k < lever_count_[id]; ++k) {
+      slots[k].q_index[row % kLanes] = levers(id)[k].q_index;
+      slots[k].m_per_unit[row % kLanes] = levers(id)[k].m_per_unit;
     }
-  }
-  for (std::size_t row = undominated_.size(); row % kLanes != 0; ++row) {
-    LeverLanes* slots = &lever_lanes_[row / kLanes * max_levers_];
-    for (int k = 0; k < max_levers_; ++k) slots[k].q_index[row % kLanes] = padding_q_index;
   }
   is_undominated_stale_ = false;
 }
