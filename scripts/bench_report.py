@@ -1161,8 +1161,10 @@ def section_broadphase_workloads(out_dir, md):
         "Goals: every broad phase's cost bounded on every input (primitives outside the world "
         "cube, steps of many cells, inflated boxes larger than cells, crowds); `auto` (the "
         "default) within 10 % of the best of naive, grid and octree on every workload. Per "
-        "cycle: Move of every mover + FindPairs, microseconds; rows flagged `> 1.10` miss the "
-        "second goal (single medians on a shared machine: re-run before concluding).\n\n")
+        "cycle: Move of every mover + FindPairs, microseconds; each median is the median of 7 "
+        "passes' medians, taken in turns (p99 and max over all the timed cycles); rows flagged "
+        "`> 1.10` miss the second goal (one run on a shared machine: re-run before "
+        "concluding).\n\n")
 
 
 def section_real_robot(out_dir, md):

@@ -5,7 +5,8 @@
 // workload it prints the median, p99 and max per cycle of each method (the grid with its
 // configured 16 cells per axis), auto's choice (gridG: the grid with G cells per axis, sized to
 // the movers' boxes, timed as a fourth method) and auto's median over the best of the three;
-// the methods are timed in turns, kPasses times each. Seeded (std::mt19937_64, seed printed);
+// the methods are timed in turns, kPasses times each, and each median is the median of the
+// passes' medians (a slow spell of the shared machine spoils a pass, not the column). Seeded (std::mt19937_64, seed printed);
 // each trajectory is recorded once and replayed forward and backward.
 //
 //   $ACM_WS/devel/lib/arm_collision_monitor/bench_broadphase_workloads
@@ -38,25 +39,30 @@ struct Workload {
 };
 
 // Timed passes per method, taken in turns (naive, grid, octree, auto's grid, then again), so a
-// slow spell of the shared machine falls on every method alike instead of on one column.
-constexpr int kPasses = 3;
+// slow spell of the shared machine falls on every method alike instead of on one column; the
+// median of the passes' medians leaves out a pass the spell spoiled (odd: a middle pass).
+constexpr int kPasses = 7;
+// Untimed cycles before each pass's timed ones: enough to warm the caches and let the octree's
+// splits settle (its cells then change only where a mover crosses one).
+constexpr int kWarmUpCycles = 40;
 
-// Appends the times of `count` cycles of `method` on the recording to `us` (after one
-// warm-up pass over the recording).
+// Appends the times of `count` cycles of `method` on the recording to `us`: from frame
+// `first_frame` on, kWarmUpCycles untimed cycles and then the timed ones.
 void TimeMethod(const std::vector<test::SceneOp>& initial,
                 const std::vector<std::vector<test::SceneOp>>& cycles,
-                const CompatibilityMatrix& compatible, BroadPhaseOptions options, int count,
-                std::vector<double>* us) {
+                const CompatibilityMatrix& compatible, BroadPhaseOptions options,
+                int first_frame, int count, std::vector<double>* us) {
   std::unique_ptr<BroadPhase> bp = MakeBroadPhase(options);
   test::RandomScene::Apply(initial, bp.get());
   std::vector<CandidatePair> pairs;
   pairs.reserve(1 << 16);
-  int frame = 0, step = 1;
+  const int frames = static_cast<int>(cycles.size());
+  int frame = first_frame, step = 1;
   auto advance = [&] {
-    if (frame + step < 0 || frame + step >= static_cast<int>(cycles.size())) step = -step;
+    if (frame + step < 0 || frame + step >= frames) step = -step;
     frame += step;
   };
-  for (std::size_t i = 0; i < cycles.size(); ++i) {
+  for (int i = 0; i < kWarmUpCycles; ++i) {
     test::RandomScene::Apply(cycles[frame], bp.get());
     bp->FindPairs(compatible, &pairs);
     advance();
@@ -91,16 +97,23 @@ double RunWorkload(const Workload& w) {
                                          scene.Options(BroadPhaseMethod::kGrid),
                                          scene.Options(BroadPhaseMethod::kOctree)};
   if (chosen == BroadPhaseMethod::kGrid) runs.push_back(auto_options);
-  std::vector<std::vector<double>> us(runs.size());
+  // Per method: every timed cycle (p99, max) and each pass's median.
+  std::vector<std::vector<double>> us(runs.size()), pass_medians(runs.size());
   for (int pass = 0; pass < kPasses; ++pass) {
+    const int first_frame = pass * kRecordedCycles / kPasses;
     for (std::size_t r = 0; r < runs.size(); ++r) {
-      TimeMethod(initial, cycles, scene.compatible(), runs[r], w.timed_cycles / kPasses, &us[r]);
+      std::vector<double> pass_us;
+      TimeMethod(initial, cycles, scene.compatible(), runs[r], first_frame,
+                 w.timed_cycles / kPasses, &pass_us);
+      pass_medians[r].push_back(SummarizeTimings(pass_us).median);
+      us[r].insert(us[r].end(), pass_us.begin(), pass_us.end());
     }
   }
   std::vector<TimingSummary> t(runs.size());
   double best_us = 1e300;
   for (std::size_t r = 0; r < runs.size(); ++r) {
     t[r] = SummarizeTimings(us[r]);
+    t[r].median = SummarizeTimings(pass_medians[r]).median;
     if (r < 3) {
       best_us = std::min(best_us, t[r].median);
       std::printf(" | %8.2f %8.2f %9.2f", t[r].median, t[r].p99, t[r].max);
@@ -200,9 +213,9 @@ int main(int argc, char** argv) {
   using namespace arm_collision_monitor;
   const bool sweep = argc < 2 || std::strcmp(argv[1], "--workloads-only") != 0;
   const bool workloads = argc < 2 || std::strcmp(argv[1], "--sweep-only") != 0;
-  std::printf("seed %llu; time per cycle = Move of every mover + FindPairs; median/p99/max over "
-              "the timed cycles; machine: see lscpu\n",
-              static_cast<unsigned long long>(kSeed));
+  std::printf("seed %llu; time per cycle = Move of every mover + FindPairs; median: of the %d "
+              "passes' medians; p99/max: over every timed cycle; machine: see lscpu\n",
+              static_cast<unsigned long long>(kSeed), kPasses);
   double worst = 0.0;
   if (workloads) {
     PrintHeader("Workloads (issue 15 item 1)");
