@@ -6,8 +6,8 @@
 // configured 16 cells per axis), auto's choice (gridG: the grid with G cells per axis, sized to
 // the movers' boxes, timed as a fourth method) and auto's median over the best of the three;
 // the methods are timed in turns, kPasses times each, and each median is the median of the
-// passes' medians (a slow spell of the shared machine spoils a pass, not the column). Seeded (std::mt19937_64, seed printed);
-// each trajectory is recorded once and replayed forward and backward.
+// passes' medians (SummarizePasses). Seeded (std::mt19937_64, seed printed); each trajectory is
+// recorded once and replayed forward and backward.
 //
 //   $ACM_WS/devel/lib/arm_collision_monitor/bench_broadphase_workloads
 //   [--sweep-only|--workloads-only]
@@ -97,23 +97,18 @@ double RunWorkload(const Workload& w) {
                                          scene.Options(BroadPhaseMethod::kGrid),
                                          scene.Options(BroadPhaseMethod::kOctree)};
   if (chosen == BroadPhaseMethod::kGrid) runs.push_back(auto_options);
-  // Per method: every timed cycle (p99, max) and each pass's median.
-  std::vector<std::vector<double>> us(runs.size()), pass_medians(runs.size());
+  std::vector<std::vector<double>> us(runs.size());
+  const int pass_cycles = w.timed_cycles / kPasses;
   for (int pass = 0; pass < kPasses; ++pass) {
     const int first_frame = pass * kRecordedCycles / kPasses;
     for (std::size_t r = 0; r < runs.size(); ++r) {
-      std::vector<double> pass_us;
-      TimeMethod(initial, cycles, scene.compatible(), runs[r], first_frame,
-                 w.timed_cycles / kPasses, &pass_us);
-      pass_medians[r].push_back(SummarizeTimings(pass_us).median);
-      us[r].insert(us[r].end(), pass_us.begin(), pass_us.end());
+      TimeMethod(initial, cycles, scene.compatible(), runs[r], first_frame, pass_cycles, &us[r]);
     }
   }
   std::vector<TimingSummary> t(runs.size());
   double best_us = 1e300;
   for (std::size_t r = 0; r < runs.size(); ++r) {
-    t[r] = SummarizeTimings(us[r]);
-    t[r].median = SummarizeTimings(pass_medians[r]).median;
+    t[r] = SummarizePasses(us[r], pass_cycles);
     if (r < 3) {
       best_us = std::min(best_us, t[r].median);
       std::printf(" | %8.2f %8.2f %9.2f", t[r].median, t[r].p99, t[r].max);

@@ -43,4 +43,22 @@ inline TimingSummary SummarizeTimings(std::vector<double> samples) {
   return s;
 }
 
+/// Summarizes samples taken in passes of `pass_size` each (`pass_size` > 0), in pass order, the
+/// last pass possibly shorter: as SummarizeTimings, except that the median is the median of the
+/// passes' medians. Benchmarks take their passes in turns with the others they compare; a slow
+/// spell of a shared machine then spoils a pass rather than a share of every method's samples,
+/// and moves this median little.
+inline TimingSummary SummarizePasses(const std::vector<double>& samples, std::size_t pass_size) {
+  TimingSummary s = SummarizeTimings(samples);
+  std::vector<double> medians;
+  for (std::size_t first = 0; first < samples.size(); first += pass_size) {
+    const auto begin = samples.begin() + static_cast<std::ptrdiff_t>(first);
+    const auto end = samples.begin() +
+                     static_cast<std::ptrdiff_t>(std::min(first + pass_size, samples.size()));
+    medians.push_back(SummarizeTimings(std::vector<double>(begin, end)).median);
+  }
+  if (!medians.empty()) s.median = SummarizeTimings(medians).median;
+  return s;
+}
+
 }  // namespace arm_collision_monitor
