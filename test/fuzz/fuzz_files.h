@@ -17,10 +17,13 @@
 namespace arm_collision_monitor {
 namespace fuzz {
 
-/// The process's scratch directory ("/tmp/acm_fuzz_<what>_XXXXXX"), made on the first call.
+/// The process's scratch directory ("$TMPDIR/acm_fuzz_<what>_XXXXXX", /tmp without TMPDIR),
+/// made on the first call.
 inline const std::string& ScratchDirectory(const char* what) {
   static const std::string directory = [what] {
-    std::string pattern = std::string("/tmp/acm_fuzz_") + what + "_XXXXXX";
+    const char* tmp = std::getenv("TMPDIR");
+    std::string pattern = std::string(tmp != nullptr && tmp[0] != '\0' ? tmp : "/tmp") +
+                          "/acm_fuzz_" + what + "_XXXXXX";
     if (mkdtemp(pattern.data()) == nullptr) std::abort();
     return pattern;
   }();
