@@ -5,8 +5,8 @@
 // workload it prints the median, p99 and max per cycle of each method (the grid with its
 // configured 16 cells per axis), auto's choice (gridG: the grid with G cells per axis, sized to
 // the movers' boxes, timed as a fourth method) and auto's median over the best of the three;
-// the methods are timed in turns, kPasses times each, and each median is the median of the
-// passes' medians (SummarizePasses). Seeded (std::mt19937_64, seed printed); each trajectory is
+// the methods are timed in turns, kPasses times each, each median and p99 the median of the
+// passes' own (SummarizePasses). Seeded (std::mt19937_64, seed printed); each trajectory is
 // recorded once and replayed forward and backward.
 //
 //   $ACM_WS/devel/lib/arm_collision_monitor/bench_broadphase_workloads
@@ -208,8 +208,8 @@ int main(int argc, char** argv) {
   using namespace arm_collision_monitor;
   const bool sweep = argc < 2 || std::strcmp(argv[1], "--workloads-only") != 0;
   const bool workloads = argc < 2 || std::strcmp(argv[1], "--sweep-only") != 0;
-  std::printf("seed %llu; time per cycle = Move of every mover + FindPairs; median: of the %d "
-              "passes' medians; p99/max: over every timed cycle; machine: see lscpu\n",
+  std::printf("seed %llu; time per cycle = Move of every mover + FindPairs; median, p99: the "
+              "medians of the %d passes' own; max: over every timed cycle; machine: see lscpu\n",
               static_cast<unsigned long long>(kSeed), kPasses);
   double worst = 0.0;
   if (workloads) {

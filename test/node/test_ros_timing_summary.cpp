@@ -17,19 +17,31 @@ TEST(TimingSummary, NearestRankPercentileIsTheSmallestSampleCoveringTheFraction)
   EXPECT_EQ(NearestRankPercentile(sorted, 0.0), 1.0);
 }
 
-TEST(TimingSummary, PassesMedianIsTheMedianOfEachPassMedian) {
-  // Three passes of five, the last in a slow spell: pass medians 3, 4 and 100.
+TEST(TimingSummary, PassesMedianAndP99AreTheMediansOfThePasses) {
+  // Three passes of five, the last in a slow spell: pass medians 3, 4 and 100, pass p99s (their
+  // largest samples) 5, 6 and 100.
   const std::vector<double> samples = {5.0, 1.0, 4.0, 2.0, 3.0,  6.0, 2.0, 5.0, 3.0, 4.0,
                                        100.0, 100.0, 100.0, 100.0, 100.0};
   const TimingSummary pooled = SummarizeTimings(samples);
   const TimingSummary passes = SummarizePasses(samples, 5);
   EXPECT_EQ(pooled.median, 5.0);  // the 8th of 15 sorted samples: the slow pass pulls it up
   EXPECT_EQ(passes.median, 4.0);
-  // Everything else is over all the samples.
+  EXPECT_EQ(pooled.p99, 100.0);
+  EXPECT_EQ(passes.p99, 6.0);
+  // The count, mean and max are over all the samples.
   EXPECT_EQ(passes.count, 15u);
   EXPECT_EQ(passes.mean, pooled.mean);
-  EXPECT_EQ(passes.p99, 100.0);
   EXPECT_EQ(passes.max, 100.0);
+}
+
+TEST(TimingSummary, PassesKeepACycleSlowInEveryPass) {
+  // One slow cycle (50) in each of three passes of 50: it is every pass's p99.
+  std::vector<double> samples;
+  for (int pass = 0; pass < 3; ++pass) {
+    for (int i = 0; i < 49; ++i) samples.push_back(1.0 + 0.01 * i);
+    samples.push_back(50.0);
+  }
+  EXPECT_EQ(SummarizePasses(samples, 50).p99, 50.0);
 }
 
 TEST(TimingSummary, PassesLastPassMayBeShorter) {

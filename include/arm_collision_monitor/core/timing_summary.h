@@ -44,20 +44,26 @@ inline TimingSummary SummarizeTimings(std::vector<double> samples) {
 }
 
 /// Summarizes samples taken in passes of `pass_size` each (`pass_size` > 0), in pass order, the
-/// last pass possibly shorter: as SummarizeTimings, except that the median is the median of the
-/// passes' medians. Benchmarks take their passes in turns with the others they compare; a slow
-/// spell of a shared machine then spoils a pass rather than a share of every method's samples,
-/// and moves this median little.
+/// last pass possibly shorter: the count, mean and max of all the samples, the median and p99
+/// each the median of the passes' own. Benchmarks take their passes in turns with the others
+/// they compare; a slow spell of a shared machine then spoils a pass rather than a share of
+/// every method's samples, and moves these little, while a cycle slow in every pass (the same
+/// input each time) stays in every pass's p99.
 inline TimingSummary SummarizePasses(const std::vector<double>& samples, std::size_t pass_size) {
   TimingSummary s = SummarizeTimings(samples);
-  std::vector<double> medians;
+  std::vector<double> medians, p99s;
   for (std::size_t first = 0; first < samples.size(); first += pass_size) {
     const auto begin = samples.begin() + static_cast<std::ptrdiff_t>(first);
     const auto end = samples.begin() +
                      static_cast<std::ptrdiff_t>(std::min(first + pass_size, samples.size()));
-    medians.push_back(SummarizeTimings(std::vector<double>(begin, end)).median);
+    const TimingSummary pass = SummarizeTimings(std::vector<double>(begin, end));
+    medians.push_back(pass.median);
+    p99s.push_back(pass.p99);
   }
-  if (!medians.empty()) s.median = SummarizeTimings(medians).median;
+  if (!medians.empty()) {
+    s.median = SummarizeTimings(medians).median;
+    s.p99 = SummarizeTimings(p99s).median;
+  }
   return s;
 }
 

@@ -83,7 +83,8 @@ double ExperimentTasks(const Args& args, const Scenario& s, const Reference& ref
       warning_cycles += !r.warnings[c].empty();
       equal += r.warnings[c] == dflt.warnings[c];
     }
-    // The samples of task `ti` (every task if ti < 0), and of its moving cycles alone.
+    // The samples of task `ti` (every task if ti < 0), and of its moving cycles alone, in pass
+    // order, each pass the same cycles: median and p99 the medians of the passes' own.
     auto summarize = [&](int ti, TimingSummary* moving_summary) {
       std::vector<double> slice, moving;
       for (std::size_t i = 0; i < r.t_us.size(); ++i) {
@@ -91,8 +92,12 @@ double ExperimentTasks(const Args& args, const Scenario& s, const Reference& ref
         slice.push_back(r.t_us[i]);
         if (sample_moves[i % sample_moves.size()]) moving.push_back(r.t_us[i]);
       }
-      *moving_summary = SummarizeTimings(moving);
-      return SummarizeTimings(slice);
+      auto of_passes = [&args](const std::vector<double>& samples) {
+        const std::size_t pass_size = samples.size() / static_cast<std::size_t>(args.repeats);
+        return SummarizePasses(samples, std::max<std::size_t>(pass_size, 1));
+      };
+      *moving_summary = of_passes(moving);
+      return of_passes(slice);
     };
     TimingSummary all_moving;
     const TimingSummary all = summarize(-1, &all_moving);
@@ -124,7 +129,8 @@ double ExperimentTasks(const Args& args, const Scenario& s, const Reference& ref
       }
     }
   }
-  return SummarizeTimings(dflt.t_us).median;
+  return SummarizePasses(dflt.t_us, dflt.t_us.size() / static_cast<std::size_t>(args.repeats))
+      .median;
 }
 
 }  // namespace bench

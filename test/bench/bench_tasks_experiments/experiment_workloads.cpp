@@ -20,8 +20,8 @@
 // "auto(<chosen>) (every cycle)" runs with index_slack_m 0, which rules out the bounded cycle
 // (decided by motion bounds without kinematics): issue 15 asks for cycles that are all full.
 // Writes workloads_summary.csv; "cycles" and "moving_samples" count timed samples over every
-// pass (each task's first cycle untimed), the medians are of the passes' medians
-// (kWorkloadPasses), the mean, p99 and max of all the samples.
+// pass (each task's first cycle untimed), the medians and p99s are the medians of the passes'
+// own (kWorkloadPasses), the mean and max of all the samples.
 #include "experiments.h"
 
 #include <algorithm>
@@ -38,7 +38,7 @@ namespace bench {
 namespace {
 
 // Timed passes over each workload, every row in turn (RunInTurns; --quick: 1): more than the
-// other experiments' 3, the rows' medians being the median of the passes' medians
+// other experiments' 3, the rows' medians and p99s being the medians of the passes' own
 // (SummarizePasses), which one pass in a slow spell of the shared machine then moves little.
 constexpr int kWorkloadPasses = 5;
 
