@@ -1268,8 +1268,9 @@ def section_workloads(out_dir, md):
         "*large_steps*: that motion at 2 Hz; *outside_world*: a 2 m world cube the arms leave; "
         "*statics_2000*: 2,000 boxes near the arms. Microseconds; `cycles` and `moving n` are "
         "timed samples over all 5 passes (taken in turns), each median and p99 the median of the "
-        "passes' own, the mean and max over all the samples. The rounded peers decide pairs at their threshold "
-        "to 0.1 um (test_peers_agreement's near-threshold table): FCL's distance request runs "
+        "passes' own, the mean and max over all the samples. The rounded peers decide pairs "
+        "at their threshold to 0.1 um (test_peers_agreement's near-threshold table): FCL's "
+        "distance request runs "
         "with distance_tolerance 1e-9, as its default 1e-6 left capsule-box distances up to "
         "~40 um long (pairs that close inside their threshold were missed), and Bullet's box "
         "pairs go through GJK, as its box-box algorithm ignores margins (sharp boxes).\n")
