@@ -153,6 +153,29 @@ class MonitorClient(object):
         self.publishers[0].publish(msg)
         return [msg.header.stamp]
 
+    def hold_pose(self, left, right, timeout_s=10.0):
+        """Publishes the pose (again every REPUBLISH_PERIOD_S) until accepted reports on every
+        message of one publish have arrived; returns the last of them, on which both arms are in
+        the pose, or None on timeout. With one topic per arm the node may take the two messages
+        in either order: the report on the message published second can come first, the other
+        arm still in its previous pose."""
+        partner = {}
+        seen = set()
+
+        def publish():
+            stamps = [(s.secs, s.nsecs) for s in self.publish_pose(left, right)]
+            partner[stamps[0]] = stamps[-1]
+            partner[stamps[-1]] = stamps[0]
+
+        def both_arms_in(report):
+            stamp = (report.header.stamp.secs, report.header.stamp.nsecs)
+            if report.input_status != MonitorReport.INPUT_OK or stamp not in partner:
+                return False
+            seen.add(stamp)
+            return partner[stamp] in seen
+
+        return self.publish_until(publish, both_arms_in, timeout_s)
+
     def wait_stamps(self, start, stamps, timeout_s=10.0):
         """Waits for reports (received after index `start`) stamped with each of `stamps`;
         returns them in arrival order, or None on timeout."""

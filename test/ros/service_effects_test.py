@@ -70,10 +70,6 @@ def service(node, name, kind):
     return rospy.ServiceProxy(node + '/' + name, kind)
 
 
-def accepted(report):
-    return report.input_status == MonitorReport.INPUT_OK
-
-
 class ServiceEffectsTest(unittest.TestCase):
 
     @classmethod
@@ -90,12 +86,10 @@ class ServiceEffectsTest(unittest.TestCase):
         return c
 
     def hold(self, c, left, right, what):
-        """Publishes the pose until an accepted report on it arrives (one triggered by the
-        second arm's message: both arms are in the pose then); returns that report."""
-        stamps = []
-        report = c.publish_until(lambda: stamps.append(c.publish_pose(left, right)[-1]),
-                                 lambda r: accepted(r) and r.header.stamp in stamps, TIMEOUT_S)
-        self.assertIsNotNone(report, 'no accepted report on %s' % what)
+        """Holds the pose until both arms' messages are reported on (MonitorClient.hold_pose);
+        returns the report on which both arms are in it."""
+        report = c.hold_pose(left, right, TIMEOUT_S)
+        self.assertIsNotNone(report, 'no accepted reports on both arms in %s' % what)
         return report
 
     def test_attached_object_moves_with_its_link(self):
