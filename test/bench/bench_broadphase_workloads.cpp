@@ -40,7 +40,8 @@ struct Workload {
 
 // Timed passes per method, taken in turns (naive, grid, octree, auto's grid, then again), so a
 // slow spell of the shared machine falls on every method alike instead of on one column; the
-// median of the passes' medians leaves out a pass the spell spoiled (odd: a middle pass).
+// medians of the passes' medians and p99s leave out a pass the spell spoiled (odd: a middle
+// pass).
 constexpr int kPasses = 7;
 // Untimed cycles before each pass's timed ones: enough to warm the caches and let the octree's
 // splits settle (its cells then change only where a mover crosses one).
@@ -108,7 +109,7 @@ double RunWorkload(const Workload& w) {
   std::vector<TimingSummary> t(runs.size());
   double best_us = 1e300;
   for (std::size_t r = 0; r < runs.size(); ++r) {
-    t[r] = SummarizePasses(us[r], pass_cycles);
+    t[r] = SummarizePasses(us[r], kPasses);
     if (r < 3) {
       best_us = std::min(best_us, t[r].median);
       std::printf(" | %8.2f %8.2f %9.2f", t[r].median, t[r].p99, t[r].max);

@@ -43,14 +43,15 @@ inline TimingSummary SummarizeTimings(std::vector<double> samples) {
   return s;
 }
 
-/// Summarizes samples taken in passes of `pass_size` each (`pass_size` > 0), in pass order, the
-/// last pass possibly shorter: the count, mean and max of all the samples, the median and p99
-/// each the median of the passes' own. Benchmarks take their passes in turns with the others
-/// they compare; a slow spell of a shared machine then spoils a pass rather than a share of
-/// every method's samples, and moves these little, while a cycle slow in every pass (the same
-/// input each time) stays in every pass's p99.
-inline TimingSummary SummarizePasses(const std::vector<double>& samples, std::size_t pass_size) {
+/// Summarizes samples taken in `passes` passes (> 0), in pass order, each of ceil(samples /
+/// passes) samples but the last, which may be shorter: the count, mean and max of all the
+/// samples, the median and p99 each the median of the passes' own. Benchmarks take their passes
+/// in turns with the others they compare; a slow spell of a shared machine then spoils a pass
+/// rather than a share of every method's samples, and moves these little, while a cycle slow in
+/// every pass (the same input each time) stays in every pass's p99.
+inline TimingSummary SummarizePasses(const std::vector<double>& samples, std::size_t passes) {
   TimingSummary s = SummarizeTimings(samples);
+  const std::size_t pass_size = (samples.size() + passes - 1) / passes;
   std::vector<double> medians, p99s;
   for (std::size_t first = 0; first < samples.size(); first += pass_size) {
     const auto begin = samples.begin() + static_cast<std::ptrdiff_t>(first);

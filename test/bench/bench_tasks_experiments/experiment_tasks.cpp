@@ -92,12 +92,9 @@ double ExperimentTasks(const Args& args, const Scenario& s, const Reference& ref
         slice.push_back(r.t_us[i]);
         if (sample_moves[i % sample_moves.size()]) moving.push_back(r.t_us[i]);
       }
-      auto of_passes = [&args](const std::vector<double>& samples) {
-        const std::size_t pass_size = samples.size() / static_cast<std::size_t>(args.repeats);
-        return SummarizePasses(samples, std::max<std::size_t>(pass_size, 1));
-      };
-      *moving_summary = of_passes(moving);
-      return of_passes(slice);
+      const auto passes = static_cast<std::size_t>(args.repeats);
+      *moving_summary = SummarizePasses(moving, passes);
+      return SummarizePasses(slice, passes);
     };
     TimingSummary all_moving;
     const TimingSummary all = summarize(-1, &all_moving);
@@ -129,8 +126,7 @@ double ExperimentTasks(const Args& args, const Scenario& s, const Reference& ref
       }
     }
   }
-  return SummarizePasses(dflt.t_us, dflt.t_us.size() / static_cast<std::size_t>(args.repeats))
-      .median;
+  return SummarizePasses(dflt.t_us, static_cast<std::size_t>(args.repeats)).median;
 }
 
 }  // namespace bench

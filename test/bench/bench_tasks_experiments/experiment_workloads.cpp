@@ -369,7 +369,8 @@ void RunWorkload(const Args& args, const Workload& w, Csv* csv, std::uint64_t* m
     }
   }
 #endif
-  const std::vector<RunResult> results = RunInTurns(args.quick ? 1 : kWorkloadPasses, runs);
+  const int passes = args.quick ? 1 : kWorkloadPasses;
+  const std::vector<RunResult> results = RunInTurns(passes, runs);
   // Whether each timed sample's q differs from the previous cycle's (the passes repeat).
   std::vector<std::uint8_t> sample_moves;
   for (const TaskRun& task : s.tasks) {
@@ -377,10 +378,9 @@ void RunWorkload(const Args& args, const Workload& w, Csv* csv, std::uint64_t* m
       sample_moves.push_back(task.q[c] != task.q[c - 1] ? 1 : 0);
     }
   }
-  const std::size_t pass_size = sample_moves.size();
-  const auto moving_pass_size = static_cast<std::size_t>(
-      std::count(sample_moves.begin(), sample_moves.end(), std::uint8_t{1}));
-  auto summarize = [pass_size](const RunResult& r) { return SummarizePasses(r.t_us, pass_size); };
+  auto summarize = [passes](const std::vector<double>& us) {
+    return SummarizePasses(us, static_cast<std::size_t>(passes));
+  };
   std::printf("  %-32s %8s %8s %8s %9s | moving %6s %8s %8s %9s | %6s %6s\n", "impl", "mean",
               "median", "p99", "max", "n", "median", "p99", "max", "missed", "false");
   for (const RunResult& r : results) {
@@ -388,8 +388,8 @@ void RunWorkload(const Args& args, const Workload& w, Csv* csv, std::uint64_t* m
     for (std::size_t i = 0; i < r.t_us.size(); ++i) {
       if (sample_moves[i % sample_moves.size()]) moving.push_back(r.t_us[i]);
     }
-    const TimingSummary all = summarize(r);
-    const TimingSummary mv = SummarizePasses(moving, std::max<std::size_t>(moving_pass_size, 1));
+    const TimingSummary all = summarize(r.t_us);
+    const TimingSummary mv = summarize(moving);
     csv->Row(w.name, r.impl, all.count, all.mean, all.median, all.p99, all.max, mv.count,
              mv.median, mv.p99, mv.max, r.missed, r.false_warnings);
     std::printf("  %-32s %8.2f %8.2f %8.2f %9.2f | %13zu %8.2f %8.2f %9.2f | %6llu %6llu\n",
@@ -415,11 +415,11 @@ void RunWorkload(const Args& args, const Workload& w, Csv* csv, std::uint64_t* m
   std::printf("; goals on %s\n", dflt->impl.c_str());
   std::printf("  forward kinematics alone (WorkcellShapes::Evaluate, part of every row's cycle): "
               "median %.2f us\n", KinematicsMedian_us(s));
-  const TimingSummary d = summarize(*dflt);
+  const TimingSummary d = summarize(dflt->t_us);
   for (const char* peer : {"bullet_rounded", "bullet_sharp", "fcl_rounded", "fcl_sharp"}) {
     const RunResult* p = Find(results, peer);
     if (p == nullptr) continue;
-    const TimingSummary ps = summarize(*p);
+    const TimingSummary ps = summarize(p->t_us);
     const std::string vs = std::string(" / ") + peer;
     const bool bullet = std::string(peer).rfind("bullet", 0) == 0;
     if (w.name == "tasks_every_cycle" && bullet) {
@@ -431,13 +431,13 @@ void RunWorkload(const Args& args, const Workload& w, Csv* csv, std::uint64_t* m
     }
   }
   if (w.name == "large_steps" || w.name == "outside_world") {
-    const double naive_us = summarize(*Find(results, "naive")).median;
+    const double naive_us = summarize(Find(results, "naive")->t_us).median;
     for (const char* method : {"grid", "octree"}) {
       PrintRatio((std::string("median ") + method + " / naive").c_str(),
-                 summarize(*Find(results, method)).median, naive_us, 2.0);
+                 summarize(Find(results, method)->t_us).median, naive_us, 2.0);
     }
     PrintRatio(("median " + results.front().impl + " / naive").c_str(),
-               summarize(results.front()).median, naive_us, 2.0);
+               summarize(results.front().t_us).median, naive_us, 2.0);
   }
   std::fflush(stdout);
 }
