@@ -5,9 +5,9 @@
 // workload it prints the median, p99 and max per cycle of each method (the grid with its
 // configured 16 cells per axis), auto's choice (gridG: the grid with G cells per axis, sized to
 // the movers' boxes, timed as a fourth method) and auto's median over the best of the three;
-// the methods are timed in turns, kPasses times each, each median and p99 the median of the
-// passes' own (SummarizePasses). Seeded (std::mt19937_64, seed printed); each trajectory is
-// recorded once and replayed forward and backward.
+// the methods are timed in turns (each pass starting one later), kPasses times each, each median
+// and p99 the median of the passes' own (SummarizePasses). Seeded (std::mt19937_64, seed
+// printed); each trajectory is recorded once and replayed forward and backward.
 //
 //   $ACM_WS/devel/lib/arm_collision_monitor/bench_broadphase_workloads
 //   [--sweep-only|--workloads-only]
@@ -102,7 +102,9 @@ double RunWorkload(const Workload& w) {
   const int pass_cycles = w.timed_cycles / kPasses;
   for (int pass = 0; pass < kPasses; ++pass) {
     const int first_frame = pass * kRecordedCycles / kPasses;
-    for (std::size_t r = 0; r < runs.size(); ++r) {
+    // Each pass starts one method later, so that none is always timed first (RunInTurns).
+    for (std::size_t turn = 0; turn < runs.size(); ++turn) {
+      const std::size_t r = (turn + static_cast<std::size_t>(pass)) % runs.size();
       TimeMethod(initial, cycles, scene.compatible(), runs[r], first_frame, pass_cycles, &us[r]);
     }
   }

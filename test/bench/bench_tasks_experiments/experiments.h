@@ -191,7 +191,10 @@ RunResult RunMonitor(const Scenario& s, const MonitorOptions& options, const Ref
 std::vector<double> TaskMeans(const RunResult& r, std::size_t tasks);
 
 // `repeats` rounds of one pass of each of `runs` in turn, so that a slow spell of a shared
-// machine falls on every variant alike rather than on the few running at the time. Each result
+// machine falls on every variant alike rather than on the few running at the time. Round r
+// starts with run r (mod their number): the first run of a round was measured slower by
+// position alone (the default sphere_robot row's median 0.27 us against 0.18 for the identical
+// naive row after it; 0.17 against 0.20 once rotated), so no run keeps that place. Each result
 // holds the per-cycle times of every pass; everything else (warnings, counters, brute-force
 // comparison) is its last pass's.
 std::vector<RunResult> RunInTurns(int repeats,

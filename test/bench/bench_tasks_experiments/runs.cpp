@@ -123,7 +123,9 @@ std::vector<RunResult> RunInTurns(int repeats,
                                   const std::vector<std::function<RunResult()>>& runs) {
   std::vector<RunResult> results(runs.size());
   for (int pass = 0; pass < repeats; ++pass) {
-    for (std::size_t i = 0; i < runs.size(); ++i) {
+    for (std::size_t turn = 0; turn < runs.size(); ++turn) {
+      // Each pass starts one row later: no row always follows the same one.
+      const std::size_t i = (turn + static_cast<std::size_t>(pass)) % runs.size();
       RunResult next = runs[i]();
       next.t_us.insert(next.t_us.begin(), results[i].t_us.begin(), results[i].t_us.end());
       next.t_task.insert(next.t_task.begin(), results[i].t_task.begin(), results[i].t_task.end());
