@@ -446,15 +446,18 @@ def goals(out_dir):
     parts, ratios = [], []
     for w in names:
         rows, ours = workload(w)
-        best = [num(r["median_us"]) for r in rows if r["impl"] in ("naive", "grid", "octree")]
-        if ours is None or not best:
+        methods = [r for r in rows if r["impl"] in ("naive", "grid", "octree")]
+        if ours is None or not methods:
             parts.append(f"{w}: no rows")
             ratios.append(None)
             continue
-        ratios.append(ratio(ours["median_us"], min(best)))
-        parts.append(f"{w} {ratios[-1]:.3f}")
+        ratios.append(ratio(ours["median_us"], min(num(r["median_us"]) for r in methods)))
+        # Beside it the mean's ratio: where most cycles are bounded (no broad phase at all),
+        # the median compares those cycles' memory placement, not the methods.
+        mean_ratio = ratio(ours["mean_us"], min(num(r["mean_us"]) for r in methods))
+        parts.append(f"{w} {ratios[-1]:.3f} (mean {mean_ratio:.3f})")
     out.append(("15", "workloads_summary.csv: the default (auto) median within 10 % of the best "
-                "of naive, grid and octree on every workload",
+                "of naive, grid and octree on every workload (the means' ratios beside)",
                 "; ".join(parts) if parts else "no workloads_summary.csv", verdict(ratios, 1.1)))
     x = latency_ratio(out_dir)
     out.append(("15", "nodelet path publish -> report p50 <= 0.15 x the TCP echo's",
