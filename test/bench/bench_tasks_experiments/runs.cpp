@@ -124,7 +124,7 @@ std::vector<RunResult> RunInTurns(int repeats,
   std::vector<RunResult> results(runs.size());
   for (int pass = 0; pass < repeats; ++pass) {
     for (std::size_t turn = 0; turn < runs.size(); ++turn) {
-      // Each pass starts one row later: no row always follows the same one.
+      // Each pass starts one row later: no row is always timed first.
       const std::size_t i = (turn + static_cast<std::size_t>(pass)) % runs.size();
       RunResult next = runs[i]();
       next.t_us.insert(next.t_us.begin(), results[i].t_us.begin(), results[i].t_us.end());
