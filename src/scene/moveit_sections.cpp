@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <sstream>
 
 #include "arm_collision_monitor/scene/srdf_reader.h"
 
@@ -21,18 +22,49 @@ auto ReadNamedFile(const Where& where, Read read) {
   }
 }
 
-// The pose in W of a planning-scene object's header frame: the fixed frame ("" or one of
-// `root_aliases` means it) or a URDF link fixed to it (its pose does not depend on q).
+// The frames beside the URDF's links that planning-scene objects may name: the fixed virtual
+// joints' parent frames (the fixed frame), and the moving ones' with the root link's pose in
+// them from the scene's robot state, if it gives one.
+struct HeaderFrames {
+  struct Placed {
+    SrdfVirtualJoint joint;
+    const SceneJointPose* pose = nullptr;  // the scene's value of the joint; none: refused
+    bool is_used = false;                  // some object names its parent frame
+  };
+  std::vector<std::string> root_aliases;
+  std::vector<Placed> placed;
+  std::string srdf_path;
+};
+
+// The pose in W of a planning-scene object's header frame: the fixed frame ("" or a root alias
+// means it), a URDF link fixed to it (its pose does not depend on q), or a placed frame.
 Eigen::Isometry3d HeaderFramePose(const SceneCollisionObject& object, const Workcell& workcell,
-                                  const std::vector<std::string>& root_aliases,
-                                  const std::string& path) {
-  const bool is_alias = std::find(root_aliases.begin(), root_aliases.end(), object.frame_id) !=
-                        root_aliases.end();
+                                  const std::string& path, HeaderFrames* frames) {
+  const std::vector<std::string>& aliases = frames->root_aliases;
+  const bool is_alias =
+      std::find(aliases.begin(), aliases.end(), object.frame_id) != aliases.end();
   const std::string& frame =
       object.frame_id.empty() || is_alias ? workcell.fixed_frame : object.frame_id;
-  const int link = workcell.kinematics.FindLink(frame);
   const std::string where = path + ":" + std::to_string(object.line) + ": " + object.element +
                             ": header.frame_id" + Quoted(frame);
+  std::vector<Eigen::Isometry3d> X_WL(workcell.kinematics.link_count());
+  workcell.kinematics.ComputeLinkPoses(Eigen::VectorXd::Zero(workcell.kinematics.q_size()),
+                                       &X_WL);
+  for (HeaderFrames::Placed& placed : frames->placed) {
+    const SrdfVirtualJoint& joint = placed.joint;
+    if (frame != joint.parent_frame) continue;
+    if (placed.pose == nullptr) {
+      throw LoadError(where + " is the parent frame of the SRDF's " + joint.type +
+                      " virtual joint" + Quoted(joint.name) + " (" + frames->srdf_path + ":" +
+                      std::to_string(joint.line) +
+                      "), whose pose the planning scene does not give (expected it in "
+                      "robot_state.multi_dof_joint_state, as MoveIt's dumps have it, or the "
+                      "virtual joint fixed)");
+    }
+    placed.is_used = true;
+    return X_WL[0] * placed.pose->X_PC.inverse();  // the root link is the joint's child
+  }
+  const int link = workcell.kinematics.FindLink(frame);
   if (link < 0) {
     throw LoadError(where + " is not a URDF link (expected the fixed frame" +
                     Quoted(workcell.fixed_frame) + " or a link fixed to it)");
@@ -42,10 +74,25 @@ Eigen::Isometry3d HeaderFramePose(const SceneCollisionObject& object, const Work
                     Quoted(workcell.fixed_frame) +
                     " or a link fixed to it: planning-scene objects are static)");
   }
-  std::vector<Eigen::Isometry3d> X_WL(workcell.kinematics.link_count());
-  workcell.kinematics.ComputeLinkPoses(Eigen::VectorXd::Zero(workcell.kinematics.q_size()),
-                                       &X_WL);
   return X_WL[link];
+}
+
+// The notice for a placed frame that objects named: where the scene put the root link in it.
+std::string PlacedFrameNotice(const HeaderFrames::Placed& placed, const std::string& path,
+                              const std::string& root) {
+  const Eigen::Isometry3d& X_PC = placed.pose->X_PC;
+  const Eigen::Vector3d p = X_PC.translation();
+  const Eigen::Quaterniond r(X_PC.linear());
+  const std::string& frame = placed.joint.parent_frame;
+  std::ostringstream text;
+  text << path << ":" << placed.pose->line
+       << ": robot_state.multi_dof_joint_state puts the root link" << Quoted(root)
+       << " at translation [" << p.x() << ", " << p.y() << ", " << p.z() << "] m, rotation ["
+       << r.x() << ", " << r.y() << ", " << r.z() << ", " << r.w() << "] (x, y, z, w) in"
+       << Quoted(frame) << " (the SRDF's " << placed.joint.type << " virtual joint"
+       << Quoted(placed.joint.name) << "): the objects in" << Quoted(frame)
+       << " are placed relative to it, and the monitor takes the robot to stay there";
+  return text.str();
 }
 
 // The shapes of one shape_msgs/SolidPrimitive at X_WP.
@@ -87,13 +134,12 @@ std::vector<Shape> CollisionObjectShapes_W(const SceneCollisionObject& object,
 
 // One collision object: the object and its primitives, appended to `workcell`.
 void AddCollisionObject(const SceneCollisionObject& object, const std::string& path,
-                        const ShapeOptions& options, double tolerance_m,
-                        const std::vector<std::string>& root_aliases, MeshFitter* meshes,
-                        NameRegistry* names, Workcell* workcell) {
+                        const ShapeOptions& options, double tolerance_m, HeaderFrames* frames,
+                        MeshFitter* meshes, NameRegistry* names, Workcell* workcell) {
   const std::string origin = path + ":" + std::to_string(object.line) + ": " + object.element;
   names->Claim(object.id, origin);
   const std::vector<Shape> shapes_W =
-      CollisionObjectShapes_W(object, HeaderFramePose(object, *workcell, root_aliases, path),
+      CollisionObjectShapes_W(object, HeaderFramePose(object, *workcell, path, frames),
                               options, path, meshes);
   ObjectSpec spec;
   spec.name = object.id;
@@ -176,11 +222,13 @@ SrdfInput ReadSrdf(const YAML::Node& scene, const std::string& scene_path,
     if (joint.type == "fixed") {
       input.root_aliases.push_back(joint.parent_frame);
     } else {
+      input.moving_root_joints.push_back(joint);
       workcell->warnings.push_back(
           input.path + ":" + std::to_string(joint.line) + ": <virtual_joint name='" + joint.name +
           "' type='" + joint.type + "'>: the root link moves in '" + joint.parent_frame +
           "'; the monitor works in the root link's frame '" + root +
-          "' (planning-scene objects in '" + joint.parent_frame + "' are refused)");
+          "' (planning-scene objects in '" + joint.parent_frame +
+          "' need the scene's pose of the joint, in robot_state.multi_dof_joint_state)");
     }
   }
   return input;
@@ -204,9 +252,8 @@ std::vector<std::pair<PrimitiveId, PrimitiveId>> SrdfPairs(const SrdfInput& inpu
 
 PlanningSceneInput ReadPlanningScene(const YAML::Node& scene, const std::string& scene_path,
                                      const ShapeOptions& options, const ResourceFetcher& fetch,
-                                     const std::vector<std::string>& root_aliases,
-                                     MeshFitter* meshes, NameRegistry* names,
-                                     Workcell* workcell) {
+                                     const SrdfInput& srdf, MeshFitter* meshes,
+                                     NameRegistry* names, Workcell* workcell) {
   PlanningSceneInput input;
   const Where top{scene_path, ""};
   double tolerance_m = 0.0;
@@ -227,12 +274,26 @@ PlanningSceneInput ReadPlanningScene(const YAML::Node& scene, const std::string&
   for (const std::string& notice : input.file.notices) {
     workcell->warnings.push_back(input.path + ": " + notice);
   }
+  HeaderFrames frames{srdf.root_aliases, {}, srdf.path};
+  for (const SrdfVirtualJoint& joint : srdf.moving_root_joints) {
+    const std::vector<SceneJointPose>& poses = input.file.joint_poses;
+    const auto pose = std::find_if(poses.begin(), poses.end(), [&](const SceneJointPose& p) {
+      return p.joint == joint.name;
+    });
+    frames.placed.push_back({joint, pose != poses.end() ? &*pose : nullptr, false});
+  }
   ReadNamedFile(where, [&] {
     for (const SceneCollisionObject& object : input.file.objects) {
-      AddCollisionObject(object, input.path, options, tolerance_m, root_aliases, meshes, names,
+      AddCollisionObject(object, input.path, options, tolerance_m, &frames, meshes, names,
                          workcell);
     }
   });
+  for (const HeaderFrames::Placed& placed : frames.placed) {
+    if (placed.is_used) {
+      workcell->warnings.push_back(
+          PlacedFrameNotice(placed, input.path, workcell->kinematics.link_name(0)));
+    }
+  }
   return input;
 }
 

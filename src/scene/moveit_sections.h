@@ -49,6 +49,9 @@ struct SrdfInput {
   /// names of the fixed frame (a Setup Assistant SRDF hangs base_link from "world" this way, and
   /// MoveIt's planning-scene dumps then say "world").
   std::vector<std::string> root_aliases;
+  /// The SRDF's floating and planar virtual joints whose child is the URDF root link: the root
+  /// stands in their parent frames where the planning scene's robot state puts it.
+  std::vector<SrdfVirtualJoint> moving_root_joints;
 };
 
 /// srdf: (optional): reads the SRDF (a notice when it names another robot than
@@ -72,15 +75,17 @@ struct PlanningSceneInput {
 
 /// planning_scene: (optional), planning_scene_acm and planning_scene_tolerance_m: appends each
 /// world collision object of the file as a static object of `workcell` (whose world_W and
-/// kinematics must be read). Its frame must be the fixed frame ("" or one of `root_aliases`
-/// means it) or a URDF link fixed to it. Box -> Box; sphere -> zero-length capsule; cylinder,
+/// kinematics must be read). Its frame must be the fixed frame ("" or one of srdf.root_aliases
+/// means it), a URDF link fixed to it, or the parent frame of one of srdf.moving_root_joints
+/// whose pose the file's robot_state.multi_dof_joint_state gives (the robot taken to stay
+/// there; a notice says where). Box -> Box; sphere -> zero-length capsule; cylinder,
 /// and a cone's bounding cylinder -> per options.cylinder_model; inline mesh -> the primitives
 /// `meshes` fits to it.
 /// The file is read through `fetch`; its notices are added to workcell->warnings.
 PlanningSceneInput ReadPlanningScene(const YAML::Node& scene, const std::string& scene_path,
                                      const ShapeOptions& options, const ResourceFetcher& fetch,
-                                     const std::vector<std::string>& root_aliases,
-                                     MeshFitter* meshes, NameRegistry* names,
+                                     const SrdfInput& srdf, MeshFitter* meshes,
+                                     NameRegistry* names,
                                      Workcell* workcell);
 
 /// The allowed collision matrix of `input` as compatible pairs when planning_scene_acm: true

@@ -354,6 +354,48 @@ YAML::Node FindPath(const YAML::Node& node, const std::vector<const char*>& keys
   return FindPath(node[keys[first]], keys, first + 1);
 }
 
+/// robot_state.multi_dof_joint_state: each joint name with its transform (translation and
+/// rotation, each optional as in a pose).
+std::vector<SceneJointPose> ReadJointPoses(const YAML::Node& root, const Where& top) {
+  std::vector<SceneJointPose> poses;
+  const YAML::Node state = FindPath(root, {"robot_state", "multi_dof_joint_state"});
+  if (!state.IsDefined()) return poses;
+  const Where where = top.Child("robot_state").Child("multi_dof_joint_state");
+  yaml_fields::RequireMap(state, where);
+  const std::vector<std::string> names =
+      ReadUniqueNames(state["joint_names"], where.Child("joint_names"));
+  const YAML::Node transforms = state["transforms"];
+  const Where transforms_where = where.Child("transforms");
+  std::size_t count = 0;
+  if (transforms) {
+    yaml_fields::RequireSequence(transforms, transforms_where);
+    count = transforms.size();
+  }
+  if (count != names.size()) {
+    transforms_where.Fail(transforms.IsDefined() ? transforms : state,
+                          std::to_string(count) + " transforms for " +
+                              std::to_string(names.size()) +
+                              " joint_names (expected one per joint name)");
+  }
+  for (std::size_t i = 0; i < count; ++i) {
+    const YAML::Node transform = transforms[i];
+    const Where entry = transforms_where.Entry(i);
+    yaml_fields::RequireMap(transform, entry);
+    yaml_fields::CheckKeys(transform, {"translation", "rotation"}, entry);
+    SceneJointPose pose{names[i], Eigen::Isometry3d::Identity(),
+                        transform.Mark().is_null() ? 0 : transform.Mark().line + 1};
+    if (transform["translation"]) {
+      pose.X_PC.translation() = ReadPoint(transform["translation"], entry.Child("translation"));
+    }
+    if (transform["rotation"]) {
+      pose.X_PC.linear() =
+          ReadOrientation(transform["rotation"], entry.Child("rotation")).toRotationMatrix();
+    }
+    poses.push_back(pose);
+  }
+  return poses;
+}
+
 /// Notices for robot_state's attached objects and world.octomap's data (both ignored).
 void AddNotices(const YAML::Node& root, PlanningSceneFile* scene) {
   const YAML::Node attached = FindPath(root, {"robot_state", "attached_collision_objects"});
@@ -410,6 +452,7 @@ PlanningSceneFile ReadPlanningSceneText(const std::string& text, const std::stri
   if (const YAML::Node matrix = root["allowed_collision_matrix"]) {
     scene.allowed_collisions = ReadAllowedCollisions(matrix, top.Child("allowed_collision_matrix"));
   }
+  scene.joint_poses = ReadJointPoses(root, top);
   AddNotices(root, &scene);
   return scene;
 }

@@ -194,7 +194,7 @@ Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_pat
   const scene_sections::SrdfInput srdf =
       scene_sections::ReadSrdf(scene, scene_path, urdf_model->getName(), options.fetch, &w);
   const scene_sections::PlanningSceneInput planning_scene = scene_sections::ReadPlanningScene(
-      scene, scene_path, shape_options, options.fetch, srdf.root_aliases, &meshes, &names, &w);
+      scene, scene_path, shape_options, options.fetch, srdf, &meshes, &names, &w);
   meshes.ReportTo(&w);
   scene_sections::ReadVariants(scene["variants"], Where{scene_path, "variants"}, links, &names, &w);
   auto compatible_pairs =

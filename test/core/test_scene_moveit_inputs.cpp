@@ -464,7 +464,8 @@ TEST(SceneMoveitInputs, BadPlanningSceneObjectsAreRejected) {
 
 // A Setup Assistant SRDF hangs the URDF root from another frame by a fixed virtual joint, and
 // MoveIt's planning-scene dumps then name that frame: it means the fixed frame. A non-fixed
-// virtual joint does not make an alias (the root moves in that frame).
+// virtual joint does not make an alias (the root moves in that frame): its frame needs the
+// scene's pose of the joint (next test).
 TEST(SceneMoveitInputs, FixedVirtualJointParentFrameNamesTheFixedFrame) {
   const std::string object =
       "    - id: lid\n      header: {frame_id: map}\n"
@@ -486,10 +487,54 @@ TEST(SceneMoveitInputs, FixedVirtualJointParentFrameNamesTheFixedFrame) {
                           {ps, "'lid'", "frame_id 'map'", "not a URDF link"});
   const std::string floating = srdf_with("floating");
   ExpectBundledSceneError("srdf: " + floating + "\nplanning_scene: " + ps,
-                          {ps, "'lid'", "frame_id 'map'", "not a URDF link"});
+                          {ps, "'lid'", "frame_id 'map'", "parent frame of the SRDF's floating",
+                           "'vj' (" + floating + ":2)", "robot_state.multi_dof_joint_state"});
   const Workcell moving =
       LoadWorkcell(kUrdf, BundledSceneWith("floating.yaml", "srdf: " + floating + "\n"));
   EXPECT_NE(FindWarning(moving, "type='floating'>: the root link moves in 'map'"), "");
+}
+
+// A floating (or planar) virtual joint onto the root, as a stock Panda SRDF has: MoveIt's dump
+// says in robot_state.multi_dof_joint_state where the joint puts the robot, and the objects in
+// its parent frame are placed relative to that pose (the robot taken to stay there, with a
+// notice). The joint's pose for another joint name does not place it.
+TEST(SceneMoveitInputs, FloatingVirtualJointFrameIsPlacedByTheScenesRobotState) {
+  const std::string srdf = WriteTempFile(
+      "placed.srdf", "<robot name='workcell'>\n  <virtual_joint name='vj' type='floating' "
+                     "parent_frame='map' child_link='world'/>\n</robot>\n");
+  // The root 'world' stands at (1, 2, 0) in 'map', turned a quarter about z.
+  auto scene_with_joint = [](const std::string& name, const std::string& joint) {
+    return PlanningSceneWithObject(
+        name,
+        "    - id: lid\n      header: {frame_id: map}\n"
+        "      primitives: [{type: box, dimensions: [0.1, 0.2, 0.3]}]\n"
+        "      primitive_poses: [{position: [1.5, 2, 1]}]\n"
+        "robot_state:\n  multi_dof_joint_state:\n    joint_names: [" + joint + "]\n"
+        "    transforms:\n      - translation: {x: 1, y: 2, z: 0}\n"
+        "        rotation: {x: 0, y: 0, z: 0.7071067811865476, w: 0.7071067811865476}\n");
+  };
+  const std::string ps = scene_with_joint("placed_ps.yaml", "vj");
+  const Workcell w = LoadWorkcell(
+      kUrdf, BundledSceneWith("placed.yaml", "srdf: " + srdf + "\nplanning_scene: " + ps + "\n"));
+  const Shape& lid = ShapeOf(w, "lid");
+  ASSERT_TRUE(std::holds_alternative<Box>(lid));
+  const Box& box = std::get<Box>(lid);
+  // Its offset (0.5, 0, 1) in 'map' from the root's origin is (0, -0.5, 1) in the root's frame
+  // (the root's x is map's y).
+  EXPECT_TRUE(box.X_WB.translation().isApprox(Eigen::Vector3d(0, -0.5, 1), 1e-12))
+      << box.X_WB.translation().transpose();
+  // The box's x edge (along map's x) lies along the root's -y.
+  EXPECT_TRUE((box.X_WB.linear() * Eigen::Vector3d::UnitX()).isApprox(-Eigen::Vector3d::UnitY(),
+                                                                      1e-12));
+  const std::string notice = FindWarning(w, "robot_state.multi_dof_joint_state puts the root");
+  EXPECT_NE(notice.find(ps + ":11:"), std::string::npos) << notice;
+  EXPECT_NE(notice.find("translation [1, 2, 0] m"), std::string::npos) << notice;
+  EXPECT_NE(notice.find("in 'map' (the SRDF's floating virtual joint 'vj')"), std::string::npos)
+      << notice;
+  EXPECT_NE(notice.find("takes the robot to stay there"), std::string::npos) << notice;
+  const std::string other = scene_with_joint("other_joint_ps.yaml", "base_joint");
+  ExpectBundledSceneError("srdf: " + srdf + "\nplanning_scene: " + other,
+                          {other, "'lid'", "frame_id 'map'", "does not give"});
 }
 
 TEST(SceneMoveitInputs, BadTypedObjectsAreRejected) {

@@ -31,6 +31,7 @@ TEST(PlanningSceneReader, RostopicEchoDump) {
   const PlanningSceneFile scene = ReadPlanningSceneFile(kData + "workcell_scene.yaml");
   EXPECT_EQ(scene.name, "workcell_shelf");
   EXPECT_TRUE(scene.notices.empty());  // no attached objects, an empty octomap
+  EXPECT_TRUE(scene.joint_poses.empty());  // multi_dof_joint_state with no joints
   ASSERT_EQ(scene.objects.size(), 8u);
   const std::vector<std::string> ids = {"shelf", "can_1",  "can_2", "can_3",
                                         "ball",  "funnel", "wedge", "tray"};
@@ -218,6 +219,57 @@ TEST(PlanningSceneReader, NoticesForIgnoredGeometry) {
   ASSERT_EQ(scene.notices.size(), 2u);
   EXPECT_NE(scene.notices[0].find("1 objects attached"), std::string::npos) << scene.notices[0];
   EXPECT_NE(scene.notices[1].find("octomap of 3 bytes"), std::string::npos) << scene.notices[1];
+}
+
+// robot_state.multi_dof_joint_state, where MoveIt's dumps say where a floating virtual joint
+// puts the robot: each joint's transform, in the message's form and the compact one.
+TEST(PlanningSceneReader, MultiDofJointStateGivesJointPoses) {
+  const PlanningSceneFile scene = ReadPlanningSceneFile(WriteTempFile(
+      "multi_dof.yaml",
+      "robot_state:\n  joint_state: {name: [j1], position: [0.5]}\n"
+      "  multi_dof_joint_state:\n"
+      "    header: {frame_id: world}\n"
+      "    joint_names: [virtual_joint, base_joint]\n"
+      "    transforms:\n"
+      "      - translation: {x: 1.0, y: -2.0, z: 0.5}\n"
+      "        rotation: {x: 0.0, y: 0.0, z: 0.7071067811865476, w: 0.7071067811865476}\n"
+      "      - {translation: [0.1, 0.2, 0.3]}\n"
+      "    twist: []\n    wrench: []\n"));
+  ASSERT_EQ(scene.joint_poses.size(), 2u);
+  const SceneJointPose& vj = scene.joint_poses[0];
+  EXPECT_EQ(vj.joint, "virtual_joint");
+  EXPECT_EQ(vj.line, 7);  // its entry of transforms
+  EXPECT_TRUE(vj.X_PC.translation().isApprox(Eigen::Vector3d(1.0, -2.0, 0.5), kTight));
+  // A quarter turn about z: x onto y.
+  EXPECT_TRUE((vj.X_PC.linear() * Eigen::Vector3d::UnitX()).isApprox(Eigen::Vector3d::UnitY(),
+                                                                    kTight));
+  EXPECT_EQ(scene.joint_poses[1].joint, "base_joint");
+  EXPECT_TRUE(scene.joint_poses[1].X_PC.translation().isApprox(Eigen::Vector3d(0.1, 0.2, 0.3)));
+  EXPECT_TRUE(scene.joint_poses[1].X_PC.linear().isIdentity());
+}
+
+TEST(PlanningSceneReader, BadMultiDofJointStateNamesFileElementAndExpectation) {
+  const std::string state = "robot_state.multi_dof_joint_state";
+  auto scene_with = [](const std::string& fields) {
+    return "robot_state:\n  multi_dof_joint_state: {" + fields + "}\n";
+  };
+  ExpectBadInputFilesRejected(
+      "bad_multi_dof.yaml",
+      {
+          {scene_with("joint_names: [a, b], transforms: [{}]"),
+           {state + ".transforms", "1 transforms for 2 joint_names", "one per joint name"}},
+          {scene_with("joint_names: [a], transforms: [{}, {}]"),
+           {state + ".transforms", "2 transforms for 1 joint_names"}},
+          {scene_with("joint_names: [a, a], transforms: [{}, {}]"),
+           {state + ".joint_names[1]", "'a' repeated"}},
+          {scene_with("joint_names: [a], transforms: [{rotation: [0, 0, 0, 0]}]"),
+           {state + ".transforms[0].rotation"}},
+          {scene_with("joint_names: [a], transforms: [{translaton: [0, 0, 0]}]"),
+           {state + ".transforms[0]", "unknown key 'translaton'"}},
+          {scene_with("joint_names: [a], transforms: {a: 1}"),
+           {state + ".transforms"}},
+      },
+      [](const std::string& path) { ReadPlanningSceneFile(path); });
 }
 
 TEST(PlanningSceneReader, MissingOrMalformedFile) {

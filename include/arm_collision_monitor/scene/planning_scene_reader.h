@@ -58,11 +58,21 @@ struct SceneAllowedCollisions {
   std::vector<std::string> default_allowed_names;  ///< default_entry_values: true
 };
 
+/// One joint of robot_state.multi_dof_joint_state: its value, the pose of the joint's child link
+/// C in its parent frame P (for an SRDF virtual joint: where the robot's root link stands).
+struct SceneJointPose {
+  std::string joint;
+  Eigen::Isometry3d X_PC = Eigen::Isometry3d::Identity();
+  int line = 0;  ///< its transform's line in the file (1-based; 0 if unknown)
+};
+
 /// What a planning-scene file holds for the monitor.
 struct PlanningSceneFile {
   std::string name;  ///< the scene's `name`, "" when absent
   std::vector<SceneCollisionObject> objects;
   SceneAllowedCollisions allowed_collisions;
+  /// robot_state.multi_dof_joint_state, in file order (none in a `.scene` file).
+  std::vector<SceneJointPose> joint_poses;
   /// Content the monitor does not use but the user should know was dropped, one sentence each:
   /// a non-empty octomap, attached collision objects in robot_state.
   std::vector<std::string> notices;
@@ -75,8 +85,10 @@ struct PlanningSceneFile {
 /// matrix rows as lists of booleans. Every key is optional.
 ///
 /// Read: world.collision_objects (id, header.frame_id, pose, primitives + primitive_poses,
-/// meshes + mesh_poses, operation), allowed_collision_matrix and name. Ignored: robot_state (a
-/// notice if it has attached objects), robot_model_name, fixed_frame_transforms,
+/// meshes + mesh_poses, operation), allowed_collision_matrix, name and robot_state's
+/// multi_dof_joint_state (joint_names with their transforms: geometry_msgs/Transform, the
+/// compact form as for poses). Ignored: the rest of robot_state (a notice if it has attached
+/// objects), robot_model_name, fixed_frame_transforms,
 /// link_padding, link_scale, object_colors, world.octomap (a notice if it has data), is_diff,
 /// and each object's type (object_recognition_msgs/ObjectType), subframe_names, subframe_poses.
 ///
@@ -92,7 +104,7 @@ struct PlanningSceneFile {
 /// unknown primitive type, a wrong number of dimensions, a dimension that is not a finite
 /// number > 0, shape and pose lists of different lengths, a bad quaternion, a mesh without
 /// triangles or with a vertex index out of range, and a matrix that is not square, symmetric and
-/// named by unique names.
+/// named by unique names, and multi-DOF joint names that are repeated or not one per transform.
 PlanningSceneFile ReadPlanningSceneFile(const std::string& path);
 
 /// The same from the file's text (fetched by the caller, e.g. through a ResourceFetcher);
