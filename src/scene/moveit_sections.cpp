@@ -24,47 +24,40 @@ auto ReadNamedFile(const Where& where, Read read) {
 
 // The frames beside the URDF's links that planning-scene objects may name: the fixed virtual
 // joints' parent frames (the fixed frame), and the moving ones' with the root link's pose in
-// them from the scene's robot state, if it gives one.
+// them from the scene's robot state, or MoveIt's default, the identity.
 struct HeaderFrames {
   struct Placed {
     SrdfVirtualJoint joint;
-    const SceneJointPose* pose = nullptr;  // the scene's value of the joint; none: refused
-    bool is_used = false;                  // some object names its parent frame
+    const SceneJointPose* pose = nullptr;  // the scene's value of the joint, if it gives one
+    bool is_used = false;                  // some object is in its parent frame
   };
   std::vector<std::string> root_aliases;
   std::vector<Placed> placed;
-  std::string srdf_path;
 };
 
-// The pose in W of a planning-scene object's header frame: the fixed frame ("" or a root alias
-// means it), a URDF link fixed to it (its pose does not depend on q), or a placed frame.
+// The pose in W of a planning-scene object's header frame: the fixed frame (a root alias means
+// it), a URDF link fixed to it (its pose does not depend on q), or a placed frame. No frame is
+// MoveIt's planning frame: a moving virtual joint's parent frame, else the fixed frame.
 Eigen::Isometry3d HeaderFramePose(const SceneCollisionObject& object, const Workcell& workcell,
                                   const std::string& path, HeaderFrames* frames) {
+  std::string frame = object.frame_id;
+  if (frame.empty() && !frames->placed.empty()) frame = frames->placed.front().joint.parent_frame;
   const std::vector<std::string>& aliases = frames->root_aliases;
-  const bool is_alias =
-      std::find(aliases.begin(), aliases.end(), object.frame_id) != aliases.end();
-  const std::string& frame =
-      object.frame_id.empty() || is_alias ? workcell.fixed_frame : object.frame_id;
-  const std::string where = path + ":" + std::to_string(object.line) + ": " + object.element +
-                            ": header.frame_id" + Quoted(frame);
+  if (frame.empty() || std::find(aliases.begin(), aliases.end(), frame) != aliases.end()) {
+    frame = workcell.fixed_frame;
+  }
   std::vector<Eigen::Isometry3d> X_WL(workcell.kinematics.link_count());
   workcell.kinematics.ComputeLinkPoses(Eigen::VectorXd::Zero(workcell.kinematics.q_size()),
                                        &X_WL);
   for (HeaderFrames::Placed& placed : frames->placed) {
-    const SrdfVirtualJoint& joint = placed.joint;
-    if (frame != joint.parent_frame) continue;
-    if (placed.pose == nullptr) {
-      throw LoadError(where + " is the parent frame of the SRDF's " + joint.type +
-                      " virtual joint" + Quoted(joint.name) + " (" + frames->srdf_path + ":" +
-                      std::to_string(joint.line) +
-                      "), whose pose the planning scene does not give (expected it in "
-                      "robot_state.multi_dof_joint_state, as MoveIt's dumps have it, or the "
-                      "virtual joint fixed)");
-    }
+    if (frame != placed.joint.parent_frame) continue;
     placed.is_used = true;
+    if (placed.pose == nullptr) return X_WL[0];
     return X_WL[0] * placed.pose->X_PC.inverse();  // the root link is the joint's child
   }
   const int link = workcell.kinematics.FindLink(frame);
+  const std::string where = path + ":" + std::to_string(object.line) + ": " + object.element +
+                            ": header.frame_id" + Quoted(frame);
   if (link < 0) {
     throw LoadError(where + " is not a URDF link (expected the fixed frame" +
                     Quoted(workcell.fixed_frame) + " or a link fixed to it)");
@@ -77,21 +70,27 @@ Eigen::Isometry3d HeaderFramePose(const SceneCollisionObject& object, const Work
   return X_WL[link];
 }
 
-// The notice for a placed frame that objects named: where the scene put the root link in it.
+// The notice for a placed frame that objects are in: where the root link stands in it.
 std::string PlacedFrameNotice(const HeaderFrames::Placed& placed, const std::string& path,
-                              const std::string& root) {
-  const Eigen::Isometry3d& X_PC = placed.pose->X_PC;
-  const Eigen::Vector3d p = X_PC.translation();
-  const Eigen::Quaterniond r(X_PC.linear());
+                              const std::string& srdf_path, const std::string& root) {
   const std::string& frame = placed.joint.parent_frame;
   std::ostringstream text;
-  text << path << ":" << placed.pose->line
-       << ": robot_state.multi_dof_joint_state puts the root link" << Quoted(root)
-       << " at translation [" << p.x() << ", " << p.y() << ", " << p.z() << "] m, rotation ["
-       << r.x() << ", " << r.y() << ", " << r.z() << ", " << r.w() << "] (x, y, z, w) in"
-       << Quoted(frame) << " (the SRDF's " << placed.joint.type << " virtual joint"
-       << Quoted(placed.joint.name) << "): the objects in" << Quoted(frame)
-       << " are placed relative to it, and the monitor takes the robot to stay there";
+  text << path << ": the objects in" << Quoted(frame)
+       << " (MoveIt's planning frame, also for objects without a frame) are placed with the root"
+       << " link" << Quoted(root) << " at ";
+  if (placed.pose != nullptr) {
+    const Eigen::Vector3d p = placed.pose->X_PC.translation();
+    const Eigen::Quaterniond r(placed.pose->X_PC.linear());
+    text << "translation [" << p.x() << ", " << p.y() << ", " << p.z() << "] m, rotation ["
+         << r.x() << ", " << r.y() << ", " << r.z() << ", " << r.w()
+         << "] (x, y, z, w), the pose robot_state.multi_dof_joint_state gives (line "
+         << placed.pose->line << ")";
+  } else {
+    text << "its origin, MoveIt's default: robot_state.multi_dof_joint_state gives no pose";
+  }
+  text << " of the SRDF's " << placed.joint.type << " virtual joint" << Quoted(placed.joint.name)
+       << " (" << srdf_path << ":" << placed.joint.line
+       << "); the monitor takes the robot to stay there";
   return text.str();
 }
 
@@ -228,7 +227,8 @@ SrdfInput ReadSrdf(const YAML::Node& scene, const std::string& scene_path,
           "' type='" + joint.type + "'>: the root link moves in '" + joint.parent_frame +
           "'; the monitor works in the root link's frame '" + root +
           "' (planning-scene objects in '" + joint.parent_frame +
-          "' need the scene's pose of the joint, in robot_state.multi_dof_joint_state)");
+          "' are placed with the root link where the scene's robot state puts the joint, else at "
+          "the origin of '" + joint.parent_frame + "')");
     }
   }
   return input;
@@ -274,7 +274,7 @@ PlanningSceneInput ReadPlanningScene(const YAML::Node& scene, const std::string&
   for (const std::string& notice : input.file.notices) {
     workcell->warnings.push_back(input.path + ": " + notice);
   }
-  HeaderFrames frames{srdf.root_aliases, {}, srdf.path};
+  HeaderFrames frames{srdf.root_aliases, {}};
   for (const SrdfVirtualJoint& joint : srdf.moving_root_joints) {
     const std::vector<SceneJointPose>& poses = input.file.joint_poses;
     const auto pose = std::find_if(poses.begin(), poses.end(), [&](const SceneJointPose& p) {
@@ -291,7 +291,7 @@ PlanningSceneInput ReadPlanningScene(const YAML::Node& scene, const std::string&
   for (const HeaderFrames::Placed& placed : frames.placed) {
     if (placed.is_used) {
       workcell->warnings.push_back(
-          PlacedFrameNotice(placed, input.path, workcell->kinematics.link_name(0)));
+          PlacedFrameNotice(placed, input.path, srdf.path, workcell->kinematics.link_name(0)));
     }
   }
   return input;

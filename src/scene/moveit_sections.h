@@ -75,10 +75,11 @@ struct PlanningSceneInput {
 
 /// planning_scene: (optional), planning_scene_acm and planning_scene_tolerance_m: appends each
 /// world collision object of the file as a static object of `workcell` (whose world_W and
-/// kinematics must be read). Its frame must be the fixed frame ("" or one of srdf.root_aliases
-/// means it), a URDF link fixed to it, or the parent frame of one of srdf.moving_root_joints
-/// whose pose the file's robot_state.multi_dof_joint_state gives (the robot taken to stay
-/// there; a notice says where). Box -> Box; sphere -> zero-length capsule; cylinder,
+/// kinematics must be read). Its frame must be the fixed frame (one of srdf.root_aliases means
+/// it), a URDF link fixed to it, or the parent frame of one of srdf.moving_root_joints (the
+/// root link where the file's robot_state.multi_dof_joint_state puts it, else at its origin,
+/// taken to stay there; a notice says where); "" is MoveIt's planning frame: that parent frame,
+/// else the fixed frame. Box -> Box; sphere -> zero-length capsule; cylinder,
 /// and a cone's bounding cylinder -> per options.cylinder_model; inline mesh -> the primitives
 /// `meshes` fits to it.
 /// The file is read through `fetch`; its notices are added to workcell->warnings.

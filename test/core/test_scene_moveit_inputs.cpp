@@ -464,8 +464,8 @@ TEST(SceneMoveitInputs, BadPlanningSceneObjectsAreRejected) {
 
 // A Setup Assistant SRDF hangs the URDF root from another frame by a fixed virtual joint, and
 // MoveIt's planning-scene dumps then name that frame: it means the fixed frame. A non-fixed
-// virtual joint does not make an alias (the root moves in that frame): its frame needs the
-// scene's pose of the joint (next test).
+// virtual joint does not make an alias (the root moves in that frame): without the scene's
+// pose of the joint (next test) the root stands at its origin, MoveIt's default, with a notice.
 TEST(SceneMoveitInputs, FixedVirtualJointParentFrameNamesTheFixedFrame) {
   const std::string object =
       "    - id: lid\n      header: {frame_id: map}\n"
@@ -486,18 +486,23 @@ TEST(SceneMoveitInputs, FixedVirtualJointParentFrameNamesTheFixedFrame) {
   ExpectBundledSceneError("planning_scene: " + ps,
                           {ps, "'lid'", "frame_id 'map'", "not a URDF link"});
   const std::string floating = srdf_with("floating");
-  ExpectBundledSceneError("srdf: " + floating + "\nplanning_scene: " + ps,
-                          {ps, "'lid'", "frame_id 'map'", "parent frame of the SRDF's floating",
-                           "'vj' (" + floating + ":2)", "robot_state.multi_dof_joint_state"});
-  const Workcell moving =
-      LoadWorkcell(kUrdf, BundledSceneWith("floating.yaml", "srdf: " + floating + "\n"));
+  const Workcell moving = LoadWorkcell(
+      kUrdf, BundledSceneWith("floating.yaml",
+                              "srdf: " + floating + "\nplanning_scene: " + ps + "\n"));
   EXPECT_NE(FindWarning(moving, "type='floating'>: the root link moves in 'map'"), "");
+  EXPECT_TRUE(std::get<Box>(ShapeOf(moving, "lid")).X_WB.isApprox(std::get<Box>(lid).X_WB));
+  const std::string notice = FindWarning(moving, "the objects in 'map'");
+  EXPECT_NE(notice.find(ps + ": "), std::string::npos) << notice;
+  EXPECT_NE(notice.find("at its origin, MoveIt's default"), std::string::npos) << notice;
+  EXPECT_NE(notice.find("floating virtual joint 'vj' (" + floating + ":2)"), std::string::npos)
+      << notice;
 }
 
 // A floating (or planar) virtual joint onto the root, as a stock Panda SRDF has: MoveIt's dump
 // says in robot_state.multi_dof_joint_state where the joint puts the robot, and the objects in
-// its parent frame are placed relative to that pose (the robot taken to stay there, with a
-// notice). The joint's pose for another joint name does not place it.
+// its parent frame, MoveIt's planning frame (so also those without a frame), are placed
+// relative to that pose (the robot taken to stay there, with a notice). The pose of another
+// joint does not place it.
 TEST(SceneMoveitInputs, FloatingVirtualJointFrameIsPlacedByTheScenesRobotState) {
   const std::string srdf = WriteTempFile(
       "placed.srdf", "<robot name='workcell'>\n  <virtual_joint name='vj' type='floating' "
@@ -507,6 +512,9 @@ TEST(SceneMoveitInputs, FloatingVirtualJointFrameIsPlacedByTheScenesRobotState) 
     return PlanningSceneWithObject(
         name,
         "    - id: lid\n      header: {frame_id: map}\n"
+        "      primitives: [{type: box, dimensions: [0.1, 0.2, 0.3]}]\n"
+        "      primitive_poses: [{position: [1.5, 2, 1]}]\n"
+        "    - id: pan\n"
         "      primitives: [{type: box, dimensions: [0.1, 0.2, 0.3]}]\n"
         "      primitive_poses: [{position: [1.5, 2, 1]}]\n"
         "robot_state:\n  multi_dof_joint_state:\n    joint_names: [" + joint + "]\n"
@@ -526,15 +534,22 @@ TEST(SceneMoveitInputs, FloatingVirtualJointFrameIsPlacedByTheScenesRobotState) 
   // The box's x edge (along map's x) lies along the root's -y.
   EXPECT_TRUE((box.X_WB.linear() * Eigen::Vector3d::UnitX()).isApprox(-Eigen::Vector3d::UnitY(),
                                                                       1e-12));
-  const std::string notice = FindWarning(w, "robot_state.multi_dof_joint_state puts the root");
-  EXPECT_NE(notice.find(ps + ":11:"), std::string::npos) << notice;
+  EXPECT_TRUE(std::get<Box>(ShapeOf(w, "pan")).X_WB.isApprox(box.X_WB));
+  const std::string notice = FindWarning(w, "the objects in 'map'");
+  EXPECT_NE(notice.find(ps + ": "), std::string::npos) << notice;
   EXPECT_NE(notice.find("translation [1, 2, 0] m"), std::string::npos) << notice;
-  EXPECT_NE(notice.find("in 'map' (the SRDF's floating virtual joint 'vj')"), std::string::npos)
+  EXPECT_NE(notice.find("gives (line 14) of the SRDF's floating virtual joint 'vj'"),
+            std::string::npos)
       << notice;
   EXPECT_NE(notice.find("takes the robot to stay there"), std::string::npos) << notice;
   const std::string other = scene_with_joint("other_joint_ps.yaml", "base_joint");
-  ExpectBundledSceneError("srdf: " + srdf + "\nplanning_scene: " + other,
-                          {other, "'lid'", "frame_id 'map'", "does not give"});
+  const Workcell at_origin = LoadWorkcell(
+      kUrdf,
+      BundledSceneWith("other_joint.yaml", "srdf: " + srdf + "\nplanning_scene: " + other + "\n"));
+  EXPECT_TRUE(std::get<Box>(ShapeOf(at_origin, "lid"))
+                  .X_WB.translation()
+                  .isApprox(Eigen::Vector3d(1.5, 2, 1), 1e-12));
+  EXPECT_NE(FindWarning(at_origin, "its origin, MoveIt's default"), "");
 }
 
 TEST(SceneMoveitInputs, BadTypedObjectsAreRejected) {
