@@ -33,6 +33,7 @@ struct HeaderFrames {
   };
   std::vector<std::string> root_aliases;
   std::vector<Placed> placed;
+  std::vector<Eigen::Isometry3d> X_WL;  // the links' poses (those fixed to the root are used)
 };
 
 // The pose in W of a planning-scene object's header frame: the fixed frame (a root alias means
@@ -46,9 +47,7 @@ Eigen::Isometry3d HeaderFramePose(const SceneCollisionObject& object, const Work
   if (frame.empty() || std::find(aliases.begin(), aliases.end(), frame) != aliases.end()) {
     frame = workcell.fixed_frame;
   }
-  std::vector<Eigen::Isometry3d> X_WL(workcell.kinematics.link_count());
-  workcell.kinematics.ComputeLinkPoses(Eigen::VectorXd::Zero(workcell.kinematics.q_size()),
-                                       &X_WL);
+  const std::vector<Eigen::Isometry3d>& X_WL = frames->X_WL;
   for (HeaderFrames::Placed& placed : frames->placed) {
     if (frame != placed.joint.parent_frame) continue;
     placed.is_used = true;
@@ -274,7 +273,10 @@ PlanningSceneInput ReadPlanningScene(const YAML::Node& scene, const std::string&
   for (const std::string& notice : input.file.notices) {
     workcell->warnings.push_back(input.path + ": " + notice);
   }
-  HeaderFrames frames{srdf.root_aliases, {}};
+  HeaderFrames frames{srdf.root_aliases, {},
+                      std::vector<Eigen::Isometry3d>(workcell->kinematics.link_count())};
+  workcell->kinematics.ComputeLinkPoses(Eigen::VectorXd::Zero(workcell->kinematics.q_size()),
+                                        &frames.X_WL);
   for (const SrdfVirtualJoint& joint : srdf.moving_root_joints) {
     const std::vector<SceneJointPose>& poses = input.file.joint_poses;
     const auto pose = std::find_if(poses.begin(), poses.end(), [&](const SceneJointPose& p) {

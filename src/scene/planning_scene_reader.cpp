@@ -81,17 +81,25 @@ Eigen::Quaterniond ReadOrientation(const YAML::Node& node, const Where& where) {
   return q;
 }
 
-/// geometry_msgs/Pose as X_AB (B's pose in A): position and orientation, each optional.
-Eigen::Isometry3d ReadPose(const YAML::Node& node, const Where& where) {
+/// geometry_msgs/Pose (keys position, orientation) or Transform (translation, rotation) as X_AB
+/// (B's pose in A): its point under `point_key` and its quaternion under `rotation_key`, each
+/// optional.
+Eigen::Isometry3d ReadRigid(const YAML::Node& node, const Where& where, const char* point_key,
+                            const char* rotation_key) {
   yaml_fields::RequireMap(node, where);
-  yaml_fields::CheckKeys(node, {"position", "orientation"}, where);
+  yaml_fields::CheckKeys(node, {point_key, rotation_key}, where);
   Eigen::Isometry3d X_AB = Eigen::Isometry3d::Identity();
-  if (node["position"]) X_AB.translation() = ReadPoint(node["position"], where.Child("position"));
-  if (node["orientation"]) {
+  if (node[point_key]) X_AB.translation() = ReadPoint(node[point_key], where.Child(point_key));
+  if (node[rotation_key]) {
     X_AB.linear() =
-        ReadOrientation(node["orientation"], where.Child("orientation")).toRotationMatrix();
+        ReadOrientation(node[rotation_key], where.Child(rotation_key)).toRotationMatrix();
   }
   return X_AB;
+}
+
+/// geometry_msgs/Pose as X_AB.
+Eigen::Isometry3d ReadPose(const YAML::Node& node, const Where& where) {
+  return ReadRigid(node, where, "position", "orientation");
 }
 
 /// The poses list `key` of `object`, which must match the `count` shapes of `shapes_key` in
@@ -379,19 +387,9 @@ std::vector<SceneJointPose> ReadJointPoses(const YAML::Node& root, const Where& 
   }
   for (std::size_t i = 0; i < count; ++i) {
     const YAML::Node transform = transforms[i];
-    const Where entry = transforms_where.Entry(i);
-    yaml_fields::RequireMap(transform, entry);
-    yaml_fields::CheckKeys(transform, {"translation", "rotation"}, entry);
-    SceneJointPose pose{names[i], Eigen::Isometry3d::Identity(),
-                        transform.Mark().is_null() ? 0 : transform.Mark().line + 1};
-    if (transform["translation"]) {
-      pose.X_PC.translation() = ReadPoint(transform["translation"], entry.Child("translation"));
-    }
-    if (transform["rotation"]) {
-      pose.X_PC.linear() =
-          ReadOrientation(transform["rotation"], entry.Child("rotation")).toRotationMatrix();
-    }
-    poses.push_back(pose);
+    poses.push_back({names[i],
+                     ReadRigid(transform, transforms_where.Entry(i), "translation", "rotation"),
+                     transform.Mark().is_null() ? 0 : transform.Mark().line + 1});
   }
   return poses;
 }
