@@ -9,6 +9,8 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <sstream>
+#include <string>
 #include <utility>
 #include <variant>
 
@@ -17,6 +19,7 @@
 #endif
 
 #include "arm_collision_monitor/broadphase/broad_phase_factory.h"
+#include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/geometry/distance.h"
 #include "monitor_impl.h"
 
@@ -478,6 +481,28 @@ const Workcell& Monitor::workcell() const { return *impl_->model.workcell; }
 const PrimitiveSpec& Monitor::primitive(PrimitiveId id) const { return impl_->Spec(id); }
 const MonitorOptions& Monitor::options() const { return impl_->model.options; }
 const CycleReport& Monitor::report() const { return impl_->report; }
+
+std::string Monitor::DescribeRefusal(const Eigen::Ref<const Eigen::VectorXd>& q) const {
+  const MonitorModel& model = impl_->model;
+  const Eigen::Index n = model.q_lower.size();
+  if (q.size() != n) {
+    return std::to_string(q.size()) + " positions for the model's " + std::to_string(n) +
+           " joints";
+  }
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (q[i] >= model.q_lower[i] && q[i] <= model.q_upper[i]) continue;
+    std::ostringstream text;
+    text << "joint '" << model.workcell->joint_names[static_cast<std::size_t>(i)] << "' at "
+         << q[i];
+    if (std::isfinite(q[i])) {
+      text << ", outside its limits [" << model.q_lower[i] + kJointLimitMargin << ", "
+           << model.q_upper[i] - kJointLimitMargin << "] by more than their margin "
+           << kJointLimitMargin;
+    }
+    return text.str();
+  }
+  return "";
+}
 std::uint32_t Monitor::primitive_count() const { return impl_->model.primitive_count; }
 const Shape& Monitor::shape_W(PrimitiveId id) const { return impl_->shape_W[id]; }
 bool Monitor::are_shapes_current() const { return !impl_->kinematics_behind; }

@@ -144,8 +144,14 @@ bool EndsWith(const std::string& s, const std::string& suffix) {
 
 Input ReadCsv(const std::string& path, const Workcell& workcell) {
   const JointCsv csv = ReadJointCsv(path);
+  std::vector<std::string> mimic_joints;
+  for (int link = 1; link < workcell.kinematics.link_count(); ++link) {
+    const JointSpec& joint = workcell.kinematics.joint(link);
+    if (joint.mimic_q_index >= 0) mimic_joints.push_back(joint.name);
+  }
   Input result;
-  result.q = JointCsvInModelOrder(csv, workcell.joint_names, workcell.joint_defaults);
+  result.q =
+      JointCsvInModelOrder(csv, workcell.joint_names, workcell.joint_defaults, mimic_joints);
   for (const double t : csv.time_s) result.time_s.push_back(t - csv.time_s.front());
   result.messages = result.q.size();
   return result;
@@ -187,6 +193,7 @@ class MonitorChecker : public Checker {
       (w.between_samples ? result->between_samples : result->warnings).push_back(w);
     }
     result->refused = report.input != InputStatus::kOk;
+    result->refusal = result->refused ? monitor_.DescribeRefusal(q) : std::string();
     result->is_jumped = report.input_jumped;
   }
   BroadPhaseCounters counters() const override { return monitor_.total_counters(); }

@@ -99,8 +99,10 @@ MonitorNode::MonitorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   for (const std::string& notice : monitor_->startup_notices()) {
     ROS_INFO("arm_collision_monitor: %s", notice.c_str());
   }
-  fixed_frame_ =
-      options_.fixed_frame.empty() ? monitor_options.fixed_frame : options_.fixed_frame;
+  // The launch file's, else the config file's, else the URDF root link.
+  fixed_frame_ = !options_.fixed_frame.empty()      ? options_.fixed_frame
+                 : !monitor_options.fixed_frame.empty() ? monitor_options.fixed_frame
+                                                        : workcell_->fixed_frame;
   input_ = std::make_unique<JointMerger>(workcell_->joint_names, options_.input_timeout_s);
   input_->SetDefaults(workcell_->joint_defaults);
   markers_ = std::make_unique<MarkerBuilder>(*monitor_, fixed_frame_);
@@ -261,6 +263,9 @@ void MonitorNode::RunCycle(std::chrono::steady_clock::time_point start) {
       report_.swept_pairs = cycle.swept_pairs;
       largest_step_m_ = std::max(largest_step_m_, cycle.step_motion_m);
       input_jumps_ += cycle.input_jumped ? 1 : 0;
+    } else {
+      ROS_WARN_THROTTLE(1.0, "arm_collision_monitor: the monitor refused the joint state: %s",
+                        monitor_->DescribeRefusal(input_->q()).c_str());
     }
     policy_.OnCycleReport(cycle, primitives_, *input_, now.toSec());
   }
@@ -450,7 +455,8 @@ void MonitorNode::DiagnoseInput(diagnostic_updater::DiagnosticStatusWrapper& sta
   const int oldest = input_->OldestJoint();
   const double oldest_age_s = oldest >= 0 ? input_->JointAge(oldest, now_s) : 0.0;
   if (!input_->is_complete()) {
-    status.summaryf(diagnostic_msgs::DiagnosticStatus::ERROR, "joint '%s' never received",
+    status.summaryf(diagnostic_msgs::DiagnosticStatus::ERROR,
+                    "%d joint(s) never received, the first '%s'", input_->missing_count(),
                     input_->joint_name(input_->FirstMissingJoint()).c_str());
   } else if (input_->IsStale(now_s)) {
     status.summaryf(diagnostic_msgs::DiagnosticStatus::ERROR, "stale: '%s' %.3f s old",

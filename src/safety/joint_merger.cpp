@@ -19,6 +19,18 @@ const char* MergeStatusName(MergeStatus status) {
   return status == MergeStatus::kAccepted ? "accepted" : SafetyStatusName(ToSafetyStatus(status));
 }
 
+const char* JointDefaultsHint(std::size_t count) {
+  return count == 1 ? "publish it, or give it a position in the scene file's joint_defaults"
+                    : "publish them, or give them positions in the scene file's joint_defaults";
+}
+
+std::string ModelJointsText(const std::vector<std::string>& names) {
+  std::string text =
+      names.size() == 1 ? "model joint" : std::to_string(names.size()) + " model joints:";
+  for (std::size_t i = 0; i < names.size(); ++i) text += (i ? ", '" : " '") + names[i] + "'";
+  return text;
+}
+
 JointMerger::JointMerger(const std::vector<std::string>& joint_names, double input_timeout_s)
     : joint_names_(joint_names),
       input_timeout_s_(input_timeout_s),
@@ -184,6 +196,14 @@ void JointMerger::OnTimeWentBackwards(double now_s) {
     is_awaiting_[i] = is_received_[i];
     awaiting_count_ += is_received_[i] ? 1 : 0;
   }
+}
+
+std::vector<std::string> JointMerger::MissingJoints() const {
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < is_received_.size(); ++i) {
+    if (!is_received_[i] && !has_default_[i]) names.push_back(joint_names_[i]);
+  }
+  return names;
 }
 
 int JointMerger::FirstMissingJoint() const {

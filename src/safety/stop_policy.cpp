@@ -77,8 +77,16 @@ bool StopPolicy::BeginCycle(MergeStatus pending, const JointMerger& input) {
     return false;
   }
   if (!input.is_complete()) {
-    Raise(Rank::kRefused, SafetyStatus::kIncomplete, "joint '%s' never received (%s)",
-          input.joint_name(input.FirstMissingJoint()).c_str(), kJointDefaultsHint);
+    const int count = input.missing_count();
+    const char* first = input.joint_name(input.FirstMissingJoint()).c_str();
+    if (count == 1) {
+      Raise(Rank::kRefused, SafetyStatus::kIncomplete, "joint '%s' never received (%s)", first,
+            JointDefaultsHint(1));
+    } else {
+      Raise(Rank::kRefused, SafetyStatus::kIncomplete,
+            "%d joints never received, the first '%s' (%s)", count, first,
+            JointDefaultsHint(static_cast<std::size_t>(count)));
+    }
     return false;
   }
   return true;

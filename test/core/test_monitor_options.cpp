@@ -27,7 +27,7 @@ TEST(MonitorOptions, BundledMonitorOptions) {
   EXPECT_FALSE(o.speed_scaled_tolerance);
   EXPECT_EQ(MonitorOptions{}.broad_phase.method, BroadPhaseMethod::kAuto);  // same default
   EXPECT_EQ(o.index_slack_m, kDefaultIndexSlack_m);
-  EXPECT_EQ(o.fixed_frame, "world");
+  EXPECT_EQ(o.fixed_frame, "");  // the URDF root link
   EXPECT_EQ(o.live_objects.capacity, 16u);
   EXPECT_EQ(o.live_objects.max_primitives_per_object, 8u);
   EXPECT_TRUE(o.swept_check);
@@ -41,7 +41,9 @@ TEST(MonitorOptions, MonitorOptionsOverridesAndErrors) {
                 "broad_phase: grid\ngrid_cells_per_axis: 8\nmax_speed_mps: 1.0\n"
                 "cycle_period_s: 0.01\ntechniques: {inside_node_exit: false}\nindex_slack_m: 0\n"
                 "live_objects: {capacity: 0, max_primitives_per_object: 3}\n"
-                "swept_check: false\nswept_resolution_m: 0.002\nmax_step_m: 0.3\n"));
+                "swept_check: false\nswept_resolution_m: 0.002\nmax_step_m: 0.3\n"
+                "fixed_frame: odom\n"));
+  EXPECT_EQ(o.fixed_frame, "odom");
   EXPECT_EQ(o.live_objects.capacity, 0u);
   EXPECT_EQ(o.live_objects.max_primitives_per_object, 3u);
   EXPECT_EQ(o.index_slack_m, 0.0);

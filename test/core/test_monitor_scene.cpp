@@ -3,6 +3,8 @@
 // objects, refused inputs, speed-scaled tolerance and idle cycles. Every report is also compared
 // with the independent brute force of test_monitor_util.h.
 #include <iterator>
+#include <sstream>
+#include <string>
 
 #include "load_error_expect.h"
 #include "test_monitor_util.h"
@@ -417,6 +419,19 @@ TEST(MonitorScene, BadInputsAreRefusedCountedAndFailSafe) {
   // Slightly past a limit, within the margin: accepted.
   EXPECT_EQ(monitor.Update(within).input, InputStatus::kOk);
   EXPECT_EQ(monitor.refused_inputs(), refused);
+  // Why each was refused, for a person; nothing for acceptable input.
+  EXPECT_EQ(monitor.DescribeRefusal(bad[0].first),
+            std::to_string(good.size() - 1) + " positions for the model's " +
+                std::to_string(good.size()) + " joints");
+  EXPECT_EQ(monitor.DescribeRefusal(nan), "joint '" + wc->joint_names[3] + "' at nan");
+  EXPECT_EQ(monitor.DescribeRefusal(inf), "joint '" + wc->joint_names[5] + "' at -inf");
+  std::ostringstream expected;
+  expected << "joint 'left_joint2' at " << beyond[j2] << ", outside its limits ["
+           << test::LimitsOf(*wc).lower[j2] << ", " << upper << "] by more than their margin "
+           << kJointLimitMargin;
+  EXPECT_EQ(monitor.DescribeRefusal(beyond), expected.str());
+  EXPECT_EQ(monitor.DescribeRefusal(within), "");
+  EXPECT_EQ(monitor.DescribeRefusal(good), "");
 }
 
 TEST(MonitorScene, IdleCycleReturnsTheSameReport) {

@@ -82,14 +82,19 @@ class StopPolicyTest : public ::testing::Test {
 TEST_F(StopPolicyTest, StartsStoppedUntilTheModelIsComplete) {
   EXPECT_TRUE(policy_.stop());
   EXPECT_EQ(policy_.reason(), "waiting for joint states");
+  // A cycle before any input: both joints missing, counted, the first named.
+  Cycle(0.5, CleanReport());
+  EXPECT_EQ(policy_.status(), SafetyStatus::kIncomplete);
+  EXPECT_EQ(policy_.reason(), std::string("2 joints never received, the first 'a1' (") +
+                                  JointDefaultsHint(2) + ")");
   const std::vector<std::string> names = {"a1"};
   const std::vector<double> positions = {0.0};
   ASSERT_EQ(input_.Merge(NamedPositions{names, positions, 1.0}, 1.0), MergeStatus::kAccepted);
   Cycle(1.0, CleanReport());
   EXPECT_TRUE(policy_.stop());
   EXPECT_EQ(policy_.status(), SafetyStatus::kIncomplete);
-  EXPECT_EQ(policy_.reason(), std::string("joint 'b1' never received (") + kJointDefaultsHint +
-                                  ")");
+  EXPECT_EQ(policy_.reason(),
+            std::string("joint 'b1' never received (") + JointDefaultsHint(1) + ")");
   // Complete: cleared only after the hold from the last incomplete cycle.
   EXPECT_EQ(ClearedAt(1.0 + kStep_s), 1.0 + kHold_s);
   EXPECT_EQ(policy_.status(), SafetyStatus::kOk);

@@ -96,7 +96,9 @@ class ReplayConfigTest(unittest.TestCase):
                 bag.write('/left_arm/joint_states', msg, msg.header.stamp)
         refused = rosrun('replay', '--json', '--scene', self.bundled_scene, bag_path)
         self.assertEqual(refused.returncode, 1, refused.stderr)
-        self.assertIn("model joint 'right_joint1' is in no accepted sensor_msgs/JointState",
+        # Every joint never given, at once.
+        self.assertIn("no accepted sensor_msgs/JointState message or trajectory point gives "
+                      "7 model joints: " + ", ".join("'%s'" % j for j in RIGHT_JOINTS),
                       refused.stderr)
         self.assertIn('joint_defaults', refused.stderr)
         # The same scene with the right arm held at 0.
@@ -111,6 +113,27 @@ class ReplayConfigTest(unittest.TestCase):
         report = json.loads(result.stdout)
         self.assertEqual(report['cycles'], 20)
         self.assertEqual(report['incomplete_cycles'], 0)
+
+    def test_a_refused_cycle_names_its_joint(self):
+        # Five rows at 20 Hz, the third with left_joint2 far outside its limits.
+        directory = tempfile.mkdtemp(prefix='acm_refusal_')
+        csv_path = os.path.join(directory, 'refused.csv')
+        with open(csv_path, 'w') as f:
+            f.write(','.join(LEFT_JOINTS + RIGHT_JOINTS) + '\n')
+            for k in range(5):
+                row = [0.01 * k] * 14
+                if k == 2:
+                    row[1] = 10.0
+                f.write(','.join(str(x) for x in row) + '\n')
+        result = rosrun('replay', '--json', '--scene', self.bundled_scene, csv_path)
+        report = json.loads(result.stdout)
+        self.assertEqual(report['refused_cycles'], 1, result.stderr)
+        self.assertEqual(report['first_refusal']['cycle'], 2)
+        self.assertIn("joint 'left_joint2' at 10, outside its limits [",
+                      report['first_refusal']['reason'])
+        text = rosrun('replay', '--scene', self.bundled_scene, csv_path).stdout
+        self.assertIn("1 cycles refused by the monitor (the first, cycle 2 at 0.100 s: joint "
+                      "'left_joint2' at 10, outside its limits [", text)
 
     def test_help_goes_to_stdout(self):
         for flag in ('--help', '-h'):

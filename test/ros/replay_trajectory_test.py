@@ -430,13 +430,14 @@ class ReplayTrajectoryTest(unittest.TestCase):
         result, report = self.replay(path)
         self.assertEqual(result.returncode, 0, result.stderr)
         self.assertEqual((report['cycles'], report['incomplete_cycles']), (30, 0))
-        # Without its start state's right arm, the plan of the left arm is refused, naming one.
+        # Without its start state's right arm, the plan of the left arm is refused, naming them.
         left_state = JointState(name=LEFT_JOINTS, position=self.samples[0][1][:7])
         write_display(path, display_bytes([left], left_state, True), display_definition(True),
                       self.samples[0][0])
         result, _ = self.replay(path)
         self.assertEqual(result.returncode, 1)
-        self.assertIn("model joint 'right_joint1' is in no accepted", result.stderr)
+        self.assertIn("trajectory point gives 7 model joints: 'right_joint1', 'right_joint2'",
+                      result.stderr)
 
     def test_an_unreadable_display_names_the_message_and_field(self):
         start_state = JointState(name=LEFT_JOINTS + RIGHT_JOINTS, position=self.samples[0][1])

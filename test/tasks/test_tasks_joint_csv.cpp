@@ -94,8 +94,32 @@ TEST(JointCsv, JointDefaultsFillMissingColumns) {
   }
 }
 
+// A recorded joint state may give a URDF mimic joint, which is no joint of the model (its
+// position follows from its target's): its column is ignored, as the node ignores it; a name
+// that is no joint at all is still an error.
+TEST(JointCsv, MimicJointColumnsAreIgnored) {
+  const JointCsv csv = ReadJointCsv(WriteFile("mimic", "b, finger_mimic, a\n1, 9, 2\n"));
+  const std::vector<Eigen::VectorXd> rows =
+      JointCsvInModelOrder(csv, {"a", "b"}, {}, {"finger_mimic"});
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(rows[0], Eigen::Vector2d(2.0, 1.0));
+  try {
+    JointCsvInModelOrder(csv, {"a", "b"}, {}, {"other_mimic"});
+    ADD_FAILURE() << "no error for a column that is no joint";
+  } catch (const LoadError& e) {
+    EXPECT_NE(std::string(e.what()).find("'finger_mimic' is not a joint of the model"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(JointCsv, MalformedFilesAreRejectedWithFileLineAndColumn) {
-  EXPECT_NE(ErrorOf("missing", "a\n1\n").find("no column for model joint 'b'"), std::string::npos);
+  EXPECT_NE(ErrorOf("missing", "a\n1\n").find("no column for model joint 'b' (publish it,"),
+            std::string::npos);
+  // Every missing joint at once, so that one run names all that the scene must default.
+  EXPECT_NE(ErrorOf("missing_many", "b\n1\n", {"a", "b", "c", "d"})
+                .find("no column for 3 model joints: 'a', 'c', 'd' (publish them,"),
+            std::string::npos);
   EXPECT_NE(ErrorOf("unknown", "a,b,c\n1,2,3\n").find("'c' is not a joint of the model"),
             std::string::npos);
   EXPECT_NE(ErrorOf("duplicate", "a,b,a\n").find(":1: joint 'a' appears twice"),

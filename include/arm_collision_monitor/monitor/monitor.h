@@ -125,6 +125,10 @@ class Monitor {
   const CycleReport& Update(const Eigen::Ref<const Eigen::VectorXd>& q);
   /// The last report (cycle 0 and stop = true before the first good Update()).
   const CycleReport& report() const;
+  /// Why Update(q) refuses `q`, for a person: its size against the model's, or the first joint
+  /// that is not finite or outside its limits, with its position and the limits (margin
+  /// included); "" when q is acceptable. Allocates: for reports of refused cycles, not the cycle.
+  std::string DescribeRefusal(const Eigen::Ref<const Eigen::VectorXd>& q) const;
 
   /// Generate-and-test for planners: the report `q` would give, computed on a copy; the live
   /// model is not touched. Allocates.

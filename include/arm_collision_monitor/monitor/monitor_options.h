@@ -54,8 +54,9 @@ struct MonitorOptions {
   double max_step_m = 1.0;
   /// Default tolerance of an arm whose scene entry gives none (pass it to LoadWorkcell).
   double tolerance_m = kDefaultArmTolerance_m;
-  /// The frame reports are expressed in (the URDF root link).
-  std::string fixed_frame = "world";
+  /// The frame reports and markers are expressed in: "" (the default) for the URDF root link
+  /// (Workcell::fixed_frame), in which the monitor computes; a name only relabels that frame.
+  std::string fixed_frame;
   LiveObjectOptions live_objects;
 };
 

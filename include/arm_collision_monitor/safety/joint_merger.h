@@ -47,9 +47,12 @@ inline SafetyStatus ToSafetyStatus(MergeStatus status) {
 /// Short lower-case name of a status ("accepted", "wrong_size", ...), for logs and diagnostics.
 const char* MergeStatusName(MergeStatus status);
 
-/// What to do about a model joint that no input gives, for the messages that name one.
-inline constexpr char kJointDefaultsHint[] =
-    "publish it, or give it a position in the scene file's joint_defaults";
+/// What to do about `count` model joints that no input gives, for the messages that name them.
+const char* JointDefaultsHint(std::size_t count);
+
+/// "model joint 'a'" for one name, "3 model joints: 'a', 'b', 'c'" for more: every joint of a
+/// start-up error at once, so that a user fixes them in one go.
+std::string ModelJointsText(const std::vector<std::string>& names);
 
 /// One message's named positions, borrowed from the caller for the duration of a call.
 struct NamedPositions {
@@ -94,6 +97,10 @@ class JointMerger {
   bool is_complete() const { return missing_count_ == 0; }
   /// Index of the first model joint never received and without a default, -1 when complete.
   int FirstMissingJoint() const;
+  /// How many model joints were never received and have no default.
+  int missing_count() const { return missing_count_; }
+  /// The names of those joints, in q order (allocates: for errors, not for the cycle).
+  std::vector<std::string> MissingJoints() const;
   /// Index of the first model joint never received and not in `names`, -1 if none: a request
   /// naming it could complete the model (the check service's rule).
   int FirstMissingJointNotIn(const std::vector<std::string>& names) const;

@@ -190,13 +190,14 @@ class Cycles {
     if (status != MergeStatus::kAccepted) ++result_->refused[MergeStatusName(status)];
   }
 
-  /// Ends the last cycle; a LoadError naming the bag at `path` if some joint was never given.
+  /// Ends the last cycle; a LoadError naming the bag at `path` and every joint never given.
   void Finish(const std::string& path) {
     Flush();
     if (!input_.is_complete()) {
-      throw LoadError(path + ": model joint '" + input_.joint_name(input_.FirstMissingJoint()) +
-                      "' is in no accepted sensor_msgs/JointState message or trajectory point (" +
-                      kJointDefaultsHint + ")");
+      const std::vector<std::string> missing = input_.MissingJoints();
+      throw LoadError(path + ": no accepted sensor_msgs/JointState message or trajectory point " +
+                      "gives " + ModelJointsText(missing) + " (" +
+                      JointDefaultsHint(missing.size()) + ")");
     }
   }
 

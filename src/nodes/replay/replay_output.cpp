@@ -134,6 +134,9 @@ RunSummary Summarize(const Input& input, const std::vector<CycleResult>& cycles,
     times.push_back(cycles[k].time_s);
     if (cycles[k].is_moving) moving_times.push_back(cycles[k].time_s);
     summary.refused_cycles += cycles[k].refused;
+    if (cycles[k].refused && summary.first_refused < 0) {
+      summary.first_refused = static_cast<int>(k);
+    }
     if (!cycles[k].warnings.empty()) {
       ++summary.warning_cycles;
       if (summary.first < 0) summary.first = static_cast<int>(k);
@@ -164,6 +167,13 @@ void PrintJson(const Options& options, const Workcell& wc, const Input& input,
                 name(w.b).c_str(), w.distance_m, w.threshold_m);
   } else {
     std::printf("  \"first_warning\": null,\n");
+  }
+  if (summary.first_refused >= 0) {
+    std::printf("  \"first_refusal\": {\"cycle\": %d, \"time_s\": %.3f, \"reason\": %s},\n",
+                summary.first_refused, input.time_s[summary.first_refused],
+                JsonString(cycles[summary.first_refused].refusal).c_str());
+  } else {
+    std::printf("  \"first_refusal\": null,\n");
   }
   for (const auto& [key, t] : {std::make_pair("cycle_time_s", summary.time_s),
                                 std::make_pair("moving_cycle_time_s", summary.moving_time_s)}) {
@@ -217,9 +227,15 @@ void PrintText(const Options& options, const Workcell& wc, const Input& input,
       std::printf(" (%s: %llu)", status.c_str(), static_cast<unsigned long long>(count));
     }
     std::printf(", %llu cycles before every joint was received, %llu cycles refused by the "
-                "monitor\n",
+                "monitor",
                 static_cast<unsigned long long>(input.incomplete_cycles),
                 static_cast<unsigned long long>(summary.refused_cycles));
+    if (summary.first_refused >= 0) {
+      std::printf(" (the first, cycle %d at %.3f s: %s)", summary.first_refused,
+                  input.time_s[summary.first_refused],
+                  cycles[summary.first_refused].refusal.c_str());
+    }
+    std::printf("\n");
   }
   if (input.position_less > 0) {
     std::printf("input: %llu messages named joints without positions (ignored)\n",

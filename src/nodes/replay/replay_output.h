@@ -48,6 +48,7 @@ struct CycleResult {
   std::vector<Warning> warnings;
   std::vector<Warning> between_samples;
   bool refused = false;
+  std::string refusal;  ///< why, when refused (Monitor::DescribeRefusal)
   bool is_jumped = false;
   bool is_moving = true;  ///< its q differs from the previous cycle's (the first one's does)
   double time_s = 0.0;
@@ -56,6 +57,7 @@ struct CycleResult {
 // What both output formats report about the whole run.
 struct RunSummary {
   std::uint64_t warning_cycles = 0, refused_cycles = 0;
+  int first_refused = -1;  ///< the first refused cycle, -1 if none
   int first = -1;  ///< the first cycle with a warning at its q, -1 if none
   std::uint64_t between_cycles = 0;  ///< cycles with a warning between samples (swept check)
   int first_between = -1;            ///< the first of those, -1 if none

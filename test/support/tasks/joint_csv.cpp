@@ -1,5 +1,6 @@
 #include "arm_collision_monitor/tasks/joint_csv.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -109,7 +110,8 @@ JointCsv ReadJointCsv(const std::string& path) {
 
 std::vector<Eigen::VectorXd> JointCsvInModelOrder(
     const JointCsv& csv, const std::vector<std::string>& model_joint_names,
-    const std::vector<std::pair<int, double>>& defaults) {
+    const std::vector<std::pair<int, double>>& defaults,
+    const std::vector<std::string>& derived_joint_names) {
   std::unordered_map<std::string, int> model_index;
   for (std::size_t j = 0; j < model_joint_names.size(); ++j) {
     model_index.emplace(model_joint_names[j], static_cast<int>(j));
@@ -118,6 +120,10 @@ std::vector<Eigen::VectorXd> JointCsvInModelOrder(
   for (std::size_t c = 0; c < csv.joint_names.size(); ++c) {
     const auto it = model_index.find(csv.joint_names[c]);
     if (it == model_index.end()) {
+      if (std::find(derived_joint_names.begin(), derived_joint_names.end(),
+                    csv.joint_names[c]) != derived_joint_names.end()) {
+        continue;  // a mimic joint: its position follows from the others
+      }
       throw LoadError(csv.path + ": header: '" + csv.joint_names[c] +
                       "' is not a joint of the model");
     }
@@ -129,11 +135,13 @@ std::vector<Eigen::VectorXd> JointCsvInModelOrder(
     q_default[q_index] = position;
     has_default[static_cast<std::size_t>(q_index)] = true;
   }
+  std::vector<std::string> missing;
   for (std::size_t j = 0; j < model_joint_names.size(); ++j) {
-    if (column_of[j] < 0 && !has_default[j]) {
-      throw LoadError(csv.path + ": header: no column for model joint '" +
-                      model_joint_names[j] + "' (" + kJointDefaultsHint + ")");
-    }
+    if (column_of[j] < 0 && !has_default[j]) missing.push_back(model_joint_names[j]);
+  }
+  if (!missing.empty()) {
+    throw LoadError(csv.path + ": header: no column for " + ModelJointsText(missing) + " (" +
+                    JointDefaultsHint(missing.size()) + ")");
   }
   std::vector<Eigen::VectorXd> rows;
   rows.reserve(csv.rows.size());

@@ -25,11 +25,14 @@ struct JointCsv {
 JointCsv ReadJointCsv(const std::string& path);
 
 /// The rows re-ordered as `model_joint_names` (Workcell::joint_names), matched by name. Done
-/// once at start-up, so every column must be a model joint and every model joint a column or
-/// in `defaults` ((q index, position), Workcell::joint_defaults: the position in every row);
-/// otherwise throws LoadError naming the file and the joint.
+/// once at start-up, so every column must be a model joint or in `derived_joint_names` (the
+/// URDF's mimic joints, as a recorded joint state may give them: their columns are ignored, as
+/// the node ignores them), and every model joint a column or in `defaults` ((q index,
+/// position), Workcell::joint_defaults: the position in every row); otherwise throws LoadError
+/// naming the file and the joints (every missing one at once).
 std::vector<Eigen::VectorXd> JointCsvInModelOrder(
     const JointCsv& csv, const std::vector<std::string>& model_joint_names,
-    const std::vector<std::pair<int, double>>& defaults = {});
+    const std::vector<std::pair<int, double>>& defaults = {},
+    const std::vector<std::string>& derived_joint_names = {});
 
 }  // namespace arm_collision_monitor
