@@ -391,13 +391,13 @@ bool MonitorNode::OnCheck(CheckJointState::Request& req, CheckJointState::Respon
     res.message = std::string("joint state refused: ") + MergeStatusName(status);
     return true;
   }
-  const int missing = input_->FirstMissingJointNotIn(req.joint_state.name);
-  if (missing >= 0) {
+  const std::vector<std::string> missing = input_->MissingJointsNotIn(req.joint_state.name);
+  if (!missing.empty()) {
     res.success = false;
     res.report.input_status = ToInputStatusMsg(SafetyStatus::kIncomplete);
     res.report.stop = true;
-    res.message = "joint '" + input_->joint_name(missing) +
-                  "' was never received and is not in the request";
+    res.message = "no position for " + ModelJointsText(missing) +
+                  ": never received, and not in the request";
     return true;
   }
   const CycleReport report = monitor_->Check(q);

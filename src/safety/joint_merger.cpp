@@ -198,31 +198,22 @@ void JointMerger::OnTimeWentBackwards(double now_s) {
   }
 }
 
-std::vector<std::string> JointMerger::MissingJoints() const {
-  std::vector<std::string> names;
-  for (std::size_t i = 0; i < is_received_.size(); ++i) {
-    if (!is_received_[i] && !has_default_[i]) names.push_back(joint_names_[i]);
-  }
-  return names;
-}
-
 int JointMerger::FirstMissingJoint() const {
   for (std::size_t i = 0; i < is_received_.size(); ++i) {
-    if (!is_received_[i] && !has_default_[i]) {
-      return static_cast<int>(i);
-    }
+    if (IsMissing(i)) return static_cast<int>(i);
   }
   return -1;
 }
 
-int JointMerger::FirstMissingJointNotIn(const std::vector<std::string>& names) const {
+std::vector<std::string> JointMerger::MissingJointsNotIn(
+    const std::vector<std::string>& names) const {
+  std::vector<std::string> missing;
   for (std::size_t i = 0; i < is_received_.size(); ++i) {
-    if (!is_received_[i] && !has_default_[i] &&
-        std::find(names.begin(), names.end(), joint_names_[i]) == names.end()) {
-      return static_cast<int>(i);
+    if (IsMissing(i) && std::find(names.begin(), names.end(), joint_names_[i]) == names.end()) {
+      missing.push_back(joint_names_[i]);
     }
   }
-  return -1;
+  return missing;
 }
 
 int JointMerger::OldestJoint() const {

@@ -40,8 +40,8 @@ TEST(JointMerger, MergesByNameInModelOrderAndCompletes) {
   EXPECT_EQ(merger.FirstMissingJoint(), 1);
   EXPECT_EQ(merger.missing_count(), 1);
   EXPECT_EQ(ModelJointsText(merger.MissingJoints()), "model joint 'a2'");
-  EXPECT_EQ(merger.FirstMissingJointNotIn({"a2"}), -1);
-  EXPECT_EQ(merger.FirstMissingJointNotIn({"x"}), 1);
+  EXPECT_TRUE(merger.MissingJointsNotIn({"a2"}).empty());
+  EXPECT_EQ(merger.MissingJointsNotIn({"x"}), std::vector<std::string>({"a2"}));
   EXPECT_EQ(MergeAt(&merger, {"a2"}, {2.0}, 10.0625, 10.0625), MergeStatus::kAccepted);
   EXPECT_TRUE(merger.is_complete());
   EXPECT_EQ(merger.FirstMissingJoint(), -1);
@@ -176,7 +176,8 @@ TEST(JointMerger, DefaultedJointCountsAsReceivedUntilAMessageGivesIt) {
   EXPECT_FALSE(merger.is_complete());
   EXPECT_EQ(merger.FirstMissingJoint(), 0);
   EXPECT_EQ(merger.MissingJoints(), std::vector<std::string>({"a1", "a2"}));
-  EXPECT_EQ(merger.FirstMissingJointNotIn({"a1", "a2"}), -1);
+  EXPECT_TRUE(merger.MissingJointsNotIn({"a1", "a2"}).empty());
+  EXPECT_EQ(merger.MissingJointsNotIn({"a2", "b1"}), std::vector<std::string>({"a1"}));
   ASSERT_EQ(MergeAt(&merger, {"a1", "a2"}, {0.1, 0.2}, 10.0, 10.0), MergeStatus::kAccepted);
   EXPECT_TRUE(merger.is_complete());
   EXPECT_EQ(merger.FirstMissingJoint(), -1);

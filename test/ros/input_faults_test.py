@@ -64,6 +64,13 @@ class InputFaultsTest(unittest.TestCase):
         self.assertTrue(report.stop)
         self.assertIn('right_joint1', report.stop_reason)
         self.assertEqual(c.last_stop(), True)
+        # The check service names every joint that neither the input nor the request gives.
+        check = rospy.ServiceProxy(NODE + '/check', CheckJointState)
+        res = check(joint_state(LEFT_JOINTS + RIGHT_JOINTS[2:], list(HOME) + list(HOME[2:])))
+        self.assertFalse(res.success)
+        self.assertEqual(res.report.input_status, MonitorReport.INPUT_INCOMPLETE)
+        self.assertEqual(res.message, "no position for 2 model joints: 'right_joint1', "
+                         "'right_joint2': never received, and not in the request")
         # The right arm arrives: the model is complete, the stop clears.
         self.assertIsNotNone(c.go_clear())
         self.assertTrue(c.wait_stop(False))

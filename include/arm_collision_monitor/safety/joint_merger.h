@@ -100,10 +100,10 @@ class JointMerger {
   /// How many model joints were never received and have no default.
   int missing_count() const { return missing_count_; }
   /// The names of those joints, in q order (allocates: for errors, not for the cycle).
-  std::vector<std::string> MissingJoints() const;
-  /// Index of the first model joint never received and not in `names`, -1 if none: a request
-  /// naming it could complete the model (the check service's rule).
-  int FirstMissingJointNotIn(const std::vector<std::string>& names) const;
+  std::vector<std::string> MissingJoints() const { return MissingJointsNotIn({}); }
+  /// Those of them not in `names`, in q order: a request naming them all could complete the
+  /// model (the check service's rule).
+  std::vector<std::string> MissingJointsNotIn(const std::vector<std::string>& names) const;
   /// Index of a joint awaiting input since the clock went back if any, else of the joint
   /// received longest ago (largest age); -1 before any input.
   int OldestJoint() const;
@@ -144,6 +144,8 @@ class JointMerger {
   MergeStatus ValidatePositions(const Layout& layout, const NamedPositions& input) const;
   MergeStatus ValidateStamp(const Layout& layout, double stamp_s, double now_s) const;
   MergeStatus Refuse(MergeStatus status);
+  /// Model joint `i` was never received and has no default.
+  bool IsMissing(std::size_t i) const { return !is_received_[i] && !has_default_[i]; }
 
   std::vector<std::string> joint_names_;
   std::unordered_map<std::string, int> index_of_name_;
