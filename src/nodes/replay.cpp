@@ -56,11 +56,14 @@ const char* kUsage =
     "            name: the states in bag order, the planned points in time order, merged by\n"
     "            stamp; a plan supersedes earlier plans of its joints after its start.\n"
     "            Consecutive samples with equal stamps form one cycle.\n"
-    "  file.csv: a header row of joint names (optionally 'time_s' first), one row per cycle.\n"
+    "  file.csv: a header row of joint names (optionally 'time_s' first), one row per cycle:\n"
+    "            positions in radians (metres for a prismatic joint), separated by commas;\n"
+    "            without time_s the rows are 0.05 s apart.\n"
     "options:\n"
     "  --urdf F --scene F --config F   workcell and monitor options (default: the package's\n"
     "                                  urdf/workcell.urdf, config/scene.yaml,\n"
-    "                                  config/monitor.yaml)\n"
+    "                                  config/monitor.yaml); the scene file names the\n"
+    "                                  SRDF and the planning scene, if any\n"
     "  --method M     auto | octree | naive | grid | rebuild | reinsert"
 #ifdef ACM_HAVE_PEERS
     " | fcl | bullet"
@@ -337,6 +340,7 @@ int main(int argc, char** argv) {
     std::printf("%s", kUsage);
     return 0;
   }
+  std::string defaults_taken;  // the package's files standing in for options not given
   try {
     if (options.urdf.empty() || options.scene.empty() || options.config.empty()) {
       const std::string package = ros::package::getPath("arm_collision_monitor");
@@ -345,14 +349,25 @@ int main(int argc, char** argv) {
                         "devel/setup.bash) for the default workcell; pass --urdf, --scene, "
                         "--config");
       }
-      if (options.urdf.empty()) options.urdf = package + "/urdf/workcell.urdf";
-      if (options.scene.empty()) options.scene = package + "/config/scene.yaml";
-      if (options.config.empty()) options.config = package + "/config/monitor.yaml";
+      auto take = [&](std::string* file, const char* flag, const char* default_file) {
+        if (!file->empty()) return;
+        *file = package + default_file;
+        defaults_taken += std::string(defaults_taken.empty() ? "" : ", ") + flag + " " + *file;
+      };
+      take(&options.urdf, "--urdf", "/urdf/workcell.urdf");
+      take(&options.scene, "--scene", "/config/scene.yaml");
+      take(&options.config, "--config", "/config/monitor.yaml");
     }
     return Run(options);
   } catch (const std::exception& e) {
     // LoadError names the file and element; rosbag errors name the bag.
     std::fprintf(stderr, "replay: %s\n", e.what());
+    // The bundled workcell's files with a robot of one's own fail on its names: say they were
+    // taken.
+    if (!defaults_taken.empty()) {
+      std::fprintf(stderr, "replay: (not given, so the bundled workcell's: %s)\n",
+                   defaults_taken.c_str());
+    }
     return 1;
   }
 }

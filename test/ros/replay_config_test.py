@@ -134,6 +134,30 @@ class ReplayConfigTest(unittest.TestCase):
         text = rosrun('replay', '--scene', self.bundled_scene, csv_path).stdout
         self.assertIn("1 cycles refused by the monitor (the first, cycle 2 at 0.100 s: joint "
                       "'left_joint2' at 10, outside its limits [", text)
+        # The summary never reads clear over refused cycles.
+        self.assertIn("summary: no warning at the samples of 5 cycles; 1 of them refused, not "
+                      "checked (the monitor asks a stop on each;", text)
+        # Every row refused (say, angles in degrees): no cycle was checked.
+        with open(csv_path, 'w') as f:
+            f.write(','.join(LEFT_JOINTS + RIGHT_JOINTS) + '\n')
+            for k in range(5):
+                f.write(','.join(['90'] * 14) + '\n')
+        text = rosrun('replay', '--scene', self.bundled_scene, csv_path).stdout
+        self.assertIn("summary: no cycle checked: all 5 refused (the monitor asks a stop on "
+                      "each;", text)
+        self.assertNotIn('no warning', text)
+
+    def test_an_error_says_which_files_were_the_bundled_defaults(self):
+        package = rospkg.RosPack().get_path(PKG)
+        urdf = os.path.join(package, 'urdf', 'dual_arm_shelf.urdf')
+        result = rosrun('replay', '--urdf', urdf, self.bag)
+        self.assertEqual(result.returncode, 1)
+        self.assertIn("replay: (not given, so the bundled workcell's: --scene %s, --config %s)"
+                      % (self.bundled_scene, self.default_config), result.stderr)
+        given = rosrun('replay', '--urdf', urdf, '--scene', self.bundled_scene, '--config',
+                       self.default_config, self.bag)
+        self.assertEqual(given.returncode, 1)
+        self.assertNotIn('not given', given.stderr)
 
     def test_help_goes_to_stdout(self):
         for flag in ('--help', '-h'):

@@ -113,6 +113,15 @@ TEST(JointCsv, MimicJointColumnsAreIgnored) {
   }
 }
 
+// Spreadsheets export UTF-8 with a byte order mark before the first name.
+TEST(JointCsv, ByteOrderMarkIsNotPartOfTheFirstName) {
+  const JointCsv csv = ReadJointCsv(WriteFile("bom", "\xEF\xBB\xBFtime_s,b,a\n0.5,1,2\n"));
+  ASSERT_EQ(csv.rows.size(), 1u);
+  EXPECT_EQ(csv.time_s[0], 0.5);
+  EXPECT_EQ(JointCsvInModelOrder(csv, {"a", "b"})[0], Eigen::Vector2d(2.0, 1.0));
+  EXPECT_EQ(ErrorOf("bom_names", "\xEF\xBB\xBF" "a,b\n1,2\n"), "");
+}
+
 TEST(JointCsv, MalformedFilesAreRejectedWithFileLineAndColumn) {
   EXPECT_NE(ErrorOf("missing", "a\n1\n").find("no column for model joint 'b' (publish it,"),
             std::string::npos);
@@ -134,6 +143,15 @@ TEST(JointCsv, MalformedFilesAreRejectedWithFileLineAndColumn) {
             std::string::npos);
   EXPECT_NE(ErrorOf("empty", "# nothing\n").find("empty: expected a header"), std::string::npos);
   EXPECT_NE(ErrorOf("empty_name", "a,,b\n").find("header column 2 is empty"), std::string::npos);
+  // A header without rows checks nothing: an error, not a clean run of no cycles.
+  EXPECT_NE(ErrorOf("header_only", "# c\na,b\n").find(":2: no row after the header"),
+            std::string::npos);
+  // Another separator (a spreadsheet's ';' or a tab) is named, not taken for one joint.
+  EXPECT_NE(ErrorOf("semicolon", "a;b\n1;2\n").find("header column 1 'a;b' holds a ';' or a "
+                                                       "tab: expected columns separated by "
+                                                       "commas"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf("tab", "a\tb\n1\t2\n").find("holds a ';' or a tab"), std::string::npos);
   const std::string path = TempPath("count");
   EXPECT_EQ(ErrorOf("count", "a,b\n1,2\n1\n").rfind(path, 0), 0u) << "names the file first";
   EXPECT_THROW(ReadJointCsv(TempPath("does_not_exist")), LoadError);

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <iterator>
+#include <string>
 #include <utility>
 
 namespace arm_collision_monitor {
@@ -248,16 +249,28 @@ void PrintText(const Options& options, const Workcell& wc, const Input& input,
   }
   PrintWarningRuns(wc, input, cycles);
   if (is_swept) PrintBetweenSamples(wc, input, cycles, summary);
+  // A refused cycle is not checked (the monitor asks a stop instead): the summary says how
+  // many, so that a run of refused input never reads as clear.
+  const unsigned long long refused = summary.refused_cycles;
+  const std::string unchecked =
+      refused == 0 ? ""
+                   : "; " + std::to_string(refused) + " of them refused, not checked (the " +
+                         "monitor asks a stop on each; see 'input:' above)";
   if (summary.first >= 0) {
     const Warning& w = cycles[summary.first].warnings.front();
     std::printf("summary: %llu of %zu cycles warn; first at cycle %d (%.2f s): %s -- %s at "
-                "%.4f m\n",
+                "%.4f m%s\n",
                 static_cast<unsigned long long>(summary.warning_cycles), cycles.size(),
                 summary.first, input.time_s[summary.first], wc.primitives[w.a].name.c_str(),
-                wc.primitives[w.b].name.c_str(), w.distance_m);
+                wc.primitives[w.b].name.c_str(), w.distance_m, unchecked.c_str());
+  } else if (refused > 0 && refused == cycles.size()) {
+    std::printf("summary: no cycle checked: all %llu refused (the monitor asks a stop on each; "
+                "see 'input:' above)\n",
+                refused);
   } else {
-    std::printf("summary: no warning at the samples of %zu cycles%s\n", cycles.size(),
-                summary.between_cycles > 0 ? " (but between them: see the swept check)" : "");
+    std::printf("summary: no warning at the samples of %zu cycles%s%s\n", cycles.size(),
+                summary.between_cycles > 0 ? " (but between them: see the swept check)" : "",
+                unchecked.c_str());
   }
   const TimingSummary& t = summary.time_s;
   const TimingSummary& m = summary.moving_time_s;

@@ -16,6 +16,7 @@ namespace arm_collision_monitor {
 namespace {
 
 constexpr const char* kTimeColumn = "time_s";
+constexpr const char* kUtf8ByteOrderMark = "\xEF\xBB\xBF";
 
 std::string Trim(const std::string& s) {
   const std::size_t begin = s.find_first_not_of(" \t\r");
@@ -48,19 +49,30 @@ JointCsv ReadJointCsv(const std::string& path) {
   bool has_header = false;
   std::string line;
   int line_number = 0;
+  int header_line = 0;
   while (std::getline(file, line)) {
     ++line_number;
+    // A UTF-8 byte order mark (spreadsheet exports) is not part of the first name.
+    if (line_number == 1 && line.rfind(kUtf8ByteOrderMark, 0) == 0) {
+      line.erase(0, std::char_traits<char>::length(kUtf8ByteOrderMark));
+    }
     const std::string trimmed = Trim(line);
     if (trimmed.empty() || trimmed[0] == '#') continue;
     std::vector<std::string> fields = SplitFields(trimmed);
     if (!has_header) {
       has_header = true;
+      header_line = line_number;
       has_time = fields.front() == kTimeColumn;
       std::unordered_map<std::string, int> seen;
       for (std::size_t c = has_time ? 1 : 0; c < fields.size(); ++c) {
         if (fields[c].empty()) {
           throw LoadError(Where(path, line_number) + "header column " + std::to_string(c + 1) +
                           " is empty: expected a joint name");
+        }
+        if (fields[c].find_first_of(";\t") != std::string::npos) {
+          throw LoadError(Where(path, line_number) + "header column " + std::to_string(c + 1) +
+                          " '" + fields[c] + "' holds a ';' or a tab: expected columns " +
+                          "separated by commas");
         }
         if (!seen.emplace(fields[c], static_cast<int>(c)).second) {
           throw LoadError(Where(path, line_number) + "joint '" + fields[c] +
@@ -105,6 +117,10 @@ JointCsv ReadJointCsv(const std::string& path) {
     csv.rows.push_back(row);
   }
   if (!has_header) throw LoadError(path + ": empty: expected a header row of joint names");
+  if (csv.rows.empty()) {
+    throw LoadError(Where(path, header_line) + "no row after the header: expected one row of " +
+                    "joint positions per cycle");
+  }
   return csv;
 }
 
