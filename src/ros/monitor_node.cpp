@@ -177,17 +177,25 @@ void MonitorNode::OnJointState(const sensor_msgs::JointState::ConstPtr& msg) {
   const auto start = std::chrono::steady_clock::now();
   const ros::Time now = ClockNow();
   ++messages_;
-  const MergeStatus status = input_->Merge(ToNamedPositions(*msg), now.toSec());
+  const NamedPositions input = ToNamedPositions(*msg);
+  const MergeStatus status = input_->Merge(input, now.toSec());
   // Nothing to merge: no cycle (the merger counts it; DiagnoseInput reports the count).
   if (status == MergeStatus::kNoPositions) return;
   if (status == MergeStatus::kAccepted) {
     newest_input_stamp_ = msg->header.stamp.isZero() ? now : msg->header.stamp;
   } else {
+    // The cycle's reason names the first refusal since the last cycle.
     if (pending_refusal_ == MergeStatus::kAccepted) {
       pending_refusal_ = status;
+      pending_why_ = input_->DescribeRefusal(input, status);
     }
+    // This message's refusal (the macro evaluates its arguments only when it logs).
+    auto describe = [&] {
+      const std::string why = input_->DescribeRefusal(input, status);
+      return std::string(MergeStatusName(status)) + (why.empty() ? "" : ": " + why);
+    };
     ROS_WARN_THROTTLE(1.0, "arm_collision_monitor: refused a JointState (%s), %lu so far",
-                      MergeStatusName(status), static_cast<unsigned long>(RefusedInputs()));
+                      describe().c_str(), static_cast<unsigned long>(RefusedInputs()));
   }
   report_.unknown_joints = input_->last_unknown_joints();
   has_pending_input_ = true;
@@ -249,7 +257,7 @@ void MonitorNode::RunCycle(std::chrono::steady_clock::time_point start) {
   report_.step_motion_m = 0.0;
   report_.input_jumped = false;
   report_.swept_pairs = 0;
-  if (policy_.BeginCycle(pending, *input_)) {
+  if (policy_.BeginCycle(pending, pending_why_, *input_)) {
     UpdateBoundObjects();
     const CycleReport& cycle = monitor_->Update(input_->q());
     if (cycle.input == InputStatus::kOk) {
@@ -263,11 +271,14 @@ void MonitorNode::RunCycle(std::chrono::steady_clock::time_point start) {
       report_.swept_pairs = cycle.swept_pairs;
       largest_step_m_ = std::max(largest_step_m_, cycle.step_motion_m);
       input_jumps_ += cycle.input_jumped ? 1 : 0;
-    } else {
-      ROS_WARN_THROTTLE(1.0, "arm_collision_monitor: the monitor refused the joint state: %s",
-                        monitor_->DescribeRefusal(input_->q()).c_str());
     }
-    policy_.OnCycleReport(cycle, primitives_, *input_, now.toSec());
+    const std::string refusal =
+        cycle.input == InputStatus::kOk ? std::string() : monitor_->DescribeRefusal(input_->q());
+    if (!refusal.empty()) {
+      ROS_WARN_THROTTLE(1.0, "arm_collision_monitor: the monitor refused the joint state: %s",
+                        refusal.c_str());
+    }
+    policy_.OnCycleReport(cycle, refusal, primitives_, *input_, now.toSec());
   }
   policy_.EndCycle(now.toSec());
   report_.header.stamp = newest_input_stamp_;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 
 namespace arm_collision_monitor {
 namespace {
@@ -112,6 +113,40 @@ MergeStatus JointMerger::ValidatePositions(const Layout& layout,
     }
   }
   return MergeStatus::kAccepted;
+}
+
+std::string JointMerger::DescribeRefusal(const NamedPositions& input, MergeStatus status) const {
+  const std::vector<std::string>& names = input.names;
+  auto is_model_joint = [&](const std::string& name) { return index_of_name_.count(name) > 0; };
+  switch (status) {
+    case MergeStatus::kWrongSize: {
+      if (input.positions.size() != names.size()) {
+        return std::to_string(names.size()) + " names but " +
+               std::to_string(input.positions.size()) + " positions";
+      }
+      for (std::size_t k = 0; k < names.size(); ++k) {
+        if (std::find(names.begin(), names.begin() + k, names[k]) != names.begin() + k) {
+          return "joint '" + names[k] + "' named twice";
+        }
+      }
+      return "";
+    }
+    case MergeStatus::kNonFinite:
+      for (std::size_t k = 0; k < names.size() && k < input.positions.size(); ++k) {
+        if (is_model_joint(names[k]) && !std::isfinite(input.positions[k])) {
+          std::ostringstream text;
+          text << "joint '" << names[k] << "' at " << input.positions[k];
+          return text.str();
+        }
+      }
+      return "";
+    case MergeStatus::kNoKnownJoints:
+      return names.empty() ? "no name"
+                           : "none of its " + std::to_string(names.size()) +
+                                 " names is a model joint, the first '" + names.front() + "'";
+    default:
+      return "";
+  }
 }
 
 MergeStatus JointMerger::ValidateStamp(const Layout& layout, double stamp_s,

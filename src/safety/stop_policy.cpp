@@ -47,6 +47,11 @@ void StopPolicy::Raise(Rank rank, SafetyStatus status, const char* format, ...) 
   }
 }
 
+void StopPolicy::RaiseRefused(SafetyStatus status, const std::string& why) {
+  Raise(Rank::kRefused, status, "input refused: %s%s%s%s", SafetyStatusName(status),
+        why.empty() ? "" : " (", why.c_str(), why.empty() ? "" : ")");
+}
+
 void StopPolicy::RaiseStale(const JointMerger& input, double now_s) {
   const int oldest = input.OldestJoint();
   if (input.IsAwaitingInput(oldest)) {
@@ -68,12 +73,13 @@ double StopPolicy::ObserveClock(double now_s) {
   return back_s;
 }
 
-bool StopPolicy::BeginCycle(MergeStatus pending, const JointMerger& input) {
+bool StopPolicy::BeginCycle(MergeStatus pending, const std::string& pending_why,
+                            const JointMerger& input) {
   condition_.clear();
   rank_ = Rank::kNone;
   status_ = SafetyStatus::kOk;
   if (pending != MergeStatus::kAccepted) {
-    Raise(Rank::kRefused, ToSafetyStatus(pending), "input refused: %s", MergeStatusName(pending));
+    RaiseRefused(ToSafetyStatus(pending), pending_why);
     return false;
   }
   if (!input.is_complete()) {
@@ -98,12 +104,11 @@ void StopPolicy::OnObjectPoseUnavailable(const std::string& object, const std::s
         object.c_str(), frame.c_str(), error.c_str());
 }
 
-void StopPolicy::OnCycleReport(const CycleReport& report,
+void StopPolicy::OnCycleReport(const CycleReport& report, const std::string& refusal,
                                const std::vector<PrimitiveSpec>& primitives,
                                const JointMerger& input, double now_s) {
   if (report.input != InputStatus::kOk) {
-    const SafetyStatus status = ToSafetyStatus(report.input);
-    Raise(Rank::kRefused, status, "input refused: %s", SafetyStatusName(status));
+    RaiseRefused(ToSafetyStatus(report.input), refusal);
     return;
   }
   if (input.IsStale(now_s)) {

@@ -65,22 +65,26 @@ TEST(JointMerger, RefusalsLeaveQUntouchedAndAreCounted) {
     std::vector<double> positions;
     double stamp_s;
     MergeStatus expected;
+    std::string why;  // DescribeRefusal's
   };
   const std::vector<Case> cases = {
-      {{"a1", "a2"}, {1.0}, 10.1, MergeStatus::kWrongSize},
-      {{"a1", "a1"}, {1.0, 1.0}, 10.1, MergeStatus::kWrongSize},
-      {{"a1", "a2"}, {1.0, nan}, 10.1, MergeStatus::kNonFinite},
-      {{"a1"}, {-inf}, 10.1, MergeStatus::kNonFinite},
-      {{"x", "y"}, {1.0, 2.0}, 10.1, MergeStatus::kNoKnownJoints},
-      {{}, {}, 10.1, MergeStatus::kNoKnownJoints},
-      {{"a1"}, {1.0}, 10.1 - kTimeout_s - 0.01, MergeStatus::kStale},
-      {{"a1"}, {1.0}, 10.1 + kTimeout_s + 0.01, MergeStatus::kFutureStamp},
-      {{"a1"}, {1.0}, 9.99, MergeStatus::kStampBackwards},
+      {{"a1", "a2"}, {1.0}, 10.1, MergeStatus::kWrongSize, "2 names but 1 positions"},
+      {{"a1", "a1"}, {1.0, 1.0}, 10.1, MergeStatus::kWrongSize, "joint 'a1' named twice"},
+      {{"x", "a1", "a2"}, {nan, 1.0, nan}, 10.1, MergeStatus::kNonFinite, "joint 'a2' at nan"},
+      {{"a1"}, {-inf}, 10.1, MergeStatus::kNonFinite, "joint 'a1' at -inf"},
+      {{"x", "y"}, {1.0, 2.0}, 10.1, MergeStatus::kNoKnownJoints,
+       "none of its 2 names is a model joint, the first 'x'"},
+      {{}, {}, 10.1, MergeStatus::kNoKnownJoints, "no name"},
+      {{"a1"}, {1.0}, 10.1 - kTimeout_s - 0.01, MergeStatus::kStale, ""},
+      {{"a1"}, {1.0}, 10.1 + kTimeout_s + 0.01, MergeStatus::kFutureStamp, ""},
+      {{"a1"}, {1.0}, 9.99, MergeStatus::kStampBackwards, ""},
   };
   std::uint64_t refused = 0;
   for (const Case& c : cases) {
     EXPECT_EQ(MergeAt(&merger, c.names, c.positions, c.stamp_s, 10.1), c.expected)
         << MergeStatusName(c.expected);
+    EXPECT_EQ(merger.DescribeRefusal(NamedPositions{c.names, c.positions, c.stamp_s}, c.expected),
+              c.why);
     EXPECT_EQ(merger.q(), q_before) << MergeStatusName(c.expected);
     EXPECT_EQ(merger.refused(), ++refused);
   }

@@ -54,11 +54,12 @@ class StopPolicyTest : public ::testing::Test {
   }
   // One cycle the way the node runs it: fresh input at now_s, then `report` (if the input
   // allows running the Monitor).
+  // `why`: what the refusal (pending, or the Monitor's of `report`) was about.
   void Cycle(double now_s, const CycleReport& report,
-             MergeStatus pending = MergeStatus::kAccepted) {
+             MergeStatus pending = MergeStatus::kAccepted, const std::string& why = "") {
     policy_.ObserveClock(now_s);
-    if (policy_.BeginCycle(pending, input_)) {
-      policy_.OnCycleReport(report, primitives_, input_, now_s);
+    if (policy_.BeginCycle(pending, why, input_)) {
+      policy_.OnCycleReport(report, why, primitives_, input_, now_s);
     }
     policy_.EndCycle(now_s);
   }
@@ -138,6 +139,19 @@ TEST_F(StopPolicyTest, MonitorRefusalStops) {
   EXPECT_EQ(policy_.status(), SafetyStatus::kOutOfLimits);
   EXPECT_EQ(policy_.reason(), "input refused: out_of_limits");
   EXPECT_EQ(ClearedAt(2.0 + kStep_s), 2.0 + kHold_s);
+  // With the Monitor's account of it, the reason names the joint.
+  Feed(3.0);
+  Cycle(3.0, refused, MergeStatus::kAccepted, "joint 'a1' at 4, outside its limits [-1, 1]");
+  EXPECT_EQ(policy_.reason(),
+            "input refused: out_of_limits (joint 'a1' at 4, outside its limits [-1, 1])");
+}
+
+TEST_F(StopPolicyTest, RefusedMessageReasonSaysWhat) {
+  ASSERT_GE(ClearedAt(1.0), 0.0);
+  Feed(2.0);
+  Cycle(2.0, CleanReport(), MergeStatus::kNonFinite, "joint 'b1' at nan");
+  EXPECT_TRUE(policy_.stop());
+  EXPECT_EQ(policy_.reason(), "input refused: non_finite (joint 'b1' at nan)");
 }
 
 TEST_F(StopPolicyTest, WarningStopsAndClearsAfterTheHold) {
@@ -174,10 +188,10 @@ TEST_F(StopPolicyTest, ObjectPoseFailureStops) {
   ASSERT_GE(ClearedAt(1.0), 0.0);
   Feed(2.0);
   policy_.ObserveClock(2.0);
-  ASSERT_TRUE(policy_.BeginCycle(MergeStatus::kAccepted, input_));
+  ASSERT_TRUE(policy_.BeginCycle(MergeStatus::kAccepted, "", input_));
   policy_.OnObjectPoseUnavailable("camera", "camera_link", "no transform");
   // Outranks a warning of the same cycle.
-  policy_.OnCycleReport(WarningReport(), primitives_, input_, 2.0);
+  policy_.OnCycleReport(WarningReport(), "", primitives_, input_, 2.0);
   policy_.EndCycle(2.0);
   EXPECT_TRUE(policy_.stop());
   EXPECT_EQ(policy_.reason(),

@@ -200,13 +200,17 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       Require(input.q() == q_before);  // the live state is not touched
       continue;
     }
-    const MergeStatus status = input.Merge(ToNamedPositions(msg), now.toSec());
+    const NamedPositions named = ToNamedPositions(msg);
+    const MergeStatus status = input.Merge(named, now.toSec());
     // Names without positions: ignored, no cycle (MonitorNode::OnJointState).
     if (status == MergeStatus::kNoPositions) {
       Require(msg.position.empty() && !msg.name.empty());
       continue;
     }
-    if (!policy.BeginCycle(status, input)) {
+    const std::string why =
+        status == MergeStatus::kAccepted ? std::string() : input.DescribeRefusal(named, status);
+    Require(status != MergeStatus::kNonFinite || why.rfind("joint '", 0) == 0);
+    if (!policy.BeginCycle(status, why, input)) {
       // Refused or incomplete: the node requests a stop without running the Monitor.
       policy.EndCycle(now.toSec());
       Require(policy.stop() && policy.status() != SafetyStatus::kOk && !policy.reason().empty());
@@ -217,7 +221,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const CycleReport& report = monitor.Update(input.q());
     CheckReport(report, ++cycles);
     Require(report.input != InputStatus::kNonFinite && report.input != InputStatus::kWrongSize);
-    policy.OnCycleReport(report, fixture.workcell->primitives, input, now.toSec());
+    const std::string refusal =
+        report.input == InputStatus::kOk ? std::string() : monitor.DescribeRefusal(input.q());
+    policy.OnCycleReport(report, refusal, fixture.workcell->primitives, input, now.toSec());
     policy.EndCycle(now.toSec());
     if (report.stop || input.IsStale(now.toSec())) Require(policy.stop());
     if (!fixture.options.speed_scaled_tolerance && in.ConsumeIntegralInRange<int>(0, 7) == 0) {

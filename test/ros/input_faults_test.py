@@ -36,10 +36,10 @@ class InputFaultsTest(unittest.TestCase):
         for name in ('check', 'attach', 'detach', 'set_grasp_target'):
             rospy.wait_for_service(NODE + '/' + name, timeout=20.0)
 
-    def refused_with(self, status, message_fn, clear=None):
+    def refused_with(self, status, message_fn, clear=None, reason=None):
         """Clears (unless given the clear report), then publishes message_fn() on the left
-        topic until a report with `status` arrives; asserts the stop and the refusal count,
-        then that good input clears again."""
+        topic until a report with `status` arrives; asserts the stop (its reason `reason`, if
+        given) and the refusal count, then that good input clears again."""
         c = self.client
         clear = clear or c.go_clear()
         self.assertIsNotNone(clear, 'no clear report on home input')
@@ -48,6 +48,8 @@ class InputFaultsTest(unittest.TestCase):
         self.assertIsNotNone(report, 'no report with input_status %d' % status)
         self.assertTrue(report.stop)
         self.assertNotEqual(report.stop_reason, '')
+        if reason is not None:
+            self.assertEqual(report.stop_reason, reason)
         self.assertGreater(report.refused_inputs, clear.refused_inputs)
         self.assertTrue(c.wait_stop(True), '~stop never went true')
         self.assertIsNotNone(c.go_clear(), 'good input did not clear the stop')
@@ -97,7 +99,8 @@ class InputFaultsTest(unittest.TestCase):
 
     def test_03_nan_refused(self):
         self.refused_with(MonitorReport.INPUT_NON_FINITE,
-                          lambda: left_only([0.0, float('nan'), 0, 0, 0, 0, 0]))
+                          lambda: left_only([0.0, float('nan'), 0, 0, 0, 0, 0]),
+                          reason="input refused: non_finite (joint 'left_joint2' at nan)")
 
     def test_04_inf_refused(self):
         self.refused_with(MonitorReport.INPUT_NON_FINITE,
@@ -108,7 +111,8 @@ class InputFaultsTest(unittest.TestCase):
 
     def test_06_duplicate_name_refused(self):
         names = LEFT_JOINTS[:6] + [LEFT_JOINTS[0]]
-        self.refused_with(MonitorReport.INPUT_WRONG_SIZE, lambda: left_only([0.0] * 7, names=names))
+        self.refused_with(MonitorReport.INPUT_WRONG_SIZE, lambda: left_only([0.0] * 7, names=names),
+                          reason="input refused: wrong_size (joint 'left_joint1' named twice)")
 
     def test_07_stamp_backwards_refused(self):
         c = self.client

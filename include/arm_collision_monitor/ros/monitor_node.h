@@ -147,6 +147,7 @@ class MonitorNode {
   std::vector<boost::shared_ptr<MonitorReport>> report_pool_;
   sensor_msgs::JointState joint_state_out_;
   MergeStatus pending_refusal_ = MergeStatus::kAccepted;  ///< first refusal since last cycle
+  std::string pending_why_;  ///< what in its message was refused (JointMerger::DescribeRefusal)
   ros::Time newest_input_stamp_;
   bool has_pending_input_ = false;
   bool published_stop_ = true;

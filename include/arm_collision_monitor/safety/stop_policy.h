@@ -49,14 +49,18 @@ class StopPolicy {
   /// Starts a cycle's evaluation. `pending` is the first refusal of the merger since the last
   /// cycle (kAccepted: none). True when the Monitor may run on input.q(); false when the input
   /// alone already decides the stop (refused, or the model incomplete).
-  bool BeginCycle(MergeStatus pending, const JointMerger& input);
+  /// `pending_why`: what in the message was refused (JointMerger::DescribeRefusal; "" if
+  /// nothing more), added to the reason.
+  bool BeginCycle(MergeStatus pending, const std::string& pending_why, const JointMerger& input);
   /// A frame-bound object's pose could not be had this cycle.
   void OnObjectPoseUnavailable(const std::string& object, const std::string& frame,
                                const std::string& error);
-  /// The Monitor's report of this cycle, the primitives it names, and the input's staleness at
+  /// The Monitor's report of this cycle (with `refusal`, Monitor::DescribeRefusal's text when
+  /// it refused q, added to the reason), the primitives it names, and the input's staleness at
   /// `now_s`.
-  void OnCycleReport(const CycleReport& report, const std::vector<PrimitiveSpec>& primitives,
-                     const JointMerger& input, double now_s);
+  void OnCycleReport(const CycleReport& report, const std::string& refusal,
+                     const std::vector<PrimitiveSpec>& primitives, const JointMerger& input,
+                     double now_s);
   /// Ends the cycle at `now_s`: applies the hold; see stop(), reason(), status().
   void EndCycle(double now_s);
 
@@ -75,6 +79,7 @@ class StopPolicy {
   enum class Rank : std::uint8_t { kNone, kWarning, kJumped, kObjectPose, kStale, kRefused };
   void Raise(Rank rank, SafetyStatus status, const char* format, ...)
       __attribute__((format(printf, 4, 5)));
+  void RaiseRefused(SafetyStatus status, const std::string& why);
   void RaiseStale(const JointMerger& input, double now_s);
 
   double stop_hold_s_;
