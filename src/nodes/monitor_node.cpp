@@ -1,4 +1,5 @@
 // The collision monitor node: see include/arm_collision_monitor/ros/monitor_node.h.
+#include <cstdio>
 #include <exception>
 
 #include <ros/ros.h>
@@ -6,6 +7,9 @@
 #include "arm_collision_monitor/ros/monitor_node.h"
 
 int main(int argc, char** argv) {
+  // rosconsole writes INFO to stdout without flushing: into a file or pipe (roslaunch's log,
+  // `> file`) the start-up lines would wait for a full buffer or the exit.
+  std::setvbuf(stdout, nullptr, _IOLBF, BUFSIZ);
   ros::init(argc, argv, "arm_collision_monitor");
   // Held outside the try: the last NodeHandle going out of scope shuts roscpp (and its
   // logging) down, which would swallow the start-up error message below.

@@ -139,9 +139,10 @@ MonitorNode::MonitorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
       nh_.createTimer(ros::Duration(options_.stop_period_s), &MonitorNode::OnStopTimer, this);
   diagnostics_timer_ = nh_.createWallTimer(ros::WallDuration(kDiagnosticsPollPeriod_s),
                                            &MonitorNode::OnDiagnosticsTimer, this);
-  ROS_INFO("arm_collision_monitor: %zu joints, %u primitives, broad phase %s, frame '%s'; "
-           "input from %zu topic(s), %s",
-           workcell_->joint_names.size(), monitor_->primitive_count(),
+  ROS_INFO("arm_collision_monitor: %zu joints, %zu primitives (and %zu slots for live "
+           "objects), broad phase %s, frame '%s'; input from %zu topic(s), %s",
+           workcell_->joint_names.size(), workcell_->primitives.size(),
+           monitor_->primitive_count() - workcell_->primitives.size(),
            monitor_->broad_phase_name().c_str(), fixed_frame_.c_str(),
            options_.input_topics.size(),
            options_.cycle_rate_hz > 0.0 ? "cycles at a fixed rate" : "one cycle per message");
