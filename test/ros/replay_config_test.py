@@ -17,7 +17,8 @@ import rostest
 import yaml
 from sensor_msgs.msg import JointState
 
-from acm_test_util import LEFT_JOINTS, RIGHT_JOINTS, rosrun
+from acm_test_util import (HOME, LEFT_JOINTS, LEFT_TOWARDS_RIGHT, RIGHT_JOINTS,
+                           RIGHT_TOWARDS_LEFT, rosrun)
 
 PKG = 'arm_collision_monitor'
 # The finding LoadWorkcell reports for test/data/replay_scene.yaml: cable_guide lies inside
@@ -146,6 +147,32 @@ class ReplayConfigTest(unittest.TestCase):
         self.assertIn("summary: no cycle checked: all 5 refused (the monitor asks a stop on "
                       "each;", text)
         self.assertNotIn('no warning', text)
+
+    def test_between_samples_lines_say_what_they_are(self):
+        # Home, both arms swung into each other in one step, home again (20 Hz).
+        directory = tempfile.mkdtemp(prefix='acm_between_')
+        csv_path = os.path.join(directory, 'swing.csv')
+        with open(csv_path, 'w') as f:
+            f.write(','.join(LEFT_JOINTS + RIGHT_JOINTS) + '\n')
+            for left, right in ((HOME, HOME), (LEFT_TOWARDS_RIGHT, RIGHT_TOWARDS_LEFT),
+                                (HOME, HOME)):
+                f.write(','.join(str(x) for x in list(left) + list(right)) + '\n')
+        text = rosrun('replay', '--scene', self.bundled_scene, csv_path).stdout
+        lines = [line for line in text.splitlines() if 'between samples at' in line]
+        # The way back starts within the zone of the pairs the swing ended in: their warnings
+        # at its start say so; a contact on the way, strictly between the samples, does not.
+        starts = [line for line in lines if line.startswith('cycle 2 ') and
+                  'at 0.000 of the step' in line]
+        self.assertTrue(starts, text)
+        for line in starts:
+            self.assertTrue(line.endswith("(the step starts within: the previous sample's "
+                                          "warning)"), line)
+        inside = [line for line in lines if 'at 0.000' not in line and 'at 1.000' not in line]
+        self.assertTrue(inside, text)
+        for line in inside:
+            self.assertTrue(line.endswith('m)'), line)
+        self.assertIn('swept check: 2 cycles warn between samples (0 only where the step starts '
+                      'within, 0 only within swept_resolution_m)', text)
 
     def test_an_error_says_which_files_were_the_bundled_defaults(self):
         package = rospkg.RosPack().get_path(PKG)

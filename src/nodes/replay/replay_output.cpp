@@ -107,21 +107,49 @@ void PrintWarningRuns(const Workcell& wc, const Input& input,
 }
 
 // The swept check's warnings, one line each (first few), and a count.
+// What a between-samples warning is, beside a contact strictly between the samples: the step
+// starts within the zone (the previous sample's warning, and the pair left the zone during the
+// step), or the swept check could not certify the pair clear to swept_resolution_m there (at a
+// point whose own distance is above the threshold).
+enum class BetweenKind { kStrictlyBetween, kFromTheStart, kWithinResolution };
+
+BetweenKind KindOf(const Warning& w) {
+  const bool is_within = w.distance_m < w.threshold_m || w.distance_m <= 0.0;  // TestPair's
+  if (!is_within) return BetweenKind::kWithinResolution;
+  return w.step_fraction == 0.0 ? BetweenKind::kFromTheStart : BetweenKind::kStrictlyBetween;
+}
+
 void PrintBetweenSamples(const Workcell& wc, const Input& input,
                          const std::vector<CycleResult>& cycles, const RunSummary& summary) {
   constexpr int kMaxLines = 20;
+  const char* const kNotes[] = {"", " (the step starts within: the previous sample's warning)",
+                                " (above the threshold here; not certified clear to "
+                                "swept_resolution_m near it)"};
   int lines = 0;
-  for (std::size_t k = 0; k < cycles.size() && lines < kMaxLines; ++k) {
+  // Cycles whose between-samples warnings are all of one kind other than strictly between.
+  std::uint64_t only_start = 0, only_resolution = 0;
+  for (std::size_t k = 0; k < cycles.size(); ++k) {
+    bool is_all_start = !cycles[k].between_samples.empty();
+    bool is_all_resolution = is_all_start;
     for (const Warning& w : cycles[k].between_samples) {
-      if (lines++ == kMaxLines) break;
+      const BetweenKind kind = KindOf(w);
+      is_all_start &= kind == BetweenKind::kFromTheStart;
+      is_all_resolution &= kind == BetweenKind::kWithinResolution;
+      if (lines++ >= kMaxLines) continue;
       std::printf("cycle %zu (%.2f s), between samples at %.3f of the step: %s -- %s  %.4f m "
-                  "(threshold %.4f m)\n",
+                  "(threshold %.4f m)%s\n",
                   k, input.time_s[k], w.step_fraction, wc.primitives[w.a].name.c_str(),
-                  wc.primitives[w.b].name.c_str(), w.distance_m, w.threshold_m);
+                  wc.primitives[w.b].name.c_str(), w.distance_m, w.threshold_m,
+                  kNotes[static_cast<int>(kind)]);
     }
+    only_start += is_all_start;
+    only_resolution += is_all_resolution;
   }
-  std::printf("swept check: %llu cycles warn between samples, %llu steps beyond max_step_m\n",
+  std::printf("swept check: %llu cycles warn between samples (%llu only where the step starts "
+              "within, %llu only within swept_resolution_m), %llu steps beyond max_step_m\n",
               static_cast<unsigned long long>(summary.between_cycles),
+              static_cast<unsigned long long>(only_start),
+              static_cast<unsigned long long>(only_resolution),
               static_cast<unsigned long long>(summary.jumped_cycles));
 }
 
