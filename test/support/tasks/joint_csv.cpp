@@ -38,6 +38,29 @@ std::string Where(const std::string& path, int line) {
   return path + ":" + std::to_string(line) + ": ";
 }
 
+// The joint names of a header row from column `first` on; `where` prefixes its errors.
+std::vector<std::string> HeaderJoints(const std::vector<std::string>& fields, std::size_t first,
+                                      const std::string& where) {
+  std::vector<std::string> names;
+  std::unordered_map<std::string, int> seen;
+  for (std::size_t c = first; c < fields.size(); ++c) {
+    if (fields[c].empty()) {
+      throw LoadError(where + "header column " + std::to_string(c + 1) +
+                      " is empty: expected a joint name");
+    }
+    if (fields[c].find_first_of(";\t") != std::string::npos) {
+      throw LoadError(where + "header column " + std::to_string(c + 1) + " '" + fields[c] +
+                      "' holds a ';' or a tab: expected columns separated by commas");
+    }
+    if (!seen.emplace(fields[c], static_cast<int>(c)).second) {
+      throw LoadError(where + "joint '" + fields[c] + "' appears twice in the header");
+    }
+    names.push_back(fields[c]);
+  }
+  if (names.empty()) throw LoadError(where + "the header names no joint");
+  return names;
+}
+
 }  // namespace
 
 JointCsv ReadJointCsv(const std::string& path) {
@@ -63,26 +86,7 @@ JointCsv ReadJointCsv(const std::string& path) {
       has_header = true;
       header_line = line_number;
       has_time = fields.front() == kTimeColumn;
-      std::unordered_map<std::string, int> seen;
-      for (std::size_t c = has_time ? 1 : 0; c < fields.size(); ++c) {
-        if (fields[c].empty()) {
-          throw LoadError(Where(path, line_number) + "header column " + std::to_string(c + 1) +
-                          " is empty: expected a joint name");
-        }
-        if (fields[c].find_first_of(";\t") != std::string::npos) {
-          throw LoadError(Where(path, line_number) + "header column " + std::to_string(c + 1) +
-                          " '" + fields[c] + "' holds a ';' or a tab: expected columns " +
-                          "separated by commas");
-        }
-        if (!seen.emplace(fields[c], static_cast<int>(c)).second) {
-          throw LoadError(Where(path, line_number) + "joint '" + fields[c] +
-                          "' appears twice in the header");
-        }
-        csv.joint_names.push_back(fields[c]);
-      }
-      if (csv.joint_names.empty()) {
-        throw LoadError(Where(path, line_number) + "the header names no joint");
-      }
+      csv.joint_names = HeaderJoints(fields, has_time ? 1 : 0, Where(path, line_number));
       continue;
     }
     const std::size_t expected = csv.joint_names.size() + (has_time ? 1 : 0);
