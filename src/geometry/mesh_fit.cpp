@@ -450,13 +450,21 @@ std::vector<Shape> FitShapes_L(const TriangleMesh& mesh, const MeshFitOptions& o
   const Matrix3d surface_axes = PrincipalAxes(SurfaceCovariance(local.q, mesh));
   const Points shuffled_q = ShuffledDistinct(local.q);
   std::vector<Shape> shapes;
-  if (options.kind == MeshFitKind::kOneCapsule) {
-    const Matrix3d vertex_axes = PrincipalAxes(VertexCovariance(shuffled_q));
-    const AxisCapsule fit = BestCapsule(shuffled_q, {surface_axes, vertex_axes});
-    shapes.push_back(ToCapsule_L(fit, local.o_L, local.margin_m));
-  } else if (options.kind == MeshFitKind::kOrientedBox) {
-    const FrameBox fit = BestBox(shuffled_q, {surface_axes});
-    shapes.push_back(ToBox_L(fit, local.o_L, local.margin_m));
+  if (options.kind != MeshFitKind::kCapsuleChain) {
+    if (options.kind != MeshFitKind::kOrientedBox) {
+      const Matrix3d vertex_axes = PrincipalAxes(VertexCovariance(shuffled_q));
+      const AxisCapsule fit = BestCapsule(shuffled_q, {surface_axes, vertex_axes});
+      shapes.push_back(ToCapsule_L(fit, local.o_L, local.margin_m));
+    }
+    if (options.kind != MeshFitKind::kOneCapsule) {
+      const FrameBox fit = BestBox(shuffled_q, {surface_axes});
+      shapes.push_back(ToBox_L(fit, local.o_L, local.margin_m));
+    }
+    // kTighter: of the capsule and the box (both hold every vertex), the smaller.
+    if (shapes.size() == 2 && ShapeVolume_m3(shapes[1]) < ShapeVolume_m3(shapes[0])) {
+      shapes.erase(shapes.begin());
+    }
+    shapes.resize(1);
   } else {
     for (const Points& slab :
          SlabPoints(local.q, mesh, surface_axes.col(0), options.capsule_count)) {

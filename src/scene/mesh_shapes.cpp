@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <variant>
 
 #include "arm_collision_monitor/core/load_error.h"
 #include "mesh_file.h"
@@ -9,13 +10,16 @@
 namespace arm_collision_monitor {
 namespace {
 
-// "1 capsule", "3 capsules (capsules:3)", "1 box".
-std::string FitText(const MeshFitOptions& options, std::size_t count) {
-  const bool is_box = options.kind == MeshFitKind::kOrientedBox;
+// "1 capsule", "3 capsules (capsules:3)", "1 box", "1 box (tighter)".
+std::string FitText(const MeshFitOptions& options, const std::vector<Shape>& shapes) {
+  const std::size_t count = shapes.size();
+  const bool is_box = count > 0 && std::holds_alternative<Box>(shapes.front());
   std::string text = std::to_string(count) + (is_box ? " box" : " capsule");
   if (count != 1) text += is_box ? "es" : "s";
   if (options.kind == MeshFitKind::kCapsuleChain) {
     text += " (capsules:" + std::to_string(options.capsule_count) + ")";
+  } else if (options.kind == MeshFitKind::kTighter) {
+    text += " (tighter)";
   }
   return text;
 }
@@ -24,7 +28,7 @@ std::string FitText(const MeshFitOptions& options, std::size_t count) {
 std::string ReportLine(const std::string& where, const MeshFitOptions& options,
                        const TriangleMesh& mesh, const MeshFit& fit, bool is_cached) {
   std::ostringstream line;
-  line << where << ": mesh fit: " << FitText(options, fit.shapes_L.size()) << ", "
+  line << where << ": mesh fit: " << FitText(options, fit.shapes_L) << ", "
        << mesh.vertices_L.size() << " vertices, " << mesh.triangles.size() << " triangles, ";
   if (fit.is_mesh_closed) {
     line.precision(3);

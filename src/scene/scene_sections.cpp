@@ -266,6 +266,8 @@ ShapeOptions ReadShapeOptions(const YAML::Node& scene, const std::string& scene_
   const std::string chain = "capsules:";
   if (fit == "box") {
     options.mesh_fit.kind = MeshFitKind::kOrientedBox;
+  } else if (fit == "tighter") {
+    options.mesh_fit.kind = MeshFitKind::kTighter;
   } else if (fit.compare(0, chain.size(), chain) == 0) {
     options.mesh_fit.kind = MeshFitKind::kCapsuleChain;
     const std::string count = fit.substr(chain.size());
@@ -279,7 +281,8 @@ ShapeOptions ReadShapeOptions(const YAML::Node& scene, const std::string& scene_
                                             Quoted(fit));
     }
   } else if (fit != "capsule") {
-    fit_where.Fail(scene["mesh_fit"], "expected capsule, capsules:K or box, got" + Quoted(fit));
+    fit_where.Fail(scene["mesh_fit"], "expected capsule, capsules:K, box or tighter, got" +
+                                     Quoted(fit));
   }
   return options;
 }

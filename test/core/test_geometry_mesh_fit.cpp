@@ -209,7 +209,8 @@ const std::vector<MeshFitOptions>& AllKinds() {
   static const std::vector<MeshFitOptions> kinds{{MeshFitKind::kOneCapsule, 1},
                                                  {MeshFitKind::kCapsuleChain, 1},
                                                  {MeshFitKind::kCapsuleChain, 4},
-                                                 {MeshFitKind::kOrientedBox, 1}};
+                                                 {MeshFitKind::kOrientedBox, 1},
+                                                 {MeshFitKind::kTighter, 1}};
   return kinds;
 }
 
@@ -218,6 +219,7 @@ std::string KindName(const MeshFitOptions& options) {
     case MeshFitKind::kOneCapsule: return "one capsule";
     case MeshFitKind::kCapsuleChain: return std::to_string(options.capsule_count) + " capsules";
     case MeshFitKind::kOrientedBox: return "oriented box";
+    case MeshFitKind::kTighter: return "tighter";
   }
   return "?";
 }
@@ -312,6 +314,30 @@ TEST(MeshFit, OrientedBoxOfABoxIsTheBox) {
     // Each half extent grows by at most tol_m.
     EXPECT_GE(fit.excess_ratio, 1.0) << "trial " << trial;
     EXPECT_LE(fit.excess_ratio, (1.0 + tol_m / half_m.array()).prod()) << "trial " << trial;
+  }
+}
+
+// The tighter of one capsule and one box: a box for a box (a capsule around it is 2.5 times as
+// large), a capsule for a long cylinder (a box around it 4 / pi times), each equal to that
+// kind's own fit.
+TEST(MeshFit, TighterKeepsTheBoxOfABoxAndTheCapsuleOfACylinder) {
+  std::mt19937_64 rng = SeededRng("tighter");
+  for (int trial = 0; trial < 10; ++trial) {
+    const Eigen::Isometry3d X = RandomPose(rng, 10.0);
+    const TriangleMesh box = Transformed(BoxMesh(Vector3d(0.3, 0.2, 0.1)), X, 1.0);
+    const MeshFit box_fit = FitMesh(box, {MeshFitKind::kTighter, 1});
+    ASSERT_EQ(box_fit.shapes_L.size(), 1u);
+    ASSERT_TRUE(std::holds_alternative<Box>(box_fit.shapes_L[0])) << "trial " << trial;
+    EXPECT_EQ(box_fit.fitted_volume_m3,
+              FitMesh(box, {MeshFitKind::kOrientedBox, 1}).fitted_volume_m3);
+    EXPECT_LT(box_fit.fitted_volume_m3, FitMesh(box, {}).fitted_volume_m3);
+    const TriangleMesh rod = Transformed(CylinderMesh(0.05, Uniform(rng, 0.3, 1.0)), X, 1.0);
+    const MeshFit rod_fit = FitMesh(rod, {MeshFitKind::kTighter, 1});
+    ASSERT_EQ(rod_fit.shapes_L.size(), 1u);
+    ASSERT_TRUE(std::holds_alternative<Capsule>(rod_fit.shapes_L[0])) << "trial " << trial;
+    EXPECT_EQ(rod_fit.fitted_volume_m3, FitMesh(rod, {}).fitted_volume_m3);
+    EXPECT_LT(rod_fit.fitted_volume_m3,
+              FitMesh(rod, {MeshFitKind::kOrientedBox, 1}).fitted_volume_m3);
   }
 }
 

@@ -167,7 +167,7 @@ TEST(SceneMeshLinks, MeshFitKindsEncloseTheNonConvexShape) {
   const std::string dir = FreshDir("kinds");
   const TriangleMesh l_shape = LShapeMesh(0.1, 0.05);
   WriteBytes(dir + "l.obj", Obj(l_shape));
-  for (const std::string& kind : std::vector<std::string>{"box", "capsules:3"}) {
+  for (const std::string& kind : std::vector<std::string>{"box", "capsules:3", "tighter"}) {
     const Files files = WriteRobot(dir, {MeshCollision("l.obj", kOrigin)}, "mesh_fit: " + kind);
     const Workcell w = LoadWorkcell(files.urdf, files.scene, CacheIn(dir));
     ExpectEncloses(w, "link0", l_shape, kX_LC);
@@ -176,6 +176,13 @@ TEST(SceneMeshLinks, MeshFitKindsEncloseTheNonConvexShape) {
       ASSERT_EQ(shapes.size(), 1u);
       EXPECT_TRUE(std::holds_alternative<Box>(shapes[0]));
       EXPECT_GE(w.FindPrimitive("link0"), 0);
+    } else if (kind == "tighter") {
+      // Whichever it keeps, the report names it and the kind.
+      ASSERT_EQ(shapes.size(), 1u);
+      ASSERT_EQ(w.notices.size(), 1u);
+      const std::string fitted = std::holds_alternative<Box>(shapes[0]) ? "1 box" : "1 capsule";
+      EXPECT_NE(w.notices[0].find("mesh fit: " + fitted + " (tighter),"), std::string::npos)
+          << w.notices[0];
     } else {
       ASSERT_EQ(shapes.size(), 3u);
       for (int k = 0; k < 3; ++k) EXPECT_GE(w.FindPrimitive("link0/" + std::to_string(k)), 0);

@@ -55,10 +55,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (size < 1) return 0;
   static const char* const kHints[] = {"mesh.stl", "mesh.obj", "mesh.dae"};
   static const MeshFitKind kKinds[] = {MeshFitKind::kOneCapsule, MeshFitKind::kCapsuleChain,
-                                       MeshFitKind::kOrientedBox};
+                                       MeshFitKind::kOrientedBox, MeshFitKind::kTighter};
   const std::string name = kHints[data[0] % 3];
   MeshFitOptions options;
-  options.kind = kKinds[(data[0] / 3) % 3];
+  options.kind = kKinds[(data[0] / 3) % 4];
   const std::string bytes(reinterpret_cast<const char*>(data) + 1, size - 1);
   TriangleMesh mesh;
   try {

@@ -64,6 +64,7 @@ enum class MeshFitKind {
   kOneCapsule,    ///< One capsule (the default: links are capsules in this monitor).
   kCapsuleChain,  ///< capsule_count capsules, one per slab along the principal axis.
   kOrientedBox,   ///< One oriented box.
+  kTighter,       ///< The one capsule or the one box, whichever has the smaller volume.
 };
 
 /// Fit request; part of the cache key (MeshFitHash).
@@ -109,6 +110,9 @@ struct MeshFit {
 /// axis; every triangle is clipped to every slab it crosses (Sutherland-Hodgman), and each slab's
 /// vertices and clip points get a one-capsule fit as above (candidate axes from the principal
 /// axes of those points). Slabs holding no point (a mesh in separate parts) get no capsule.
+///
+/// Tighter: the one-capsule fit above and the oriented-box fit below, the one of smaller volume
+/// kept (a boxy part gets a box, a long round one a capsule).
 ///
 /// Oriented box: exact extents along candidate frames (the surface's principal axes, the link
 /// frame's axes, and each candidate capsule axis completed by the principal axes of the
