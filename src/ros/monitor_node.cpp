@@ -400,7 +400,9 @@ bool MonitorNode::OnCheck(CheckJointState::Request& req, CheckJointState::Respon
     res.success = false;
     res.report.input_status = ToInputStatusMsg(ToSafetyStatus(status));
     res.report.stop = true;
-    res.message = std::string("joint state refused: ") + MergeStatusName(status);
+    const std::string why = input_->DescribeRefusal(ToNamedPositions(req.joint_state), status);
+    res.message = std::string("joint state refused: ") + MergeStatusName(status) +
+                  (why.empty() ? "" : " (" + why + ")");
     return true;
   }
   const std::vector<std::string> missing = input_->MissingJointsNotIn(req.joint_state.name);
@@ -422,7 +424,8 @@ bool MonitorNode::OnCheck(CheckJointState::Request& req, CheckJointState::Respon
   res.success = report.input == InputStatus::kOk;
   res.message = res.success ? std::to_string(report.warnings.size()) + " warning(s)"
                             : std::string("joint state refused: ") +
-                                  SafetyStatusName(input_status);
+                                  SafetyStatusName(input_status) + " (" +
+                                  monitor_->DescribeRefusal(q) + ")";
   return true;
 }
 

@@ -237,6 +237,13 @@ class InputFaultsTest(unittest.TestCase):
         bad = self.check([float('nan')] * 7, HOME)
         self.assertFalse(bad.success)
         self.assertEqual(bad.report.input_status, MonitorReport.INPUT_NON_FINITE)
+        self.assertEqual(bad.message,
+                         "joint state refused: non_finite (joint 'left_joint1' at nan)")
+        beyond = self.check([0.0, 10.0, 0, 0, 0, 0, 0], HOME)
+        self.assertFalse(beyond.success)
+        self.assertTrue(beyond.message.startswith(
+            "joint state refused: out_of_limits (joint 'left_joint2' at 10, outside its limits ["),
+            beyond.message)
         # The live model still gives a clear report on home input.
         report = c.publish_until(lambda: c.publish_pose(HOME, HOME), lambda r: True)
         self.assertEqual(report.warnings, [])

@@ -106,7 +106,6 @@ void PrintWarningRuns(const Workcell& wc, const Input& input,
   }
 }
 
-// The swept check's warnings, one line each (first few), and a count.
 // What a between-samples warning is, beside a contact strictly between the samples: the step
 // starts within the zone (the previous sample's warning, and the pair left the zone during the
 // step), or the swept check could not certify the pair clear to swept_resolution_m there (at a
@@ -119,6 +118,7 @@ BetweenKind KindOf(const Warning& w) {
   return w.step_fraction == 0.0 ? BetweenKind::kFromTheStart : BetweenKind::kStrictlyBetween;
 }
 
+// The swept check's warnings, one line each (first few) with what each is, and the counts.
 void PrintBetweenSamples(const Workcell& wc, const Input& input,
                          const std::vector<CycleResult>& cycles, const RunSummary& summary) {
   constexpr int kMaxLines = 20;
