@@ -366,9 +366,7 @@ double Monitor::Impl::TestPair(PrimitiveId a, PrimitiveId b, const std::vector<S
                                const std::vector<double>& tol, std::vector<Warning>* warnings) {
   const double threshold_m = tol[a] + tol[b];
   const DistanceResult d = ShapeDistance(shapes[a], shapes[b]);
-  // Overlap is a negative signed distance, closer than any threshold: two parts without a
-  // tolerance zone (threshold 0) still warn when they touch or overlap.
-  if (d.distance_m < threshold_m || d.distance_m <= 0.0) {
+  if (IsWarningDistance(d.distance_m, threshold_m)) {
     warnings->push_back(MakeWarning(a, b, d, threshold_m));
   }
   return d.distance_m;

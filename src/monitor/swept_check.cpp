@@ -19,11 +19,6 @@
 namespace arm_collision_monitor {
 namespace {
 
-/// What TestPair warns on: closer than the threshold, or touching / overlapping.
-bool IsWarning(double distance_m, double threshold_m) {
-  return distance_m < threshold_m || distance_m <= 0.0;
-}
-
 bool IsBefore(const Warning& w, const CandidatePair& p) {
   return w.a < p.a || (w.a == p.a && w.b < p.b);
 }
@@ -403,7 +398,7 @@ void Monitor::Impl::SweepPair(PrimitiveId a, PrimitiveId b, double pair_motion_m
   const double d0_m = ShapeDistance(ShapeAt(a, X_WL_start), ShapeAt(b, X_WL_start))
                           .distance_m;
   ++work->swept_tests;
-  if (IsWarning(d0_m, threshold_m)) {  // the step starts in the tolerance zone
+  if (IsWarningDistance(d0_m, threshold_m)) {  // the step starts in the tolerance zone
     warn_at(0.0, X_WL_start);
     return;
   }
@@ -427,7 +422,7 @@ void Monitor::Impl::SweepPair(PrimitiveId a, PrimitiveId b, double pair_motion_m
     const std::vector<Eigen::Isometry3d>& X_WL_mid = StepPoses(mid, q);
     const double mid_m = ShapeDistance(ShapeAt(a, X_WL_mid), ShapeAt(b, X_WL_mid)).distance_m;
     ++work->swept_tests;
-    if (IsWarning(mid_m, threshold_m)) {
+    if (IsWarningDistance(mid_m, threshold_m)) {
       warn_at(mid, X_WL_mid);
       return;
     }

@@ -185,18 +185,15 @@ void MonitorNode::OnJointState(const sensor_msgs::JointState::ConstPtr& msg) {
   if (status == MergeStatus::kAccepted) {
     newest_input_stamp_ = msg->header.stamp.isZero() ? now : msg->header.stamp;
   } else {
+    const std::string why = input_->DescribeRefusal(input, status);
     // The cycle's reason names the first refusal since the last cycle.
     if (pending_refusal_ == MergeStatus::kAccepted) {
       pending_refusal_ = status;
-      pending_why_ = input_->DescribeRefusal(input, status);
+      pending_why_ = why;
     }
-    // This message's refusal (the macro evaluates its arguments only when it logs).
-    auto describe = [&] {
-      const std::string why = input_->DescribeRefusal(input, status);
-      return std::string(MergeStatusName(status)) + (why.empty() ? "" : ": " + why);
-    };
-    ROS_WARN_THROTTLE(1.0, "arm_collision_monitor: refused a JointState (%s), %lu so far",
-                      describe().c_str(), static_cast<unsigned long>(RefusedInputs()));
+    ROS_WARN_THROTTLE(1.0, "arm_collision_monitor: refused a JointState (%s%s%s), %lu so far",
+                      MergeStatusName(status), why.empty() ? "" : ": ", why.c_str(),
+                      static_cast<unsigned long>(RefusedInputs()));
   }
   report_.unknown_joints = input_->last_unknown_joints();
   has_pending_input_ = true;
@@ -393,14 +390,15 @@ void MonitorNode::FillReportWarnings(const CycleReport& report, MonitorReport* m
 
 bool MonitorNode::OnCheck(CheckJointState::Request& req, CheckJointState::Response& res) {
   Eigen::VectorXd q;
-  const MergeStatus status = input_->MergeIntoCopy(ToNamedPositions(req.joint_state), &q);
+  const NamedPositions input = ToNamedPositions(req.joint_state);
+  const MergeStatus status = input_->MergeIntoCopy(input, &q);
   res.report.header.frame_id = fixed_frame_;
   res.report.header.stamp = req.joint_state.header.stamp;
   if (status != MergeStatus::kAccepted) {
     res.success = false;
     res.report.input_status = ToInputStatusMsg(ToSafetyStatus(status));
     res.report.stop = true;
-    const std::string why = input_->DescribeRefusal(ToNamedPositions(req.joint_state), status);
+    const std::string why = input_->DescribeRefusal(input, status);
     res.message = std::string("joint state refused: ") + MergeStatusName(status) +
                   (why.empty() ? "" : " (" + why + ")");
     return true;

@@ -42,6 +42,12 @@ struct Warning {
   double step_fraction = 1.0;  ///< 0 at the last accepted q, 1 at this cycle's
 };
 
+/// The rule a Warning follows: closer than the threshold, or touching / overlapping (so a pair
+/// without tolerances, threshold 0, still warns on contact).
+inline bool IsWarningDistance(double distance_m, double threshold_m) {
+  return distance_m < threshold_m || distance_m <= 0.0;
+}
+
 /// The result of one cycle. Lives in the Monitor's preallocated data: valid until the next
 /// Update().
 struct CycleReport {

@@ -113,8 +113,7 @@ void PrintWarningRuns(const Workcell& wc, const Input& input,
 enum class BetweenKind { kStrictlyBetween, kFromTheStart, kWithinResolution };
 
 BetweenKind KindOf(const Warning& w) {
-  const bool is_within = w.distance_m < w.threshold_m || w.distance_m <= 0.0;  // TestPair's
-  if (!is_within) return BetweenKind::kWithinResolution;
+  if (!IsWarningDistance(w.distance_m, w.threshold_m)) return BetweenKind::kWithinResolution;
   return w.step_fraction == 0.0 ? BetweenKind::kFromTheStart : BetweenKind::kStrictlyBetween;
 }
 
