@@ -156,27 +156,32 @@ bool KinematicModel::FkStepsEqual(const FkStep& a, const FkStep& b) {
          a.K == b.K && a.K2 == b.K2;
 }
 
-void KinematicModel::ComputeLinkPoses(const Eigen::Ref<const Eigen::VectorXd>& q,
-                                      std::vector<Eigen::Isometry3d>* X_WL) const {
-  ComputePoses(q, /*moving_links_only=*/false, X_WL);
-}
-
-void KinematicModel::ComputeMovingLinkPoses(const Eigen::Ref<const Eigen::VectorXd>& q,
-                                            std::vector<Eigen::Isometry3d>* X_WL) const {
-  ComputePoses(q, /*moving_links_only=*/true, X_WL);
+void KinematicModel::MovingLinksTo(std::vector<std::uint8_t>* targets,
+                                   std::vector<int>* links) const {
+  // Children follow their parents: one pass from the leaves up flags the links between.
+  std::vector<std::uint8_t>& is_needed = *targets;
+  for (int link = link_count() - 1; link > 0; --link) {
+    if (is_needed[link]) is_needed[parent_link_[link]] = 1;
+  }
+  links->clear();
+  for (int link = 1; link < link_count(); ++link) {
+    if (is_needed[link] && is_moving_[link]) links->push_back(link);
+  }
 }
 
 // ComputeBlockAngles and ComputeLinkPose are steps of ComputePoses, the hot path of every
 // cycle: forced inline there (an out-of-line call per link, through the shared library's PLT,
 // measured slower).
+template <typename LinkAt>
 EIGEN_ALWAYS_INLINE void KinematicModel::ComputeBlockAngles(
-    const Eigen::Ref<const Eigen::VectorXd>& q, int first, int end, FkBlockAngles* angles) const {
+    const Eigen::Ref<const Eigen::VectorXd>& q, LinkAt link_at, int first, int end,
+    FkBlockAngles* angles) const {
   // The rotations' sines and cosines do not depend on each other, so they overlap in the
   // pipeline instead of stalling the chain of pose products.
   double theta[kFkBlockLinks];
   int rotation_count = 0;
-  for (int link = first; link < end; ++link) {
-    const FkStep& step = fk_steps_[link];
+  for (int i = first; i < end; ++i) {
+    const FkStep& step = fk_steps_[link_at(i)];
     if (step.motion == FkMotion::kRotateAboutCoordinateAxis ||
         step.motion == FkMotion::kRotateAboutAxis) {
       theta[rotation_count++] = JointPosition(step, q);
@@ -246,27 +251,37 @@ EIGEN_ALWAYS_INLINE void KinematicModel::ComputeLinkPose(
   T_WL->col(3) = c3;
 }
 
-void KinematicModel::ComputePoses(const Eigen::Ref<const Eigen::VectorXd>& q,
-                                  bool moving_links_only,
-                                  std::vector<Eigen::Isometry3d>* X_WL) const {
+template <typename LinkAt>
+void KinematicModel::ComputePoses(const Eigen::Ref<const Eigen::VectorXd>& q, LinkAt link_at,
+                                  int count, std::vector<Eigen::Isometry3d>* X_WL) const {
   auto& poses = *X_WL;
-  if (!moving_links_only) {
-    poses[0] = X_WRoot;
-    poses[0].makeAffine();  // the 4-row column arithmetic below relies on the bottom row 0 0 0 1
-  }
-  const int n = link_count();
-  for (int first = 1; first < n; first += kFkBlockLinks) {
-    const int end = std::min(n, first + kFkBlockLinks);
+  for (int first = 0; first < count; first += kFkBlockLinks) {
+    const int end = std::min(count, first + kFkBlockLinks);
     // Pass 1: sine and cosine of every rotating joint of the block.
     FkBlockAngles angles;
-    ComputeBlockAngles(q, first, end, &angles);
+    ComputeBlockAngles(q, link_at, first, end, &angles);
     // Pass 2: X_WL = X_WP * X_PJ * (joint motion), link by link.
-    for (int link = first; link < end; ++link) {
-      if (moving_links_only && !is_moving_[link]) continue;  // fixed to the root: unchanged
+    for (int i = first; i < end; ++i) {
+      const int link = link_at(i);
       const FkStep& step = fk_steps_[link];
       ComputeLinkPose(step, q, &angles, poses[step.parent].matrix(), &poses[link].matrix());
     }
   }
+}
+
+void KinematicModel::ComputeLinkPoses(const Eigen::Ref<const Eigen::VectorXd>& q,
+                                      std::vector<Eigen::Isometry3d>* X_WL) const {
+  auto& poses = *X_WL;
+  poses[0] = X_WRoot;
+  poses[0].makeAffine();  // the 4-row column arithmetic below relies on the bottom row 0 0 0 1
+  ComputePoses(q, [](int i) { return i + 1; }, link_count() - 1, X_WL);
+}
+
+void KinematicModel::ComputeLinkPosesOf(const Eigen::Ref<const Eigen::VectorXd>& q,
+                                        const std::vector<int>& links,
+                                        std::vector<Eigen::Isometry3d>* X_WL) const {
+  const int* const link_of = links.data();
+  ComputePoses(q, [link_of](int i) { return link_of[i]; }, static_cast<int>(links.size()), X_WL);
 }
 
 KinematicModel KinematicModel::FromUrdfFile(const std::string& urdf_path) {

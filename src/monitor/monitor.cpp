@@ -51,13 +51,12 @@ bool IsSamePose(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
   capsule_W->radius_m = capsule_C->radius_m;
 }
 
-/// changed[link]: whether the pose of `link` differs between X_WL and X_WL_new.
-void MarkChangedLinks(const std::vector<Eigen::Isometry3d>& X_WL,
+/// changed[link]: whether the pose of `link` differs between X_WL and X_WL_new, for each of
+/// `links` (the kinematics' fk_links: every carrier among them; the other entries are left).
+void MarkChangedLinks(const std::vector<int>& links, const std::vector<Eigen::Isometry3d>& X_WL,
                       const std::vector<Eigen::Isometry3d>& X_WL_new,
                       std::vector<std::uint8_t>* changed) {
-  for (std::size_t link = 0; link < X_WL_new.size(); ++link) {
-    (*changed)[link] = IsSamePose(X_WL_new[link], X_WL[link]) ? 0 : 1;
-  }
+  for (const int link : links) (*changed)[link] = IsSamePose(X_WL_new[link], X_WL[link]) ? 0 : 1;
 }
 
 }  // namespace
@@ -230,8 +229,8 @@ bool Monitor::Impl::IsProvablyClear(const Eigen::Ref<const Eigen::VectorXd>& q, 
 
 std::uint32_t Monitor::Impl::FollowKinematics(const Eigen::Ref<const Eigen::VectorXd>& q,
                                               bool is_step, double reindex_at_m) {
-  model.kinematics->ComputeMovingLinkPoses(q, &X_WL_next);
-  MarkChangedLinks(X_WL, X_WL_next, &link_changed);
+  model.kinematics->ComputeLinkPosesOf(q, fk_links, &X_WL_next);
+  MarkChangedLinks(fk_links, X_WL, X_WL_next, &link_changed);
   X_WL.swap(X_WL_next);
   is_pair_gap_known = false;
   q_kinematics = q;
@@ -254,7 +253,7 @@ std::uint32_t Monitor::Impl::FollowKinematics(const Eigen::Ref<const Eigen::Vect
 void Monitor::Impl::MoveCarried(const std::vector<Eigen::Isometry3d>& X_WL_new,
                                 std::vector<std::uint8_t>* changed, std::vector<Shape>* shapes,
                                 std::vector<std::uint8_t>* moved_flags) const {
-  MarkChangedLinks(X_WL, X_WL_new, changed);
+  MarkChangedLinks(fk_links, X_WL, X_WL_new, changed);
   for (const PrimitiveId id : carried) {
     const int link = carrier[id];
     if (!(*changed)[link]) continue;
@@ -442,9 +441,11 @@ void Monitor::Impl::InitData() {
   swept.step = MotionBounds(*model.kinematics, n);
   carried.reserve(n);
   is_sphere_C.assign(n, 0);
+  fk_targets.assign(link_count, 0);
+  fk_links.reserve(link_count);
   for (PrimitiveId id = 0; id < n; ++id) SetCarrierBounds(id);
   PrepareBounds();
-  // The links fixed to the root keep their start poses in both (ComputeMovingLinkPoses).
+  // The links fixed to the root keep their start poses in both (ComputeLinkPosesOf).
   X_WL = model.X_WL_start;
   X_WL_next = model.X_WL_start;
   link_changed.assign(link_count, 0);

@@ -66,9 +66,17 @@ struct Monitor::Impl {
   // ReindexMoved transforms and compares one point; SetCarrierBounds keeps it).
   std::vector<std::uint8_t> is_sphere_C;
   std::vector<double> tol_now;          // per primitive this cycle, m
-  // At q_kinematics; scratch, which FollowKinematics leaves at the kinematics before.
+  // At q_kinematics; scratch, which FollowKinematics leaves at the kinematics before. Only the
+  // links in fk_links are kept current (LinkPose computes any other on demand).
   std::vector<Eigen::Isometry3d> X_WL, X_WL_next;
-  std::vector<std::uint8_t> link_changed;  // scratch: per link, moved by the kinematics
+  // The moving links the kinematics computes: those carrying a primitive (of any variant, or a
+  // held object) and the moving links between them and the root (KinematicModel::MovingLinksTo;
+  // PrepareBounds keeps it). A real robot's frames without geometry (cameras, tool points,
+  // sensor mounts: 13 of a Baxter's 35 moving links) are skipped.
+  std::vector<int> fk_links;
+  std::vector<std::uint8_t> fk_targets;  // scratch of PrepareBounds: per link
+  // Scratch: per link of fk_links (the others are stale), moved by the kinematics.
+  std::vector<std::uint8_t> link_changed;
   // The smallest PairGap_m over the kept pairs since the last kinematics (SweepStep or
   // IsProvablyClear, whichever comes first).
   bool is_pair_gap_known = false;
@@ -270,10 +278,21 @@ struct Monitor::Impl {
   void AddToBroadPhase(PrimitiveId id);
   void RemoveFromBroadPhase(PrimitiveId id);
   // After SetCarrierBounds calls: the motion bounds' undominated sets found now, in the scene
-  // change, rather than in the next cycle.
+  // change, rather than in the next cycle, and the links the kinematics computes (fk_links).
   void PrepareBounds() {
     motion.PrepareLargestBound();
     swept.step.PrepareLargestBound();
+    std::fill(fk_targets.begin(), fk_targets.end(), std::uint8_t{0});
+    for (const PrimitiveId id : carried) fk_targets[carrier[id]] = 1;
+    model.kinematics->MovingLinksTo(&fk_targets, &fk_links);
+  }
+  // X_WL[link] at q_kinematics, computed first when the kinematics skips it (not in fk_links).
+  const Eigen::Isometry3d& LinkPose(int link) {
+    if (model.kinematics->is_moving(link) &&
+        !std::binary_search(fk_links.begin(), fk_links.end(), link)) {
+      model.kinematics->ComputeLinkPoses(q_kinematics, &X_WL);
+    }
+    return X_WL[link];
   }
   // Re-indexes `id` with its current motion and tolerance (Add fixes both).
   void Reindex(PrimitiveId id, bool moving);

@@ -78,8 +78,9 @@ bool Monitor::Attach(const std::string& object, const std::string& link, std::st
     SetError(error, "Attach: link '" + link + "' has no moving joint above it");
     return false;
   }
-  const Eigen::Isometry3d X_LW = m.X_WL[l].inverse(Eigen::Isometry);
-  const Eigen::Vector3d p_WLo = m.X_WL[l].translation();
+  const Eigen::Isometry3d& X_WL = m.LinkPose(l);  // a tool point may have no geometry
+  const Eigen::Isometry3d X_LW = X_WL.inverse(Eigen::Isometry);
+  const Eigen::Vector3d p_WLo = X_WL.translation();
   // A live object was not in the start-up reach envelope, whose hold radius it need not keep:
   // every static comes back into the check instead (MarkAllStaticsReachable).
   const bool is_live = m.model.LiveSlot(o) >= 0;

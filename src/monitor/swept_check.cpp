@@ -355,7 +355,7 @@ const std::vector<Eigen::Isometry3d>& Monitor::Impl::StepPoses(
     X_WL_s = &swept.X_WL_at[swept.pose_count++];
   }
   swept.q_s = swept.q_start + s * (q - swept.q_start);
-  model.kinematics->ComputeMovingLinkPoses(swept.q_s, X_WL_s);
+  model.kinematics->ComputeLinkPosesOf(swept.q_s, fk_links, X_WL_s);
   return *X_WL_s;
 }
 
@@ -364,7 +364,7 @@ const std::vector<Eigen::Isometry3d>& Monitor::Impl::StartPoses() {
   // its poses into X_WL_next.
   if (!swept.is_behind) return X_WL_next;
   if (!swept.has_start) {
-    model.kinematics->ComputeMovingLinkPoses(swept.q_start, &swept.X_WL_start);
+    model.kinematics->ComputeLinkPosesOf(swept.q_start, fk_links, &swept.X_WL_start);
     swept.has_start = true;
   }
   return swept.X_WL_start;

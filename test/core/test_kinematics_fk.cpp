@@ -13,6 +13,7 @@
 #include <new>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/kinematics/kinematic_model.h"
@@ -260,9 +261,11 @@ TEST(KinematicsFk, GeneralAndNegativeAxesAndRevoluteMimicMatchAngleAxisReference
   EXPECT_LE(rotation_err, 1e-12);
 }
 
-// ComputeMovingLinkPoses writes exactly the moving links, bit for bit as ComputeLinkPoses does,
-// and leaves the static ones (root, pedestals, arm bases) as the previous full call left them.
-TEST(KinematicsFk, MovingLinkPosesMatchFullPosesAndSkipStaticLinks) {
+// MovingLinksTo gives the moving targets and their moving ancestors, in link order (checked
+// against a walk up from each target), for seeded random target sets; ComputeLinkPosesOf then
+// writes exactly those links, bit for bit as ComputeLinkPoses does, and leaves every other entry
+// (the root, pedestals and arm bases fixed to it, the tool points no target needs) as it was.
+TEST(KinematicsFk, LinkPosesOfWriteExactlyTheLinksTheTargetsNeed) {
   KinematicModel model = KinematicModel::FromUrdfFile(kWorkcellUrdf);
   model.X_WRoot =
       Eigen::Translation3d(1.0, 2.0, 3.0) * Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ());
@@ -274,23 +277,57 @@ TEST(KinematicsFk, MovingLinkPosesMatchFullPosesAndSkipStaticLinks) {
     for (int i = 0; i < q.size(); ++i) q[i] = angle(rng);
     return q;
   };
+  const int n = model.link_count();
   int static_links = 0;
-  for (int link = 0; link < model.link_count(); ++link) static_links += !model.is_moving(link);
+  for (int link = 0; link < n; ++link) static_links += !model.is_moving(link);
   ASSERT_EQ(static_links, 5);  // world, two pedestals, two arm bases
-  ASSERT_TRUE(model.is_moving(model.FindLink("left_link1")));
-  std::vector<Eigen::Isometry3d> X_full(model.link_count()), X_moving(model.link_count());
-  model.ComputeLinkPoses(random_q(), &X_moving);  // the precondition
-  // No moving link hangs directly off the root, so a marked root entry is never read; it shows
-  // whether the static entries are written.
+  // Every link a target: every moving link.
+  std::vector<int> links;
+  std::vector<std::uint8_t> all(n, 1);
+  model.MovingLinksTo(&all, &links);
+  EXPECT_EQ(links.size(), static_cast<std::size_t>(n - static_links));
+  // The tool points (no geometry, the last links of their arms) alone need their whole arms.
+  std::vector<std::uint8_t> tools(n, 0);
+  tools[model.FindLink("left_tool")] = 1;
+  model.MovingLinksTo(&tools, &links);
+  EXPECT_EQ(links.size(), 8u);  // left_link1..7 and left_tool
   const Eigen::Isometry3d marker(Eigen::Translation3d(-7.0, -7.0, -7.0));
-  X_moving[0] = marker;
+  std::vector<Eigen::Isometry3d> X_full(n), X_of(n);
   for (int sample = 0; sample < 200; ++sample) {
+    std::vector<std::uint8_t> targets(n, 0);
+    for (int link = 0; link < n; ++link) targets[link] = rng() % 4 == 0;
+    // The targets and every link between one and the root; the moving ones are listed.
+    std::vector<std::uint8_t> between(n, 0);
+    std::vector<char> expected(n, 0);
+    for (int link = 0; link < n; ++link) {
+      for (int up = link; targets[link] && up >= 0; up = model.parent_link(up)) {
+        between[up] = 1;
+        expected[up] = model.is_moving(up);
+      }
+    }
+    std::vector<std::uint8_t> flagged = targets;
+    model.MovingLinksTo(&flagged, &links);
+    ASSERT_EQ(flagged, between) << "sample " << sample;
+    ASSERT_TRUE(std::is_sorted(links.begin(), links.end()));
+    std::vector<char> listed(n, 0);
+    for (const int link : links) listed[link] = 1;
+    ASSERT_EQ(listed, expected) << "sample " << sample;
+    // The precondition: every entry a link of `links` may read holds its pose.
+    model.ComputeLinkPoses(random_q(), &X_of);
+    // No moving link hangs directly off the root, so a marked root entry is never read; it
+    // shows whether the entries fixed to the root are written.
+    X_of[0] = marker;
+    for (int link = 1; link < n; ++link) {
+      if (model.is_moving(link) && !listed[link]) X_of[link] = marker;
+    }
     const Eigen::VectorXd q = random_q();
-    model.ComputeMovingLinkPoses(q, &X_moving);
+    model.ComputeLinkPosesOf(q, links, &X_of);
     model.ComputeLinkPoses(q, &X_full);
-    ASSERT_EQ(X_moving[0].matrix(), marker.matrix());
-    for (int link = 1; link < model.link_count(); ++link) {
-      ASSERT_EQ(X_moving[link].matrix(), X_full[link].matrix()) << model.link_name(link);
+    for (int link = 0; link < n; ++link) {
+      const bool is_written = listed[link] != 0;
+      const bool is_marked = link == 0 || (model.is_moving(link) && !is_written);
+      const Eigen::Matrix4d& want = is_marked ? marker.matrix() : X_full[link].matrix();
+      ASSERT_EQ(X_of[link].matrix(), want) << model.link_name(link) << ", sample " << sample;
     }
   }
 }

@@ -200,6 +200,57 @@ TEST(MonitorScene, AttachedBoxMovesWithTheGripperAndWarnsAgainstAnotherTable) {
   EXPECT_NE(error.find("reaches"), std::string::npos) << error;
 }
 
+// A tool point without geometry can hold an object: the kinematics, which skips such a frame
+// while nothing hangs from it (KinematicModel::MovingLinksTo), places it at the Attach and
+// follows it from then on, with the held box, to the end of the carry and after a Detach and a
+// second Attach.
+TEST(MonitorScene, ObjectHeldByAFrameWithoutGeometryFollowsIt) {
+  const auto wc = LoadBundledWorkcell();
+  Monitor monitor(wc, MonitorOptions{});
+  const PrimitiveId box = Prim(*wc, "right_box");
+  const int tool = wc->kinematics.FindLink("right_tool");
+  ASSERT_GE(tool, 0);
+  for (PrimitiveId id = 0; id < wc->primitives.size(); ++id) {
+    ASSERT_NE(wc->primitives[id].link_index, tool) << "right_tool must have no geometry";
+  }
+  const int joint1 = test::JointIndex(*wc, "right_joint1");
+  std::string error;
+  Eigen::VectorXd q = ArmReachDown(*wc, "right", 0.1, -1.55, 0.95);
+  std::vector<Eigen::Isometry3d> X_WL(wc->kinematics.link_count());
+  for (int grasp = 0; grasp < 2; ++grasp) {
+    monitor.Update(q);
+    const Shape before_W = monitor.shape_W(box);
+    ASSERT_TRUE(monitor.Attach("right_box", "right_tool", &error)) << error;
+    monitor.SyncShapes();
+    EXPECT_TRUE(std::get<Box>(monitor.shape_W(box)).X_WB.isApprox(std::get<Box>(before_W).X_WB,
+                                                                   1e-12));
+    wc->kinematics.ComputeLinkPoses(q, &X_WL);
+    ReferenceScene scene;
+    scene.held[box] = {tool, TransformShape(X_WL[tool].inverse(), before_W)};
+    const double q1_start = q[joint1];
+    for (int k = 1; k <= 20; ++k) {
+      q[joint1] = q1_start * (1.0 - k / 20.0);
+      const CycleReport& report = monitor.Update(q);
+      ExpectSameWarnings(*wc, ReferenceWarnings(*wc, q, scene), report.warnings,
+                         "grasp " + std::to_string(grasp) + ", carry step " + std::to_string(k));
+      wc->kinematics.ComputeLinkPoses(q, &X_WL);
+      const Shape expected = TransformShape(X_WL[tool], scene.held[box].shape_L);
+      monitor.SyncShapes();
+      EXPECT_TRUE(std::get<Box>(monitor.shape_W(box)).X_WB.isApprox(std::get<Box>(expected).X_WB,
+                                                                     1e-12))
+          << "grasp " << grasp << ", carry step " << k;
+      ExpectValid(monitor);
+    }
+    // Back where it was picked up, put down, and picked up again.
+    for (int k = 1; k <= 20; ++k) {
+      q[joint1] = q1_start * (k / 20.0);
+      monitor.Update(q);
+    }
+    ASSERT_TRUE(monitor.Detach("right_box", &error)) << error;
+    ExpectValid(monitor);
+  }
+}
+
 TEST(MonitorScene, ModelSwitchingReplacesTheLinksPrimitives) {
   const auto wc = LoadBundledWorkcell();
   Monitor monitor(wc, MonitorOptions{});

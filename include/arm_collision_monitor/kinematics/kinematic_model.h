@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -69,13 +70,21 @@ class KinematicModel {
   /// link_count() entries. Every entry is written (all 16 matrix coefficients); no allocation.
   void ComputeLinkPoses(const Eigen::Ref<const Eigen::VectorXd>& q,
                         std::vector<Eigen::Isometry3d>* X_WL) const;
-  /// ComputeLinkPoses for the moving links only (is_moving): the entries of the other links
-  /// (the root and everything fixed to it) are left untouched, which saves their products in a
-  /// per-cycle loop. Precondition: those entries already hold their poses, i.e. `X_WL` was
-  /// filled by ComputeLinkPoses since X_WRoot last changed. Same results, bit for bit, as
-  /// ComputeLinkPoses for the links it writes.
-  void ComputeMovingLinkPoses(const Eigen::Ref<const Eigen::VectorXd>& q,
-                              std::vector<Eigen::Isometry3d>* X_WL) const;
+  /// The moving links (is_moving) whose poses those of the links flagged in `targets` (one
+  /// flag a link, link_count() of them) need, into `links` (cleared first; no allocation
+  /// within its capacity): the moving targets and every moving link between them and the root,
+  /// in link order. `targets` comes back with those links between flagged too. A per-cycle
+  /// loop computes only these (ComputeLinkPosesOf): the links fixed to the root never change,
+  /// and a frame without geometry below the last link that carries any (a camera, a tool
+  /// point) is not needed.
+  void MovingLinksTo(std::vector<std::uint8_t>* targets, std::vector<int>* links) const;
+  /// ComputeLinkPoses for `links` only (as MovingLinksTo gives them: in link order, each link's
+  /// parent either in `links` or not moving): the other entries are left untouched.
+  /// Precondition: the entries of the parents not in `links` already hold their poses, i.e.
+  /// `X_WL` was filled by ComputeLinkPoses since X_WRoot last changed. Same results, bit for
+  /// bit, as ComputeLinkPoses for the links it writes.
+  void ComputeLinkPosesOf(const Eigen::Ref<const Eigen::VectorXd>& q, const std::vector<int>& links,
+                          std::vector<Eigen::Isometry3d>* X_WL) const;
 
   /// Checks the invariants (parents precede children, q indices are 0..q_size()-1 once each,
   /// unit axes, lower <= upper, mimic targets actuated, the forward kinematics' precomputed
@@ -137,17 +146,21 @@ class KinematicModel {
     double cos_theta[kFkBlockLinks];
     int next = 0;
   };
-  // Pass 1 of ComputePoses: the angles of the rotating joints of links [first, end).
-  void ComputeBlockAngles(const Eigen::Ref<const Eigen::VectorXd>& q, int first, int end,
-                          FkBlockAngles* angles) const;
+  // Pass 1 of ComputePoses: the angles of the rotating joints of links link_at(first) to
+  // link_at(end - 1).
+  template <typename LinkAt>
+  void ComputeBlockAngles(const Eigen::Ref<const Eigen::VectorXd>& q, LinkAt link_at, int first,
+                          int end, FkBlockAngles* angles) const;
   // Pass 2 of ComputePoses for one link: T_WL = T_WP * X_PJ * (joint motion), on whole 4-row
   // columns of the 4x4 matrices (aligned vector lanes; the bottom rows 0 0 0 1 come out right
   // by themselves). A rotating joint takes the next angle of `angles`.
   static void ComputeLinkPose(const FkStep& step, const Eigen::Ref<const Eigen::VectorXd>& q,
                               FkBlockAngles* angles, const Eigen::Matrix4d& T_WP,
                               Eigen::Matrix4d* T_WL);
-  // The one forward-kinematics loop behind ComputeLinkPoses and ComputeMovingLinkPoses.
-  void ComputePoses(const Eigen::Ref<const Eigen::VectorXd>& q, bool moving_links_only,
+  // The one forward-kinematics loop behind ComputeLinkPoses and ComputeLinkPosesOf: the poses
+  // of links link_at(0) to link_at(count - 1), in link order.
+  template <typename LinkAt>
+  void ComputePoses(const Eigen::Ref<const Eigen::VectorXd>& q, LinkAt link_at, int count,
                     std::vector<Eigen::Isometry3d>* X_WL) const;
   // Exact (bitwise) equality, for Validate.
   static bool FkStepsEqual(const FkStep& a, const FkStep& b);
