@@ -38,10 +38,14 @@ PrimitiveSpec NewLinkPrimitive(int link, const Workcell& workcell, const LinkSet
 std::vector<std::pair<std::string, Shape>> LinkShapes(const urdf::Link& link, const LinkOverride& o,
                                                       const std::string& urdf_path,
                                                       const std::string& scene_path,
+                                                      CylinderModel cylinder_model,
                                                       MeshFitter* meshes) {
   if (o.ignore) return {};
   if (o.p0_L && o.radius_m) return {{"0", Capsule{*o.p0_L, *o.p1_L, *o.radius_m}}};
-  const UrdfLinkGeometry geometry = ReadUrdfLinkGeometry(link, urdf_path, meshes);
+  // The overrides change a capsule: the link's cylinders stay capsules for them.
+  const bool is_capsule_override = o.p0_L || o.radius_m;
+  const UrdfLinkGeometry geometry = ReadUrdfLinkGeometry(
+      link, urdf_path, is_capsule_override ? CylinderModel::kCapsule : cylinder_model, meshes);
   if (o.p0_L) {
     if (geometry.capsule_count() != 1 || geometry.shapes_L.size() != 1) {
       throw LoadError(scene_path + ": links." + link.name +
@@ -243,23 +247,28 @@ std::vector<PrimitiveId> ResolveNames(const Workcell& w, const std::string& name
 void CheckSectionNames(const YAML::Node& scene, const std::string& scene_path) {
   yaml_fields::CheckKeys(scene,
                          {"world", "arms", "links", "joint_limits", "joint_defaults", "objects",
-                          "compatible", "grasp_targets", "variants", "cylinder_model", "mesh_fit",
-                          "srdf", "planning_scene", "planning_scene_acm",
-                          "planning_scene_tolerance_m"},
+                          "compatible", "grasp_targets", "variants", "cylinder_model",
+                          "urdf_cylinder_model", "mesh_fit", "srdf", "planning_scene",
+                          "planning_scene_acm", "planning_scene_tolerance_m"},
                          Where{scene_path, ""});
 }
 
 ShapeOptions ReadShapeOptions(const YAML::Node& scene, const std::string& scene_path) {
   ShapeOptions options;
-  std::string cylinder = "capsule";
-  yaml_fields::ReadIfPresent(scene, "cylinder_model", Where{scene_path, ""}, yaml_fields::ReadName,
-                             &cylinder);
-  if (cylinder == "box") {
-    options.cylinder_model = CylinderModel::kBox;
-  } else if (cylinder != "capsule") {
-    Where{scene_path, "cylinder_model"}.Fail(scene["cylinder_model"],
-                                             "expected capsule or box, got" + Quoted(cylinder));
-  }
+  auto read_cylinder_model = [&](const char* key, CylinderModel* model) {
+    std::string name = "capsule";
+    yaml_fields::ReadIfPresent(scene, key, Where{scene_path, ""}, yaml_fields::ReadName, &name);
+    if (name == "box") {
+      *model = CylinderModel::kBox;
+    } else if (name == "tighter") {
+      *model = CylinderModel::kTighter;
+    } else if (name != "capsule") {
+      Where{scene_path, key}.Fail(scene[key],
+                                  "expected capsule, box or tighter, got" + Quoted(name));
+    }
+  };
+  read_cylinder_model("cylinder_model", &options.cylinder_model);
+  read_cylinder_model("urdf_cylinder_model", &options.urdf_cylinder_model);
   std::string fit = "capsule";
   const Where fit_where{scene_path, "mesh_fit"};
   yaml_fields::ReadIfPresent(scene, "mesh_fit", Where{scene_path, ""}, yaml_fields::ReadName, &fit);
@@ -432,7 +441,8 @@ std::vector<LinkOverride> ReadLinkOverrides(const YAML::Node& node, const Where&
 
 std::vector<PrimitiveSpec> MakeLinkPrimitives(const urdf::ModelInterface& urdf_model,
                                               const Workcell& workcell, const LinkSettings& links,
-                                              MeshFitter* meshes, NameRegistry* names) {
+                                              CylinderModel cylinder_model, MeshFitter* meshes,
+                                              NameRegistry* names) {
   const KinematicModel& model = workcell.kinematics;
   for (int link = 0; link < model.link_count(); ++link) {
     names->Claim(model.link_name(link),
@@ -444,7 +454,7 @@ std::vector<PrimitiveSpec> MakeLinkPrimitives(const urdf::ModelInterface& urdf_m
     const urdf::LinkConstSharedPtr urdf_link = urdf_model.getLink(link_name);
     const auto shapes =
         LinkShapes(*urdf_link, links.overrides[link], workcell.urdf_path, workcell.scene_path,
-                   meshes);
+                   cylinder_model, meshes);
     for (const auto& [suffix, shape_L] : shapes) {
       PrimitiveSpec p = NewLinkPrimitive(link, workcell, links);
       p.name = shapes.size() == 1 ? link_name : link_name + "/" + suffix;

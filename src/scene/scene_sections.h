@@ -55,17 +55,18 @@ struct LinkSettings {
 };
 
 /// How the solids of objects: and of the planning scene become primitives (top-level keys
-/// cylinder_model and mesh_fit).
+/// cylinder_model and mesh_fit), and the URDF's cylinders (urdf_cylinder_model).
 struct ShapeOptions {
   CylinderModel cylinder_model = CylinderModel::kCapsule;
-  MeshFitOptions mesh_fit;  ///< default: one capsule
+  MeshFitOptions mesh_fit;  ///< default: one capsule (the URDF's meshes too)
+  CylinderModel urdf_cylinder_model = CylinderModel::kCapsule;
 };
 
 /// The top level: only the known section names.
 void CheckSectionNames(const YAML::Node& scene, const std::string& scene_path);
 
-/// cylinder_model: capsule | box, and mesh_fit: capsule | capsules:K | box (K in
-/// [1, kMeshFitMaxCapsules]); both optional.
+/// cylinder_model and urdf_cylinder_model: capsule | box | tighter, and mesh_fit: capsule |
+/// capsules:K | box | tighter (K in [1, kMeshFitMaxCapsules]); all optional.
 ShapeOptions ReadShapeOptions(const YAML::Node& scene, const std::string& scene_path);
 
 /// world: the cube the spatial index covers, in the fixed frame (`node` defined: without it the
@@ -91,11 +92,14 @@ std::vector<LinkOverride> ReadLinkOverrides(const YAML::Node& node, const Where&
                                             const KinematicModel& model);
 
 /// The default model of every link, in link order: the URDF's collision geometry
-/// (ReadUrdfLinkGeometry, meshes fitted by `meshes`) after the links: overrides. Claims every
-/// link name, then the primitives' names. `workcell` supplies the kinematics and the arms.
+/// (ReadUrdfLinkGeometry: cylinders per `cylinder_model`, meshes fitted by `meshes`) after the
+/// links: overrides (a link with a radius_m or p0_m override takes its cylinders as capsules,
+/// which the override changes). Claims every link name, then the primitives' names. `workcell`
+/// supplies the kinematics and the arms.
 std::vector<PrimitiveSpec> MakeLinkPrimitives(const urdf::ModelInterface& urdf_model,
                                               const Workcell& workcell, const LinkSettings& links,
-                                              MeshFitter* meshes, NameRegistry* names);
+                                              CylinderModel cylinder_model, MeshFitter* meshes,
+                                              NameRegistry* names);
 
 /// objects: appends each object and its primitives (box, sphere, cylinder per
 /// `options.cylinder_model`, capsule, or the primitives `meshes` fits to a mesh file: one

@@ -1,5 +1,7 @@
 #include "solid_shapes.h"
 
+#include <cmath>
+
 namespace arm_collision_monitor {
 
 std::pair<Eigen::Vector3d, Eigen::Vector3d> CylinderAxisEnds_L(const Eigen::Isometry3d& X_LC,
@@ -19,7 +21,10 @@ Shape CapsuleShape_L(const Eigen::Isometry3d& X_LC, double radius_m, double leng
 
 Shape CylinderShape_L(const Eigen::Isometry3d& X_LC, double radius_m, double length_m,
                       CylinderModel model) {
-  if (model == CylinderModel::kBox) {
+  // Volumes: the box 4 r^2 L, the capsule pi r^2 L + 4/3 pi r^3; the box is the smaller when
+  // (4 - pi) L < 4/3 pi r.
+  const bool is_box_smaller = (4.0 - M_PI) * length_m < 4.0 / 3.0 * M_PI * radius_m;
+  if (model == CylinderModel::kBox || (model == CylinderModel::kTighter && is_box_smaller)) {
     return Box{X_LC, Eigen::Vector3d(radius_m, radius_m, 0.5 * length_m)};
   }
   return CapsuleShape_L(X_LC, radius_m, length_m);

@@ -23,7 +23,7 @@ Shape CapsuleShape_L(const Eigen::Isometry3d& X_LC, double radius_m, double leng
 
 /// The cylinder of C (axis on C's z, centred on C's origin) as `model` says: the capsule with
 /// the cylinder's axis as segment and its radius, or the box of half extents (r, r, length/2) in
-/// C. Either encloses the cylinder.
+/// C, or (kTighter) the one of the two with the smaller volume. Either encloses the cylinder.
 Shape CylinderShape_L(const Eigen::Isometry3d& X_LC, double radius_m, double length_m,
                       CylinderModel model);
 

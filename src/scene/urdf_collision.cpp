@@ -26,6 +26,7 @@ struct CollisionElement {
   std::string mesh_filename;
   Eigen::Vector3d mesh_scale = Eigen::Vector3d::Ones();
   bool is_absorbed = false;  // a sphere that is an end cap of a capsule-idiom cylinder
+  bool is_capsule = false;   // a cylinder whose end caps were absorbed: exactly a capsule
 };
 
 // Element i of a link's <collision> list, its sizes checked; `where` names it in errors.
@@ -77,8 +78,10 @@ CollisionElement ReadCollisionElement(const urdf::Collision& collision, std::siz
   return e;
 }
 
-// Marks the two spheres (radius r, centred on the cylinder's end faces) of the capsule idiom.
-void AbsorbEndSpheres(const CollisionElement& cylinder, std::vector<CollisionElement>* all) {
+// Marks the two spheres (radius r, centred on the cylinder's end faces) of the capsule idiom, and
+// the cylinder as their capsule.
+void AbsorbEndSpheres(int cylinder_index, std::vector<CollisionElement>* all) {
+  const CollisionElement cylinder = (*all)[cylinder_index];
   // The URDF cylinder axis is z of its origin frame.
   const auto [end0_L, end1_L] = CylinderAxisEnds_L(cylinder.X_LC, cylinder.length_m);
   const double tolerance_m = kCapsuleIdiomMatchRel * (cylinder.length_m + cylinder.radius_m);
@@ -99,6 +102,7 @@ void AbsorbEndSpheres(const CollisionElement& cylinder, std::vector<CollisionEle
   if (cap1 < 0) return;
   (*all)[cap0].is_absorbed = true;
   (*all)[cap1].is_absorbed = true;
+  (*all)[cylinder_index].is_capsule = true;
 }
 
 }  // namespace
@@ -110,7 +114,7 @@ int UrdfLinkGeometry::capsule_count() const {
 }
 
 UrdfLinkGeometry ReadUrdfLinkGeometry(const urdf::Link& link, const std::string& urdf_path,
-                                      MeshFitter* meshes) {
+                                      CylinderModel cylinder_model, MeshFitter* meshes) {
   std::vector<urdf::CollisionSharedPtr> collisions = link.collision_array;
   if (collisions.empty() && link.collision) collisions.push_back(link.collision);
 
@@ -121,8 +125,8 @@ UrdfLinkGeometry ReadUrdfLinkGeometry(const urdf::Link& link, const std::string&
     elements.push_back(ReadCollisionElement(*collisions[i], i, where));
   }
 
-  for (const CollisionElement& e : elements) {
-    if (e.type == urdf::Geometry::CYLINDER) AbsorbEndSpheres(e, &elements);
+  for (int i = 0; i < static_cast<int>(elements.size()); ++i) {
+    if (elements[i].type == urdf::Geometry::CYLINDER) AbsorbEndSpheres(i, &elements);
   }
 
   const int element_count = static_cast<int>(std::count_if(
@@ -137,7 +141,8 @@ UrdfLinkGeometry ReadUrdfLinkGeometry(const urdf::Link& link, const std::string&
         break;
       case urdf::Geometry::CYLINDER:
         geometry.shapes_L.emplace_back(
-            e.name, CylinderShape_L(e.X_LC, e.radius_m, e.length_m, CylinderModel::kCapsule));
+            e.name, CylinderShape_L(e.X_LC, e.radius_m, e.length_m,
+                                    e.is_capsule ? CylinderModel::kCapsule : cylinder_model));
         break;
       case urdf::Geometry::BOX:
         geometry.shapes_L.emplace_back(e.name, Box{e.X_LC, 0.5 * e.size_m});

@@ -23,8 +23,10 @@ struct UrdfLinkGeometry {
 };
 
 /// Converts every <collision> of `link`:
-///  - cylinder (radius r, length L) -> the capsule whose segment is the cylinder's axis (length
-///    L) with radius r: it encloses the cylinder (it adds two hemispherical caps of radius r);
+///  - cylinder (radius r, length L) -> per `cylinder_model` (CylinderShape_L): by default the
+///    capsule whose segment is the cylinder's axis (length L) with radius r, which encloses the
+///    cylinder (it adds two hemispherical caps of radius r), or its bounding box, or the
+///    smaller of the two;
 ///  - sphere -> a zero-length capsule;  box -> a Box;
 ///  - a cylinder plus two spheres of its radius centred on its end faces (the usual way of
 ///    writing a capsule in URDF) -> that one capsule;
@@ -33,7 +35,7 @@ struct UrdfLinkGeometry {
 /// Throws LoadError naming `urdf_path` and the link for a negative, zero-size or non-finite
 /// dimension, and (MeshFitter::FitFile) for a mesh that cannot be read or fitted.
 UrdfLinkGeometry ReadUrdfLinkGeometry(const urdf::Link& link, const std::string& urdf_path,
-                                      MeshFitter* meshes);
+                                      CylinderModel cylinder_model, MeshFitter* meshes);
 
 /// Fails unless urdfdom kept every <collision> of every link of the URDF text `urdf_xml`:
 /// urdfdom drops an element it cannot parse (a mesh scale that is not 3 numbers, say) with

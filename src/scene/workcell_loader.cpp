@@ -188,7 +188,8 @@ Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_pat
   // model variants.
   scene_sections::NameRegistry names;
   MeshFitter meshes(options.fetch, options.mesh_fit_cache_dir, shape_options.mesh_fit);
-  w.primitives = scene_sections::MakeLinkPrimitives(*urdf_model, w, links, &meshes, &names);
+  w.primitives = scene_sections::MakeLinkPrimitives(
+      *urdf_model, w, links, shape_options.urdf_cylinder_model, &meshes, &names);
   scene_sections::ReadObjects(scene["objects"], Where{scene_path, "objects"}, shape_options,
                               &meshes, &names, &w);
   const scene_sections::SrdfInput srdf =

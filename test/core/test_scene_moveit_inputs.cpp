@@ -326,9 +326,10 @@ TEST(SceneMoveitInputs, TypedObjectsLoadWithTheirShapes) {
       " tolerance_m: 0.02}\n"
       "  - {name: rod, type: capsule, radius_m: 0.03, length_m: 0.4,"
       " pose: {xyz_m: [-1, 1, 1], rpy: [1.5707963267948966, 0, 0]}, attachable: true}\n"
-      "  - {name: crate, type: box, size_m: [0.2, 0.4, 0.6], pose: {xyz_m: [-1, -1, 1]}}\n";
+      "  - {name: crate, type: box, size_m: [0.2, 0.4, 0.6], pose: {xyz_m: [-1, -1, 1]}}\n"
+      "  - {name: pipe, type: cylinder, radius_m: 0.02, length_m: 0.4, pose: {xyz_m: [0, 1, 1]}}\n";
   const std::string world = "world: {center_m: [0, 0, 1], edge_m: 4}\n";
-  for (const std::string model : {"capsule", "box"}) {
+  for (const std::string model : {"capsule", "box", "tighter"}) {
     const Workcell w = LoadWorkcell(
         kUrdf, WriteTempFile("typed.yaml", world + "cylinder_model: " + model + "\n" + objects));
     ExpectValid(w);
@@ -338,17 +339,60 @@ TEST(SceneMoveitInputs, TypedObjectsLoadWithTheirShapes) {
     EXPECT_EQ(w.primitives[w.FindPrimitive("can")].tolerance_m, 0.02);
     ASSERT_TRUE(std::holds_alternative<Box>(ShapeOf(w, "crate")));
     EXPECT_EQ(std::get<Box>(ShapeOf(w, "crate")).half_extents_m, Eigen::Vector3d(0.1, 0.2, 0.3));
+    // tighter: the can (length 4 radii) gets its box, 0.002 m^3 against the capsule's 0.0021;
+    // the pipe (20 radii) its capsule, 0.00054 m^3 against the box's 0.00064.
     if (model == "capsule") {
       ExpectCapsule(ShapeOf(w, "can"), {1, -1, 0.9}, {1, -1, 1.1}, 0.05, "can");
     } else {
       ASSERT_TRUE(std::holds_alternative<Box>(ShapeOf(w, "can")));
       EXPECT_EQ(std::get<Box>(ShapeOf(w, "can")).half_extents_m, Eigen::Vector3d(0.05, 0.05, 0.1));
     }
+    if (model == "box") {
+      ASSERT_TRUE(std::holds_alternative<Box>(ShapeOf(w, "pipe")));
+      EXPECT_EQ(std::get<Box>(ShapeOf(w, "pipe")).half_extents_m,
+                Eigen::Vector3d(0.02, 0.02, 0.2));
+    } else {
+      ExpectCapsule(ShapeOf(w, "pipe"), {0, 1, 0.8}, {0, 1, 1.2}, 0.02, "pipe");
+    }
     const Eigen::Isometry3d X_WCan(Eigen::Translation3d(1, -1, 1));
     for (const Eigen::Vector3d& p_W : SolidPoints_W(X_WCan, 0.05, 0.2, false, 4)) {
       ExpectInside(p_W, ShapeOf(w, "can"), "can " + model + " (seed 4)");
     }
   }
+}
+
+// urdf_cylinder_model: the URDF's bare cylinders become the capsule (default), the box or the
+// smaller of the two; a capsule written as a cylinder with two end spheres stays that capsule,
+// and a link with a radius_m override keeps its capsule, which the override widens.
+TEST(SceneMoveitInputs, UrdfCylindersFollowUrdfCylinderModel) {
+  const Workcell plain = LoadWorkcell(kUrdf, kScene);
+  std::string scene = ReadText(kScene);
+  const std::string links = "\nlinks:\n";
+  ASSERT_NE(scene.find(links), std::string::npos);
+  scene.replace(scene.find(links), links.size(), links + "  left_link2: {radius_m: 0.1}\n");
+  for (const std::string model : {"box", "tighter"}) {
+    const Workcell w =
+        LoadWorkcell(kUrdf, WriteTempFile("urdf_cylinders.yaml",
+                                          scene + "\nurdf_cylinder_model: " + model + "\n"));
+    ExpectValid(w);
+    // left_link1: radius 0.09, length 0.3 (3.3 radii: the box is the smaller).
+    const Capsule& capsule = std::get<Capsule>(ShapeOf(plain, "left_link1"));
+    ASSERT_TRUE(std::holds_alternative<Box>(ShapeOf(w, "left_link1"))) << model;
+    const Box& box = std::get<Box>(ShapeOf(w, "left_link1"));
+    EXPECT_EQ(box.half_extents_m, Eigen::Vector3d(0.09, 0.09, 0.15)) << model;
+    EXPECT_TRUE(box.X_WB.translation().isApprox(0.5 * (capsule.p0_W + capsule.p1_W), 1e-12));
+    EXPECT_TRUE(box.X_WB.linear().col(2).isApprox((capsule.p1_W - capsule.p0_W).normalized(),
+                                                  1e-12));
+    // The gripper's capsule idiom, exact as it is.
+    const Capsule& gripper = std::get<Capsule>(ShapeOf(plain, "left_link7"));
+    ASSERT_TRUE(std::holds_alternative<Capsule>(ShapeOf(w, "left_link7"))) << model;
+    EXPECT_EQ(std::get<Capsule>(ShapeOf(w, "left_link7")).p0_W, gripper.p0_W);
+    ASSERT_TRUE(std::holds_alternative<Capsule>(ShapeOf(w, "left_link2"))) << model;
+    EXPECT_EQ(std::get<Capsule>(ShapeOf(w, "left_link2")).radius_m, 0.1);
+    ASSERT_TRUE(std::holds_alternative<Box>(ShapeOf(w, "right_link2"))) << model;
+  }
+  ExpectValid(plain);
+  EXPECT_TRUE(std::holds_alternative<Capsule>(ShapeOf(plain, "left_link1")));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -369,7 +413,10 @@ TEST(SceneMoveitInputs, BadSceneKeysAreRejected) {
   ExpectBundledSceneError("planning_scene_acm: true", {"planning_scene_acm", "without"});
   ExpectBundledSceneError("planning_scene_tolerance_m: 0.1",
                           {"planning_scene_tolerance_m", "without"});
-  ExpectBundledSceneError("cylinder_model: cone", {"cylinder_model", "'cone'", "capsule or box"});
+  ExpectBundledSceneError("cylinder_model: cone",
+                          {"cylinder_model", "'cone'", "capsule, box or tighter"});
+  ExpectBundledSceneError("urdf_cylinder_model: disc",
+                          {"urdf_cylinder_model", "'disc'", "capsule, box or tighter"});
   ExpectBundledSceneError("mesh_fit: capsules:0", {"mesh_fit", "capsules:K", "'capsules:0'"});
   ExpectBundledSceneError("mesh_fit: capsules:x", {"mesh_fit", "capsules:K"});
   ExpectBundledSceneError("mesh_fit: hull", {"mesh_fit", "'hull'"});

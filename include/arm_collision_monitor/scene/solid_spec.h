@@ -12,10 +12,12 @@
 
 namespace arm_collision_monitor {
 
-/// How a cylinder (and a cone, through its bounding cylinder) becomes a primitive. Both enclose
+/// How a cylinder (and a cone, through its bounding cylinder) becomes a primitive. Each encloses
 /// it: the capsule adds two hemispherical caps of the cylinder's radius on its end faces; the box
-/// is the cylinder's tight bounding box (it adds the four edges' corners).
-enum class CylinderModel { kCapsule, kBox };
+/// is the cylinder's tight bounding box (it adds the four edges' corners); kTighter takes, per
+/// cylinder, whichever of the two has the smaller volume (the box for a length below about 4.9
+/// radii: a disc or a short link; the capsule for a longer one).
+enum class CylinderModel { kCapsule, kBox, kTighter };
 
 /// The scene file's cylinder_model and mesh_fit (config/scene.yaml).
 struct SolidShapeOptions {
