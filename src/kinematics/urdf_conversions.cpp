@@ -21,18 +21,18 @@ Eigen::Isometry3d UrdfPoseToIsometry(const urdf::Pose& pose) {
 urdf::ModelInterfaceSharedPtr ParseUrdfFile(const std::string& urdf_path) {
   std::ifstream in(urdf_path);
   if (!in) {
-    throw LoadError(urdf_path + ": cannot open the URDF file (expected a readable URDF/XML file)");
+    throw LoadError(urdf_path + ": cannot open the URDF file (expected a readable URDF/XML file" +
+                    RelativePathNote(urdf_path) + ")");
   }
   std::stringstream buffer;
   buffer << in.rdbuf();
   const std::string xml = buffer.str();
   const urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(xml);
   if (!model) {
-    const bool is_xacro = xml.find("xmlns:xacro") != std::string::npos;
     throw LoadError(urdf_path +
-                    ": not a valid URDF (urdfdom rejected it; its console message says where); "
-                    "expected a <robot> whose links and joints form one tree" +
-                    (is_xacro ? " (this is a xacro file: expand it with xacro first)" : ""));
+                    ": not a valid URDF (urdfdom rejected it; its error line above, the one not "
+                    "naming urdfdom's own source, names the element); expected a <robot> whose "
+                    "links and joints form one tree");
   }
   return model;
 }

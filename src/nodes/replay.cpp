@@ -340,7 +340,8 @@ int main(int argc, char** argv) {
     std::printf("%s", kUsage);
     return 0;
   }
-  std::string defaults_taken;  // the package's files standing in for options not given
+  // The package's files standing in for options not given: flag, file.
+  std::vector<std::pair<std::string, std::string>> defaults_taken;
   try {
     if (options.urdf.empty() || options.scene.empty() || options.config.empty()) {
       const std::string package = ros::package::getPath("arm_collision_monitor");
@@ -352,7 +353,7 @@ int main(int argc, char** argv) {
       auto take = [&](std::string* file, const char* flag, const char* default_file) {
         if (!file->empty()) return;
         *file = package + default_file;
-        defaults_taken += std::string(defaults_taken.empty() ? "" : ", ") + flag + " " + *file;
+        defaults_taken.emplace_back(flag, *file);
       };
       take(&options.urdf, "--urdf", "/urdf/workcell.urdf");
       take(&options.scene, "--scene", "/config/scene.yaml");
@@ -362,11 +363,15 @@ int main(int argc, char** argv) {
   } catch (const std::exception& e) {
     // LoadError names the file and element; rosbag errors name the bag.
     std::fprintf(stderr, "replay: %s\n", e.what());
-    // The bundled workcell's files with a robot of one's own fail on its names: say they were
-    // taken.
-    if (!defaults_taken.empty()) {
-      std::fprintf(stderr, "replay: (not given, so the bundled workcell's: %s)\n",
-                   defaults_taken.c_str());
+    // The bundled workcell's robot files with a robot of one's own fail on its names: say they
+    // were taken (the monitor options only where the error names them).
+    std::string taken;
+    for (const auto& [flag, file] : defaults_taken) {
+      if (flag == "--config" && std::string(e.what()).find(file) == std::string::npos) continue;
+      taken += (taken.empty() ? "" : ", ") + flag + " " + file;
+    }
+    if (!taken.empty()) {
+      std::fprintf(stderr, "replay: (not given, so the bundled workcell's: %s)\n", taken.c_str());
     }
     return 1;
   }

@@ -29,7 +29,8 @@ std::string ReadWholeFile(const std::string& path, const std::string& what) {
   std::ifstream in;
   if (std::filesystem::is_regular_file(path, error)) in.open(path, std::ios::binary);
   if (!in.is_open()) {
-    throw LoadError(path + ": cannot open the file (expected " + what + ")");
+    throw LoadError(path + ": cannot open the file (expected " + what + RelativePathNote(path) +
+                    ")");
   }
   std::ostringstream bytes;
   bytes << in.rdbuf();

@@ -163,6 +163,40 @@ UrdfLinkGeometry ReadUrdfLinkGeometry(const urdf::Link& link, const std::string&
   return geometry;
 }
 
+namespace {
+
+// The first element of `xml`'s subtree (itself included) named xacro:... or with an attribute
+// holding ${...}, as "<name>" or "<name attribute='value'>"; "" if none.
+std::string FirstXacroLeft(const tinyxml2::XMLElement* xml) {
+  const std::string name = xml->Name();
+  if (name.compare(0, 6, "xacro:") == 0) return "<" + name + ">";
+  for (const tinyxml2::XMLAttribute* a = xml->FirstAttribute(); a != nullptr; a = a->Next()) {
+    if (std::string(a->Value()).find("${") != std::string::npos) {
+      return "<" + name + " " + a->Name() + "='" + a->Value() + "'>";
+    }
+  }
+  for (const tinyxml2::XMLElement* child = xml->FirstChildElement(); child != nullptr;
+       child = child->NextSiblingElement()) {
+    const std::string found = FirstXacroLeft(child);
+    if (!found.empty()) return found;
+  }
+  return "";
+}
+
+}  // namespace
+
+void CheckNoXacroLeft(const std::string& urdf_xml, const std::string& urdf_path) {
+  tinyxml2::XMLDocument doc;
+  if (doc.Parse(urdf_xml.c_str(), urdf_xml.size()) != tinyxml2::XML_SUCCESS) return;  // urdfdom's
+  if (doc.RootElement() == nullptr) return;
+  const std::string found = FirstXacroLeft(doc.RootElement());
+  if (!found.empty()) {
+    throw LoadError(urdf_path + ": " + found +
+                    ": xacro left in the file (expected a plain URDF: expand it with xacro "
+                    "first, e.g. rosrun xacro xacro robot.urdf.xacro > robot.urdf)");
+  }
+}
+
 void CheckEveryCollisionRead(const std::string& urdf_xml, const urdf::ModelInterface& model,
                              const std::string& urdf_path) {
   tinyxml2::XMLDocument doc;

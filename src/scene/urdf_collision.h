@@ -37,6 +37,11 @@ struct UrdfLinkGeometry {
 UrdfLinkGeometry ReadUrdfLinkGeometry(const urdf::Link& link, const std::string& urdf_path,
                                       CylinderModel cylinder_model, MeshFitter* meshes);
 
+/// Fails when the URDF text `urdf_xml` still holds xacro (an element xacro:..., or an attribute
+/// value with ${...}), which urdfdom would partly ignore: throws LoadError naming `urdf_path` and
+/// the first such element. An expanded file's xmlns:xacro attribute on <robot> is fine.
+void CheckNoXacroLeft(const std::string& urdf_xml, const std::string& urdf_path);
+
 /// Fails unless urdfdom kept every <collision> of every link of the URDF text `urdf_xml`:
 /// urdfdom drops an element it cannot parse (a mesh scale that is not 3 numbers, say) with
 /// only a console message, which would leave a link silently unchecked. Throws LoadError naming

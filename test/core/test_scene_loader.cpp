@@ -2,6 +2,8 @@
 // kind of bad input, each rejected with a message naming the file and the element.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include <fstream>
 #include <limits>
 #include <string>
@@ -381,6 +383,40 @@ TEST(SceneLoader, MissingFilesAreRejected) {
                   {"no_such_scene.yaml", "cannot open"});
   ExpectLoadError([&] { LoadWorkcell(kData + "no_such.urdf", kScene); },
                   {"no_such.urdf", "cannot open"});
+  // A relative path says where it was looked for (roslaunch runs nodes in ROS_HOME).
+  const std::string cwd = std::filesystem::current_path().string();
+  ExpectLoadError([&] { LoadWorkcell("no_such_relative.urdf", kScene); },
+                  {"no_such_relative.urdf", "working directory '" + cwd + "'", "ROS_HOME"});
+  ExpectLoadError([&] { LoadWorkcell(kUrdf, "no_such_relative.yaml"); },
+                  {"no_such_relative.yaml", "working directory '" + cwd + "'"});
+}
+
+// A file with xacro left in it (a macro, a ${...}) is refused naming the element, before
+// urdfdom, which ignores what it does not know; an expanded one keeping xacro's namespace
+// attribute on <robot> gets urdfdom's verdict without the hint.
+TEST(SceneLoader, XacroHintOnlyForUnexpandedXacro) {
+  const std::string robot = "<robot name='r' xmlns:xacro='http://www.ros.org/wiki/xacro'>";
+  const std::string expanded = WriteTempFile(
+      "expanded.urdf", robot + "<link name='a'/><joint name='j' type='fixed'><parent link='a'/>"
+                               "<child link='b'/></joint></robot>");
+  try {
+    LoadWorkcell(expanded, kScene);
+    ADD_FAILURE() << "a joint to a missing link loaded";
+  } catch (const LoadError& e) {
+    EXPECT_NE(std::string(e.what()).find("not a valid URDF"), std::string::npos) << e.what();
+    EXPECT_EQ(std::string(e.what()).find("xacro"), std::string::npos) << e.what();
+  }
+  const std::string unexpanded = WriteTempFile(
+      "unexpanded.urdf", robot + "<xacro:property name='r' value='0.1'/><link name='a'><collision>"
+                                 "<geometry><sphere radius='${r}'/></geometry></collision></link>"
+                                 "</robot>");
+  ExpectLoadError([&] { LoadWorkcell(unexpanded, kScene); },
+                  {"unexpanded.urdf", "<xacro:property>", "expand it with xacro first"});
+  const std::string substituted = WriteTempFile(
+      "substituted.urdf", robot + "<link name='a'><collision><geometry><sphere radius='${r}'/>"
+                                  "</geometry></collision></link></robot>");
+  ExpectLoadError([&] { LoadWorkcell(substituted, kScene); },
+                  {"substituted.urdf", "<sphere radius='${r}'>", "expand it with xacro first"});
 }
 
 TEST(SceneLoader, MalformedFilesAreRejected) {

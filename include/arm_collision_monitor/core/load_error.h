@@ -1,7 +1,10 @@
 // The start-up error tier: user input (URDF, scene file, options) that cannot be used.
 #pragma once
 
+#include <filesystem>
 #include <stdexcept>
+#include <string>
+#include <system_error>
 
 namespace arm_collision_monitor {
 
@@ -11,5 +14,20 @@ class LoadError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+/// For a file that cannot be opened: where a relative `path` was looked for (roslaunch starts a
+/// node in ROS_HOME, not in the user's directory), "" for an absolute path or a URL.
+inline std::string RelativePathNote(const std::string& path) {
+  if (path.empty() || path.find("://") != std::string::npos ||
+      std::filesystem::path(path).is_absolute()) {
+    return "";
+  }
+  std::error_code error;
+  const std::filesystem::path cwd = std::filesystem::current_path(error);
+  return "; the path is relative, taken from the working directory '" +
+         (error ? std::string("?") : cwd.string()) +
+         "' (roslaunch starts nodes in ROS_HOME: give launch arguments absolute paths or "
+         "$(find package)/...)";
+}
 
 }  // namespace arm_collision_monitor
