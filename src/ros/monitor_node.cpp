@@ -273,8 +273,9 @@ void MonitorNode::RunCycle(std::chrono::steady_clock::time_point start) {
     const std::string refusal =
         cycle.input == InputStatus::kOk ? std::string() : monitor_->DescribeRefusal(input_->q());
     if (!refusal.empty()) {
-      ROS_WARN_THROTTLE(1.0, "arm_collision_monitor: the monitor refused the joint state: %s",
-                        refusal.c_str());
+      ROS_WARN_THROTTLE(1.0, "arm_collision_monitor: refused a JointState (%s: %s), %lu so far",
+                        SafetyStatusName(ToSafetyStatus(cycle.input)), refusal.c_str(),
+                        static_cast<unsigned long>(RefusedInputs()));
     }
     policy_.OnCycleReport(cycle, refusal, primitives_, *input_, now.toSec());
   }

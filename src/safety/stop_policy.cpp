@@ -118,20 +118,29 @@ void StopPolicy::OnCycleReport(const CycleReport& report, const std::string& ref
           report.step_motion_m);
   } else if (!report.warnings.empty()) {
     const Warning& w = report.warnings.front();
-    Raise(Rank::kWarning, SafetyStatus::kOk, "%zu warning(s), e.g. %s - %s at %.3f m",
-          report.warnings.size(), primitives[w.a].name.c_str(), primitives[w.b].name.c_str(),
-          w.distance_m);
+    Raise(Rank::kWarning, SafetyStatus::kOk,
+          "%zu warning(s), e.g. %s - %s at %.4f m (threshold %.4f m)", report.warnings.size(), primitives[w.a].name.c_str(), primitives[w.b].name.c_str(),
+          w.distance_m, w.threshold_m);
   }
 }
 
 void StopPolicy::EndCycle(double now_s) {
   if (rank_ != Rank::kNone) {
     stop_ = true;
+    is_held_ = false;
     reason_.assign(condition_);
     hold_until_s_ = now_s + stop_hold_s_;
   } else if (stop_ && now_s >= hold_until_s_) {
     stop_ = false;
     reason_.clear();
+  } else if (stop_ && !is_held_ && !reason_.empty()) {
+    // The reason's own text stays first (a reader may match its start), within the capacity.
+    char text[kReasonCapacity];
+    std::snprintf(text, sizeof(text),
+                  "%s (no longer seen; the stop is held for stop_hold_s, %g s)", reason_.c_str(),
+                  stop_hold_s_);
+    reason_.assign(text);
+    is_held_ = true;
   }
 }
 

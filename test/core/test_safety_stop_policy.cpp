@@ -160,12 +160,19 @@ TEST_F(StopPolicyTest, WarningStopsAndClearsAfterTheHold) {
   Cycle(2.0, WarningReport());
   EXPECT_TRUE(policy_.stop());
   EXPECT_EQ(policy_.status(), SafetyStatus::kOk);
-  EXPECT_EQ(policy_.reason(), "1 warning(s), e.g. left_link3 - right_link4 at 0.012 m");
+  EXPECT_EQ(policy_.reason(), "1 warning(s), e.g. left_link3 - right_link4 at 0.0120 m (threshold 0.0610 m)");
   // A warning seen again renews the hold.
   Feed(2.125);
   Cycle(2.125, WarningReport());
   EXPECT_TRUE(policy_.stop());
-  EXPECT_EQ(ClearedAt(2.125 + kStep_s), 2.125 + kHold_s);
+  // Gone at the next cycle: the stop is held, and its reason says so, the condition first.
+  Feed(2.25);
+  Cycle(2.25, CleanReport());
+  ASSERT_TRUE(policy_.stop());
+  EXPECT_EQ(policy_.reason(),
+            "1 warning(s), e.g. left_link3 - right_link4 at 0.0120 m (threshold 0.0610 m) (no "
+            "longer seen; the stop is held for stop_hold_s, 0.25 s)");
+  EXPECT_EQ(ClearedAt(2.25 + kStep_s), 2.125 + kHold_s);
 }
 
 TEST_F(StopPolicyTest, InputJumpStopsUntilANormalStepAndOutranksAWarning) {
@@ -180,7 +187,7 @@ TEST_F(StopPolicyTest, InputJumpStopsUntilANormalStepAndOutranksAWarning) {
   // The next normal step with a warning: the warning is the reason now.
   Feed(2.125);
   Cycle(2.125, WarningReport());
-  EXPECT_EQ(policy_.reason(), "1 warning(s), e.g. left_link3 - right_link4 at 0.012 m");
+  EXPECT_EQ(policy_.reason(), "1 warning(s), e.g. left_link3 - right_link4 at 0.0120 m (threshold 0.0610 m)");
   EXPECT_EQ(ClearedAt(2.125 + kStep_s), 2.125 + kHold_s);
 }
 

@@ -68,7 +68,8 @@ class StopPolicy {
   StaleCheck CheckStaleness(const JointMerger& input, double now_s);
 
   bool stop() const { return stop_; }
-  /// The condition that requested the current stop ("" when stop() is false).
+  /// The condition that requested the current stop ("" when stop() is false); once it is no
+  /// longer seen and the stop is only held, it says so.
   const std::string& reason() const { return reason_; }
   /// This cycle's input verdict (kStale after a stale CheckStaleness()).
   SafetyStatus status() const { return status_; }
@@ -87,6 +88,7 @@ class StopPolicy {
   double last_now_s_ = 0.0;  ///< the latest ObserveClock() reading
   bool stop_ = true;
   bool is_stale_episode_ = false;
+  bool is_held_ = false;  ///< the stop's condition is gone, the hold keeps it
   std::string reason_;
   std::string condition_;  ///< this cycle's condition ("" none)
   Rank rank_ = Rank::kNone;
