@@ -154,7 +154,8 @@ Input ReadCsv(const std::string& path, const Workcell& workcell) {
   }
   Input result;
   result.q =
-      JointCsvInModelOrder(csv, workcell.joint_names, workcell.joint_defaults, mimic_joints);
+      JointCsvInModelOrder(csv, workcell.joint_names, workcell.joint_defaults, mimic_joints,
+                           &result.ignored_columns);
   for (const double t : csv.time_s) result.time_s.push_back(t - csv.time_s.front());
   result.messages = result.q.size();
   return result;
@@ -246,14 +247,19 @@ class PeerCycleChecker : public Checker {
   }
   void Run(const Eigen::VectorXd& q, CycleResult* result) override {
     const Workcell& wc = *workcell_;
+    result->warnings.clear();
+    result->refused = !q.allFinite();  // the Monitor refuses it too (the node, its message)
+    if (result->refused) {
+      result->refusal = "a position is not finite";
+      result->time_s = 0.0;
+      return;
+    }
     const auto start = std::chrono::steady_clock::now();
     shapes_.Evaluate(q);
     for (const PrimitiveId id : shapes_.moving()) peer_->SetShape(id, shapes_.shape_W(id));
     peer_->FindWarnings(&pairs_);
     result->time_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    result->refused = false;
-    result->warnings.clear();
     for (const CandidatePair& pair : pairs_) {
       const DistanceResult d = ShapeDistance(shapes_.shape_W(pair.a), shapes_.shape_W(pair.b));
       Warning w;

@@ -265,6 +265,15 @@ void PrintText(const Options& options, const Workcell& wc, const Input& input,
     }
     std::printf("\n");
   }
+  if (!input.ignored_columns.empty()) {
+    std::string names;
+    for (const std::string& name : input.ignored_columns) {
+      names += (names.empty() ? "'" : ", '") + name + "'";
+    }
+    std::printf("input: %zu column%s ignored, not joints of the model: %s\n",
+                input.ignored_columns.size(), input.ignored_columns.size() == 1 ? "" : "s",
+                names.c_str());
+  }
   if (input.position_less > 0) {
     std::printf("input: %llu messages named joints without positions (ignored)\n",
                 static_cast<unsigned long long>(input.position_less));

@@ -39,6 +39,7 @@ struct Input {
   std::uint64_t incomplete_cycles = 0;           ///< before every joint was received
   std::uint64_t superseded_points = 0;  ///< planned points (partly) replaced by a later plan
   std::uint64_t position_less = 0;      ///< messages and points naming joints without positions
+  std::vector<std::string> ignored_columns;  ///< a CSV's columns that are no model joints
 };
 
 // One cycle's outcome: warning pairs with their distances at the cycle's q, those the swept

@@ -102,9 +102,14 @@ JointCsv ReadJointCsv(const std::string& path) {
       char* end = nullptr;
       errno = 0;
       const double value = std::strtod(fields[c].c_str(), &end);
-      if (fields[c].empty() || *end != '\0' || errno == ERANGE || !std::isfinite(value)) {
+      // A position may be nan or inf, as a driver may publish: the monitor refuses that cycle
+      // (as the node refuses such a message); the time must be a finite number.
+      const bool is_time = has_time && c == 0;
+      const bool is_number = !fields[c].empty() && *end == '\0' &&
+                             (std::isfinite(value) ? errno != ERANGE : !is_time);
+      if (!is_number) {
         throw LoadError(Where(path, line_number) + "column '" + column + "': '" + fields[c] +
-                        "' is not a finite number");
+                        (is_time ? "' is not a finite number" : "' is not a number"));
       }
       if (has_time && c == 0) {
         time_s = value;
@@ -131,7 +136,7 @@ JointCsv ReadJointCsv(const std::string& path) {
 std::vector<Eigen::VectorXd> JointCsvInModelOrder(
     const JointCsv& csv, const std::vector<std::string>& model_joint_names,
     const std::vector<std::pair<int, double>>& defaults,
-    const std::vector<std::string>& derived_joint_names) {
+    const std::vector<std::string>& derived_joint_names, std::vector<std::string>* ignored) {
   std::unordered_map<std::string, int> model_index;
   for (std::size_t j = 0; j < model_joint_names.size(); ++j) {
     model_index.emplace(model_joint_names[j], static_cast<int>(j));
@@ -140,12 +145,14 @@ std::vector<Eigen::VectorXd> JointCsvInModelOrder(
   for (std::size_t c = 0; c < csv.joint_names.size(); ++c) {
     const auto it = model_index.find(csv.joint_names[c]);
     if (it == model_index.end()) {
+      // A mimic joint's position follows from the others; any other name is no joint of the
+      // model (a gripper the driver publishes beside the arms): ignored, as the node ignores it.
       if (std::find(derived_joint_names.begin(), derived_joint_names.end(),
-                    csv.joint_names[c]) != derived_joint_names.end()) {
-        continue;  // a mimic joint: its position follows from the others
+                    csv.joint_names[c]) == derived_joint_names.end() &&
+          ignored != nullptr) {
+        ignored->push_back(csv.joint_names[c]);
       }
-      throw LoadError(csv.path + ": header: '" + csv.joint_names[c] +
-                      "' is not a joint of the model");
+      continue;
     }
     column_of[it->second] = static_cast<int>(c);
   }
