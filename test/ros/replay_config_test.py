@@ -171,8 +171,9 @@ class ReplayConfigTest(unittest.TestCase):
         self.assertTrue(inside, text)
         for line in inside:
             self.assertTrue(line.endswith('m)'), line)
-        self.assertIn('swept check: 2 cycles warn between samples (0 only where the step starts '
-                      'within, 0 only within swept_resolution_m)', text)
+        self.assertIn('swept check: 2 cycles warn between samples: 2 with a pair within its '
+                      'threshold strictly between them, 0 only where the step starts within, 0 '
+                      'only within swept_resolution_m, 0 with both of those; ', text)
 
     def test_an_error_says_which_files_were_the_bundled_defaults(self):
         package = rospkg.RosPack().get_path(PKG)

@@ -125,15 +125,15 @@ void PrintBetweenSamples(const Workcell& wc, const Input& input,
                                 " (above the threshold here; not certified clear to "
                                 "swept_resolution_m near it)"};
   int lines = 0;
-  // Cycles whose between-samples warnings are all of one kind other than strictly between.
-  std::uint64_t only_start = 0, only_resolution = 0;
+  // Cycles by their between-samples warnings: any contact strictly between the samples, else
+  // only of one other kind, else of both.
+  std::uint64_t strictly = 0, only_start = 0, only_resolution = 0, both = 0;
   for (std::size_t k = 0; k < cycles.size(); ++k) {
-    bool is_all_start = !cycles[k].between_samples.empty();
-    bool is_all_resolution = is_all_start;
+    if (cycles[k].between_samples.empty()) continue;
+    bool has_kind[3] = {false, false, false};
     for (const Warning& w : cycles[k].between_samples) {
       const BetweenKind kind = KindOf(w);
-      is_all_start &= kind == BetweenKind::kFromTheStart;
-      is_all_resolution &= kind == BetweenKind::kWithinResolution;
+      has_kind[static_cast<int>(kind)] = true;
       if (lines++ >= kMaxLines) continue;
       std::printf("cycle %zu (%.2f s), between samples at %.3f of the step: %s -- %s  %.4f m "
                   "(threshold %.4f m)%s\n",
@@ -141,14 +141,26 @@ void PrintBetweenSamples(const Workcell& wc, const Input& input,
                   wc.primitives[w.b].name.c_str(), w.distance_m, w.threshold_m,
                   kNotes[static_cast<int>(kind)]);
     }
-    only_start += is_all_start;
-    only_resolution += is_all_resolution;
+    const bool is_start = has_kind[static_cast<int>(BetweenKind::kFromTheStart)];
+    const bool is_resolution = has_kind[static_cast<int>(BetweenKind::kWithinResolution)];
+    if (has_kind[static_cast<int>(BetweenKind::kStrictlyBetween)]) {
+      ++strictly;
+    } else if (is_start && is_resolution) {
+      ++both;
+    } else {
+      only_start += is_start;
+      only_resolution += is_resolution;
+    }
   }
-  std::printf("swept check: %llu cycles warn between samples (%llu only where the step starts "
-              "within, %llu only within swept_resolution_m), %llu steps beyond max_step_m\n",
+  std::printf("swept check: %llu cycles warn between samples: %llu with a pair within its "
+              "threshold strictly between them, %llu only where the step starts within, %llu "
+              "only within swept_resolution_m, %llu with both of those; %llu steps beyond "
+              "max_step_m\n",
               static_cast<unsigned long long>(summary.between_cycles),
+              static_cast<unsigned long long>(strictly),
               static_cast<unsigned long long>(only_start),
               static_cast<unsigned long long>(only_resolution),
+              static_cast<unsigned long long>(both),
               static_cast<unsigned long long>(summary.jumped_cycles));
 }
 
