@@ -129,14 +129,33 @@ std::vector<std::string> SampledConfigurationWarnings(const Workcell& w) {
   return warnings;
 }
 
-// The start-up notice of a derived world cube, in the form world: takes.
+// The start-up notice of a derived world cube, in the form world: takes; a large one names the
+// primitive that reaches farthest from the origin in the home pose.
 std::string DerivedWorldNotice(const Workcell& w) {
   const Eigen::Vector3d center_W = 0.5 * (w.world_W.min_W + w.world_W.max_W);
+  const double edge_m = (w.world_W.max_W - w.world_W.min_W).maxCoeff();
   char text[200];
   std::snprintf(text, sizeof(text), "{center_m: [%.3f, %.3f, %.3f], edge_m: %.3f}", center_W.x(),
-                center_W.y(), center_W.z(), (w.world_W.max_W - w.world_W.min_W).maxCoeff());
-  return w.scene_path + ": world: not given; derived from the arms' reach envelopes and the " +
-         "objects: " + text;
+                center_W.y(), center_W.z(), edge_m);
+  std::string notice = w.scene_path +
+                       ": world: not given; derived from the arms' reach envelopes and the " +
+                       "objects: " + text;
+  if (!(edge_m > kLargeDerivedWorldEdge_m)) return notice;
+  const WorkcellShapes shapes(w, WorkcellShapes::Models::kAll);  // the home pose
+  double farthest_m = 0.0;
+  PrimitiveId farthest = 0;
+  for (PrimitiveId id = 0; id < w.primitives.size(); ++id) {
+    const Aabb box_W = ComputeAabb(shapes.shape_W(id));
+    const double reach_m = box_W.min_W.cwiseAbs().cwiseMax(box_W.max_W.cwiseAbs()).norm();
+    if (reach_m > farthest_m) {
+      farthest_m = reach_m;
+      farthest = id;
+    }
+  }
+  std::snprintf(text, sizeof(text), "%.3f", farthest_m);
+  return notice + " (over " + std::to_string(static_cast<int>(kLargeDerivedWorldEdge_m)) +
+         " m: '" + w.primitives[farthest].name + "' reaches " + text +
+         " m from the origin in the home pose; a unit or origin error in its link or object?)";
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include <regex>
 #include <string>
 
+#include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/scene/workcell_reach.h"
 #include "arm_collision_monitor/scene/workcell_shapes.h"
 #include "load_error_expect.h"
@@ -123,6 +124,24 @@ TEST(SceneWorldCube, BundledSceneWithoutWorldContainsTheStatedCubesContents) {
   std::printf("derived world cube: edge %.3f m (stated %.3f m), centre %s\n", edge_m,
               (stated.world_W.max_W - stated.world_W.min_W).x(),
               ::testing::PrintToString(0.5 * (w.world_W.min_W + w.world_W.max_W)).c_str());
+}
+
+// A derived cube over kLargeDerivedWorldEdge_m names the primitive that reaches farthest (here an
+// object put 80 m away, as a link in millimetres or with a stray origin would be); the bundled
+// workcell's cube names none.
+TEST(SceneWorldCube, LargeDerivedWorldNamesItsFarthestPrimitive) {
+  const Workcell plain = LoadWorkcell(kUrdf, WithoutWorld("plain_no_world.yaml", kScene));
+  EXPECT_TRUE(HasNotice(plain, "world: not given; derived"));
+  EXPECT_FALSE(HasNotice(plain, "from the origin in the home pose"));
+  std::string text = ReadText(WithoutWorld("far_no_world.yaml", kScene));
+  const std::string objects = "\nobjects:\n";
+  ASSERT_NE(text.find(objects), std::string::npos);
+  text.replace(text.find(objects), objects.size(),
+               objects + "  - {name: far_crate, size_m: [1, 1, 1], pose: {xyz_m: [80, 0, 0.5]}}\n");
+  const Workcell w = LoadWorkcell(kUrdf, WriteTempFile("far.yaml", text));
+  EXPECT_GT((w.world_W.max_W - w.world_W.min_W).x(), kLargeDerivedWorldEdge_m);
+  EXPECT_TRUE(HasNotice(w, "'far_crate' reaches 80.5"))
+      << ::testing::PrintToString(w.notices);
 }
 
 TEST(SceneWorldCube, ExplicitWorldWins) {

@@ -208,6 +208,11 @@ inline constexpr double kLiveObjectRotationTolerance = 1e-6;
 /// room for what the broad phase grows boxes by (index slack, speed-scaled tolerance: a box
 /// beyond the cube is still checked, only in the border cells). Typical 0.10.
 inline constexpr double kDerivedWorldMargin_m = 0.10;
+/// A derived world cube with a longer edge (m) than this names its farthest primitive in its
+/// start-up notice: a workcell of arms spans a few metres (the seed's 6.35 m), so such a cube
+/// most likely comes from a unit or origin error in one link or object (a YuMi URDF's stand
+/// has a collision origin 165 m away).
+inline constexpr double kLargeDerivedWorldEdge_m = 20.0;
 
 /// Default index slack, m (MonitorOptions::index_slack_m): a moving primitive is re-indexed
 /// once a point of it has moved this far since it was last indexed. Larger means fewer index
