@@ -67,10 +67,12 @@ void Monitor::Impl::CheckStepTolerance() {
   double worst_gap_m = 0.0;
   PrimitiveId worst = 0;
   double worst_urdf_m = 0.0;
+  int below = 0;  // moving primitives whose tolerance is below their motion
   for (PrimitiveId id = 0; id < model.primitive_count; ++id) {
     if (!is_moving[id] || motion.lever_count(id) == 0) continue;
     const double urdf_step_m = motion.ComputeBound_m(id);
     const double gap_m = std::max(speed_step_m, urdf_step_m) - tol_base[id];
+    below += gap_m > 0.0;
     if (gap_m > worst_gap_m) {
       worst_gap_m = gap_m;
       worst = id;
@@ -81,7 +83,9 @@ void Monitor::Impl::CheckStepTolerance() {
   std::ostringstream msg;
   msg << "the tolerance of primitive '" << model.workcell->primitives[worst].name << "' ("
       << tol_base[worst] << " m) is below its per-cycle motion: max_speed_mps * cycle_period_s = "
-      << speed_step_m << " m, the URDF velocity limits allow " << worst_urdf_m << " m";
+      << speed_step_m << " m, the URDF velocity limits allow " << worst_urdf_m
+      << " m (the largest gap of the " << below << " moving primitive" << (below == 1 ? "" : "s")
+      << " whose tolerance is below their motion)";
   if (!options.swept_check) {
     throw LoadError("monitor options: swept_check is false and " + msg.str() +
                     ": a contact could pass between two cycles (raise tolerance_m or switch "

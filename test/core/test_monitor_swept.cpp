@@ -6,6 +6,7 @@
 // max_step_m, a long step far from everything at both ends (no pair bisected), the start-up
 // tolerance check, and how rarely the path is needed.
 #include <array>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <regex>
@@ -574,6 +575,21 @@ TEST(MonitorSwept, StartupToleranceCheck) {
     ASSERT_EQ(monitor.startup_notices().size(), 1u);
     EXPECT_NE(monitor.startup_notices()[0].find("swept check covers"), std::string::npos)
         << monitor.startup_notices()[0];
+    // The notice counts the primitives in the same case: some of both arms' (each arm
+    // primitive's 0.0305 m tolerance equals max_speed_mps * cycle_period_s, and the URDF
+    // velocity limits allow more to those far from the base).
+    int arm_primitives = 0;
+    for (const PrimitiveSpec& p : wc->primitives) arm_primitives += !p.group.empty();
+    const std::string& notice = monitor.startup_notices()[0];
+    const std::string count_at = "(the largest gap of the ";
+    const std::size_t at = notice.find(count_at);
+    ASSERT_NE(at, std::string::npos) << notice;
+    const int below = std::atoi(notice.c_str() + at + count_at.size());
+    EXPECT_GE(below, 2) << notice;
+    EXPECT_LE(below, arm_primitives) << notice;
+    EXPECT_NE(notice.find(std::to_string(below) + " moving primitives whose tolerance is below"),
+              std::string::npos)
+        << notice;
   }
   options.swept_check = false;
   try {
