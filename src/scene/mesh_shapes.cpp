@@ -4,6 +4,7 @@
 #include <sstream>
 #include <variant>
 
+#include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/core/load_error.h"
 #include "mesh_file.h"
 
@@ -33,6 +34,9 @@ std::string ReportLine(const std::string& where, const MeshFitOptions& options,
   if (fit.is_mesh_closed) {
     line.precision(3);
     line << "fitted/mesh volume " << fit.excess_ratio;
+    if (options.kind == MeshFitKind::kOneCapsule && fit.excess_ratio >= kLooseMeshFitRatio) {
+      line << " (a loose capsule: mesh_fit: tighter would give a boxy part its box)";
+    }
   } else {
     line << "open mesh: volume undefined";
   }

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 
+#include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/scene/workcell.h"
 #include "load_error_expect.h"
 #include "mesh_file_writers.h"
@@ -183,6 +184,7 @@ TEST(SceneMeshLinks, MeshFitKindsEncloseTheNonConvexShape) {
       const std::string fitted = std::holds_alternative<Box>(shapes[0]) ? "1 box" : "1 capsule";
       EXPECT_NE(w.notices[0].find("mesh fit: " + fitted + " (tighter),"), std::string::npos)
           << w.notices[0];
+      EXPECT_EQ(w.notices[0].find("loose capsule"), std::string::npos) << w.notices[0];
     } else {
       ASSERT_EQ(shapes.size(), 3u);
       for (int k = 0; k < 3; ++k) EXPECT_GE(w.FindPrimitive("link0/" + std::to_string(k)), 0);
@@ -215,6 +217,12 @@ TEST(SceneMeshLinks, ReportHasOneLinePerMeshWithTheExcessVolume) {
   expected.precision(3);
   expected << "fitted/mesh volume " << ratio;
   EXPECT_NE(w.notices[0].find(expected.str()), std::string::npos) << w.notices[0];
+  // Over kLooseMeshFitRatio, the notice points at mesh_fit: tighter.
+  ASSERT_GE(ratio, kLooseMeshFitRatio);
+  EXPECT_NE(w.notices[0].find("(a loose capsule: mesh_fit: tighter would give a boxy part its "
+                              "box)"),
+            std::string::npos)
+      << w.notices[0];
   EXPECT_NE(w.notices[1].find("open mesh: volume undefined"), std::string::npos) << w.notices[1];
   EXPECT_NE(w.notices[1].find("link 'link1'"), std::string::npos) << w.notices[1];
 }

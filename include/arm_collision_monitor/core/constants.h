@@ -288,6 +288,10 @@ inline constexpr double kMeshMaxCoordinate_m = 1e4;
 /// Most capsules a chain fit may ask for (dimensionless; typical 64): each costs a primitive in
 /// every cycle, and a link needing more is better modelled by hand.
 inline constexpr int kMeshFitMaxCapsules = 64;
+/// A mesh's default one-capsule fit at least this many times the mesh's volume is reported with
+/// a pointer to mesh_fit: tighter: a boxy part (a torso, a base, a camera) gets 2 to 4.5, where
+/// its box would be near 1; a round link's capsule stays well below.
+inline constexpr double kLooseMeshFitRatio = 2.0;
 /// Compass search of the fit's axis (and box frame): first step and smallest step, rad. 0.1 rad
 /// reaches past the principal axes' typical error on near-symmetric meshes; below 1e-3 rad the
 /// volume changes by less than ~1e-3 relative, too little to matter.
