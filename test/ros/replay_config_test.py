@@ -148,6 +148,36 @@ class ReplayConfigTest(unittest.TestCase):
                       "each;", text)
         self.assertNotIn('no warning', text)
 
+    def test_a_csv_is_read_as_the_node_reads_joint_states(self):
+        # A column of no model joint (a gripper the driver publishes) is ignored and listed; a
+        # nan position is a refused cycle, named, not the end of the run; the peers refuse it
+        # too.
+        directory = tempfile.mkdtemp(prefix='acm_csv_as_node_')
+        csv_path = os.path.join(directory, 'driver.csv')
+        with open(csv_path, 'w') as f:
+            f.write(','.join(LEFT_JOINTS + ['gripper_x'] + RIGHT_JOINTS) + '\n')
+            for k in range(5):
+                row = [str(0.01 * k)] * 15
+                if k == 3:
+                    row[2] = 'nan'
+                f.write(','.join(row) + '\n')
+        methods = ['auto']
+        if 'fcl' in rosrun('replay', '--help').stdout:
+            methods += ['fcl', 'bullet']
+        for method in methods:
+            result = rosrun('replay', '--json', '--method', method, '--scene', self.bundled_scene,
+                            csv_path)
+            self.assertEqual(result.returncode, 0, result.stderr)
+            report = json.loads(result.stdout)
+            self.assertEqual(report['ignored_columns'], ['gripper_x'], method)
+            self.assertEqual(report['cycles'], 5, method)
+            self.assertEqual(report['refused_cycles'], 1, method)
+            self.assertEqual(report['first_refusal']['cycle'], 3, method)
+            if method == 'auto':
+                self.assertIn("joint 'left_joint3' at nan", report['first_refusal']['reason'])
+        text = rosrun('replay', '--scene', self.bundled_scene, csv_path).stdout
+        self.assertIn("input: 1 column ignored, not joints of the model: 'gripper_x'\n", text)
+
     def test_between_samples_lines_say_what_they_are(self):
         # Home, both arms swung into each other in one step, home again (20 Hz).
         directory = tempfile.mkdtemp(prefix='acm_between_')

@@ -67,6 +67,11 @@ void PrintJsonCounts(const Options& options, const Input& input, std::size_t cyc
   std::printf("},\n  \"superseded_points\": %llu,\n  \"position_less_messages\": %llu,\n",
               static_cast<unsigned long long>(input.superseded_points),
               static_cast<unsigned long long>(input.position_less));
+  std::printf("  \"ignored_columns\": [");
+  for (std::size_t i = 0; i < input.ignored_columns.size(); ++i) {
+    std::printf("%s%s", i > 0 ? ", " : "", JsonString(input.ignored_columns[i]).c_str());
+  }
+  std::printf("],\n");
   std::printf("  \"incomplete_cycles\": %llu,\n  \"cycles\": %zu,\n"
               "  \"refused_cycles\": %llu,\n  \"warning_cycles\": %llu,\n"
               "  \"between_samples_cycles\": %llu,\n  \"jumped_cycles\": %llu,\n",
