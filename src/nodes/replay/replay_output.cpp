@@ -169,6 +169,47 @@ void PrintBetweenSamples(const Workcell& wc, const Input& input,
               static_cast<unsigned long long>(summary.jumped_cycles));
 }
 
+// The "input:" lines: what the input had that no cycle checks (refused messages and cycles,
+// ignored columns, position-less messages, superseded planned points).
+void PrintInputLines(const Input& input, const std::vector<CycleResult>& cycles,
+                     const RunSummary& summary) {
+  if (summary.refused_messages > 0 || input.incomplete_cycles > 0 || summary.refused_cycles > 0) {
+    std::printf("input: %llu messages refused",
+                static_cast<unsigned long long>(summary.refused_messages));
+    for (const auto& [status, count] : input.refused) {
+      std::printf(" (%s: %llu)", status.c_str(), static_cast<unsigned long long>(count));
+    }
+    std::printf(", %llu cycles before every joint was received, %llu cycles refused by the "
+                "monitor",
+                static_cast<unsigned long long>(input.incomplete_cycles),
+                static_cast<unsigned long long>(summary.refused_cycles));
+    if (summary.first_refused >= 0) {
+      std::printf(" (the first, cycle %d at %.3f s: %s)", summary.first_refused,
+                  input.time_s[summary.first_refused],
+                  cycles[summary.first_refused].refusal.c_str());
+    }
+    std::printf("\n");
+  }
+  if (!input.ignored_columns.empty()) {
+    std::string names;
+    for (const std::string& name : input.ignored_columns) {
+      names += (names.empty() ? "'" : ", '") + name + "'";
+    }
+    std::printf("input: %zu column%s ignored, not joints of the model: %s\n",
+                input.ignored_columns.size(), input.ignored_columns.size() == 1 ? "" : "s",
+                names.c_str());
+  }
+  if (input.position_less > 0) {
+    std::printf("input: %llu messages named joints without positions (ignored)\n",
+                static_cast<unsigned long long>(input.position_less));
+  }
+  if (input.superseded_points > 0) {
+    std::printf("input: %llu planned points superseded (for some or all of their joints) by a "
+                "later plan\n",
+                static_cast<unsigned long long>(input.superseded_points));
+  }
+}
+
 }  // namespace
 
 RunSummary Summarize(const Input& input, const std::vector<CycleResult>& cycles,
@@ -265,41 +306,7 @@ void PrintText(const Options& options, const Workcell& wc, const Input& input,
     std::printf(", grasp target %s:%s", t.link.c_str(), t.object.c_str());
   }
   std::printf("\n");
-  if (summary.refused_messages > 0 || input.incomplete_cycles > 0 || summary.refused_cycles > 0) {
-    std::printf("input: %llu messages refused",
-                static_cast<unsigned long long>(summary.refused_messages));
-    for (const auto& [status, count] : input.refused) {
-      std::printf(" (%s: %llu)", status.c_str(), static_cast<unsigned long long>(count));
-    }
-    std::printf(", %llu cycles before every joint was received, %llu cycles refused by the "
-                "monitor",
-                static_cast<unsigned long long>(input.incomplete_cycles),
-                static_cast<unsigned long long>(summary.refused_cycles));
-    if (summary.first_refused >= 0) {
-      std::printf(" (the first, cycle %d at %.3f s: %s)", summary.first_refused,
-                  input.time_s[summary.first_refused],
-                  cycles[summary.first_refused].refusal.c_str());
-    }
-    std::printf("\n");
-  }
-  if (!input.ignored_columns.empty()) {
-    std::string names;
-    for (const std::string& name : input.ignored_columns) {
-      names += (names.empty() ? "'" : ", '") + name + "'";
-    }
-    std::printf("input: %zu column%s ignored, not joints of the model: %s\n",
-                input.ignored_columns.size(), input.ignored_columns.size() == 1 ? "" : "s",
-                names.c_str());
-  }
-  if (input.position_less > 0) {
-    std::printf("input: %llu messages named joints without positions (ignored)\n",
-                static_cast<unsigned long long>(input.position_less));
-  }
-  if (input.superseded_points > 0) {
-    std::printf("input: %llu planned points superseded (for some or all of their joints) by a "
-                "later plan\n",
-                static_cast<unsigned long long>(input.superseded_points));
-  }
+  PrintInputLines(input, cycles, summary);
   PrintWarningRuns(wc, input, cycles);
   if (is_swept) PrintBetweenSamples(wc, input, cycles, summary);
   // A refused cycle is not checked (the monitor asks a stop instead): the summary says how
