@@ -5,6 +5,8 @@
 #include <limits>
 #include <sstream>
 
+#include "arm_collision_monitor/core/load_error.h"
+
 namespace arm_collision_monitor {
 namespace {
 
@@ -26,10 +28,8 @@ const char* JointDefaultsHint(std::size_t count) {
 }
 
 std::string ModelJointsText(const std::vector<std::string>& names) {
-  std::string text =
-      names.size() == 1 ? "model joint" : std::to_string(names.size()) + " model joints:";
-  for (std::size_t i = 0; i < names.size(); ++i) text += (i ? ", '" : " '") + names[i] + "'";
-  return text;
+  return (names.size() == 1 ? "model joint " : std::to_string(names.size()) + " model joints: ") +
+         QuotedNames(names);
 }
 
 JointMerger::JointMerger(const std::vector<std::string>& joint_names, double input_timeout_s)

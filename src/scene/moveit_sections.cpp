@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "arm_collision_monitor/core/load_error.h"
 #include "arm_collision_monitor/scene/srdf_reader.h"
 
 namespace arm_collision_monitor {
@@ -188,12 +189,10 @@ std::vector<std::pair<PrimitiveId, PrimitiveId>> ResolveCollisionRules(
     }
   }
   if (!skipped.empty()) {
-    std::string list;
-    for (const std::string& name : skipped) list += (list.empty() ? "'" : ", '") + name + "'";
     workcell->warnings.push_back(
         source + ": skipped " + std::to_string(skipped.size()) +
         " name(s) that have no primitive in the workcell (links without collision geometry or "
-        "ignored under links:, or unknown names): " + list);
+        "ignored under links:, or unknown names): " + QuotedNames(skipped));
   }
   return pairs;
 }

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 #include <system_error>
+#include <vector>
 
 namespace arm_collision_monitor {
 
@@ -28,6 +29,13 @@ inline std::string RelativePathNote(const std::string& path) {
          (error ? std::string("?") : cwd.string()) +
          "' (roslaunch starts nodes in ROS_HOME: give launch arguments absolute paths or "
          "$(find package)/...)";
+}
+
+/// Names for a message, each quoted and comma-separated: "'a', 'b'".
+inline std::string QuotedNames(const std::vector<std::string>& names) {
+  std::string text;
+  for (const std::string& name : names) text += (text.empty() ? "'" : ", '") + name + "'";
+  return text;
 }
 
 }  // namespace arm_collision_monitor

@@ -7,6 +7,8 @@
 #include <string>
 #include <utility>
 
+#include "arm_collision_monitor/core/load_error.h"
+
 namespace arm_collision_monitor {
 namespace replay {
 namespace {
@@ -191,13 +193,9 @@ void PrintInputLines(const Input& input, const std::vector<CycleResult>& cycles,
     std::printf("\n");
   }
   if (!input.ignored_columns.empty()) {
-    std::string names;
-    for (const std::string& name : input.ignored_columns) {
-      names += (names.empty() ? "'" : ", '") + name + "'";
-    }
     std::printf("input: %zu column%s ignored, not joints of the model: %s\n",
                 input.ignored_columns.size(), input.ignored_columns.size() == 1 ? "" : "s",
-                names.c_str());
+                QuotedNames(input.ignored_columns).c_str());
   }
   if (input.position_less > 0) {
     std::printf("input: %llu messages named joints without positions (ignored)\n",
