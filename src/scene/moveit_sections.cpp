@@ -201,7 +201,14 @@ SrdfInput ReadSrdf(const YAML::Node& scene, const std::string& scene_path,
                    const std::string& urdf_robot_name, const ResourceFetcher& fetch,
                    Workcell* workcell) {
   SrdfInput input;
-  if (!scene["srdf"]) return input;
+  const char* const trust_key = "srdf_trust_never_between_arms";
+  const Where top{scene_path, ""};
+  yaml_fields::ReadIfPresent(scene, trust_key, top, yaml_fields::ReadBool,
+                             &input.is_never_between_arms_trusted);
+  if (!scene["srdf"]) {
+    if (scene[trust_key]) top.Child(trust_key).Fail(scene[trust_key], "given without srdf:");
+    return input;
+  }
   const Where where{scene_path, "srdf"};
   const NamedFile file = FetchNamedFile(scene["srdf"], where, fetch);
   input.path = file.url;
@@ -236,8 +243,30 @@ std::vector<std::pair<PrimitiveId, PrimitiveId>> SrdfPairs(const SrdfInput& inpu
                                                            Workcell* workcell) {
   if (input.path.empty()) return {};
   NamedCollisionRules rules;
+  // The arm of a link's primitives ("" for none or the environment).
+  auto arm_of = [&](const std::string& link) {
+    const std::vector<PrimitiveId> ids = ResolveNames(*workcell, link);
+    return ids.empty() ? std::string() : workcell->primitives[ids.front()].group;
+  };
+  std::vector<std::string> kept_checked;
   for (const SrdfLinkPair& pair : input.rules.disabled_pairs) {
+    if (!input.is_never_between_arms_trusted && pair.reason == "Never") {
+      const std::string arm1 = arm_of(pair.link1);
+      const std::string arm2 = arm_of(pair.link2);
+      if (!arm1.empty() && !arm2.empty() && arm1 != arm2) {
+        kept_checked.push_back(pair.link1 + "' and '" + pair.link2);
+        continue;
+      }
+    }
     rules.allowed_pairs.emplace_back(pair.link1, pair.link2);
+  }
+  if (!kept_checked.empty()) {
+    workcell->notices.push_back(
+        input.path + ": " + std::to_string(kept_checked.size()) +
+        " <disable_collisions> pair(s) of reason 'Never' between links of two arms stay checked "
+        "(the Setup Assistant's random samples never saw them touch, yet the arms can meet; "
+        "srdf_trust_never_between_arms: true excuses them, as MoveIt does): " +
+        QuotedNames(kept_checked));
   }
   for (const SrdfLinkPair& pair : input.rules.enabled_pairs) {
     rules.denied_pairs.emplace_back(pair.link1, pair.link2);

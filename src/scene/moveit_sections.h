@@ -52,17 +52,22 @@ struct SrdfInput {
   /// The SRDF's floating and planar virtual joints whose child is the URDF root link: the root
   /// stands in their parent frames where the planning scene's robot state puts it.
   std::vector<SrdfVirtualJoint> moving_root_joints;
+  /// srdf_trust_never_between_arms: its "Never" pairs of links on two arms are compatible too.
+  bool is_never_between_arms_trusted = false;
 };
 
-/// srdf: (optional): reads the SRDF (a notice when it names another robot than
-/// `urdf_robot_name`, or when a non-fixed virtual joint moves the root link).
+/// srdf: (optional) and srdf_trust_never_between_arms: reads the SRDF (a notice when it names
+/// another robot than `urdf_robot_name`, or when a non-fixed virtual joint moves the root link).
 SrdfInput ReadSrdf(const YAML::Node& scene, const std::string& scene_path,
                    const std::string& urdf_robot_name, const ResourceFetcher& fetch,
                    Workcell* workcell);
 
 /// The SRDF's <disable_collisions> as allowed pairs, <enable_collisions> as denied pairs,
 /// <disable_default_collisions> as default-allowed links, resolved in `workcell` (after every
-/// primitive is known). None when there is no srdf:.
+/// primitive is known). None when there is no srdf:. A <disable_collisions> pair of reason
+/// "Never" whose links are on two arms stays checked (the Setup Assistant's random samples never
+/// saw it touch, yet the arms can meet; a notice lists them) unless input.is_never_between_arms_
+/// trusted.
 std::vector<std::pair<PrimitiveId, PrimitiveId>> SrdfPairs(const SrdfInput& input,
                                                            Workcell* workcell);
 

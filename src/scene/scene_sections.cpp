@@ -248,7 +248,8 @@ void CheckSectionNames(const YAML::Node& scene, const std::string& scene_path) {
   yaml_fields::CheckKeys(scene,
                          {"world", "arms", "links", "joint_limits", "joint_defaults", "objects",
                           "compatible", "grasp_targets", "variants", "cylinder_model",
-                          "urdf_cylinder_model", "mesh_fit", "srdf", "planning_scene",
+                          "urdf_cylinder_model", "mesh_fit", "srdf",
+                          "srdf_trust_never_between_arms", "planning_scene",
                           "planning_scene_acm", "planning_scene_tolerance_m"},
                          Where{scene_path, ""});
 }

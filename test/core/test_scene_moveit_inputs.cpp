@@ -175,6 +175,51 @@ TEST(SceneMoveitInputs, SrdfDefaultDisabledLinkIsCompatibleWithAllButItsEnabledP
   EXPECT_NE(FindWarning(w, "skipped 1 name(s)").find("'no_such_link'"), std::string::npos);
 }
 
+// A Setup Assistant "Never" pair between two arms is a sampled claim: checked unless trusted.
+TEST(SceneMoveitInputs, SrdfNeverPairsBetweenArmsStayCheckedUnlessTrusted) {
+  const std::string srdf = WriteTempFile(
+      "never.srdf",
+      "<robot name='dual_arm_workcell'>\n"
+      "  <disable_collisions link1='left_link7' link2='right_link7' reason='Never'/>\n"
+      "  <disable_collisions link1='right_link6' link2='left_link5' reason='Never'/>\n"
+      "  <disable_collisions link1='left_link6' link2='right_link6' reason='User'/>\n"
+      "  <disable_collisions link1='left_link5' link2='right_link5'/>\n"
+      "  <disable_collisions link1='left_link3' link2='left_link7' reason='Never'/>\n"
+      "  <disable_collisions link1='right_link7' link2='front_box' reason='Never'/>\n"
+      "</robot>\n");
+  const Workcell w = LoadWorkcell(kUrdf, BundledSceneWith("never.yaml", "srdf: " + srdf));
+  ExpectValid(w);
+  EXPECT_FALSE(Compatible(w, "left_link7", "right_link7"));
+  EXPECT_FALSE(Compatible(w, "left_link5", "right_link6"));
+  EXPECT_TRUE(Compatible(w, "left_link6", "right_link6"));   // another reason
+  EXPECT_TRUE(Compatible(w, "left_link5", "right_link5"));   // no reason
+  EXPECT_TRUE(Compatible(w, "left_link3", "left_link7"));    // one arm
+  EXPECT_TRUE(Compatible(w, "right_link7", "front_box"));    // an arm and the environment
+  const std::string kept = "2 <disable_collisions> pair(s) of reason 'Never' between links of two"
+                           " arms stay checked";
+  std::string notice;
+  for (const std::string& line : w.notices) {
+    if (line.find(kept) != std::string::npos) notice = line;
+  }
+  ASSERT_FALSE(notice.empty());
+  EXPECT_EQ(notice.find(srdf + ": "), 0u) << notice;
+  EXPECT_NE(notice.find("'left_link7' and 'right_link7', 'right_link6' and 'left_link5'"),
+            std::string::npos)
+      << notice;
+
+  const Workcell trusted = LoadWorkcell(
+      kUrdf, BundledSceneWith("never_trusted.yaml",
+                              "srdf: " + srdf + "\nsrdf_trust_never_between_arms: true\n"));
+  EXPECT_TRUE(Compatible(trusted, "left_link7", "right_link7"));
+  EXPECT_TRUE(Compatible(trusted, "left_link5", "right_link6"));
+  for (const std::string& line : trusted.notices) EXPECT_EQ(line.find(kept), std::string::npos);
+
+  const std::string alone =
+      BundledSceneWith("never_alone.yaml", "srdf_trust_never_between_arms: true\n");
+  ExpectLoadError([&] { LoadWorkcell(kUrdf, alone); },
+                  {alone, "srdf_trust_never_between_arms", "given without srdf:"});
+}
+
 TEST(SceneMoveitInputs, SrdfOfAnotherRobotIsNoticed) {
   const std::string srdf = WriteTempFile("other.srdf", "<robot name='panda'/>\n");
   const Workcell w = LoadWorkcell(kUrdf, BundledSceneWith("other.yaml", "srdf: " + srdf));
