@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <map>
 #include <filesystem>
 
 #include "arm_collision_monitor/core/constants.h"
@@ -165,36 +167,139 @@ UrdfLinkGeometry ReadUrdfLinkGeometry(const urdf::Link& link, const std::string&
 
 namespace {
 
-// The first element of `xml`'s subtree (itself included) named xacro:... or with an attribute
-// holding ${...}, as "<name>" or "<name attribute='value'>"; "" if none.
-std::string FirstXacroLeft(const tinyxml2::XMLElement* xml) {
+bool IsXacro(const tinyxml2::XMLElement* xml) {
+  return std::strncmp(xml->Name(), "xacro:", 6) == 0;
+}
+
+// `xml` as "<name attribute='value'>" for its first attribute holding ${...} or $(...), as
+// "<name>" when it is an xacro element; "" if neither.
+std::string XacroMark(const tinyxml2::XMLElement* xml) {
   const std::string name = xml->Name();
-  if (name.compare(0, 6, "xacro:") == 0) return "<" + name + ">";
+  if (IsXacro(xml)) return "<" + name + ">";
   for (const tinyxml2::XMLAttribute* a = xml->FirstAttribute(); a != nullptr; a = a->Next()) {
-    if (std::string(a->Value()).find("${") != std::string::npos) {
-      return "<" + name + " " + a->Name() + "='" + a->Value() + "'>";
+    const std::string value = a->Value();
+    if (value.find("${") != std::string::npos || value.find("$(") != std::string::npos) {
+      return "<" + name + " " + a->Name() + "='" + value + "'>";
     }
-  }
-  for (const tinyxml2::XMLElement* child = xml->FirstChildElement(); child != nullptr;
-       child = child->NextSiblingElement()) {
-    const std::string found = FirstXacroLeft(child);
-    if (!found.empty()) return found;
   }
   return "";
 }
 
+// The first xacro of `xml`'s subtree (itself included) as XacroMark gives it; "" if none.
+std::string FirstXacroIn(const tinyxml2::XMLElement* xml) {
+  std::string found = XacroMark(xml);
+  for (const tinyxml2::XMLElement* child = xml->FirstChildElement();
+       child != nullptr && found.empty(); child = child->NextSiblingElement()) {
+    found = FirstXacroIn(child);
+  }
+  return found;
+}
+
+using MacroBodies = std::map<std::string, const tinyxml2::XMLElement*>;
+
+// Why a call of the macro `name` could change what urdfdom reads ("" when it cannot): it is not
+// defined in the file (an included one may write links), or it writes a link or joint, or
+// holds an include, a condition or another such call. Definitions in it are harmless. Each
+// macro's verdict is kept in `harms` (a macro met again while its own is pending calls itself).
+std::string MacroCallHarm(const std::string& name, const MacroBodies& macros, int depth,
+                          std::map<std::string, std::string>* harms) {
+  const auto known = harms->find(name);
+  if (known != harms->end()) return known->second;
+  const auto macro = macros.find(name);
+  if (macro == macros.end()) return "a macro this file does not define";
+  if (depth > kXacroMaxMacroDepth) return "macros calling each other too deep";
+  (*harms)[name] = "its macro '" + name + "' calls itself";  // while pending
+  std::string found;
+  for (const tinyxml2::XMLElement* child = macro->second->FirstChildElement();
+       child != nullptr && found.empty(); child = child->NextSiblingElement()) {
+    const std::string child_name = child->Name();
+    if (child_name == "link" || child_name == "joint") {
+      found = "its macro '" + name + "' writes a <" + child_name + ">";
+    } else if (IsXacro(child)) {
+      const std::string directive = child_name.substr(6);
+      if (directive == "macro" || directive == "property" || directive == "arg") continue;
+      if (directive == "include" || directive == "if" || directive == "unless" ||
+          directive == "insert_block" || directive == "element" || directive == "call") {
+        found = "its macro '" + name + "' holds <" + child_name + ">";
+      } else {
+        found = MacroCallHarm(directive, macros, depth + 1, harms);
+      }
+    }
+  }
+  (*harms)[name] = found;
+  return found;
+}
+
 }  // namespace
 
-void CheckNoXacroLeft(const std::string& urdf_xml, const std::string& urdf_path) {
+std::string CheckXacroLeft(const std::string& urdf_xml, const std::string& urdf_path) {
   tinyxml2::XMLDocument doc;
-  if (doc.Parse(urdf_xml.c_str(), urdf_xml.size()) != tinyxml2::XML_SUCCESS) return;  // urdfdom's
-  if (doc.RootElement() == nullptr) return;
-  const std::string found = FirstXacroLeft(doc.RootElement());
-  if (!found.empty()) {
-    throw LoadError(urdf_path + ": " + found +
-                    ": xacro left in the file (expected a plain URDF: expand it with xacro "
-                    "first, e.g. rosrun xacro xacro robot.urdf.xacro > robot.urdf)");
+  if (doc.Parse(urdf_xml.c_str(), urdf_xml.size()) != tinyxml2::XML_SUCCESS) {
+    return "";  // urdfdom says why
   }
+  const tinyxml2::XMLElement* robot = doc.RootElement();
+  if (robot == nullptr) return "";
+  auto refuse = [&](const std::string& found, const std::string& why) {
+    throw LoadError(urdf_path + ": " + found + why +
+                    ": xacro left in the file that changes the model (expected a plain URDF: "
+                    "expand it with xacro first, e.g. rosrun xacro xacro robot.urdf.xacro > "
+                    "robot.urdf)");
+  };
+  const std::string robot_mark = XacroMark(robot);
+  if (!robot_mark.empty()) refuse(robot_mark, "");
+  MacroBodies macros;
+  for (const tinyxml2::XMLElement* child = robot->FirstChildElement("xacro:macro");
+       child != nullptr; child = child->NextSiblingElement("xacro:macro")) {
+    const char* name = child->Attribute("name");
+    if (name != nullptr) macros[name] = child;
+  }
+  // What urdfdom reads (links and joints) must hold no xacro; the rest it ignores, and so may
+  // the monitor, but for calls of macros that could write links or joints.
+  std::map<std::string, std::string> harms;
+  int definitions = 0;
+  int calls = 0;
+  std::vector<std::string> includes;
+  for (const tinyxml2::XMLElement* child = robot->FirstChildElement(); child != nullptr;
+       child = child->NextSiblingElement()) {
+    const std::string name = child->Name();
+    if (!IsXacro(child)) {
+      if (name == "link" || name == "joint") {
+        const std::string found = FirstXacroIn(child);
+        if (!found.empty()) refuse(found, "");
+      }
+      continue;
+    }
+    const std::string directive = name.substr(6);
+    if (directive == "macro" || directive == "property" || directive == "arg") {
+      ++definitions;
+    } else if (directive == "include") {
+      const char* file = child->Attribute("filename");
+      includes.push_back(file != nullptr ? file : "");
+    } else if (directive == "if" || directive == "unless" || directive == "insert_block" ||
+               directive == "element" || directive == "call") {
+      refuse("<" + name + ">", "");
+    } else {
+      const std::string harm = MacroCallHarm(directive, macros, 0, &harms);
+      if (!harm.empty()) refuse("<" + name + ">", " (" + harm + ")");
+      ++calls;
+    }
+  }
+  if (definitions == 0 && calls == 0 && includes.empty()) return "";
+  std::string text = urdf_path + ": xacro left in the file, ignored as urdfdom ignores it:";
+  if (definitions > 0) {
+    text += " " + std::to_string(definitions) + " macro, property or arg definition(s);";
+  }
+  if (calls > 0) {
+    text += " " + std::to_string(calls) + " call(s) of its macros that write no link or joint;";
+  }
+  if (!includes.empty()) {
+    text += " " + std::to_string(includes.size()) + " <xacro:include> not read (" +
+            QuotedNames(includes) +
+            "): links or collision geometry an included file adds are not in the model "
+            "(expand the file with xacro if it adds any);";
+  }
+  text.pop_back();
+  return text;
 }
 
 void CheckEveryCollisionRead(const std::string& urdf_xml, const urdf::ModelInterface& model,

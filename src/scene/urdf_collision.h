@@ -37,10 +37,14 @@ struct UrdfLinkGeometry {
 UrdfLinkGeometry ReadUrdfLinkGeometry(const urdf::Link& link, const std::string& urdf_path,
                                       CylinderModel cylinder_model, MeshFitter* meshes);
 
-/// Fails when the URDF text `urdf_xml` still holds xacro (an element xacro:..., or an attribute
-/// value with ${...}), which urdfdom would partly ignore: throws LoadError naming `urdf_path` and
-/// the first such element. An expanded file's xmlns:xacro attribute on <robot> is fine.
-void CheckNoXacroLeft(const std::string& urdf_xml, const std::string& urdf_path);
+/// The xacro the URDF text `urdf_xml` still holds, which urdfdom ignores. Throws LoadError naming
+/// `urdf_path` and the element for xacro that changes the model: any in a <link> or <joint> (an
+/// element xacro:..., a value with ${...} or $(...)), or in <robot>'s attributes; a condition
+/// or block at the top level; a call of a macro the file does not define, or whose macro writes
+/// a link or joint (itself or through its calls). Returns "" without xacro, else a start-up
+/// warning counting the rest (definitions, harmless calls) and naming the included files, whose
+/// links would be missing. An expanded file's xmlns:xacro attribute on <robot> is fine.
+std::string CheckXacroLeft(const std::string& urdf_xml, const std::string& urdf_path);
 
 /// Fails unless urdfdom kept every <collision> of every link of the URDF text `urdf_xml`:
 /// urdfdom drops an element it cannot parse (a mesh scale that is not 3 numbers, say) with

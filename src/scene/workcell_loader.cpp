@@ -172,10 +172,11 @@ Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_pat
   using scene_sections::Where;
   const double default_arm_tolerance_m = options.default_arm_tolerance_m;
   const std::string urdf_xml = ReadWholeFile(urdf_path, "a readable URDF file");
-  CheckNoXacroLeft(urdf_xml, urdf_path);
+  const std::string xacro_warning = CheckXacroLeft(urdf_xml, urdf_path);
   const urdf::ModelInterfaceSharedPtr urdf_model = ParseUrdfFile(urdf_path);  // parsed once
   Workcell w;
   w.urdf_path = urdf_path;
+  if (!xacro_warning.empty()) w.warnings.push_back(xacro_warning);
   w.scene_path = scene_path;
   w.kinematics = KinematicModel::FromUrdf(*urdf_model, urdf_path);
   CheckEveryCollisionRead(urdf_xml, *urdf_model, urdf_path);

@@ -391,10 +391,11 @@ TEST(SceneLoader, MissingFilesAreRejected) {
                   {"no_such_relative.yaml", "working directory '" + cwd + "'"});
 }
 
-// A file with xacro left in it (a macro, a ${...}) is refused naming the element, before
-// urdfdom, which ignores what it does not know; an expanded one keeping xacro's namespace
-// attribute on <robot> gets urdfdom's verdict without the hint.
-TEST(SceneLoader, XacroHintOnlyForUnexpandedXacro) {
+// Xacro left in a file, which urdfdom ignores: refused naming the element when it changes the
+// model (in a link or joint, a condition, a call of a macro that writes a link or that the file
+// does not define), else loaded with one warning that counts it and names included files. An
+// expanded file keeping xacro's namespace attribute on <robot> gets urdfdom's verdict alone.
+TEST(SceneLoader, XacroLeftIsRefusedWhereItChangesTheModel) {
   const std::string robot = "<robot name='r' xmlns:xacro='http://www.ros.org/wiki/xacro'>";
   const std::string expanded = WriteTempFile(
       "expanded.urdf", robot + "<link name='a'/><joint name='j' type='fixed'><parent link='a'/>"
@@ -406,17 +407,65 @@ TEST(SceneLoader, XacroHintOnlyForUnexpandedXacro) {
     EXPECT_NE(std::string(e.what()).find("not a valid URDF"), std::string::npos) << e.what();
     EXPECT_EQ(std::string(e.what()).find("xacro"), std::string::npos) << e.what();
   }
+  const std::string expand = "expand it with xacro first";
   const std::string unexpanded = WriteTempFile(
       "unexpanded.urdf", robot + "<xacro:property name='r' value='0.1'/><link name='a'><collision>"
                                  "<geometry><sphere radius='${r}'/></geometry></collision></link>"
                                  "</robot>");
   ExpectLoadError([&] { LoadWorkcell(unexpanded, kScene); },
-                  {"unexpanded.urdf", "<xacro:property>", "expand it with xacro first"});
-  const std::string substituted = WriteTempFile(
-      "substituted.urdf", robot + "<link name='a'><collision><geometry><sphere radius='${r}'/>"
-                                  "</geometry></collision></link></robot>");
-  ExpectLoadError([&] { LoadWorkcell(substituted, kScene); },
-                  {"substituted.urdf", "<sphere radius='${r}'>", "expand it with xacro first"});
+                  {"unexpanded.urdf", "<sphere radius='${r}'>", "changes the model", expand});
+  const std::string scene = kData + "three_link_scene.yaml";
+  // The three-link arm with `xacro` after its <robot> tag.
+  auto with_xacro = [&](const std::string& xacro) {
+    return WriteEditedArmUrdf("xacro.urdf", "<robot name=\"three_link_arm\">",
+                              "<robot name=\"three_link_arm\">" + xacro);
+  };
+  const std::string gazebo_macro =
+      "<xacro:macro name='paint' params='link'><gazebo reference='${link}'/></xacro:macro>";
+  const std::string harmless = with_xacro(
+      "<xacro:include filename='$(find arm)/urdf/materials.xacro'/>" + gazebo_macro +
+      "<xacro:macro name='paint_twice' params='link'><xacro:paint link='${link}'/>"
+      "<xacro:property name='unused' value='1'/></xacro:macro>"
+      "<xacro:paint link='base_link'/><xacro:paint_twice link='wrist'/>");
+  const Workcell plain = LoadWorkcell(kArmUrdf, scene);
+  const Workcell w = LoadWorkcell(harmless, scene);
+  ASSERT_EQ(w.primitives.size(), plain.primitives.size());
+  ASSERT_EQ(w.warnings.size(), plain.warnings.size() + 1);
+  EXPECT_EQ(w.warnings.front(),
+            harmless + ": xacro left in the file, ignored as urdfdom ignores it: 2 macro, "
+                       "property or arg definition(s); 2 call(s) of its macros that write no "
+                       "link or joint; 1 <xacro:include> not read ('$(find arm)/urdf/"
+                       "materials.xacro'): links or collision geometry an included file adds are "
+                       "not in the model (expand the file with xacro if it adds any)");
+  // A chain of macros past kXacroMaxMacroDepth, each calling the next.
+  std::string chain;
+  for (int k = 0; k <= kXacroMaxMacroDepth + 1; ++k) {
+    chain += "<xacro:macro name='m" + std::to_string(k) + "'><xacro:m" + std::to_string(k + 1) +
+             "/></xacro:macro>";
+  }
+  chain += "<xacro:macro name='m" + std::to_string(kXacroMaxMacroDepth + 2) +
+           "'><gazebo/></xacro:macro><xacro:m0/>";
+  for (const auto& [xacro, parts] : std::vector<std::pair<std::string, std::vector<std::string>>>{
+           {"<xacro:ur5 prefix='left_'/>", {"<xacro:ur5>", "a macro this file does not define"}},
+           {gazebo_macro + "<xacro:macro name='arm'><xacro:paint link='a'/><link name='extra'/>"
+                           "</xacro:macro><xacro:arm/>",
+            {"<xacro:arm>", "its macro 'arm' writes a <link>"}},
+           {"<xacro:macro name='loop'><xacro:paint link='a'/><xacro:loop/></xacro:macro>"
+            "<xacro:loop/>" + gazebo_macro,
+            {"<xacro:loop>", "its macro 'loop' calls itself"}},
+           {chain, {"<xacro:m0>", "macros calling each other too deep"}},
+           {"<xacro:macro name='maybe'><xacro:if value='1'><gazebo/></xacro:if></xacro:macro>"
+            "<xacro:maybe/>",
+            {"<xacro:maybe>", "its macro 'maybe' holds <xacro:if>"}},
+           {"<xacro:if value='true'><link name='extra'/></xacro:if>", {"<xacro:if>"}},
+           {"<link name='extra'><xacro:paint link='extra'/></link>", {"<xacro:paint>"}}}) {
+    const std::string urdf = with_xacro(xacro);
+    std::vector<std::string> all = parts;
+    all.insert(all.end(), {urdf, "changes the model", expand});
+    ExpectLoadError([&] { LoadWorkcell(urdf, scene); }, all);
+  }
+  const std::string named = WriteTempFile("named.urdf", "<robot name='${name}'/>");
+  ExpectLoadError([&] { LoadWorkcell(named, scene); }, {"<robot name='${name}'>", expand});
 }
 
 TEST(SceneLoader, MalformedFilesAreRejected) {

@@ -288,6 +288,9 @@ inline constexpr double kMeshMaxCoordinate_m = 1e4;
 /// Most capsules a chain fit may ask for (dimensionless; typical 64): each costs a primitive in
 /// every cycle, and a link needing more is better modelled by hand.
 inline constexpr int kMeshFitMaxCapsules = 64;
+/// Deepest chain of xacro macro calls the URDF check follows (dimensionless; typical 16): a file
+/// left unexpanded rarely nests two, and a longer chain (or a macro calling itself) is refused.
+inline constexpr int kXacroMaxMacroDepth = 16;
 /// A mesh's default one-capsule fit at least this many times the mesh's volume is reported with
 /// a pointer to mesh_fit: tighter: a boxy part (a torso, a base, a camera) gets 2 to 4.5, where
 /// its box would be near 1; a round link's capsule stays well below.
