@@ -1,5 +1,6 @@
 #include "arm_collision_monitor/safety/stop_policy.h"
 
+#include <algorithm>
 #include <cstdarg>
 #include <cstdio>
 
@@ -117,9 +118,14 @@ void StopPolicy::OnCycleReport(const CycleReport& report, const std::string& ref
     Raise(Rank::kJumped, SafetyStatus::kOk, "input jumped: a %.3f m step in one cycle",
           report.step_motion_m);
   } else if (!report.warnings.empty()) {
-    const Warning& w = report.warnings.front();
+    // The pair deepest in its tolerance zone (a touching pair before one near its threshold).
+    const Warning& w = *std::min_element(
+        report.warnings.begin(), report.warnings.end(), [](const Warning& x, const Warning& y) {
+          return x.distance_m - x.threshold_m < y.distance_m - y.threshold_m;
+        });
     Raise(Rank::kWarning, SafetyStatus::kOk,
-          "%zu warning(s), e.g. %s - %s at %.4f m (threshold %.4f m)", report.warnings.size(), primitives[w.a].name.c_str(), primitives[w.b].name.c_str(),
+          "%zu warning(s), the deepest %s - %s at %.4f m (threshold %.4f m)",
+          report.warnings.size(), primitives[w.a].name.c_str(), primitives[w.b].name.c_str(),
           w.distance_m, w.threshold_m);
   }
 }

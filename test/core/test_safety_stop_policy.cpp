@@ -17,9 +17,10 @@ constexpr double kStep_s = 0.0625;
 const std::vector<std::string> kJoints = {"a1", "b1"};
 
 std::vector<PrimitiveSpec> Primitives() {
-  std::vector<PrimitiveSpec> primitives(2);
+  std::vector<PrimitiveSpec> primitives(3);
   primitives[0].name = "left_link3";
   primitives[1].name = "right_link4";
+  primitives[2].name = "right_link5";
   return primitives;
 }
 
@@ -160,7 +161,8 @@ TEST_F(StopPolicyTest, WarningStopsAndClearsAfterTheHold) {
   Cycle(2.0, WarningReport());
   EXPECT_TRUE(policy_.stop());
   EXPECT_EQ(policy_.status(), SafetyStatus::kOk);
-  EXPECT_EQ(policy_.reason(), "1 warning(s), e.g. left_link3 - right_link4 at 0.0120 m (threshold 0.0610 m)");
+  EXPECT_EQ(policy_.reason(),
+            "1 warning(s), the deepest left_link3 - right_link4 at 0.0120 m (threshold 0.0610 m)");
   // A warning seen again renews the hold.
   Feed(2.125);
   Cycle(2.125, WarningReport());
@@ -170,9 +172,29 @@ TEST_F(StopPolicyTest, WarningStopsAndClearsAfterTheHold) {
   Cycle(2.25, CleanReport());
   ASSERT_TRUE(policy_.stop());
   EXPECT_EQ(policy_.reason(),
-            "1 warning(s), e.g. left_link3 - right_link4 at 0.0120 m (threshold 0.0610 m) (no "
-            "longer seen; the stop is held for stop_hold_s, 0.25 s)");
+            "1 warning(s), the deepest left_link3 - right_link4 at 0.0120 m (threshold 0.0610 m) "
+            "(no longer seen; the stop is held for stop_hold_s, 0.25 s)");
   EXPECT_EQ(ClearedAt(2.25 + kStep_s), 2.125 + kHold_s);
+}
+
+// The reason names the pair deepest in its tolerance zone, not the first in pair order (a pair
+// within the swept check's resolution above its threshold, say, before a touching one).
+TEST_F(StopPolicyTest, WarningReasonNamesTheDeepestPair) {
+  ASSERT_GE(ClearedAt(1.0), 0.0);
+  CycleReport report = WarningReport();
+  report.warnings.front().distance_m = 0.0614;
+  Warning touching = report.warnings.front();
+  touching.b = 2;
+  touching.distance_m = 0.0;
+  touching.threshold_m = 0.05;
+  Warning near = touching;
+  near.distance_m = 0.049;
+  report.warnings.push_back(near);
+  report.warnings.push_back(touching);
+  Feed(2.0);
+  Cycle(2.0, report);
+  EXPECT_EQ(policy_.reason(),
+            "3 warning(s), the deepest left_link3 - right_link5 at 0.0000 m (threshold 0.0500 m)");
 }
 
 TEST_F(StopPolicyTest, InputJumpStopsUntilANormalStepAndOutranksAWarning) {
@@ -187,7 +209,8 @@ TEST_F(StopPolicyTest, InputJumpStopsUntilANormalStepAndOutranksAWarning) {
   // The next normal step with a warning: the warning is the reason now.
   Feed(2.125);
   Cycle(2.125, WarningReport());
-  EXPECT_EQ(policy_.reason(), "1 warning(s), e.g. left_link3 - right_link4 at 0.0120 m (threshold 0.0610 m)");
+  EXPECT_EQ(policy_.reason(),
+            "1 warning(s), the deepest left_link3 - right_link4 at 0.0120 m (threshold 0.0610 m)");
   EXPECT_EQ(ClearedAt(2.125 + kStep_s), 2.125 + kHold_s);
 }
 
