@@ -9,6 +9,8 @@ namespace {
 
 // Longest reason kept (characters): names of two primitives or a joint and a TF error fit.
 constexpr std::size_t kReasonCapacity = 256;
+// Of which the other stale joints' names may take (characters), leaving room for the rest.
+constexpr std::size_t kReasonNamesCapacity = 120;
 
 }  // namespace
 
@@ -59,10 +61,37 @@ void StopPolicy::RaiseStale(const JointMerger& input, double now_s) {
     Raise(Rank::kStale, SafetyStatus::kStale,
           "joint '%s' not received since the clock went back %.3f s ago",
           input.joint_name(oldest).c_str(), input.JointAge(oldest, now_s));
-  } else {
+    return;
+  }
+  // Every stale joint (a driver that died leaves all of its own), the oldest first, as many as
+  // fit; the rest counted.
+  const double timeout_s = input.input_timeout_s();
+  char others[kReasonCapacity];
+  std::size_t used = 0;
+  int stale = 1;
+  int unnamed = 0;
+  others[0] = '\0';
+  for (int i = 0; i < input.joint_count(); ++i) {
+    if (i == oldest || !(input.JointAge(i, now_s) > timeout_s)) continue;
+    ++stale;
+    const std::string& name = input.joint_name(i);
+    if (unnamed > 0 || used + name.size() + 4 > kReasonNamesCapacity) {
+      ++unnamed;
+      continue;
+    }
+    used += static_cast<std::size_t>(
+        std::snprintf(others + used, sizeof(others) - used, ", '%s'", name.c_str()));
+  }
+  if (stale == 1) {
     Raise(Rank::kStale, SafetyStatus::kStale, "joint '%s' not received for %.3f s",
           input.joint_name(oldest).c_str(), input.JointAge(oldest, now_s));
+    return;
   }
+  char more[32] = "";
+  if (unnamed > 0) std::snprintf(more, sizeof(more), " and %d more", unnamed);
+  Raise(Rank::kStale, SafetyStatus::kStale,
+        "%d joints not received for over input_timeout_s (%.3f s): '%s' for %.3f s%s%s", stale,
+        timeout_s, input.joint_name(oldest).c_str(), input.JointAge(oldest, now_s), others, more);
 }
 
 double StopPolicy::ObserveClock(double now_s) {

@@ -197,6 +197,22 @@ TEST_F(StopPolicyTest, WarningReasonNamesTheDeepestPair) {
             "3 warning(s), the deepest left_link3 - right_link5 at 0.0000 m (threshold 0.0500 m)");
 }
 
+// A driver of many joints gone silent: as many names as the reason holds, the rest counted.
+TEST(StopPolicy, StaleReasonCountsTheJointsItCannotName) {
+  std::vector<std::string> joints;
+  for (int i = 0; i < 20; ++i) joints.push_back("a_rather_long_joint_name_" + std::to_string(i));
+  JointMerger input(joints, kTimeout_s);
+  const std::vector<double> positions(joints.size(), 0.0);
+  ASSERT_EQ(input.Merge(NamedPositions{joints, positions, 1.0}, 1.0), MergeStatus::kAccepted);
+  StopPolicy policy(kHold_s);
+  ASSERT_TRUE(policy.CheckStaleness(input, 2.0).is_stale);
+  EXPECT_EQ(policy.reason(),
+            "20 joints not received for over input_timeout_s (0.500 s): "
+            "'a_rather_long_joint_name_0' for 1.000 s, 'a_rather_long_joint_name_1', "
+            "'a_rather_long_joint_name_2', 'a_rather_long_joint_name_3', "
+            "'a_rather_long_joint_name_4' and 15 more");
+}
+
 TEST_F(StopPolicyTest, InputJumpStopsUntilANormalStepAndOutranksAWarning) {
   ASSERT_GE(ClearedAt(1.0), 0.0);
   CycleReport jump = WarningReport();
@@ -260,6 +276,9 @@ TEST_F(StopPolicyTest, StaleJointStopsInCycleAndOnTheTimer) {
   const StaleCheck again = policy_.CheckStaleness(input_, t + 2.0 + kTimeout_s + kStep_s);
   EXPECT_TRUE(again.is_stale);
   EXPECT_TRUE(again.is_new_episode);
+  // Both joints silent: both named, the oldest first with its age.
+  EXPECT_EQ(policy_.reason(),
+            "2 joints not received for over input_timeout_s (0.500 s): 'a1' for 0.562 s, 'b1'");
   EXPECT_TRUE(policy_.stop());
 }
 
