@@ -82,10 +82,13 @@ void Monitor::Impl::CheckStepTolerance() {
   if (worst_gap_m <= 0.0) return;
   std::ostringstream msg;
   msg << "the tolerance of primitive '" << model.workcell->primitives[worst].name << "' ("
-      << tol_base[worst] << " m) is below its per-cycle motion: max_speed_mps * cycle_period_s = "
-      << speed_step_m << " m, the URDF velocity limits allow " << worst_urdf_m
-      << " m (the largest gap of the " << below << " moving primitive" << (below == 1 ? "" : "s")
-      << " whose tolerance is below their motion)";
+      << tol_base[worst] << " m) is below its motion in one cycle, "
+      << std::max(speed_step_m, worst_urdf_m)
+      << " m: the larger of max_speed_mps * cycle_period_s (" << speed_step_m
+      << " m, cycle_period_s " << options.cycle_period_s
+      << " s, the input's expected period) and what the URDF velocity limits allow in a cycle ("
+      << worst_urdf_m << " m) (the largest gap of the " << below << " moving primitive"
+      << (below == 1 ? "" : "s") << " whose tolerance is below their motion)";
   if (!options.swept_check) {
     throw LoadError("monitor options: swept_check is false and " + msg.str() +
                     ": a contact could pass between two cycles (raise tolerance_m or switch "

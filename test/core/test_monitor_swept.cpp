@@ -7,6 +7,7 @@
 // tolerance check, and how rarely the path is needed.
 #include <array>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <map>
 #include <regex>
@@ -590,6 +591,17 @@ TEST(MonitorSwept, StartupToleranceCheck) {
     EXPECT_NE(notice.find(std::to_string(below) + " moving primitives whose tolerance is below"),
               std::string::npos)
         << notice;
+    // The motion named first is the larger of its two sources, each given.
+    EXPECT_NE(notice.find("is below its motion in one cycle, "), std::string::npos) << notice;
+    const double motion_m =
+        std::atof(notice.c_str() + notice.find("one cycle, ") + std::strlen("one cycle, "));
+    const double speed_m = std::atof(notice.c_str() + notice.find("cycle_period_s (") +
+                                     std::strlen("cycle_period_s ("));
+    const double urdf_m = std::atof(notice.c_str() + notice.find("allow in a cycle (") +
+                                    std::strlen("allow in a cycle ("));
+    EXPECT_DOUBLE_EQ(speed_m, options.max_speed_mps * options.cycle_period_s) << notice;
+    EXPECT_GT(urdf_m, speed_m) << notice;
+    EXPECT_NEAR(motion_m, urdf_m, 1e-5 * urdf_m) << notice;
   }
   options.swept_check = false;
   try {
