@@ -158,9 +158,12 @@ NamedFile FetchNamedFile(const YAML::Node& node, const Where& where,
 
 std::vector<std::pair<PrimitiveId, PrimitiveId>> ResolveCollisionRules(
     const NamedCollisionRules& rules, const std::string& source, Workcell* workcell) {
-  std::vector<std::string> skipped;
+  std::vector<std::string> bare_links;  // URDF links without primitives
+  std::vector<std::string> unknown;     // neither a link nor an object or primitive
   auto resolve = [&](const std::string& name) {
     std::vector<PrimitiveId> ids = ResolveNames(*workcell, name);
+    std::vector<std::string>& skipped =
+        workcell->kinematics.FindLink(name) >= 0 ? bare_links : unknown;
     if (ids.empty() && std::find(skipped.begin(), skipped.end(), name) == skipped.end()) {
       skipped.push_back(name);
     }
@@ -188,11 +191,16 @@ std::vector<std::pair<PrimitiveId, PrimitiveId>> ResolveCollisionRules(
       }
     }
   }
-  if (!skipped.empty()) {
-    workcell->warnings.push_back(
-        source + ": skipped " + std::to_string(skipped.size()) +
-        " name(s) that have no primitive in the workcell (links without collision geometry or "
-        "ignored under links:, or unknown names): " + QuotedNames(skipped));
+  if (!bare_links.empty()) {
+    workcell->warnings.push_back(source + ": skipped " + std::to_string(bare_links.size()) +
+                                 " link(s) without primitives (no collision geometry, or "
+                                 "ignored under links:): " + QuotedNames(bare_links));
+  }
+  if (!unknown.empty()) {
+    workcell->warnings.push_back(source + ": skipped " + std::to_string(unknown.size()) +
+                                 " unknown name(s), neither a URDF link nor an object of the "
+                                 "scene (a typo, or a file of another robot?): " +
+                                 QuotedNames(unknown));
   }
   return pairs;
 }

@@ -132,7 +132,7 @@ TEST(SceneMoveitInputs, SrdfDisabledPairsBecomeCompatible) {
   EXPECT_FALSE(Compatible(w, "left_link7", "right_link7"));
   EXPECT_FALSE(Compatible(w, "left_link2", "left_link4"));
 
-  const std::string notice = FindWarning(w, "skipped 5 name(s)");
+  const std::string notice = FindWarning(w, "skipped 5 link(s) without primitives");
   ASSERT_FALSE(notice.empty());
   EXPECT_NE(notice.find(kSrdf), std::string::npos) << notice;
   for (const char* name : {"'left_base_link'", "'right_base_link'", "'left_tool'",
@@ -172,7 +172,12 @@ TEST(SceneMoveitInputs, SrdfDefaultDisabledLinkIsCompatibleWithAllButItsEnabledP
   EXPECT_FALSE(Compatible(w, "left_link7/palm", "front_box"));
   EXPECT_TRUE(Compatible(w, "left_link7", "floor"));  // disabled wins over enabled
   EXPECT_FALSE(Compatible(w, "right_link7", "left_link6"));
-  EXPECT_NE(FindWarning(w, "skipped 1 name(s)").find("'no_such_link'"), std::string::npos);
+  // A name the URDF and the scene do not know is told apart from a link without geometry.
+  const std::string unknown = FindWarning(w, "skipped 1 unknown name(s), neither a URDF link");
+  EXPECT_NE(unknown.find("(a typo, or a file of another robot?): 'no_such_link'"),
+            std::string::npos)
+      << unknown;
+  EXPECT_TRUE(FindWarning(w, "without primitives").empty());
 }
 
 // A Setup Assistant "Never" pair between two arms is a sampled claim: checked unless trusted.
@@ -354,9 +359,11 @@ TEST(SceneMoveitInputs, PlanningSceneAcmIsImportedOnRequest) {
   EXPECT_TRUE(Compatible(w, "right_link6", "crate"));  // a default entry
   EXPECT_TRUE(Compatible(w, "right_link6", "left_link2"));
   EXPECT_FALSE(Compatible(w, "left_link2", "left_link5"));
-  const std::string notice = FindWarning(w, "allowed_collision_matrix: skipped 2 name(s)");
-  EXPECT_NE(notice.find("'left_tool'"), std::string::npos) << notice;
-  EXPECT_NE(notice.find("'ghost'"), std::string::npos) << notice;
+  EXPECT_NE(FindWarning(w, "allowed_collision_matrix: skipped 1 link(s) without primitives")
+                .find("'left_tool'"),
+            std::string::npos);
+  EXPECT_NE(FindWarning(w, "allowed_collision_matrix: skipped 1 unknown name(s)").find("'ghost'"),
+            std::string::npos);
   EXPECT_TRUE(FindWarning(plain, "allowed_collision_matrix").empty());
 }
 
