@@ -1,6 +1,7 @@
 #include "mesh_shapes.h"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <variant>
 
@@ -25,12 +26,29 @@ std::string FitText(const MeshFitOptions& options, const std::vector<Shape>& sha
   return text;
 }
 
+// The size of a one-primitive fit, "" for more: " (radius 0.052 m, 0.31 m long)" for a capsule
+// (end to end), " (0.1 x 0.08 x 0.2 m)" for a box (its edges).
+std::string SizeText(const std::vector<Shape>& shapes) {
+  if (shapes.size() != 1) return "";
+  std::ostringstream text;
+  text.precision(3);
+  if (const Capsule* c = std::get_if<Capsule>(&shapes.front())) {
+    text << " (radius " << c->radius_m << " m, " << (c->p1_W - c->p0_W).norm() + 2.0 * c->radius_m
+         << " m long)";
+  } else {
+    const Eigen::Vector3d edges_m = 2.0 * std::get<Box>(shapes.front()).half_extents_m;
+    text << " (" << edges_m.x() << " x " << edges_m.y() << " x " << edges_m.z() << " m)";
+  }
+  return text.str();
+}
+
 // One report line: "<where>: mesh fit: 1 capsule, 1204 vertices, fitted/mesh volume 1.37 (cached)".
 std::string ReportLine(const std::string& where, const MeshFitOptions& options,
                        const TriangleMesh& mesh, const MeshFit& fit, bool is_cached) {
   std::ostringstream line;
-  line << where << ": mesh fit: " << FitText(options, fit.shapes_L) << ", "
-       << mesh.vertices_L.size() << " vertices, " << mesh.triangles.size() << " triangles, ";
+  line << where << ": mesh fit: " << FitText(options, fit.shapes_L) << SizeText(fit.shapes_L)
+       << ", " << mesh.vertices_L.size() << " vertices, " << mesh.triangles.size()
+       << " triangles, ";
   if (fit.is_mesh_closed) {
     line.precision(3);
     line << "fitted/mesh volume " << fit.excess_ratio;
@@ -38,7 +56,17 @@ std::string ReportLine(const std::string& where, const MeshFitOptions& options,
       line << " (a loose capsule: mesh_fit: tighter would give a boxy part its box)";
     }
   } else {
-    line << "open mesh: volume undefined";
+    // No volume to compare with: the vertices' extent gives the fit a scale.
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+    Eigen::Vector3d hi = -lo;
+    for (const Eigen::Vector3d& v : mesh.vertices_L) {
+      lo = lo.cwiseMin(v);
+      hi = hi.cwiseMax(v);
+    }
+    const Eigen::Vector3d extent_m = hi - lo;
+    line.precision(3);
+    line << "open mesh: volume undefined (its vertices span " << extent_m.x() << " x "
+         << extent_m.y() << " x " << extent_m.z() << " m along the mesh axes)";
   }
   if (is_cached) line << " (cached)";
   return line.str();

@@ -182,7 +182,7 @@ TEST(SceneMeshLinks, MeshFitKindsEncloseTheNonConvexShape) {
       ASSERT_EQ(shapes.size(), 1u);
       ASSERT_EQ(w.notices.size(), 1u);
       const std::string fitted = std::holds_alternative<Box>(shapes[0]) ? "1 box" : "1 capsule";
-      EXPECT_NE(w.notices[0].find("mesh fit: " + fitted + " (tighter),"), std::string::npos)
+      EXPECT_NE(w.notices[0].find("mesh fit: " + fitted + " (tighter) ("), std::string::npos)
           << w.notices[0];
       EXPECT_EQ(w.notices[0].find("loose capsule"), std::string::npos) << w.notices[0];
     } else {
@@ -223,7 +223,17 @@ TEST(SceneMeshLinks, ReportHasOneLinePerMeshWithTheExcessVolume) {
                               "box)"),
             std::string::npos)
       << w.notices[0];
-  EXPECT_NE(w.notices[1].find("open mesh: volume undefined"), std::string::npos) << w.notices[1];
+  // Its size beside the fit.
+  std::ostringstream size;
+  size.precision(3);
+  size << "mesh fit: 1 capsule (radius " << c.radius_m << " m, "
+       << (c.p1_W - c.p0_W).norm() + 2.0 * c.radius_m << " m long), ";
+  EXPECT_NE(w.notices[0].find(size.str()), std::string::npos) << size.str() << w.notices[0];
+  // An open mesh has no volume to compare with: the span of its vertices instead.
+  EXPECT_NE(w.notices[1].find("open mesh: volume undefined (its vertices span 0.2 x 0.1 x 0.1 m "
+                              "along the mesh axes)"),
+            std::string::npos)
+      << w.notices[1];
   EXPECT_NE(w.notices[1].find("link 'link1'"), std::string::npos) << w.notices[1];
 }
 
