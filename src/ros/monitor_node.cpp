@@ -17,8 +17,6 @@
 namespace arm_collision_monitor {
 namespace {
 
-// Cycle times kept for the diagnostics' statistics (about 1 s at 1 kHz, 50 s at 20 Hz).
-constexpr std::size_t kCycleTimeWindow = 1024;
 // The staleness timer runs this many times per input timeout, so a stale input is noticed at
 // most timeout * (1 + 1/kStalenessChecksPerTimeout) after the last message.
 constexpr double kStalenessChecksPerTimeout = 4.0;
@@ -117,7 +115,6 @@ MonitorNode::MonitorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   }
 
   report_.header.frame_id = fixed_frame_;
-  cycle_times_s_.reserve(kCycleTimeWindow);
   joint_state_out_.name = workcell_->joint_names;
   joint_state_out_.position.resize(workcell_->joint_names.size());
 
@@ -184,6 +181,9 @@ void MonitorNode::OnJointState(const sensor_msgs::JointState::ConstPtr& msg) {
   if (status == MergeStatus::kNoPositions) return;
   if (status == MergeStatus::kAccepted) {
     newest_input_stamp_ = msg->header.stamp.isZero() ? now : msg->header.stamp;
+    // How late messages arrive (transport and the subscriber's queue): a node falling behind
+    // fast input shows here first.
+    if (!msg->header.stamp.isZero()) input_ages_s_.Add((now - msg->header.stamp).toSec());
   } else {
     const std::string why = input_->DescribeRefusal(input, status);
     // The cycle's reason names the first refusal since the last cycle.
@@ -288,12 +288,7 @@ void MonitorNode::RunCycle(std::chrono::steady_clock::time_point start) {
   const double cycle_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   report_.cycle_time_s = cycle_time_s;
-  if (cycle_times_s_.size() < kCycleTimeWindow) {
-    cycle_times_s_.push_back(cycle_time_s);
-  } else {
-    cycle_times_s_[cycle_time_next_] = cycle_time_s;
-    cycle_time_next_ = (cycle_time_next_ + 1) % kCycleTimeWindow;
-  }
+  cycle_times_s_.Add(cycle_time_s);
   PublishReport();
   PublishStop(/*only_on_change=*/true);
   PublishVisualisation();
@@ -500,6 +495,11 @@ void MonitorNode::DiagnoseInput(diagnostic_updater::DiagnosticStatusWrapper& sta
   }
   status.add("unknown joint names (total)", input_->total_unknown_joints());
   status.add("position-less messages (ignored)", input_->position_less());
+  const TimingSummary ages_s = SummarizeTimings(input_ages_s_.samples());
+  status.add("stamped messages in the age window", ages_s.count);
+  status.addf("message age at arrival median (ms)", "%.3f", 1e3 * ages_s.median);
+  status.addf("message age at arrival p99 (ms)", "%.3f", 1e3 * ages_s.p99);
+  status.addf("message age at arrival max (ms)", "%.3f", 1e3 * ages_s.max);
   status.addf("oldest joint age (s)", "%.3f", oldest_age_s);
   status.addf("input timeout (s)", "%.3f", options_.input_timeout_s);
   status.add("stale episodes", stale_episodes_);
@@ -507,7 +507,7 @@ void MonitorNode::DiagnoseInput(diagnostic_updater::DiagnosticStatusWrapper& sta
 }
 
 void MonitorNode::DiagnoseCycle(diagnostic_updater::DiagnosticStatusWrapper& status) {
-  const TimingSummary times_s = SummarizeTimings(cycle_times_s_);
+  const TimingSummary times_s = SummarizeTimings(cycle_times_s_.samples());
   status.summaryf(diagnostic_msgs::DiagnosticStatus::OK, "%lu cycles, mean %.1f us",
                   static_cast<unsigned long>(cycles_), 1e6 * times_s.mean);
   status.add("cycles", cycles_);

@@ -60,5 +60,21 @@ TEST(TimingSummary, PassesOfNoSamplesAreZero) {
   EXPECT_EQ(s.max, 0.0);
 }
 
+TEST(SampleWindow, KeepsTheLatestSamplesUpToItsCapacity) {
+  SampleWindow window(3);
+  EXPECT_TRUE(window.samples().empty());
+  window.Add(1.0);
+  window.Add(2.0);
+  EXPECT_EQ(window.samples(), (std::vector<double>{1.0, 2.0}));
+  for (const double v : {3.0, 4.0, 5.0}) window.Add(v);
+  // 1 and 2 overwritten, oldest first; the order does not matter to a summary.
+  EXPECT_EQ(window.samples(), (std::vector<double>{4.0, 5.0, 3.0}));
+  EXPECT_EQ(SummarizeTimings(window.samples()).max, 5.0);
+  const double* data = window.samples().data();
+  for (int i = 0; i < 10; ++i) window.Add(i);
+  EXPECT_EQ(window.samples().data(), data);  // no reallocation after construction
+  EXPECT_EQ(window.samples().size(), 3u);
+}
+
 }  // namespace
 }  // namespace arm_collision_monitor

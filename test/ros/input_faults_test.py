@@ -372,6 +372,16 @@ class InputFaultsTest(unittest.TestCase):
         self.assertGreaterEqual(int(inputs['position-less messages (ignored)']), 5)
         self.assertGreater(int(inputs['stale episodes']), 0)
         self.assertIn('message rate (Hz)', inputs)
+        # The go-clear messages, stamped when sent, were accepted: their ages at arrival, from
+        # transport alone here (well under a second), ordered as percentiles are.
+        self.assertGreater(int(inputs['stamped messages in the age window']), 0)
+        median_ms = float(inputs['message age at arrival median (ms)'])
+        p99_ms = float(inputs['message age at arrival p99 (ms)'])
+        max_ms = float(inputs['message age at arrival max (ms)'])
+        self.assertGreaterEqual(median_ms, 0.0)
+        self.assertLess(median_ms, 1000.0)
+        self.assertLessEqual(median_ms, p99_ms)
+        self.assertLessEqual(p99_ms, max_ms)
         self.assertGreater(int(cycle['re-insert fallbacks (total)']), 0)
         self.assertGreater(float(cycle['cycle time p99 (us)']), 0.0)
 

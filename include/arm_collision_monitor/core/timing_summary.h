@@ -68,4 +68,26 @@ inline TimingSummary SummarizePasses(const std::vector<double>& samples, std::si
   return s;
 }
 
+/// The latest `capacity` samples (> 0), the oldest overwritten first: allocation-free after
+/// construction, for the node's per-message figures.
+class SampleWindow {
+ public:
+  explicit SampleWindow(std::size_t capacity) : capacity_(capacity) { samples_.reserve(capacity); }
+  void Add(double sample) {
+    if (samples_.size() < capacity_) {
+      samples_.push_back(sample);
+      return;
+    }
+    samples_[next_] = sample;
+    next_ = (next_ + 1) % capacity_;
+  }
+  /// In no particular order.
+  const std::vector<double>& samples() const { return samples_; }
+
+ private:
+  std::size_t capacity_;
+  std::size_t next_ = 0;
+  std::vector<double> samples_;
+};
+
 }  // namespace arm_collision_monitor

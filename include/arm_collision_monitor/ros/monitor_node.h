@@ -28,6 +28,7 @@
 #include "arm_collision_monitor/MoveObject.h"
 #include "arm_collision_monitor/RemoveObject.h"
 #include "arm_collision_monitor/SetGraspTarget.h"
+#include "arm_collision_monitor/core/timing_summary.h"
 #include "arm_collision_monitor/monitor/monitor.h"
 #include "arm_collision_monitor/ros/marker_builder.h"
 #include "arm_collision_monitor/safety/joint_merger.h"
@@ -154,6 +155,8 @@ class MonitorNode {
   ros::WallTime last_visualisation_;
 
   // --- statistics for diagnostics ------------------------------------------------------------
+  /// Samples kept for the diagnostics' statistics (about 1 s at 1 kHz, 50 s at 20 Hz).
+  static constexpr std::size_t kSampleWindow = 1024;
   std::uint64_t cycles_ = 0;
   std::uint64_t messages_ = 0;
   std::uint64_t reinsert_fallbacks_ = 0;
@@ -162,8 +165,9 @@ class MonitorNode {
   std::uint64_t input_jumps_ = 0;  ///< cycles whose step exceeded max_step_m
   std::uint64_t tf_failures_ = 0;
   std::uint64_t stale_episodes_ = 0;
-  std::vector<double> cycle_times_s_;  ///< ring buffer of the latest cycle times
-  std::size_t cycle_time_next_ = 0;
+  SampleWindow cycle_times_s_{kSampleWindow};  ///< the latest cycle times
+  /// The latest accepted stamped messages' ages at arrival (ROS time less header.stamp).
+  SampleWindow input_ages_s_{kSampleWindow};
   std::uint64_t diag_messages_ = 0;    ///< messages_ at the previous diagnostics update
   std::uint64_t diag_refused_ = 0;     ///< RefusedInputs() at the previous diagnostics update
   ros::WallTime diag_time_;
