@@ -1,5 +1,7 @@
 #include "arm_collision_monitor/ros/marker_builder.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <utility>
 
@@ -14,6 +16,8 @@ namespace {
 constexpr double kLineWidth_m = 0.006;
 constexpr double kCellLineWidth_m = 0.002;
 constexpr double kTextHeight_m = 0.05;
+// Horizontal room a distance label takes (m): "120 mm (< 61)" is about six text heights wide.
+constexpr double kLabelWidth_m = 6.0 * kTextHeight_m;
 // Capsules opaque; boxes translucent so the arms stay visible behind tables and walls.
 constexpr float kCapsuleAlpha = 1.0f;
 constexpr float kBoxAlpha = 0.5f;
@@ -44,6 +48,14 @@ void SetPose(const Eigen::Vector3d& p_W, const Eigen::Quaterniond& R_W,
   m->pose.orientation.x = R_W.x();
   m->pose.orientation.y = R_W.y();
   m->pose.orientation.z = R_W.z();
+}
+
+// Two distance labels at these positions would cover each other (text faces the viewer: its
+// height is vertical, its width horizontal in some direction).
+bool LabelsOverlap(const Eigen::Vector3d& a_W, const Eigen::Vector3d& b_W) {
+  // Labels a slot apart (a text height, up to rounding) do not overlap.
+  return std::abs(a_W.z() - b_W.z()) < (1.0 - 1e-9) * kTextHeight_m &&
+         (a_W - b_W).head<2>().norm() < kLabelWidth_m;
 }
 
 }  // namespace
@@ -167,13 +179,27 @@ void MarkerBuilder::AddWarnings(const std::vector<Warning>& warnings, const ros:
     }
   }
   char text[96];
+  label_positions_W_.clear();
   for (std::size_t i = 0; i < warnings.size(); ++i) {
     const Warning& w = warnings[i];
     visualization_msgs::Marker& label =
         NextMarker(MarkerLayout::kDistances, static_cast<int>(i),
                    visualization_msgs::Marker::TEXT_VIEW_FACING, stamp);
-    label.pose.position =
-        ToPoint(0.5 * (w.p_WA + w.p_WB) + Eigen::Vector3d(0.0, 0.0, kTextHeight_m));
+    // Above the closest-point line's middle, or in the lowest free slot a text height apart
+    // above it (a hand on a box warns for several primitives at nearly one point). A placed
+    // label blocks at most two slots, so one of the first 2 n + 1 is free.
+    const Eigen::Vector3d base_W =
+        0.5 * (w.p_WA + w.p_WB) + Eigen::Vector3d(0.0, 0.0, kTextHeight_m);
+    Eigen::Vector3d p_W = base_W;
+    for (std::size_t slot = 1; slot <= 2 * label_positions_W_.size() + 1; ++slot) {
+      const bool is_free = std::none_of(
+          label_positions_W_.begin(), label_positions_W_.end(),
+          [&](const Eigen::Vector3d& placed_W) { return LabelsOverlap(p_W, placed_W); });
+      if (is_free) break;
+      p_W.z() = base_W.z() + static_cast<double>(slot) * kTextHeight_m;
+    }
+    label_positions_W_.push_back(p_W);
+    label.pose.position = ToPoint(p_W);
     label.scale.z = kTextHeight_m;
     const float white[3] = {1.0f, 1.0f, 1.0f};
     label.color = Rgba(white, 1.0f);

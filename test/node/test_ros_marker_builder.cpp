@@ -182,7 +182,6 @@ TEST(MarkerBuilder, ClosestPointLinesEndAtTheWarningsPoints) {
     EXPECT_NE(FindMarker(array, MarkerLayout::kDistances, static_cast<int>(k)), nullptr);
   }
   ExpectStatesAsReference(array, monitor, "touching");
-
   // Back home (the step leaves the box's zone: the swept check warns on its way; idle at home
   // it clears): no warning, the lines and labels of the previous build are deleted.
   monitor.Update(MakeQ(*wc, {}));
@@ -196,6 +195,45 @@ TEST(MarkerBuilder, ClosestPointLinesEndAtTheWarningsPoints) {
     ASSERT_NE(label, nullptr);
     EXPECT_EQ(label->action, visualization_msgs::Marker::DELETE);
   }
+}
+
+// The labels of warnings at nearly one point stack rather than cover each other: no two are
+// within a text height (0.05 m, up to rounding) vertically and six (0.3 m, a label's width)
+// horizontally. The right arm pushed into the box on the right table, its tip ever lower, warns
+// for more and more of its primitives; the arms turned towards each other warn for pairs with
+// labels at one point (where stacking by "just above the label in the way" met rounding and
+// never ended).
+TEST(MarkerBuilder, DistanceLabelsOfNearbyWarningsDoNotOverlap) {
+  const auto wc = LoadBundledWorkcell();
+  std::vector<Eigen::VectorXd> poses;
+  for (int k = 0; k <= 6; ++k) {
+    poses.push_back(ArmReachDown(*wc, "right", 0.1, -1.55, 0.95 - 0.05 * k));
+  }
+  poses.push_back(MakeQ(*wc, {{"left_joint1", -1.5708}, {"left_joint2", 0.5},
+                              {"right_joint1", 1.5708}, {"right_joint2", 0.5}}));
+  std::size_t most_labels = 0;
+  for (std::size_t k = 0; k < poses.size(); ++k) {
+    Monitor monitor(wc, MonitorOptions{});
+    const CycleReport& report = monitor.Update(poses[k]);
+    MarkerBuilder builder(monitor, "world");
+    const visualization_msgs::MarkerArray& array = builder.Build(ros::Time(0));
+    std::vector<Eigen::Vector3d> labels_W;
+    for (std::size_t i = 0; i < report.warnings.size(); ++i) {
+      const auto* label = FindMarker(array, MarkerLayout::kDistances, static_cast<int>(i));
+      ASSERT_NE(label, nullptr);
+      labels_W.emplace_back(label->pose.position.x, label->pose.position.y,
+                            label->pose.position.z);
+    }
+    most_labels = std::max(most_labels, labels_W.size());
+    for (std::size_t i = 0; i < labels_W.size(); ++i) {
+      for (std::size_t j = i + 1; j < labels_W.size(); ++j) {
+        const Eigen::Vector3d d = labels_W[i] - labels_W[j];
+        EXPECT_FALSE(std::abs(d.z()) < 0.05 * (1.0 - 1e-6) && d.head<2>().norm() < 0.3)
+            << "pose " << k << ": labels " << i << " and " << j << " overlap: " << d.transpose();
+      }
+    }
+  }
+  EXPECT_GE(most_labels, 3u);
 }
 
 TEST(MarkerBuilder, NearStateMatchesTheBruteForceReference) {

@@ -74,6 +74,7 @@ class MarkerBuilder {
   visualization_msgs::MarkerArray array_;
   std::size_t used_ = 0;               ///< markers of array_ filled this Build()
   std::size_t previous_text_count_ = 0;
+  std::vector<Eigen::Vector3d> label_positions_W_;  ///< AddWarnings' scratch
 };
 
 }  // namespace arm_collision_monitor
