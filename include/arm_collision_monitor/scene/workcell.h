@@ -105,8 +105,9 @@ struct Workcell {
   /// Start-up report that needs no action (the node logs it at INFO level, replay prints it):
   /// one line per fitted mesh (the fit, its primitive count, fitted/mesh volume or "open mesh"),
   /// a line when the fit cache could not be written, the world cube derived when the scene file
-  /// gives none, the SRDF's 'Never' pairs between two arms that stay checked. Kept apart from warnings because a
-  /// robot of 20 mesh links would otherwise start with 20 warnings about nothing wrong.
+  /// gives none, the SRDF's 'Never' pairs between two arms that stay checked. Kept apart from
+  /// warnings because a robot of 20 mesh links would otherwise start with 20 warnings about
+  /// nothing wrong.
   std::vector<std::string> notices;
   MeshFitCounts mesh_fits;
 
