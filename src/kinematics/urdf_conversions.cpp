@@ -1,5 +1,6 @@
 #include "arm_collision_monitor/kinematics/urdf_conversions.h"
 
+#include <tinyxml2.h>
 #include <urdf_parser/urdf_parser.h>
 
 #include <fstream>
@@ -27,6 +28,12 @@ urdf::ModelInterfaceSharedPtr ParseUrdfFile(const std::string& urdf_path) {
   std::stringstream buffer;
   buffer << in.rdbuf();
   const std::string xml = buffer.str();
+  // urdfdom reports malformed XML without a line ("Error reading end tag"): tinyxml2 names it.
+  tinyxml2::XMLDocument doc;
+  if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS) {
+    throw LoadError(urdf_path + ":" + std::to_string(doc.ErrorLineNum()) +
+                    ": malformed XML: " + doc.ErrorStr() + " (expected a well-formed URDF)");
+  }
   const urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(xml);
   if (!model) {
     throw LoadError(urdf_path +

@@ -471,8 +471,10 @@ TEST(SceneLoader, XacroLeftIsRefusedWhereItChangesTheModel) {
 TEST(SceneLoader, MalformedFilesAreRejected) {
   ExpectSceneError(kUrdf, "world: {center_m: [0, 0, 1], edge_m: 4\narms: [\n", {"malformed YAML"});
   ExpectSceneError(kUrdf, "- just\n- a list\n", {"expected a map"});
+  // Its <link> is never closed: the element and its line, which urdfdom's own message ("Error
+  // reading end tag") does not give.
   ExpectLoadError([&] { LoadWorkcell(kData + "malformed.urdf", kScene); },
-                  {"malformed.urdf", "not a valid URDF"});
+                  {"malformed.urdf:4: malformed XML", "name=link", "expected a well-formed URDF"});
   ExpectLoadError([&] { LoadWorkcell(kData + "floating_joint.urdf", kScene); },
                   {"floating_joint.urdf", "joint 'free'", "floating"});
 }

@@ -12,8 +12,8 @@ namespace arm_collision_monitor {
 /// The rigid transform an URDF <origin> states (rpy applied as fixed-axis roll, pitch, yaw).
 Eigen::Isometry3d UrdfPoseToIsometry(const urdf::Pose& pose);
 
-/// Parses the URDF at `urdf_path`. Throws LoadError naming the file when it cannot be opened or
-/// urdfdom rejects it.
+/// Parses the URDF at `urdf_path`. Throws LoadError naming the file when it cannot be opened, is
+/// not well-formed XML (with the line and the element) or urdfdom rejects it.
 urdf::ModelInterfaceSharedPtr ParseUrdfFile(const std::string& urdf_path);
 
 }  // namespace arm_collision_monitor
