@@ -155,7 +155,7 @@ Input ReadCsv(const std::string& path, const Workcell& workcell) {
   Input result;
   result.q =
       JointCsvInModelOrder(csv, workcell.joint_names, workcell.joint_defaults, mimic_joints,
-                           &result.ignored_columns);
+                           &result.ignored_columns, &result.mimic_columns);
   for (const double t : csv.time_s) result.time_s.push_back(t - csv.time_s.front());
   result.messages = result.q.size();
   return result;

@@ -178,6 +178,26 @@ class ReplayConfigTest(unittest.TestCase):
         text = rosrun('replay', '--scene', self.bundled_scene, csv_path).stdout
         self.assertIn("input: 1 column ignored, not joints of the model: 'gripper_x'\n", text)
 
+    def test_a_csv_column_of_a_mimic_joint_is_listed_not_read(self):
+        # A small arm's URDF mimic joint follows the joint it mimics: its column is not read (a
+        # value that disagrees changes nothing) and is listed apart from columns of no joint.
+        data = os.path.join(rospkg.RosPack().get_path(PKG), 'test', 'data')
+        csv_path = os.path.join(tempfile.mkdtemp(prefix='acm_csv_mimic_'), 'mimic.csv')
+        with open(csv_path, 'w') as f:
+            f.write('shoulder,slide,finger_mimic,elbow,spin,gripper_x\n')
+            f.write('0,0.01,0.5,0,0,0\n0.1,0.02,0.5,0.1,0,0\n')
+        args = ['--urdf', os.path.join(data, 'three_link_arm.urdf'), '--scene',
+                os.path.join(data, 'three_link_scene.yaml'), csv_path]
+        result = rosrun('replay', '--json', *args)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        report = json.loads(result.stdout)
+        self.assertEqual(report['mimic_columns'], ['finger_mimic'])
+        self.assertEqual(report['ignored_columns'], ['gripper_x'])
+        self.assertEqual(report['cycles'], 2)
+        self.assertIn("input: 1 column of mimic joints not read (their positions follow from the "
+                      "joints they mimic in the URDF): 'finger_mimic'\n",
+                      rosrun('replay', *args).stdout)
+
     def test_between_samples_lines_say_what_they_are(self):
         # Home, both arms swung into each other in one step, home again (20 Hz).
         directory = tempfile.mkdtemp(prefix='acm_between_')

@@ -97,20 +97,22 @@ TEST(JointCsv, JointDefaultsFillMissingColumns) {
 
 // A recorded joint state may give a URDF mimic joint, which is no joint of the model (its
 // position follows from its target's), or a joint the URDF lacks (a gripper the driver
-// publishes): both columns are ignored, as the node ignores such names, and the second is
-// listed.
+// publishes): both columns are ignored, as the node ignores such names, and listed apart.
 TEST(JointCsv, ColumnsOfNoModelJointAreIgnored) {
   const JointCsv csv =
       ReadJointCsv(WriteFile("mimic", "b, finger_mimic, gripper, a\n1, 9, 8, 2\n"));
-  std::vector<std::string> ignored;
+  std::vector<std::string> ignored, derived;
   const std::vector<Eigen::VectorXd> rows =
-      JointCsvInModelOrder(csv, {"a", "b"}, {}, {"finger_mimic"}, &ignored);
+      JointCsvInModelOrder(csv, {"a", "b"}, {}, {"finger_mimic"}, &ignored, &derived);
   ASSERT_EQ(rows.size(), 1u);
   EXPECT_EQ(rows[0], Eigen::Vector2d(2.0, 1.0));
   EXPECT_EQ(ignored, std::vector<std::string>{"gripper"});
+  EXPECT_EQ(derived, std::vector<std::string>{"finger_mimic"});
   ignored.clear();
-  JointCsvInModelOrder(csv, {"a", "b"}, {}, {"other_mimic"}, &ignored);
+  derived.clear();
+  JointCsvInModelOrder(csv, {"a", "b"}, {}, {"other_mimic"}, &ignored, &derived);
   EXPECT_EQ(ignored, (std::vector<std::string>{"finger_mimic", "gripper"}));
+  EXPECT_TRUE(derived.empty());
 }
 
 // A position may be nan or inf (the monitor refuses that cycle, as the node refuses such a
@@ -144,6 +146,10 @@ TEST(JointCsv, MalformedFilesAreRejectedWithFileLineAndColumn) {
                 .find("no column for 3 model joints: 'a', 'c', 'd' (publish them,"),
             std::string::npos);
   EXPECT_NE(ErrorOf("duplicate", "a,b,a\n").find(":1: joint 'a' appears twice"),
+            std::string::npos);
+  // A file without its header row: said so, not taken for joints named by numbers.
+  EXPECT_NE(ErrorOf("no_header", "0.0, 1.5, -2e-3\n0.05, 1.5, -2e-3\n")
+                .find(":1: the first row holds numbers only: expected a header row"),
             std::string::npos);
   EXPECT_NE(ErrorOf("count", "a,b\n1,2\n1\n").find(":3: 1 fields, expected 2"),
             std::string::npos);

@@ -69,11 +69,14 @@ void PrintJsonCounts(const Options& options, const Input& input, std::size_t cyc
   std::printf("},\n  \"superseded_points\": %llu,\n  \"position_less_messages\": %llu,\n",
               static_cast<unsigned long long>(input.superseded_points),
               static_cast<unsigned long long>(input.position_less));
-  std::printf("  \"ignored_columns\": [");
-  for (std::size_t i = 0; i < input.ignored_columns.size(); ++i) {
-    std::printf("%s%s", i > 0 ? ", " : "", JsonString(input.ignored_columns[i]).c_str());
+  for (const auto& [key, names] : {std::pair{"ignored_columns", &input.ignored_columns},
+                                   std::pair{"mimic_columns", &input.mimic_columns}}) {
+    std::printf("  \"%s\": [", key);
+    for (std::size_t i = 0; i < names->size(); ++i) {
+      std::printf("%s%s", i > 0 ? ", " : "", JsonString((*names)[i]).c_str());
+    }
+    std::printf("],\n");
   }
-  std::printf("],\n");
   std::printf("  \"incomplete_cycles\": %llu,\n  \"cycles\": %zu,\n"
               "  \"refused_cycles\": %llu,\n  \"warning_cycles\": %llu,\n"
               "  \"between_samples_cycles\": %llu,\n  \"jumped_cycles\": %llu,\n",
@@ -196,6 +199,12 @@ void PrintInputLines(const Input& input, const std::vector<CycleResult>& cycles,
     std::printf("input: %zu column%s ignored, not joints of the model: %s\n",
                 input.ignored_columns.size(), input.ignored_columns.size() == 1 ? "" : "s",
                 QuotedNames(input.ignored_columns).c_str());
+  }
+  if (!input.mimic_columns.empty()) {
+    std::printf("input: %zu column%s of mimic joints not read (their positions follow from the "
+                "joints they mimic in the URDF): %s\n",
+                input.mimic_columns.size(), input.mimic_columns.size() == 1 ? "" : "s",
+                QuotedNames(input.mimic_columns).c_str());
   }
   if (input.position_less > 0) {
     std::printf("input: %llu messages named joints without positions (ignored)\n",

@@ -40,6 +40,9 @@ struct Input {
   std::uint64_t superseded_points = 0;  ///< planned points (partly) replaced by a later plan
   std::uint64_t position_less = 0;      ///< messages and points naming joints without positions
   std::vector<std::string> ignored_columns;  ///< a CSV's columns that are no model joints
+  /// a CSV's columns of the URDF's mimic joints, not read: their positions follow from the
+  /// joints they mimic
+  std::vector<std::string> mimic_columns;
 };
 
 // One cycle's outcome: warning pairs with their distances at the cycle's q, those the swept

@@ -41,6 +41,15 @@ std::string Where(const std::string& path, int line) {
 // The joint names of a header row from column `first` on; `where` prefixes its errors.
 std::vector<std::string> HeaderJoints(const std::vector<std::string>& fields, std::size_t first,
                                       const std::string& where) {
+  // A first row of numbers alone is a file without its header row.
+  if (std::all_of(fields.begin(), fields.end(), [](const std::string& field) {
+        char* end = nullptr;
+        std::strtod(field.c_str(), &end);
+        return !field.empty() && *end == '\0';
+      })) {
+    throw LoadError(where + "the first row holds numbers only: expected a header row of joint "
+                    "names first (optionally time_s, then one name a column)");
+  }
   std::vector<std::string> names;
   std::unordered_map<std::string, int> seen;
   for (std::size_t c = first; c < fields.size(); ++c) {
@@ -136,7 +145,8 @@ JointCsv ReadJointCsv(const std::string& path) {
 std::vector<Eigen::VectorXd> JointCsvInModelOrder(
     const JointCsv& csv, const std::vector<std::string>& model_joint_names,
     const std::vector<std::pair<int, double>>& defaults,
-    const std::vector<std::string>& derived_joint_names, std::vector<std::string>* ignored) {
+    const std::vector<std::string>& derived_joint_names, std::vector<std::string>* ignored,
+    std::vector<std::string>* derived) {
   std::unordered_map<std::string, int> model_index;
   for (std::size_t j = 0; j < model_joint_names.size(); ++j) {
     model_index.emplace(model_joint_names[j], static_cast<int>(j));
@@ -147,11 +157,10 @@ std::vector<Eigen::VectorXd> JointCsvInModelOrder(
     if (it == model_index.end()) {
       // A mimic joint's position follows from the others; any other name is no joint of the
       // model (a gripper the driver publishes beside the arms): ignored, as the node ignores it.
-      if (std::find(derived_joint_names.begin(), derived_joint_names.end(),
-                    csv.joint_names[c]) == derived_joint_names.end() &&
-          ignored != nullptr) {
-        ignored->push_back(csv.joint_names[c]);
-      }
+      const bool is_derived = std::find(derived_joint_names.begin(), derived_joint_names.end(),
+                                        csv.joint_names[c]) != derived_joint_names.end();
+      std::vector<std::string>* list = is_derived ? derived : ignored;
+      if (list != nullptr) list->push_back(csv.joint_names[c]);
       continue;
     }
     column_of[it->second] = static_cast<int>(c);

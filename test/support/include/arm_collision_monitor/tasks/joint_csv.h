@@ -20,21 +20,23 @@ struct JointCsv {
 };
 
 /// Reads and validates a joint CSV file. Throws LoadError naming the file, the line and the
-/// column (unreadable file, empty header, duplicate name, wrong field count, a field that is
+/// column (unreadable file, empty header, a header of numbers only (no header row), duplicate
+/// name, wrong field count, a field that is
 /// not a number, a time that is not finite, times not increasing). A position may be nan or
 /// inf: the monitor refuses that cycle, as the node refuses such a message.
 JointCsv ReadJointCsv(const std::string& path);
 
 /// The rows re-ordered as `model_joint_names` (Workcell::joint_names), matched by name. Done
 /// once at start-up. A column that is no model joint is ignored, as the node ignores such a
-/// name: silently for `derived_joint_names` (the URDF's mimic joints, whose positions follow
-/// from others), else listed in `ignored` (when given). Every model joint must be a column or
+/// name, and listed (when the lists are given): in `derived` for `derived_joint_names` (the
+/// URDF's mimic joints, whose positions follow from others), else in `ignored`. Every model
+/// joint must be a column or
 /// in `defaults` ((q index, position), Workcell::joint_defaults: the position in every row);
 /// otherwise throws LoadError naming the file and the joints (every missing one at once).
 std::vector<Eigen::VectorXd> JointCsvInModelOrder(
     const JointCsv& csv, const std::vector<std::string>& model_joint_names,
     const std::vector<std::pair<int, double>>& defaults = {},
     const std::vector<std::string>& derived_joint_names = {},
-    std::vector<std::string>* ignored = nullptr);
+    std::vector<std::string>* ignored = nullptr, std::vector<std::string>* derived = nullptr);
 
 }  // namespace arm_collision_monitor
