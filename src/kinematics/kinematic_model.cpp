@@ -94,6 +94,13 @@ bool KinematicModel::SetPositionLimits(const std::string& joint_name, double low
   return true;
 }
 
+bool KinematicModel::SetVelocityLimit(const std::string& joint_name, double max_velocity) {
+  const int link = FindJointChildLink(joint_name);
+  if (link < 0 || joints_[link].q_index < 0) return false;
+  joints_[link].max_velocity = max_velocity;
+  return true;
+}
+
 std::vector<std::string> KinematicModel::ActuatedJointNames() const {
   std::vector<std::string> names(q_size_);
   for (int link = 1; link < link_count(); ++link) {

@@ -91,8 +91,9 @@ void Monitor::Impl::CheckStepTolerance() {
       << (below == 1 ? "" : "s") << " whose tolerance is below their motion)";
   if (!options.swept_check) {
     throw LoadError("monitor options: swept_check is false and " + msg.str() +
-                    ": a contact could pass between two cycles (raise tolerance_m or switch "
-                    "swept_check on)");
+                    ": a contact could pass between two cycles (raise tolerance_m, give the "
+                    "joints' real top speeds in the scene file, joint_limits: {<joint>: "
+                    "{velocity: v}}, or switch swept_check on)");
   }
   notices.push_back(msg.str() + "; the swept check covers the motion between cycles");
 }

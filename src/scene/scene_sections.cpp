@@ -334,7 +334,7 @@ void ReadJointLimits(const YAML::Node& node, const Where& where, KinematicModel*
                                                 const std::string& joint_name,
                                                 const JointSpec& joint) {
     yaml_fields::RequireMap(value, item);
-    yaml_fields::CheckKeys(value, {"lower", "upper"}, item);
+    yaml_fields::CheckKeys(value, {"lower", "upper", "velocity"}, item);
     double lower = joint.lower;
     double upper = joint.upper;
     yaml_fields::ReadIfPresent(value, "lower", item, yaml_fields::ReadFiniteDouble, &lower);
@@ -345,6 +345,17 @@ void ReadJointLimits(const YAML::Node& node, const Where& where, KinematicModel*
                            ")");
     }
     model->SetPositionLimits(joint_name, lower, upper);
+    // The joint's real top speed, where the URDF's is the motor's (a Unitree G1's 37 rad/s):
+    // what the start-up check of the tolerance against the motion in one cycle uses.
+    if (const YAML::Node velocity_node = value["velocity"]) {
+      const Where velocity_where = item.Child("velocity");
+      const double velocity = yaml_fields::ReadPositiveDouble(velocity_node, velocity_where);
+      if (joint.max_velocity > 0.0 && velocity > joint.max_velocity) {
+        velocity_where.Fail(velocity_node, "expected 0 < velocity <= URDF velocity (" +
+                                               std::to_string(joint.max_velocity) + ")");
+      }
+      model->SetVelocityLimit(joint_name, velocity);
+    }
   });
 }
 

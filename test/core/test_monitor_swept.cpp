@@ -567,7 +567,8 @@ TEST(MonitorSwept, LongStepFarAtBothEndsBisectsNoPair) {
 }
 
 // Start-up: a tolerance below the per-cycle motion is a notice with the swept check on, an
-// error with it off; a short enough cycle needs neither.
+// error with it off; a short enough cycle needs neither, nor do the joints' real top speeds
+// given in the scene file (joint_limits: velocity) where the URDF's allow more.
 TEST(MonitorSwept, StartupToleranceCheck) {
   const auto wc = test::LoadBundledWorkcell();
   MonitorOptions options;
@@ -611,7 +612,24 @@ TEST(MonitorSwept, StartupToleranceCheck) {
     EXPECT_NE(std::string(e.what()).find("swept_check"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("tolerance of primitive"), std::string::npos)
         << e.what();
+    EXPECT_NE(std::string(e.what()).find("joint_limits: {<joint>: {velocity: v}}"),
+              std::string::npos)
+        << e.what();
   }
+  // 0.05 rad/s a joint: under 0.0305 m a cycle for every primitive (lever arms under 2 m).
+  const auto slow = test::LoadBundledSceneEdited("slow_joints", [](std::string* scene) {
+    *scene += "\njoint_limits:\n";
+    for (const char* arm : {"left", "right"}) {
+      for (int k = 1; k <= 7; ++k) {
+        *scene += "  " + std::string(arm) + "_joint" + std::to_string(k) + ": {velocity: 0.05}\n";
+      }
+    }
+  });
+  Monitor slow_monitor(slow, options);
+  EXPECT_TRUE(slow_monitor.startup_notices().empty());
+  options.swept_check = true;
+  EXPECT_TRUE(Monitor(slow, options).startup_notices().empty());
+  options.swept_check = false;
   options.cycle_period_s = 0.002;
   Monitor fast(wc, options);
   EXPECT_TRUE(fast.startup_notices().empty());

@@ -318,6 +318,23 @@ TEST(SceneLoader, JointLimitOverrides) {
                    {"joint_limits.elbow", "URDF upper"});
   ExpectSceneError(kArmUrdf, kWorldLine + "joint_limits: {knee: {upper: 1.0}}\n",
                    {"joint_limits.knee", "unknown joint"});
+  // A velocity limit below the URDF's (its motor's, say) replaces it; above it, or not positive,
+  // is an error naming the key.
+  const Workcell slow = LoadWorkcell(
+      kArmUrdf, WriteTempFile("velocity.yaml",
+                              kWorldLine + "joint_limits: {elbow: {velocity: 0.25}}\n"));
+  const JointSpec& slow_elbow = slow.kinematics.joint(slow.kinematics.FindJointChildLink("elbow"));
+  EXPECT_EQ(slow_elbow.max_velocity, 0.25);
+  EXPECT_EQ(slow_elbow.lower, -2.0);  // the URDF's, untouched
+  EXPECT_GT(elbow.max_velocity, 0.25);
+  ExpectSceneError(kArmUrdf,
+                   kWorldLine + "joint_limits: {elbow: {velocity: " +
+                       std::to_string(2.0 * elbow.max_velocity) + "}}\n",
+                   {"joint_limits.elbow.velocity", "<= URDF velocity"});
+  ExpectSceneError(kArmUrdf, kWorldLine + "joint_limits: {elbow: {velocity: 0}}\n",
+                   {"joint_limits.elbow.velocity"});
+  ExpectSceneError(kArmUrdf, kWorldLine + "joint_limits: {elbow: {speed: 1}}\n",
+                   {"joint_limits.elbow", "unknown key 'speed'"});
 }
 
 TEST(SceneLoader, JointDefaults) {

@@ -94,6 +94,9 @@ class KinematicModel {
   /// Start-up only: replaces the position limits of actuated joint `joint_name` (e.g. soft
   /// limits from the scene file). False if no actuated joint has that name.
   bool SetPositionLimits(const std::string& joint_name, double lower, double upper);
+  /// Start-up only: replaces the velocity limit of actuated joint `joint_name` (rad/s or m/s,
+  /// from the scene file). False if no actuated joint has that name.
+  bool SetVelocityLimit(const std::string& joint_name, double max_velocity);
 
   /// Builds the model from a URDF file. Throws LoadError naming the file and element.
   static KinematicModel FromUrdfFile(const std::string& urdf_path);
