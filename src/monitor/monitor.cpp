@@ -63,10 +63,12 @@ void MarkChangedLinks(const std::vector<int>& links, const std::vector<Eigen::Is
 
 // --- the cycle ------------------------------------------------------------------------------
 
-const CycleReport& Monitor::Update(const Eigen::Ref<const Eigen::VectorXd>& q) {
+const CycleReport& Monitor::Update(const Eigen::Ref<const Eigen::VectorXd>& q, double time_s) {
   Impl& m = *impl_;
-  // Idle cycle: same input bit for bit and an unchanged scene give the same report.
+  // Idle cycle: same input bit for bit and an unchanged scene give the same report (the joints
+  // were at q_good at time_s too).
   if (m.IsIdle(q)) {
+    m.time_good_s = time_s;
     m.RecordCycle(Impl::CycleKind::kIdle, InputStatus::kOk, {});
     return m.report;
   }
@@ -77,11 +79,26 @@ const CycleReport& Monitor::Update(const Eigen::Ref<const Eigen::VectorXd>& q) {
     m.RecordCycle(Impl::CycleKind::kRefused, status, {});
     return m.report;
   }
-  m.RunCycle(q);
+  m.RunCycle(q, time_s);
   return m.report;
 }
 
-void Monitor::Impl::RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q) {
+bool Monitor::Impl::IsWithinVelocityLimits(const Eigen::Ref<const Eigen::VectorXd>& q,
+                                           double elapsed_s) const {
+  if (!(elapsed_s > 0.0)) return false;
+  const KinematicModel& kinematics = *model.kinematics;
+  for (int link = 1; link < kinematics.link_count(); ++link) {
+    const JointSpec& joint = kinematics.joint(link);
+    if (joint.q_index < 0) continue;
+    const double move = std::abs(q[joint.q_index] - q_good[joint.q_index]);
+    if (move > 0.0 && !(move <= kJumpVelocityFactor * joint.max_velocity * elapsed_s)) {
+      return false;
+    }
+  }
+  return true;
+}
+
+void Monitor::Impl::RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q, double time_s) {
   // Work done by scene changes since the last cycle belongs to the run, not to this cycle.
   total += broad_phase->counters();
   broad_phase->ResetCounters();
@@ -98,8 +115,10 @@ void Monitor::Impl::RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q) {
     MotionBounds& step = StepMotion();
     step.SetJointMotion(q, swept.q_start);
     work.step_m = step.ComputeLargestBound_m();
-    work.is_jumped = !(work.step_m <= model.options.max_step_m);
+    work.is_jumped = !(work.step_m <= model.options.max_step_m) &&
+                     !IsWithinVelocityLimits(q, time_s - time_good_s);
   }
+  time_good_s = time_s;  // q is accepted: q_good below
   if (IsProvablyClear(q, work.step_m)) {
     // Every kept pair is clear, and every other pair's indexed boxes are apart while both
     // primitives stay within their slack: no warning, and the kinematics can wait.

@@ -90,6 +90,7 @@ struct Monitor::Impl {
   // with (IsProvablyClear: an upper bound for every primitive; read in the next bounded cycle).
   double largest_since_m = 0.0;
   Eigen::VectorXd q_good;               // the last accepted q
+  double time_good_s = std::numeric_limits<double>::quiet_NaN();  // when it was last sampled
   Eigen::VectorXd q_kinematics;         // q of the last forward kinematics
   bool has_good = false;
   bool scene_changed = true;
@@ -126,7 +127,11 @@ struct Monitor::Impl {
            std::memcmp(q.data(), q_good.data(), sizeof(double) * q.size()) == 0;
   }
   // A good q: a bounded cycle if the bounds allow, else the kinematics and the narrow phase.
-  void RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q);
+  void RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q, double time_s);
+  // Whether every joint's move from q_good to q is within kJumpVelocityFactor times its
+  // velocity limit over `elapsed_s` (false when that is not a positive time, or a moving joint
+  // has no limit).
+  bool IsWithinVelocityLimits(const Eigen::Ref<const Eigen::VectorXd>& q, double elapsed_s) const;
   // True when, without kinematics, every moving primitive's joint-space motion bound since
   // q_kinematics keeps it within its slack and every kept pair's bound, less those motions,
   // still clears its threshold -- then no pair can warn. `step_m`: the step's largest bound

@@ -165,7 +165,8 @@ Input ReadCsv(const std::string& path, const Workcell& workcell) {
 class Checker {
  public:
   virtual ~Checker() = default;
-  virtual void Run(const Eigen::VectorXd& q, CycleResult* result) = 0;
+  /// One cycle on `q`, sampled at `time_s`.
+  virtual void Run(const Eigen::VectorXd& q, double time_s, CycleResult* result) = 0;
   virtual BroadPhaseCounters counters() const { return {}; }
   /// Whether the steps between samples are checked too (the Monitor's swept check).
   virtual bool is_swept() const { return false; }
@@ -186,9 +187,9 @@ class MonitorChecker : public Checker {
       }
     }
   }
-  void Run(const Eigen::VectorXd& q, CycleResult* result) override {
+  void Run(const Eigen::VectorXd& q, double time_s, CycleResult* result) override {
     const auto start = std::chrono::steady_clock::now();
-    const CycleReport& report = monitor_.Update(q);
+    const CycleReport& report = monitor_.Update(q, time_s);
     result->time_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     result->warnings.clear();
@@ -245,7 +246,7 @@ class PeerCycleChecker : public Checker {
     peer_ = name == "fcl" ? MakeFclChecker(primitives, compatible, PeerTolerance::kRounded)
                           : MakeBulletChecker(primitives, compatible, PeerTolerance::kRounded);
   }
-  void Run(const Eigen::VectorXd& q, CycleResult* result) override {
+  void Run(const Eigen::VectorXd& q, double /*time_s*/, CycleResult* result) override {
     const Workcell& wc = *workcell_;
     result->warnings.clear();
     result->refused = !q.allFinite();  // the Monitor refuses it too (the node, its message)
@@ -319,7 +320,7 @@ int Run(const Options& options) {
                              : replay::ReadBag(options.input, options.topics, *workcell);
   std::vector<CycleResult> cycles(input.q.size());
   for (std::size_t k = 0; k < input.q.size(); ++k) {
-    checker->Run(input.q[k], &cycles[k]);
+    checker->Run(input.q[k], input.time_s[k], &cycles[k]);
     cycles[k].is_moving = k == 0 || input.q[k] != input.q[k - 1];
   }
   const replay::RunSummary summary = replay::Summarize(input, cycles, checker->counters());

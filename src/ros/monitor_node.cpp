@@ -257,7 +257,8 @@ void MonitorNode::RunCycle(std::chrono::steady_clock::time_point start) {
   report_.swept_pairs = 0;
   if (policy_.BeginCycle(pending, pending_why_, *input_)) {
     UpdateBoundObjects();
-    const CycleReport& cycle = monitor_->Update(input_->q());
+    // The newest accepted message's stamp (its arrival when unstamped) dates q.
+    const CycleReport& cycle = monitor_->Update(input_->q(), newest_input_stamp_.toSec());
     if (cycle.input == InputStatus::kOk) {
       FillReportWarnings(cycle, &report_);
       report_.moved_primitives = cycle.moved_primitives;

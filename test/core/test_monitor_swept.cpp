@@ -545,6 +545,36 @@ TEST(MonitorSwept, MetreJumpIsSweptOrStopped) {
   EXPECT_EQ(normal.stop, !normal.warnings.empty());
 }
 
+// With sample times, the same step beyond max_step_m is a sparse path's step when every joint
+// stays within kJumpVelocityFactor times its URDF velocity limit over the time between the
+// samples (left_joint1 moves 2.4 rad, left_joint2 1.3 rad, both limited to 1 rad/s), and a jump
+// when it does not; an idle cycle re-dates the last accepted sample.
+TEST(MonitorSwept, TimedStepsBeyondMaxStepAreJumpsOnlyAboveTheVelocityLimits) {
+  const auto wc = test::LoadBundledWorkcell();
+  const Eigen::VectorXd home = MakeQ(*wc, {});
+  const Eigen::VectorXd q0 = MakeQ(*wc, {{"left_joint1", -2.4}, {"left_joint2", 1.3}});
+  for (const std::string joint : {"left_joint1", "left_joint2"}) {
+    ASSERT_EQ(wc->kinematics.joint(wc->kinematics.FindJointChildLink(joint)).max_velocity, 1.0);
+  }
+  const double at_limit_s = 2.4 / (kJumpVelocityFactor * 1.0);
+  for (const auto& [idle_until_s, step_s, is_jump] :
+       {std::tuple{0.0, 1.01 * at_limit_s, false}, std::tuple{0.0, 0.99 * at_limit_s, true},
+        std::tuple{5.0, 5.0 + 1.01 * at_limit_s, false},
+        std::tuple{5.0, 5.0 + 0.99 * at_limit_s, true}}) {
+    Monitor monitor(wc, MonitorOptions{});
+    ASSERT_FALSE(monitor.Update(home, 0.0).stop);
+    if (idle_until_s > 0.0) {
+      ASSERT_FALSE(monitor.Update(home, idle_until_s).stop);
+    }
+    const CycleReport& report = monitor.Update(q0, step_s);
+    const std::string context = "home at 0 s and " + std::to_string(idle_until_s) +
+                                " s, then q0 at " + std::to_string(step_s) + " s";
+    EXPECT_GT(report.step_motion_m, monitor.options().max_step_m) << context;
+    EXPECT_EQ(report.input_jumped, is_jump) << context;
+    EXPECT_EQ(report.stop, is_jump || !report.warnings.empty()) << context;
+  }
+}
+
 // A long step far from everything at both ends: each pair's distances at the two ends, less its
 // motion bound, leave twice the threshold, so no pair is bisected, though for many pairs the
 // motion bound exceeds the distance at the end (a test of the end alone would bisect them).

@@ -165,6 +165,12 @@ constexpr std::uint64_t kAlwaysOverlappingSeed = 20260521;
 /// limits by a few milliradians; a larger excursion means a corrupt or mis-ordered message.
 inline constexpr double kJointLimitMargin = 0.01;
 
+/// A step beyond max_step_m is no jump when the time since the last accepted sample shows every
+/// joint moved at most this many times its velocity limit allows (a planned path sampled
+/// sparsely, a slow publisher): twice, so that stamps jittering by up to half the step's time
+/// do not make a path at its velocity limits jump. Dimensionless.
+inline constexpr double kJumpVelocityFactor = 2.0;
+
 /// auto's rule (ChooseBroadPhaseMethod), from the sweep of bench_broadphase_workloads (moving
 /// 7..1,200 x static 0..3,000 primitives; counts, dimensionless): the uniform grid from
 /// kAutoGridMinStatics statics or from kAutoGridMinMoving moving up; otherwise all pairs

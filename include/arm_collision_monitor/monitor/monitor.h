@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -65,7 +66,9 @@ struct CycleReport {
   /// Largest motion bound over primitives for the step from the last accepted q (m; 0 on the
   /// first good cycle and on refused and idle ones).
   double step_motion_m = 0.0;
-  /// The step exceeded MonitorOptions::max_step_m: accepted, but stop is requested.
+  /// The step exceeded MonitorOptions::max_step_m and the time since the last accepted q (both
+  /// given to Update) does not show every joint within kJumpVelocityFactor times its velocity
+  /// limit (a sparse path's large step does): accepted, but stop is requested.
   bool input_jumped = false;
   /// Pairs whose swept check needed the path (their distance at the step's start, and
   /// bisection); 0 when every pair was certified by its distance at q less its motion bound.
@@ -127,8 +130,10 @@ class Monitor {
 
   /// One cycle. `q` holds one position per Workcell::joint_names() entry (rad or m). Never
   /// throws and does not allocate in the steady state; a malformed `q` is refused (see
-  /// InputStatus), counted, and fails safe.
-  const CycleReport& Update(const Eigen::Ref<const Eigen::VectorXd>& q);
+  /// InputStatus), counted, and fails safe. `time_s`: when `q` was sampled (s, any epoch; NaN
+  /// when unknown), which tells a sparse path's large step from a jump (input_jumped).
+  const CycleReport& Update(const Eigen::Ref<const Eigen::VectorXd>& q,
+                            double time_s = std::numeric_limits<double>::quiet_NaN());
   /// The last report (cycle 0 and stop = true before the first good Update()).
   const CycleReport& report() const;
   /// Why Update(q) refuses `q`, for a person: its size against the model's, or the first joint

@@ -49,8 +49,9 @@ struct MonitorOptions {
   double swept_resolution_m = 0.001;
   /// Largest plausible step (m): a step whose motion bound (the largest over primitives from
   /// the last accepted q; lever arms, so up to a few times the true motion) exceeds it -- a
-  /// teleport after a driver restart -- requests a stop, "input jumped", until a normal step.
-  /// The step is still swept.
+  /// teleport after a driver restart -- requests a stop, "input jumped", until a normal step,
+  /// unless the samples' times show every joint within kJumpVelocityFactor times its velocity
+  /// limit (Monitor::Update). The step is still swept.
   double max_step_m = 1.0;
   /// Default tolerance of an arm whose scene entry gives none (pass it to LoadWorkcell).
   double tolerance_m = kDefaultArmTolerance_m;
