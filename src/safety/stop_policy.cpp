@@ -1,6 +1,7 @@
 #include "arm_collision_monitor/safety/stop_policy.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdarg>
 #include <cstdio>
 
@@ -64,7 +65,8 @@ void StopPolicy::RaiseStale(const JointMerger& input, double now_s) {
     return;
   }
   // Every stale joint (a driver that died leaves all of its own), the oldest first, as many as
-  // fit; the rest counted.
+  // fit; the rest counted. A joint never received (one held at its default: the model is
+  // complete) has no age and is not stale.
   const double timeout_s = input.input_timeout_s();
   char others[kReasonCapacity];
   std::size_t used = 0;
@@ -72,7 +74,8 @@ void StopPolicy::RaiseStale(const JointMerger& input, double now_s) {
   int unnamed = 0;
   others[0] = '\0';
   for (int i = 0; i < input.joint_count(); ++i) {
-    if (i == oldest || !(input.JointAge(i, now_s) > timeout_s)) continue;
+    const double age_s = input.JointAge(i, now_s);
+    if (i == oldest || !(age_s > timeout_s) || std::isinf(age_s)) continue;
     ++stale;
     const std::string& name = input.joint_name(i);
     if (unnamed > 0 || used + name.size() + 4 > kReasonNamesCapacity) {

@@ -197,6 +197,23 @@ TEST_F(StopPolicyTest, WarningReasonNamesTheDeepestPair) {
             "3 warning(s), the deepest left_link3 - right_link5 at 0.0000 m (threshold 0.0500 m)");
 }
 
+// One arm's driver gone silent beside joints held at their defaults and never published (a
+// mobile base's wheels, a lift): the reason names the arm's joints alone.
+TEST(StopPolicy, StaleReasonLeavesOutDefaultedJointsNeverReceived) {
+  const std::vector<std::string> joints = {"lift", "l_joint1", "l_joint2", "r_joint1", "wheel"};
+  JointMerger input(joints, kTimeout_s);
+  input.SetDefaults({{0, 0.4}, {4, 0.0}});
+  const std::vector<std::string> left = {"l_joint1", "l_joint2"};
+  const std::vector<std::string> right = {"r_joint1"};
+  ASSERT_EQ(input.Merge(NamedPositions{left, {0.1, 0.2}, 1.0}, 1.0), MergeStatus::kAccepted);
+  ASSERT_EQ(input.Merge(NamedPositions{right, {0.3}, 1.9}, 1.9), MergeStatus::kAccepted);
+  StopPolicy policy(kHold_s);
+  ASSERT_TRUE(policy.CheckStaleness(input, 2.0).is_stale);
+  EXPECT_EQ(policy.reason(),
+            "2 joints not received for over input_timeout_s (0.500 s): 'l_joint1' for 1.000 s, "
+            "'l_joint2'");
+}
+
 // A driver of many joints gone silent: as many names as the reason holds, the rest counted.
 TEST(StopPolicy, StaleReasonCountsTheJointsItCannotName) {
   std::vector<std::string> joints;
