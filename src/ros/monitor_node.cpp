@@ -185,7 +185,7 @@ void MonitorNode::OnJointState(const sensor_msgs::JointState::ConstPtr& msg) {
     // fast input shows here first.
     if (!msg->header.stamp.isZero()) input_ages_s_.Add((now - msg->header.stamp).toSec());
   } else {
-    const std::string why = input_->DescribeRefusal(input, status);
+    const std::string why = input_->DescribeRefusal(input, status, now.toSec());
     // The cycle's reason names the first refusal since the last cycle.
     if (pending_refusal_ == MergeStatus::kAccepted) {
       pending_refusal_ = status;
@@ -395,7 +395,7 @@ bool MonitorNode::OnCheck(CheckJointState::Request& req, CheckJointState::Respon
     res.success = false;
     res.report.input_status = ToInputStatusMsg(ToSafetyStatus(status));
     res.report.stop = true;
-    const std::string why = input_->DescribeRefusal(input, status);
+    const std::string why = input_->DescribeRefusal(input, status, ros::Time::now().toSec());
     res.message = std::string("joint state refused: ") + MergeStatusName(status) +
                   (why.empty() ? "" : " (" + why + ")");
     return true;
@@ -490,8 +490,8 @@ void MonitorNode::DiagnoseInput(diagnostic_updater::DiagnosticStatusWrapper& sta
     status.add(std::string("refused: ") + MergeStatusName(code), input_->refused_with(code));
   }
   status.add("refused: out_of_limits", monitor_->refused_inputs());
-  for (const MergeStatus code : {MergeStatus::kStampBackwards, MergeStatus::kNoKnownJoints,
-                                 MergeStatus::kFutureStamp}) {
+  for (const MergeStatus code : {MergeStatus::kStale, MergeStatus::kStampBackwards,
+                                 MergeStatus::kNoKnownJoints, MergeStatus::kFutureStamp}) {
     status.add(std::string("refused: ") + MergeStatusName(code), input_->refused_with(code));
   }
   status.add("unknown joint names (total)", input_->total_unknown_joints());

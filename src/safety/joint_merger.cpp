@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <sstream>
 
@@ -115,7 +116,8 @@ MergeStatus JointMerger::ValidatePositions(const Layout& layout,
   return MergeStatus::kAccepted;
 }
 
-std::string JointMerger::DescribeRefusal(const NamedPositions& input, MergeStatus status) const {
+std::string JointMerger::DescribeRefusal(const NamedPositions& input, MergeStatus status,
+                                         double now_s) const {
   const std::vector<std::string>& names = input.names;
   auto is_model_joint = [&](const std::string& name) { return index_of_name_.count(name) > 0; };
   switch (status) {
@@ -144,6 +146,25 @@ std::string JointMerger::DescribeRefusal(const NamedPositions& input, MergeStatu
       return names.empty() ? "no name"
                            : "none of its " + std::to_string(names.size()) +
                                  " names is a model joint, the first '" + names.front() + "'";
+    case MergeStatus::kStale:
+    case MergeStatus::kFutureStamp: {
+      const double age_s = now_s - input.stamp_s;
+      char text[128];
+      std::snprintf(text, sizeof(text), "stamped %.3f s %s its arrival, over input_timeout_s "
+                    "(%.3f s)", std::abs(age_s), age_s >= 0.0 ? "before" : "after",
+                    input_timeout_s_);
+      return text;
+    }
+    case MergeStatus::kStampBackwards:
+      for (const std::string& name : names) {
+        const auto it = index_of_name_.find(name);
+        if (it == index_of_name_.end() || !(input.stamp_s < stamp_s_[it->second])) continue;
+        char text[64];
+        std::snprintf(text, sizeof(text), "' %.3f s before its last accepted stamp",
+                      stamp_s_[it->second] - input.stamp_s);
+        return "joint '" + name + text;
+      }
+      return "";
     default:
       return "";
   }

@@ -75,15 +75,19 @@ TEST(JointMerger, RefusalsLeaveQUntouchedAndAreCounted) {
       {{"x", "y"}, {1.0, 2.0}, 10.1, MergeStatus::kNoKnownJoints,
        "none of its 2 names is a model joint, the first 'x'"},
       {{}, {}, 10.1, MergeStatus::kNoKnownJoints, "no name"},
-      {{"a1"}, {1.0}, 10.1 - kTimeout_s - 0.01, MergeStatus::kStale, ""},
-      {{"a1"}, {1.0}, 10.1 + kTimeout_s + 0.01, MergeStatus::kFutureStamp, ""},
-      {{"a1"}, {1.0}, 9.99, MergeStatus::kStampBackwards, ""},
+      {{"a1"}, {1.0}, 10.1 - kTimeout_s - 0.01, MergeStatus::kStale,
+       "stamped 0.260 s before its arrival, over input_timeout_s (0.250 s)"},
+      {{"a1"}, {1.0}, 10.1 + kTimeout_s + 0.01, MergeStatus::kFutureStamp,
+       "stamped 0.260 s after its arrival, over input_timeout_s (0.250 s)"},
+      {{"x", "a2"}, {1.0, 2.0}, 9.99, MergeStatus::kStampBackwards,
+       "joint 'a2' 0.010 s before its last accepted stamp"},
   };
   std::uint64_t refused = 0;
   for (const Case& c : cases) {
     EXPECT_EQ(MergeAt(&merger, c.names, c.positions, c.stamp_s, 10.1), c.expected)
         << MergeStatusName(c.expected);
-    EXPECT_EQ(merger.DescribeRefusal(NamedPositions{c.names, c.positions, c.stamp_s}, c.expected),
+    EXPECT_EQ(merger.DescribeRefusal(NamedPositions{c.names, c.positions, c.stamp_s}, c.expected,
+                                     10.1),
               c.why);
     EXPECT_EQ(merger.q(), q_before) << MergeStatusName(c.expected);
     EXPECT_EQ(merger.refused(), ++refused);

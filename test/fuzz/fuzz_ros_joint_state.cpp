@@ -208,7 +208,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       continue;
     }
     const std::string why =
-        status == MergeStatus::kAccepted ? std::string() : input.DescribeRefusal(named, status);
+        status == MergeStatus::kAccepted ? std::string()
+                                         : input.DescribeRefusal(named, status, now.toSec());
     Require(status != MergeStatus::kNonFinite || why.rfind("joint '", 0) == 0);
     if (!policy.BeginCycle(status, why, input)) {
       // Refused or incomplete: the node requests a stop without running the Monitor.

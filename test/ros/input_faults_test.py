@@ -36,10 +36,11 @@ class InputFaultsTest(unittest.TestCase):
         for name in ('check', 'attach', 'detach', 'set_grasp_target'):
             rospy.wait_for_service(NODE + '/' + name, timeout=20.0)
 
-    def refused_with(self, status, message_fn, clear=None, reason=None):
+    def refused_with(self, status, message_fn, clear=None, reason=None, reason_prefix=None):
         """Clears (unless given the clear report), then publishes message_fn() on the left
-        topic until a report with `status` arrives; asserts the stop (its reason `reason`, if
-        given) and the refusal count, then that good input clears again."""
+        topic until a report with `status` arrives; asserts the stop (its reason `reason`, or
+        starting with `reason_prefix`, if given) and the refusal count, then that good input
+        clears again."""
         c = self.client
         clear = clear or c.go_clear()
         self.assertIsNotNone(clear, 'no clear report on home input')
@@ -50,6 +51,8 @@ class InputFaultsTest(unittest.TestCase):
         self.assertNotEqual(report.stop_reason, '')
         if reason is not None:
             self.assertEqual(report.stop_reason, reason)
+        if reason_prefix is not None:
+            self.assertTrue(report.stop_reason.startswith(reason_prefix), report.stop_reason)
         self.assertGreater(report.refused_inputs, clear.refused_inputs)
         self.assertTrue(c.wait_stop(True), '~stop never went true')
         self.assertIsNotNone(c.go_clear(), 'good input did not clear the stop')
@@ -124,11 +127,14 @@ class InputFaultsTest(unittest.TestCase):
         self.assertIsNotNone(report)
         self.refused_with(MonitorReport.INPUT_STAMP_BACKWARDS,
                           lambda: left_only(HOME, stamp=later - rospy.Duration(0.05)),
-                          clear=report)
+                          clear=report,
+                          reason="input refused: stamp_backwards (joint 'left_joint1' 0.050 s "
+                                 "before its last accepted stamp)")
 
     def test_08_old_stamp_refused(self):
         self.refused_with(MonitorReport.INPUT_STALE,
-                          lambda: left_only(HOME, stamp=rospy.Time.now() - rospy.Duration(5.0)))
+                          lambda: left_only(HOME, stamp=rospy.Time.now() - rospy.Duration(5.0)),
+                          reason_prefix="input refused: stale (stamped 5.0")
 
     def test_08b_future_stamp_refused(self):
         self.refused_with(MonitorReport.INPUT_FUTURE_STAMP,
@@ -368,6 +374,10 @@ class InputFaultsTest(unittest.TestCase):
         # The earlier tests refused messages of several kinds and made the input go stale.
         self.assertGreater(int(inputs['refused (total)']), 0)
         self.assertGreater(int(inputs['refused: non_finite']), 0)
+        # Each refusal is in one category (test_08 refused a message stamped too long ago).
+        self.assertGreater(int(inputs['refused: stale']), 0)
+        self.assertEqual(sum(int(v) for k, v in inputs.items() if k.startswith('refused: ')),
+                         int(inputs['refused (total)']), inputs)
         self.assertGreater(int(inputs['unknown joint names (total)']), 0)
         self.assertGreaterEqual(int(inputs['position-less messages (ignored)']), 5)
         self.assertGreater(int(inputs['stale episodes']), 0)

@@ -81,10 +81,12 @@ class JointMerger {
   /// counted. Allocates only when a new name layout is seen.
   MergeStatus Merge(const NamedPositions& input, double now_s);
 
-  /// What in `input` Merge refused with `status`: the joint and its value (non-finite), the
-  /// sizes or the repeated name (wrong size), the names (none a model joint); "" for the
-  /// stamps' refusals, which their status says. Allocates: for logs of refusals only.
-  std::string DescribeRefusal(const NamedPositions& input, MergeStatus status) const;
+  /// What in `input`, received at `now_s`, Merge refused with `status`: the joint and its value
+  /// (non-finite), the sizes or the repeated name (wrong size), the names (none a model joint),
+  /// the stamp's age at arrival (stale, future), the first joint accepted with a later stamp
+  /// and by how much (backwards). Allocates: for logs of refusals only.
+  std::string DescribeRefusal(const NamedPositions& input, MergeStatus status,
+                              double now_s) const;
 
   /// Merges `input` into a copy of the current q (for generate-and-test queries); the live state
   /// is not touched. Same validation as Merge() except the stamp checks.
