@@ -64,41 +64,56 @@ void MarkChangedLinks(const std::vector<int>& links, const std::vector<Eigen::Is
 // --- the cycle ------------------------------------------------------------------------------
 
 const CycleReport& Monitor::Update(const Eigen::Ref<const Eigen::VectorXd>& q, double time_s) {
-  Impl& m = *impl_;
-  // Idle cycle: same input bit for bit and an unchanged scene give the same report (the joints
-  // were at q_good at time_s too).
-  if (m.IsIdle(q)) {
-    m.time_good_s = time_s;
-    m.RecordCycle(Impl::CycleKind::kIdle, InputStatus::kOk, {});
-    return m.report;
-  }
-  const InputStatus status = m.CheckInput(q);
-  if (status != InputStatus::kOk) {
-    // Fail safe: keep the last good state (and its warnings), request a stop.
-    ++m.refused;
-    m.RecordCycle(Impl::CycleKind::kRefused, status, {});
-    return m.report;
-  }
-  m.RunCycle(q, time_s);
-  return m.report;
+  impl_->joint_time_s.setConstant(time_s);
+  return impl_->Cycle(q);
 }
 
-bool Monitor::Impl::IsWithinVelocityLimits(const Eigen::Ref<const Eigen::VectorXd>& q,
-                                           double elapsed_s) const {
-  if (!(elapsed_s > 0.0)) return false;
+const CycleReport& Monitor::Update(const Eigen::Ref<const Eigen::VectorXd>& q,
+                                   const Eigen::Ref<const Eigen::VectorXd>& joint_time_s) {
+  if (joint_time_s.size() == impl_->joint_time_s.size()) {
+    impl_->joint_time_s = joint_time_s;
+  } else {
+    impl_->joint_time_s.setConstant(std::numeric_limits<double>::quiet_NaN());
+  }
+  return impl_->Cycle(q);
+}
+
+const CycleReport& Monitor::Impl::Cycle(const Eigen::Ref<const Eigen::VectorXd>& q) {
+  // Idle cycle: same input bit for bit and an unchanged scene give the same report (the joints
+  // were at q_good at these times too).
+  if (IsIdle(q)) {
+    joint_time_good_s = joint_time_s;
+    RecordCycle(CycleKind::kIdle, InputStatus::kOk, {});
+    return report;
+  }
+  const InputStatus status = CheckInput(q);
+  if (status != InputStatus::kOk) {
+    // Fail safe: keep the last good state (and its warnings), request a stop.
+    ++refused;
+    RecordCycle(CycleKind::kRefused, status, {});
+    return report;
+  }
+  RunCycle(q);
+  return report;
+}
+
+bool Monitor::Impl::IsWithinVelocityLimits(const Eigen::Ref<const Eigen::VectorXd>& q) const {
   const KinematicModel& kinematics = *model.kinematics;
   for (int link = 1; link < kinematics.link_count(); ++link) {
     const JointSpec& joint = kinematics.joint(link);
-    if (joint.q_index < 0) continue;
-    const double move = std::abs(q[joint.q_index] - q_good[joint.q_index]);
-    if (move > 0.0 && !(move <= kJumpVelocityFactor * joint.max_velocity * elapsed_s)) {
+    const int i = joint.q_index;
+    if (i < 0) continue;
+    const double move = std::abs(q[i] - q_good[i]);
+    const double elapsed_s = joint_time_s[i] - joint_time_good_s[i];
+    if (move > 0.0 && !(elapsed_s > 0.0 &&
+                        move <= kJumpVelocityFactor * joint.max_velocity * elapsed_s)) {
       return false;
     }
   }
   return true;
 }
 
-void Monitor::Impl::RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q, double time_s) {
+void Monitor::Impl::RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q) {
   // Work done by scene changes since the last cycle belongs to the run, not to this cycle.
   total += broad_phase->counters();
   broad_phase->ResetCounters();
@@ -115,10 +130,10 @@ void Monitor::Impl::RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q, double 
     MotionBounds& step = StepMotion();
     step.SetJointMotion(q, swept.q_start);
     work.step_m = step.ComputeLargestBound_m();
-    work.is_jumped = !(work.step_m <= model.options.max_step_m) &&
-                     !IsWithinVelocityLimits(q, time_s - time_good_s);
+    work.is_jumped =
+        !(work.step_m <= model.options.max_step_m) && !IsWithinVelocityLimits(q);
   }
-  time_good_s = time_s;  // q is accepted: q_good below
+  joint_time_good_s = joint_time_s;  // q is accepted: q_good below
   if (IsProvablyClear(q, work.step_m)) {
     // Every kept pair is clear, and every other pair's indexed boxes are apart while both
     // primitives stay within their slack: no warning, and the kinematics can wait.
@@ -470,6 +485,8 @@ void Monitor::Impl::InitData() {
   link_changed.assign(link_count, 0);
   bound_known.assign(n, 0);
   q_good = model.q_start;
+  joint_time_good_s.setConstant(model.q_start.size(), std::numeric_limits<double>::quiet_NaN());
+  joint_time_s = joint_time_good_s;
   q_kinematics = model.q_start;
   shape_W = model.shape_W_start;
   shape_prev_W = model.shape_W_start;

@@ -90,7 +90,8 @@ struct Monitor::Impl {
   // with (IsProvablyClear: an upper bound for every primitive; read in the next bounded cycle).
   double largest_since_m = 0.0;
   Eigen::VectorXd q_good;               // the last accepted q
-  double time_good_s = std::numeric_limits<double>::quiet_NaN();  // when it was last sampled
+  Eigen::VectorXd joint_time_good_s;    // per joint, when it was sampled at q_good (s; NaN)
+  Eigen::VectorXd joint_time_s;         // per joint, when this cycle's q was (Update's times)
   Eigen::VectorXd q_kinematics;         // q of the last forward kinematics
   bool has_good = false;
   bool scene_changed = true;
@@ -127,11 +128,13 @@ struct Monitor::Impl {
            std::memcmp(q.data(), q_good.data(), sizeof(double) * q.size()) == 0;
   }
   // A good q: a bounded cycle if the bounds allow, else the kinematics and the narrow phase.
-  void RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q, double time_s);
+  void RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q);
+  // Monitor::Update with the sample times in joint_time_s.
+  const CycleReport& Cycle(const Eigen::Ref<const Eigen::VectorXd>& q);
   // Whether every joint's move from q_good to q is within kJumpVelocityFactor times its
-  // velocity limit over `elapsed_s` (false when that is not a positive time, or a moving joint
-  // has no limit).
-  bool IsWithinVelocityLimits(const Eigen::Ref<const Eigen::VectorXd>& q, double elapsed_s) const;
+  // velocity limit over its time since then (joint_time_good_s to joint_time_s; false when
+  // that is not positive, or a moving joint has no limit).
+  bool IsWithinVelocityLimits(const Eigen::Ref<const Eigen::VectorXd>& q) const;
   // True when, without kinematics, every moving primitive's joint-space motion bound since
   // q_kinematics keeps it within its slack and every kept pair's bound, less those motions,
   // still clears its threshold -- then no pair can warn. `step_m`: the step's largest bound

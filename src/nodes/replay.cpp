@@ -165,8 +165,9 @@ Input ReadCsv(const std::string& path, const Workcell& workcell) {
 class Checker {
  public:
   virtual ~Checker() = default;
-  /// One cycle on `q`, sampled at `time_s`.
-  virtual void Run(const Eigen::VectorXd& q, double time_s, CycleResult* result) = 0;
+  /// One cycle on `q`, each joint sampled at `joint_time_s`.
+  virtual void Run(const Eigen::VectorXd& q, const Eigen::VectorXd& joint_time_s,
+                   CycleResult* result) = 0;
   virtual BroadPhaseCounters counters() const { return {}; }
   /// Whether the steps between samples are checked too (the Monitor's swept check).
   virtual bool is_swept() const { return false; }
@@ -187,9 +188,10 @@ class MonitorChecker : public Checker {
       }
     }
   }
-  void Run(const Eigen::VectorXd& q, double time_s, CycleResult* result) override {
+  void Run(const Eigen::VectorXd& q, const Eigen::VectorXd& joint_time_s,
+           CycleResult* result) override {
     const auto start = std::chrono::steady_clock::now();
-    const CycleReport& report = monitor_.Update(q, time_s);
+    const CycleReport& report = monitor_.Update(q, joint_time_s);
     result->time_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     result->warnings.clear();
@@ -246,7 +248,8 @@ class PeerCycleChecker : public Checker {
     peer_ = name == "fcl" ? MakeFclChecker(primitives, compatible, PeerTolerance::kRounded)
                           : MakeBulletChecker(primitives, compatible, PeerTolerance::kRounded);
   }
-  void Run(const Eigen::VectorXd& q, double /*time_s*/, CycleResult* result) override {
+  void Run(const Eigen::VectorXd& q, const Eigen::VectorXd& /*joint_time_s*/,
+           CycleResult* result) override {
     const Workcell& wc = *workcell_;
     result->warnings.clear();
     result->refused = !q.allFinite();  // the Monitor refuses it too (the node, its message)
@@ -319,8 +322,11 @@ int Run(const Options& options) {
   const Input input = is_csv ? ReadCsv(options.input, *workcell)
                              : replay::ReadBag(options.input, options.topics, *workcell);
   std::vector<CycleResult> cycles(input.q.size());
+  Eigen::VectorXd row_time_s;  // a CSV row's time, for every joint
   for (std::size_t k = 0; k < input.q.size(); ++k) {
-    checker->Run(input.q[k], input.time_s[k], &cycles[k]);
+    if (input.joint_time_s.empty()) row_time_s.setConstant(input.q[k].size(), input.time_s[k]);
+    checker->Run(input.q[k], input.joint_time_s.empty() ? row_time_s : input.joint_time_s[k],
+                 &cycles[k]);
     cycles[k].is_moving = k == 0 || input.q[k] != input.q[k - 1];
   }
   const replay::RunSummary summary = replay::Summarize(input, cycles, checker->counters());

@@ -257,8 +257,11 @@ void MonitorNode::RunCycle(std::chrono::steady_clock::time_point start) {
   report_.swept_pairs = 0;
   if (policy_.BeginCycle(pending, pending_why_, *input_)) {
     UpdateBoundObjects();
-    // The newest accepted message's stamp (its arrival when unstamped) dates q.
-    const CycleReport& cycle = monitor_->Update(input_->q(), newest_input_stamp_.toSec());
+    // Each joint dated by the message that gave it (per-arm topics sample the arms apart).
+    const std::vector<double>& stamps = input_->joint_stamps();
+    const CycleReport& cycle = monitor_->Update(
+        input_->q(), Eigen::Map<const Eigen::VectorXd>(stamps.data(),
+                                                       static_cast<Eigen::Index>(stamps.size())));
     if (cycle.input == InputStatus::kOk) {
       FillReportWarnings(cycle, &report_);
       report_.moved_primitives = cycle.moved_primitives;

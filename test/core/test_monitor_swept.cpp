@@ -575,6 +575,43 @@ TEST(MonitorSwept, TimedStepsBeyondMaxStepAreJumpsOnlyAboveTheVelocityLimits) {
   }
 }
 
+// One topic per arm (a driver each), both silent for 6 s and then back with the arms far from
+// where they were, the left arm's message first: with each joint dated by its own sample the
+// right arm's move, 1 ms after the left one's, is timed from its own last sample, 6 s before,
+// and neither is a jump; dated by the newest message alone it would be (a 1 ms step).
+TEST(MonitorSwept, JointsDatedApartAreTimedFromTheirOwnSamples) {
+  const auto wc = test::LoadBundledWorkcell();
+  const Eigen::VectorXd home = MakeQ(*wc, {});
+  const Eigen::VectorXd left_moved = MakeQ(*wc, {{"left_joint1", -2.4}, {"left_joint2", 1.3}});
+  const Eigen::VectorXd both_moved = MakeQ(
+      *wc, {{"left_joint1", -2.4}, {"left_joint2", 1.3}, {"right_joint1", 2.4},
+            {"right_joint2", 1.3}});
+  Eigen::VectorXd joint_time_s = Eigen::VectorXd::Zero(home.size());
+  Monitor monitor(wc, MonitorOptions{});
+  ASSERT_FALSE(monitor.Update(home, joint_time_s).stop);
+  for (const std::string& joint : wc->joint_names) {
+    if (joint.rfind("left_", 0) == 0) joint_time_s[JointIndex(*wc, joint)] = 6.0;
+  }
+  const CycleReport& left = monitor.Update(left_moved, joint_time_s);
+  EXPECT_GT(left.step_motion_m, monitor.options().max_step_m);
+  EXPECT_FALSE(left.input_jumped);
+  for (const std::string& joint : wc->joint_names) {
+    if (joint.rfind("right_", 0) == 0) joint_time_s[JointIndex(*wc, joint)] = 6.001;
+  }
+  const CycleReport& right = monitor.Update(both_moved, joint_time_s);
+  EXPECT_GT(right.step_motion_m, monitor.options().max_step_m);
+  EXPECT_FALSE(right.input_jumped);
+  // The same messages dated by the newest alone.
+  Monitor newest(wc, MonitorOptions{});
+  ASSERT_FALSE(newest.Update(home, 0.0).stop);
+  EXPECT_FALSE(newest.Update(left_moved, 6.0).input_jumped);
+  EXPECT_TRUE(newest.Update(both_moved, 6.001).input_jumped);
+  // Times of another size than q count as unknown: a jump.
+  Monitor unsized(wc, MonitorOptions{});
+  ASSERT_FALSE(unsized.Update(home, Eigen::VectorXd::Zero(3)).stop);
+  EXPECT_TRUE(unsized.Update(left_moved, Eigen::VectorXd::Constant(3, 6.0)).input_jumped);
+}
+
 // A long step far from everything at both ends: each pair's distances at the two ends, less its
 // motion bound, leave twice the threshold, so no pair is bisected, though for many pairs the
 // motion bound exceeds the distance at the end (a test of the end alone would bisect them).

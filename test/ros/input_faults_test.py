@@ -233,6 +233,22 @@ class InputFaultsTest(unittest.TestCase):
         # Back home: another jump, the warnings go away.
         self.assertIsNotNone(c.go_clear())
 
+    def test_12b_arms_back_after_a_pause_are_no_jump(self):
+        # Both drivers silent for 2 s, then back with each arm far from where it was, one message
+        # per arm 1 us apart: each joint's move is timed from its own last message (within twice
+        # the 1 rad/s velocity limits over 2 s), so neither report is a jump; dated by the newest
+        # message alone, the second arm's step would take 1 us and be one.
+        c = self.client
+        self.assertIsNotNone(c.go_clear())
+        time.sleep(2.0)
+        start = c.report_count()
+        reports = c.wait_stamps(start, c.publish_pose(LEFT_TOWARDS_RIGHT, RIGHT_TOWARDS_LEFT))
+        self.assertIsNotNone(reports)
+        self.assertEqual(len(reports), 2)
+        for r in reports:
+            self.assertGreater(r.step_motion_m, 1.0)  # beyond max_step_m
+            self.assertFalse(r.input_jumped, r.stop_reason)
+
     def test_13_check_service_does_not_touch_live_model(self):
         c = self.client
         self.assertIsNotNone(c.go_clear())

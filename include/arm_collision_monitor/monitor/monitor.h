@@ -66,9 +66,9 @@ struct CycleReport {
   /// Largest motion bound over primitives for the step from the last accepted q (m; 0 on the
   /// first good cycle and on refused and idle ones).
   double step_motion_m = 0.0;
-  /// The step exceeded MonitorOptions::max_step_m and the time since the last accepted q (both
-  /// given to Update) does not show every joint within kJumpVelocityFactor times its velocity
-  /// limit (a sparse path's large step does): accepted, but stop is requested.
+  /// The step exceeded MonitorOptions::max_step_m and the sample times given to Update do not
+  /// show every joint within kJumpVelocityFactor times its velocity limit since the last
+  /// accepted q (a sparse path's large step does): accepted, but stop is requested.
   bool input_jumped = false;
   /// Pairs whose swept check needed the path (their distance at the step's start, and
   /// bisection); 0 when every pair was certified by its distance at q less its motion bound.
@@ -134,6 +134,11 @@ class Monitor {
   /// when unknown), which tells a sparse path's large step from a jump (input_jumped).
   const CycleReport& Update(const Eigen::Ref<const Eigen::VectorXd>& q,
                             double time_s = std::numeric_limits<double>::quiet_NaN());
+  /// The same with each joint's own sample time (one per joint, as q; any other size counts as
+  /// unknown): input merged from several topics (one arm's driver each), whose joints were
+  /// sampled apart -- the jump test then times each joint's move from its own last sample.
+  const CycleReport& Update(const Eigen::Ref<const Eigen::VectorXd>& q,
+                            const Eigen::Ref<const Eigen::VectorXd>& joint_time_s);
   /// The last report (cycle 0 and stop = true before the first good Update()).
   const CycleReport& report() const;
   /// Why Update(q) refuses `q`, for a person: its size against the model's, or the first joint

@@ -116,6 +116,9 @@ class JointMerger {
   int OldestJoint() const;
   /// True when joint `index` has received nothing since the clock last went back.
   bool IsAwaitingInput(int index) const { return is_awaiting_[index]; }
+  /// Per joint (q order): the stamp of the message that gave its position (its receipt time
+  /// when unstamped), s; -inf for one never received. For Monitor::Update's jump test.
+  const std::vector<double>& joint_stamps() const { return stamp_s_; }
   /// Seconds since joint `index` was last received at time `now_s` (inf if never).
   double JointAge(int index, double now_s) const;
   /// True when some joint is stale at time `now_s`, or awaits input since the clock went back

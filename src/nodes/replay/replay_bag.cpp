@@ -212,6 +212,12 @@ class Cycles {
     if (result_->q.empty()) first_stamp_ = group_stamp_;
     result_->q.push_back(input_.q());
     result_->time_s.push_back((group_stamp_ - first_stamp_).toSec());
+    const std::vector<double>& stamps = input_.joint_stamps();
+    Eigen::VectorXd joint_time_s(static_cast<Eigen::Index>(stamps.size()));
+    for (std::size_t i = 0; i < stamps.size(); ++i) {
+      joint_time_s[static_cast<Eigen::Index>(i)] = stamps[i] - first_stamp_.toSec();
+    }
+    result_->joint_time_s.push_back(joint_time_s);
   }
 
   JointMerger input_;

@@ -33,6 +33,9 @@ struct Options {
 struct Input {
   std::vector<Eigen::VectorXd> q;
   std::vector<double> time_s;  ///< since the first cycle
+  /// a bag's: per cycle, each joint's sample time on the same clock (the message that gave
+  /// it); empty for a CSV, whose rows date every joint at once
+  std::vector<Eigen::VectorXd> joint_time_s;
   std::uint64_t messages = 0;  ///< samples read: JointState messages, trajectory points, rows
   /// MergeStatusName (or "time_out_of_range": a trajectory point's stamp) -> count
   std::map<std::string, std::uint64_t> refused;
