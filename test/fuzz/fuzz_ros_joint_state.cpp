@@ -219,7 +219,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
     // Accepted input is finite: the merge refuses non-finite positions of model joints.
     Require(input.q().allFinite());
-    const CycleReport& report = monitor.Update(input.q());
+    // Each joint dated by the message that gave it, as the node does.
+    const std::vector<double>& stamps = input.joint_stamps();
+    const CycleReport& report = monitor.Update(
+        input.q(), Eigen::Map<const Eigen::VectorXd>(stamps.data(),
+                                                     static_cast<Eigen::Index>(stamps.size())));
     CheckReport(report, ++cycles);
     Require(report.input != InputStatus::kNonFinite && report.input != InputStatus::kWrongSize);
     const std::string refusal =
