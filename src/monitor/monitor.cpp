@@ -64,17 +64,16 @@ void MarkChangedLinks(const std::vector<int>& links, const std::vector<Eigen::Is
 // --- the cycle ------------------------------------------------------------------------------
 
 const CycleReport& Monitor::Update(const Eigen::Ref<const Eigen::VectorXd>& q, double time_s) {
-  impl_->joint_time_s.setConstant(time_s);
+  impl_->time_s = time_s;
+  impl_->joint_time_s = nullptr;
   return impl_->Cycle(q);
 }
 
 const CycleReport& Monitor::Update(const Eigen::Ref<const Eigen::VectorXd>& q,
                                    const Eigen::Ref<const Eigen::VectorXd>& joint_time_s) {
-  if (joint_time_s.size() == impl_->joint_time_s.size()) {
-    impl_->joint_time_s = joint_time_s;
-  } else {
-    impl_->joint_time_s.setConstant(std::numeric_limits<double>::quiet_NaN());
-  }
+  const bool is_sized = joint_time_s.size() == impl_->joint_time_good_s.size();
+  impl_->time_s = std::numeric_limits<double>::quiet_NaN();
+  impl_->joint_time_s = is_sized ? joint_time_s.data() : nullptr;
   return impl_->Cycle(q);
 }
 
@@ -82,7 +81,7 @@ const CycleReport& Monitor::Impl::Cycle(const Eigen::Ref<const Eigen::VectorXd>&
   // Idle cycle: same input bit for bit and an unchanged scene give the same report (the joints
   // were at q_good at these times too).
   if (IsIdle(q)) {
-    joint_time_good_s = joint_time_s;
+    DateGood();
     RecordCycle(CycleKind::kIdle, InputStatus::kOk, {});
     return report;
   }
@@ -104,7 +103,8 @@ bool Monitor::Impl::IsWithinVelocityLimits(const Eigen::Ref<const Eigen::VectorX
     const int i = joint.q_index;
     if (i < 0) continue;
     const double move = std::abs(q[i] - q_good[i]);
-    const double elapsed_s = joint_time_s[i] - joint_time_good_s[i];
+    const double elapsed_s = (joint_time_s != nullptr ? joint_time_s[i] : time_s) -
+                             (is_joint_time_good ? joint_time_good_s[i] : time_good_s);
     if (move > 0.0 && !(elapsed_s > 0.0 &&
                         move <= kJumpVelocityFactor * joint.max_velocity * elapsed_s)) {
       return false;
@@ -133,7 +133,7 @@ void Monitor::Impl::RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q) {
     work.is_jumped =
         !(work.step_m <= model.options.max_step_m) && !IsWithinVelocityLimits(q);
   }
-  joint_time_good_s = joint_time_s;  // q is accepted: q_good below
+  DateGood();  // q is accepted: q_good below
   if (IsProvablyClear(q, work.step_m)) {
     // Every kept pair is clear, and every other pair's indexed boxes are apart while both
     // primitives stay within their slack: no warning, and the kinematics can wait.
@@ -485,8 +485,9 @@ void Monitor::Impl::InitData() {
   link_changed.assign(link_count, 0);
   bound_known.assign(n, 0);
   q_good = model.q_start;
+  time_good_s = std::numeric_limits<double>::quiet_NaN();
+  is_joint_time_good = false;
   joint_time_good_s.setConstant(model.q_start.size(), std::numeric_limits<double>::quiet_NaN());
-  joint_time_s = joint_time_good_s;
   q_kinematics = model.q_start;
   shape_W = model.shape_W_start;
   shape_prev_W = model.shape_W_start;

@@ -90,8 +90,15 @@ struct Monitor::Impl {
   // with (IsProvablyClear: an upper bound for every primitive; read in the next bounded cycle).
   double largest_since_m = 0.0;
   Eigen::VectorXd q_good;               // the last accepted q
-  Eigen::VectorXd joint_time_good_s;    // per joint, when it was sampled at q_good (s; NaN)
-  Eigen::VectorXd joint_time_s;         // per joint, when this cycle's q was (Update's times)
+  // When q_good was sampled (Update's times, s): one time for every joint, or, when
+  // is_joint_time_good, each joint's own in joint_time_good_s (preallocated).
+  double time_good_s = std::numeric_limits<double>::quiet_NaN();
+  bool is_joint_time_good = false;
+  Eigen::VectorXd joint_time_good_s;
+  // This cycle's q likewise: time_s for every joint, or each joint's own at joint_time_s (the
+  // caller's, one per joint, valid during its Update).
+  double time_s = std::numeric_limits<double>::quiet_NaN();
+  const double* joint_time_s = nullptr;
   Eigen::VectorXd q_kinematics;         // q of the last forward kinematics
   bool has_good = false;
   bool scene_changed = true;
@@ -129,11 +136,20 @@ struct Monitor::Impl {
   }
   // A good q: a bounded cycle if the bounds allow, else the kinematics and the narrow phase.
   void RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q);
-  // Monitor::Update with the sample times in joint_time_s.
+  // Monitor::Update, with its sample times in time_s or joint_time_s.
   const CycleReport& Cycle(const Eigen::Ref<const Eigen::VectorXd>& q);
+  // q_good is q now: its times are this cycle's.
+  void DateGood() {
+    is_joint_time_good = joint_time_s != nullptr;
+    if (is_joint_time_good) {
+      std::copy_n(joint_time_s, joint_time_good_s.size(), joint_time_good_s.data());
+    } else {
+      time_good_s = time_s;
+    }
+  }
   // Whether every joint's move from q_good to q is within kJumpVelocityFactor times its
-  // velocity limit over its time since then (joint_time_good_s to joint_time_s; false when
-  // that is not positive, or a moving joint has no limit).
+  // velocity limit over its time since then (from q_good's sample time to this cycle's; false
+  // when that is not positive, or a moving joint has no limit).
   bool IsWithinVelocityLimits(const Eigen::Ref<const Eigen::VectorXd>& q) const;
   // True when, without kinematics, every moving primitive's joint-space motion bound since
   // q_kinematics keeps it within its slack and every kept pair's bound, less those motions,
