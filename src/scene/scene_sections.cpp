@@ -347,15 +347,15 @@ void ReadJointLimits(const YAML::Node& node, const Where& where, KinematicModel*
     model->SetPositionLimits(joint_name, lower, upper);
     // The joint's real top speed, where the URDF's is the motor's (a Unitree G1's 37 rad/s):
     // what the start-up check of the tolerance against the motion in one cycle uses.
-    if (const YAML::Node velocity_node = value["velocity"]) {
-      const Where velocity_where = item.Child("velocity");
-      const double velocity = yaml_fields::ReadPositiveDouble(velocity_node, velocity_where);
-      if (joint.max_velocity > 0.0 && velocity > joint.max_velocity) {
-        velocity_where.Fail(velocity_node, "expected 0 < velocity <= URDF velocity (" +
-                                               std::to_string(joint.max_velocity) + ")");
-      }
-      model->SetVelocityLimit(joint_name, velocity);
+    double velocity = joint.max_velocity;
+    yaml_fields::ReadIfPresent(value, "velocity", item, yaml_fields::ReadPositiveDouble,
+                               &velocity);
+    if (joint.max_velocity > 0.0 && velocity > joint.max_velocity) {
+      item.Child("velocity").Fail(value["velocity"], "expected 0 < velocity <= URDF velocity (" +
+                                                         std::to_string(joint.max_velocity) +
+                                                         ")");
     }
+    model->SetVelocityLimit(joint_name, velocity);
   });
 }
 
