@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <utility>
 
 #include <Eigen/Geometry>
@@ -16,8 +17,12 @@ namespace {
 constexpr double kLineWidth_m = 0.006;
 constexpr double kCellLineWidth_m = 0.002;
 constexpr double kTextHeight_m = 0.05;
-// Horizontal room a distance label takes (m): "120 mm (< 61)" is about six text heights wide.
-constexpr double kLabelWidth_m = 6.0 * kTextHeight_m;
+// A warning's label: the pair's names over its distance, two lines of text.
+constexpr int kLabelLines = 2;
+constexpr double kLabelHeight_m = kLabelLines * kTextHeight_m;
+// Horizontal room a character takes (m), generously: "120 mm (< 61)" is about six text
+// heights.
+constexpr double kCharWidth_m = 0.5 * kTextHeight_m;
 // Capsules opaque; boxes translucent so the arms stay visible behind tables and walls.
 constexpr float kCapsuleAlpha = 1.0f;
 constexpr float kBoxAlpha = 0.5f;
@@ -50,12 +55,13 @@ void SetPose(const Eigen::Vector3d& p_W, const Eigen::Quaterniond& R_W,
   m->pose.orientation.z = R_W.z();
 }
 
-// Two distance labels at these positions would cover each other (text faces the viewer: its
-// height is vertical, its width horizontal in some direction).
-bool LabelsOverlap(const Eigen::Vector3d& a_W, const Eigen::Vector3d& b_W) {
-  // Labels a slot apart (a text height, up to rounding) do not overlap.
-  return std::abs(a_W.z() - b_W.z()) < (1.0 - 1e-9) * kTextHeight_m &&
-         (a_W - b_W).head<2>().norm() < kLabelWidth_m;
+// Two labels at these centres would cover each other (text faces the viewer: its height is
+// vertical, its width horizontal in some direction). Labels a slot apart (a label's height, up
+// to rounding) do not overlap.
+bool LabelsOverlap(const Eigen::Vector3d& a_W, double a_width_m, const Eigen::Vector3d& b_W,
+                   double b_width_m) {
+  return std::abs(a_W.z() - b_W.z()) < (1.0 - 1e-9) * kLabelHeight_m &&
+         (a_W - b_W).head<2>().norm() < 0.5 * (a_width_m + b_width_m);
 }
 
 }  // namespace
@@ -178,34 +184,40 @@ void MarkerBuilder::AddWarnings(const std::vector<Warning>& warnings, const ros:
       lines.points.push_back(ToPoint(w.p_WB));
     }
   }
-  char text[96];
-  label_positions_W_.clear();
+  char distance[64];
+  placed_labels_.clear();
   for (std::size_t i = 0; i < warnings.size(); ++i) {
     const Warning& w = warnings[i];
     visualization_msgs::Marker& label =
         NextMarker(MarkerLayout::kDistances, static_cast<int>(i),
                    visualization_msgs::Marker::TEXT_VIEW_FACING, stamp);
-    // Above the closest-point line's middle, or in the lowest free slot a text height apart
+    std::snprintf(distance, sizeof(distance), "%.0f mm (< %.0f)", 1e3 * w.distance_m,
+                  1e3 * w.threshold_m);
+    const std::string names = monitor_.primitive(w.a).name + " -- " + monitor_.primitive(w.b).name;
+    label.text = names + "\n" + distance;
+    // Above the closest-point line's middle, or in the lowest free slot a label's height apart
     // above it (a hand on a box warns for several primitives at nearly one point). A placed
     // label blocks at most two slots, so one of the first 2 n + 1 is free.
     const Eigen::Vector3d base_W =
-        0.5 * (w.p_WA + w.p_WB) + Eigen::Vector3d(0.0, 0.0, kTextHeight_m);
-    Eigen::Vector3d p_W = base_W;
-    for (std::size_t slot = 1; slot <= 2 * label_positions_W_.size() + 1; ++slot) {
-      const bool is_free = std::none_of(
-          label_positions_W_.begin(), label_positions_W_.end(),
-          [&](const Eigen::Vector3d& placed_W) { return LabelsOverlap(p_W, placed_W); });
+        0.5 * (w.p_WA + w.p_WB) + Eigen::Vector3d(0.0, 0.0, kLabelHeight_m);
+    PlacedLabel placed{base_W,
+                       kCharWidth_m * static_cast<double>(std::max(names.size(),
+                                                                   std::strlen(distance)))};
+    for (std::size_t slot = 1; slot <= 2 * placed_labels_.size() + 1; ++slot) {
+      const bool is_free =
+          std::none_of(placed_labels_.begin(), placed_labels_.end(),
+                       [&](const PlacedLabel& other) {
+                         return LabelsOverlap(placed.p_W, placed.width_m, other.p_W,
+                                              other.width_m);
+                       });
       if (is_free) break;
-      p_W.z() = base_W.z() + static_cast<double>(slot) * kTextHeight_m;
+      placed.p_W.z() = base_W.z() + static_cast<double>(slot) * kLabelHeight_m;
     }
-    label_positions_W_.push_back(p_W);
-    label.pose.position = ToPoint(p_W);
+    placed_labels_.push_back(placed);
+    label.pose.position = ToPoint(placed.p_W);
     label.scale.z = kTextHeight_m;
     const float white[3] = {1.0f, 1.0f, 1.0f};
     label.color = Rgba(white, 1.0f);
-    std::snprintf(text, sizeof(text), "%.0f mm (< %.0f)", 1e3 * w.distance_m,
-                  1e3 * w.threshold_m);
-    label.text = text;
   }
   for (std::size_t i = warnings.size(); i < previous_text_count_; ++i) {
     NextMarker(MarkerLayout::kDistances, static_cast<int>(i),

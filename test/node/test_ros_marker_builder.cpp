@@ -2,6 +2,8 @@
 // and moving apart, counted), the closest-point lines of the warnings, the "near" colour against
 // a brute-force reference that uses the Monitor's run-time compatibility, and a held object
 // never drawn near its holder.
+#include <algorithm>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -179,7 +181,14 @@ TEST(MarkerBuilder, ClosestPointLinesEndAtTheWarningsPoints) {
     EXPECT_EQ(Eigen::Vector3d(b.x, b.y, b.z), w.p_WB) << k;
     EXPECT_EQ(ShownState(array, *wc, w.a), Shown::kWarning);
     EXPECT_EQ(ShownState(array, *wc, w.b), Shown::kWarning);
-    EXPECT_NE(FindMarker(array, MarkerLayout::kDistances, static_cast<int>(k)), nullptr);
+    // The label names the pair over its distance and threshold in millimetres.
+    const auto* label = FindMarker(array, MarkerLayout::kDistances, static_cast<int>(k));
+    ASSERT_NE(label, nullptr);
+    char distance[64];
+    std::snprintf(distance, sizeof(distance), "%.0f mm (< %.0f)", 1e3 * w.distance_m,
+                  1e3 * w.threshold_m);
+    EXPECT_EQ(label->text, wc->primitives[w.a].name + " -- " + wc->primitives[w.b].name + "\n" +
+                               distance);
   }
   ExpectStatesAsReference(array, monitor, "touching");
   // Back home (the step leaves the box's zone: the swept check warns on its way; idle at home
@@ -198,8 +207,8 @@ TEST(MarkerBuilder, ClosestPointLinesEndAtTheWarningsPoints) {
 }
 
 // The labels of warnings at nearly one point stack rather than cover each other: no two are
-// within a text height (0.05 m, up to rounding) vertically and six (0.3 m, a label's width)
-// horizontally. The right arm pushed into the box on the right table, its tip ever lower, warns
+// within a label's height (two lines of 0.05 m, up to rounding) vertically and half their widths
+// (0.025 m a character of their longest line) horizontally. The right arm pushed into the box on the right table, its tip ever lower, warns
 // for more and more of its primitives; the arms turned towards each other warn for pairs with
 // labels at one point (where stacking by "just above the label in the way" met rounding and
 // never ended).
@@ -218,17 +227,22 @@ TEST(MarkerBuilder, DistanceLabelsOfNearbyWarningsDoNotOverlap) {
     MarkerBuilder builder(monitor, "world");
     const visualization_msgs::MarkerArray& array = builder.Build(ros::Time(0));
     std::vector<Eigen::Vector3d> labels_W;
+    std::vector<double> widths_m;
     for (std::size_t i = 0; i < report.warnings.size(); ++i) {
       const auto* label = FindMarker(array, MarkerLayout::kDistances, static_cast<int>(i));
       ASSERT_NE(label, nullptr);
       labels_W.emplace_back(label->pose.position.x, label->pose.position.y,
                             label->pose.position.z);
+      const std::size_t newline = label->text.find('\n');
+      ASSERT_NE(newline, std::string::npos) << label->text;
+      widths_m.push_back(0.025 * std::max(newline, label->text.size() - newline - 1));
     }
     most_labels = std::max(most_labels, labels_W.size());
     for (std::size_t i = 0; i < labels_W.size(); ++i) {
       for (std::size_t j = i + 1; j < labels_W.size(); ++j) {
         const Eigen::Vector3d d = labels_W[i] - labels_W[j];
-        EXPECT_FALSE(std::abs(d.z()) < 0.05 * (1.0 - 1e-6) && d.head<2>().norm() < 0.3)
+        EXPECT_FALSE(std::abs(d.z()) < 0.1 * (1.0 - 1e-6) &&
+                     d.head<2>().norm() < 0.5 * (widths_m[i] + widths_m[j]))
             << "pose " << k << ": labels " << i << " and " << j << " overlap: " << d.transpose();
       }
     }

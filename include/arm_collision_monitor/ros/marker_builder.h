@@ -1,8 +1,8 @@
 // rviz markers of the monitor's current state, built from the Monitor itself (its last
 // CycleReport, shapes, tolerances and run-time compatibility), never from published messages:
 // capsules and boxes coloured by state (clear / within twice their threshold of a pair the
-// Monitor checks / warned), lines between the closest points of warned pairs with the distance
-// as text, and the spatial index's occupied leaf cells as wireframe cubes.
+// Monitor checks / warned), lines between the closest points of warned pairs labelled with the
+// pair's names and distance, and the spatial index's occupied leaf cells as wireframe cubes.
 #pragma once
 
 #include <string>
@@ -74,7 +74,12 @@ class MarkerBuilder {
   visualization_msgs::MarkerArray array_;
   std::size_t used_ = 0;               ///< markers of array_ filled this Build()
   std::size_t previous_text_count_ = 0;
-  std::vector<Eigen::Vector3d> label_positions_W_;  ///< AddWarnings' scratch
+  /// A warning's label as placed: its centre and width (m).
+  struct PlacedLabel {
+    Eigen::Vector3d p_W;
+    double width_m;
+  };
+  std::vector<PlacedLabel> placed_labels_;  ///< AddWarnings' scratch
 };
 
 }  // namespace arm_collision_monitor
