@@ -411,6 +411,9 @@ void Monitor::Impl::SweepPair(PrimitiveId a, PrimitiveId b, double pair_motion_m
     return;
   }
   const double resolution_m = model.options.swept_resolution_m;
+  // The first resolved interval's nearer end (NaN: none yet), and the samples left after it.
+  double resolved_s = std::numeric_limits<double>::quiet_NaN();
+  int samples_left = kSweptSamplesPastResolved;
   int top = 0;
   swept.stack[top++] = SweptInterval{0.0, 1.0, d0_m, d1_m, 0};
   while (top > 0) {
@@ -422,10 +425,12 @@ void Monitor::Impl::SweepPair(PrimitiveId a, PrimitiveId b, double pair_motion_m
     if (lower_m - cache.BoundMargin_m(lower_m) > threshold_m) continue;
     if (motion_m <= 2.0 * resolution_m || iv.depth >= kMaxSweptBisections) {
       // Resolved: the nearer end is within threshold + motion / 2 <= threshold + resolution.
-      const double s = iv.d0_m <= iv.d1_m ? iv.s0 : iv.s1;
-      warn_at(s, StepPoses(s, q));
-      return;
+      // The pair warns; the search goes on for a sample within the threshold to report (a
+      // contact just past a sample a hair above it), for a bounded number of samples.
+      if (std::isnan(resolved_s)) resolved_s = iv.d0_m <= iv.d1_m ? iv.s0 : iv.s1;
+      continue;
     }
+    if (!std::isnan(resolved_s) && samples_left-- == 0) break;
     const double mid = 0.5 * (iv.s0 + iv.s1);
     const std::vector<Eigen::Isometry3d>& X_WL_mid = StepPoses(mid, q);
     const double mid_m = ShapeDistance(ShapeAt(a, X_WL_mid), ShapeAt(b, X_WL_mid)).distance_m;
@@ -438,6 +443,7 @@ void Monitor::Impl::SweepPair(PrimitiveId a, PrimitiveId b, double pair_motion_m
     swept.stack[top++] = SweptInterval{mid, iv.s1, mid_m, iv.d1_m, iv.depth + 1};
     swept.stack[top++] = SweptInterval{iv.s0, mid, iv.d0_m, mid_m, iv.depth + 1};
   }
+  if (!std::isnan(resolved_s)) warn_at(resolved_s, StepPoses(resolved_s, q));
 }
 
 }  // namespace arm_collision_monitor

@@ -256,6 +256,72 @@ TEST(MonitorSwept, PlateMovedIntoPathAfterSweptStep) {
   EXPECT_GT(report.swept_pairs, 0u);
 }
 
+// A contact just past a sample a hair above the threshold: the swing's midpoint passes a live
+// plate 0.3 mm beyond the tool's threshold, and the tool goes on into it. The bisection meets
+// the plate first in intervals ending at the midpoint, which resolve there (within threshold +
+// resolution); the pair's warning must still report a sample inside the threshold, where it
+// reported the midpoint (a dual Kinova Gen3 plan: "0.0612 m (threshold 0.0610 m)" for a
+// contact 5 mm deep).
+TEST(MonitorSwept, ContactJustPastANearMissSampleIsReportedInside) {
+  const auto wc = test::LoadBundledWorkcell();
+  const Eigen::VectorXd mid = test::ArmReachDown(*wc, "left", 0.7, 0.55, 0.9);
+  const int j1 = JointIndex(*wc, "left_joint1");
+  Monitor monitor(wc, Unlimited());
+  const Box plate_O{Eigen::Isometry3d::Identity(), {0.15, 0.001, 0.15}};
+  Eigen::Isometry3d X_WO = Eigen::Isometry3d::Identity();
+  X_WO.translation() = Eigen::Vector3d(2.5, 2.5, 0.5);
+  std::string error;
+  ASSERT_TRUE(monitor.AddObject("plate", {plate_O}, X_WO, 0.0, false, &error)) << error;
+  PrimitiveId plate = 0;
+  while (plate < monitor.primitive_count() && monitor.primitive(plate).owner != "plate") ++plate;
+  ASSERT_LT(plate, monitor.primitive_count());
+  // The tool's way at the midpoint (+y or -y as left_joint1 grows), and the gap of the plate,
+  // across that way at y, to the left arm at the midpoint less its threshold.
+  std::vector<Eigen::Isometry3d> X_WL(wc->kinematics.link_count());
+  const int link7 = wc->kinematics.FindLink("left_link7");
+  Eigen::VectorXd ahead = mid;
+  ahead[j1] += 0.01;
+  wc->kinematics.ComputeLinkPoses(ahead, &X_WL);
+  const double y_ahead = X_WL[link7].translation().y();
+  wc->kinematics.ComputeLinkPoses(mid, &X_WL);
+  const double way = y_ahead > X_WL[link7].translation().y() ? 1.0 : -1.0;
+  auto gap_m = [&](double y) {
+    Box box = plate_O;
+    box.X_WB.translation() = Eigen::Vector3d(0.7, y, 0.95);
+    double gap = std::numeric_limits<double>::infinity();
+    for (PrimitiveId id = 0; id < wc->primitives.size(); ++id) {
+      const PrimitiveSpec& p = wc->primitives[id];
+      if (p.group != "left" || !p.variant.empty()) continue;
+      const double d = ShapeDistance(TransformShape(X_WL[p.link_index], p.shape_L), box)
+                           .distance_m;
+      gap = std::min(gap, d - monitor.tolerance_m(id) - monitor.tolerance_m(plate));
+    }
+    return gap;
+  };
+  const double y_far = 0.55 + way * 0.2;
+  const double y = y_far - way * (gap_m(y_far) - 0.0003);
+  ASSERT_NEAR(gap_m(y), 0.0003, 1e-9);
+  X_WO.translation() = Eigen::Vector3d(0.7, y, 0.95);
+  ASSERT_TRUE(monitor.MoveObject("plate", X_WO, &error)) << error;
+  Eigen::VectorXd q0 = mid, q1 = mid;
+  q0[j1] -= 0.4;
+  q1[j1] += 0.4;
+  ASSERT_TRUE(monitor.Check(q0).warnings.empty());
+  ASSERT_TRUE(monitor.Check(q1).warnings.empty());
+  const CycleReport report = RunStep(&monitor, q0, q1);
+  EXPECT_TRUE(report.stop);
+  int plate_warnings = 0;
+  for (const Warning& w : report.warnings) {
+    if (w.b != plate) continue;
+    ++plate_warnings;
+    EXPECT_TRUE(w.between_samples);
+    EXPECT_LT(w.distance_m, w.threshold_m)
+        << monitor.primitive(w.a).name << " at " << w.step_fraction << " of the step";
+    EXPECT_GT(w.step_fraction, 0.5) << monitor.primitive(w.a).name;
+  }
+  EXPECT_GT(plate_warnings, 0);
+}
+
 // The left arm, stretched out, swings its base joint through the right arm (straight up) in
 // one step; the ends are found by scanning for clear poses either side of the contact.
 TEST(MonitorSwept, ArmsCrossInOneStep) {

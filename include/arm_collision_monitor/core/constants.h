@@ -239,6 +239,14 @@ inline constexpr double kLowerBoundMarginPerMetre = 1e-9;
 /// rather than bisected forever.
 inline constexpr int kMaxSweptBisections = 40;
 
+/// Swept check: once a pair's bisection has resolved an interval (a sample within threshold +
+/// resolution: the pair warns), the further samples (dimensionless; one kinematics and one
+/// distance each) it may take looking for a sample within the threshold, which it then reports
+/// instead: a contact 5 mm deep just past a sample 0.2 mm above the threshold was reported as
+/// that sample (a dual Kinova Gen3 plan). Bounds the cost of a pair skimming its threshold along
+/// a long step.
+inline constexpr int kSweptSamplesPastResolved = 32;
+
 /// Swept check: the leaver-by-near box tests of one step (dimensionless) from which the pairs of
 /// the primitives that may leave their slack are found by one structure-of-arrays scan of every
 /// grown box per leaver (BoxArray by id, hits masked by compatibility row) instead of one test
