@@ -8,8 +8,9 @@
 namespace arm_collision_monitor {
 namespace {
 
-// Longest reason kept (characters): names of two primitives or a joint and a TF error fit.
-constexpr std::size_t kReasonCapacity = 256;
+// Longest reason kept (characters): names of two primitives with where between samples, or a
+// joint and a TF error, fit, and the note of a held stop after them.
+constexpr std::size_t kReasonCapacity = 384;
 // Of which the other stale joints' names may take (characters), leaving room for the rest.
 constexpr std::size_t kReasonNamesCapacity = 120;
 
@@ -155,10 +156,20 @@ void StopPolicy::OnCycleReport(const CycleReport& report, const std::string& ref
         report.warnings.begin(), report.warnings.end(), [](const Warning& x, const Warning& y) {
           return x.distance_m - x.threshold_m < y.distance_m - y.threshold_m;
         });
+    // A pair found between samples says where; one found only within swept_resolution_m of
+    // its threshold (no sample inside it) says so.
+    char where[128] = "";
+    if (w.between_samples) {
+      std::snprintf(where, sizeof(where), " between samples, at %.3f of the step%s",
+                    w.step_fraction,
+                    w.distance_m < w.threshold_m
+                        ? ""
+                        : " (within swept_resolution_m of its threshold: not certified clear)");
+    }
     Raise(Rank::kWarning, SafetyStatus::kOk,
-          "%zu warning(s), the deepest %s - %s at %.4f m (threshold %.4f m)",
+          "%zu warning(s), the deepest %s - %s at %.4f m (threshold %.4f m)%s",
           report.warnings.size(), primitives[w.a].name.c_str(), primitives[w.b].name.c_str(),
-          w.distance_m, w.threshold_m);
+          w.distance_m, w.threshold_m, where);
   }
 }
 

@@ -197,6 +197,29 @@ TEST_F(StopPolicyTest, WarningReasonNamesTheDeepestPair) {
             "3 warning(s), the deepest left_link3 - right_link5 at 0.0000 m (threshold 0.0500 m)");
 }
 
+// A pair found by the swept check says where along the step; one found only within the swept
+// check's resolution above its threshold says it was not certified clear (an iiwa user read
+// "at 0.0601 m (threshold 0.0600 m)" as a warning that was not one).
+TEST_F(StopPolicyTest, WarningReasonOfAPairBetweenSamplesSaysWhere) {
+  ASSERT_GE(ClearedAt(1.0), 0.0);
+  CycleReport report = WarningReport();
+  report.warnings.front().between_samples = true;
+  report.warnings.front().step_fraction = 0.5625;
+  Feed(2.0);
+  Cycle(2.0, report);
+  EXPECT_EQ(policy_.reason(),
+            "1 warning(s), the deepest left_link3 - right_link4 at 0.0120 m (threshold 0.0610 m) "
+            "between samples, at 0.562 of the step");
+  report.warnings.front().distance_m = 0.0614;
+  report.warnings.front().step_fraction = 0.5;
+  Feed(2.125);
+  Cycle(2.125, report);
+  EXPECT_EQ(policy_.reason(),
+            "1 warning(s), the deepest left_link3 - right_link4 at 0.0614 m (threshold 0.0610 m) "
+            "between samples, at 0.500 of the step (within swept_resolution_m of its threshold: "
+            "not certified clear)");
+}
+
 // One arm's driver gone silent beside joints held at their defaults and never published (a
 // mobile base's wheels, a lift): the reason names the arm's joints alone.
 TEST(StopPolicy, StaleReasonLeavesOutDefaultedJointsNeverReceived) {
