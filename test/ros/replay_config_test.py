@@ -225,6 +225,27 @@ class ReplayConfigTest(unittest.TestCase):
                       'threshold strictly between them, 0 only where the step starts within, 0 '
                       'only within swept_resolution_m, 0 with both of those; ', text)
 
+    def test_between_samples_lines_past_the_first_20_are_counted(self):
+        # The swing of test_between_samples_lines_say_what_they_are, there and back four times:
+        # more warnings between samples than the text prints (a Kinova Gen3 user's plan printed
+        # 20 and stopped without a word); --json has them all.
+        csv_path = os.path.join(tempfile.mkdtemp(prefix='acm_between_'), 'swings.csv')
+        with open(csv_path, 'w') as f:
+            f.write(','.join(LEFT_JOINTS + RIGHT_JOINTS) + '\n')
+            for k in range(9):
+                left, right = ((HOME, HOME) if k % 2 == 0 else
+                               (LEFT_TOWARDS_RIGHT, RIGHT_TOWARDS_LEFT))
+                f.write(','.join(str(x) for x in list(left) + list(right)) + '\n')
+        report = json.loads(rosrun('replay', '--json', '--scene', self.bundled_scene,
+                                   csv_path).stdout)
+        total = sum(len(cycle['between_samples']) for cycle in report['per_cycle'])
+        self.assertGreater(total, 20)
+        text = rosrun('replay', '--scene', self.bundled_scene, csv_path).stdout
+        lines = [line for line in text.splitlines() if 'between samples at' in line]
+        self.assertEqual(len(lines), 20, text)
+        self.assertIn('\n... and %d more between-samples warnings, not printed (--json lists '
+                      'all)\nswept check: ' % (total - 20), text)
+
     def test_an_error_says_which_files_were_the_bundled_defaults(self):
         package = rospkg.RosPack().get_path(PKG)
         urdf = os.path.join(package, 'urdf', 'dual_arm_shelf.urdf')

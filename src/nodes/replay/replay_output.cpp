@@ -127,7 +127,8 @@ BetweenKind KindOf(const Warning& w) {
   return w.step_fraction == 0.0 ? BetweenKind::kFromTheStart : BetweenKind::kStrictlyBetween;
 }
 
-// The swept check's warnings, one line each (first few) with what each is, and the counts.
+// The swept check's warnings, one line each (the first kMaxLines, then how many more) with what
+// each is, and the counts.
 void PrintBetweenSamples(const Workcell& wc, const Input& input,
                          const std::vector<CycleResult>& cycles, const RunSummary& summary) {
   constexpr int kMaxLines = 20;
@@ -161,6 +162,10 @@ void PrintBetweenSamples(const Workcell& wc, const Input& input,
       only_start += is_start;
       only_resolution += is_resolution;
     }
+  }
+  if (lines > kMaxLines) {
+    std::printf("... and %d more between-samples warnings, not printed (--json lists all)\n",
+                lines - kMaxLines);
   }
   std::printf("swept check: %llu cycles warn between samples: %llu with a pair within its "
               "threshold strictly between them, %llu only where the step starts within, %llu "
