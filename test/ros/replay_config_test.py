@@ -225,6 +225,19 @@ class ReplayConfigTest(unittest.TestCase):
                       'threshold strictly between them, 0 only where the step starts within, 0 '
                       'only within swept_resolution_m, 0 with both of those; ', text)
 
+    def test_json_cycle_times_are_the_inputs_to_the_nanosecond(self):
+        # An iiwa user's 1 kHz bag: times rounded to the millisecond made cycles share a time.
+        csv_path = os.path.join(tempfile.mkdtemp(prefix='acm_csv_times_'), 'times.csv')
+        times = [0.0, 0.000504, 0.001, 0.001503217]
+        with open(csv_path, 'w') as f:
+            f.write(','.join(['time_s'] + LEFT_JOINTS + RIGHT_JOINTS) + '\n')
+            for k, t in enumerate(times):
+                f.write(','.join([repr(t)] + [str(0.001 * k)] * 14) + '\n')
+        result = rosrun('replay', '--json', '--scene', self.bundled_scene, csv_path)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        report = json.loads(result.stdout)
+        self.assertEqual([c['time_s'] for c in report['per_cycle']], times)
+
     def test_between_samples_lines_past_the_first_20_are_counted(self):
         # The swing of test_between_samples_lines_say_what_they_are, there and back four times:
         # more warnings between samples than the text prints (a Kinova Gen3 user's plan printed

@@ -259,7 +259,7 @@ void PrintJson(const Options& options, const Workcell& wc, const Input& input,
   PrintJsonCounts(options, input, cycles.size(), summary, is_swept);
   if (summary.first >= 0) {
     const Warning& w = cycles[summary.first].warnings.front();
-    std::printf("  \"first_warning\": {\"cycle\": %d, \"time_s\": %.3f, \"a\": %s, \"b\": %s, "
+    std::printf("  \"first_warning\": {\"cycle\": %d, \"time_s\": %.9f, \"a\": %s, \"b\": %s, "
                 "\"distance_m\": %.9g, \"threshold_m\": %.9g},\n",
                 summary.first, input.time_s[summary.first], name(w.a).c_str(),
                 name(w.b).c_str(), w.distance_m, w.threshold_m);
@@ -267,7 +267,7 @@ void PrintJson(const Options& options, const Workcell& wc, const Input& input,
     std::printf("  \"first_warning\": null,\n");
   }
   if (summary.first_refused >= 0) {
-    std::printf("  \"first_refusal\": {\"cycle\": %d, \"time_s\": %.3f, \"reason\": %s},\n",
+    std::printf("  \"first_refusal\": {\"cycle\": %d, \"time_s\": %.9f, \"reason\": %s},\n",
                 summary.first_refused, input.time_s[summary.first_refused],
                 JsonString(cycles[summary.first_refused].refusal).c_str());
   } else {
@@ -290,7 +290,7 @@ void PrintJson(const Options& options, const Workcell& wc, const Input& input,
   // check's [[a, b, distance_m, step_fraction], ...] between the previous cycle's q and this.
   std::printf("  \"per_cycle\": [");
   for (std::size_t k = 0; k < cycles.size(); ++k) {
-    std::printf("%s\n    {\"cycle\": %zu, \"time_s\": %.3f, \"refused\": %s, \"warnings\": [",
+    std::printf("%s\n    {\"cycle\": %zu, \"time_s\": %.9f, \"refused\": %s, \"warnings\": [",
                 k ? "," : "", k, input.time_s[k], cycles[k].refused ? "true" : "false");
     for (std::size_t i = 0; i < cycles[k].warnings.size(); ++i) {
       const Warning& w = cycles[k].warnings[i];
