@@ -6,15 +6,18 @@ the same cycles, times and warnings as its recording of sensor_msgs/JointState; 
 point alone (a sparse plan) still warns every pair the dense run warns; a plan of two points
 warns, between them, a pair that neither point comes near (the swept check); a plan of one arm
 joins the other arm's state recorded at its start; plans of each arm replay side by side, in
-time order; a later plan supersedes, for its joints, an earlier one's points after its start; a
-bag of both recorded states and plans of the same joints is refused unless --topic picks one; a
-point of the wrong size or whose stamp is out of ros::Time's range is refused and counted, the
-others replay. MoveIt's display of a plan (moveit_msgs/DisplayTrajectory, written raw with the
-definition a bag carries, as this machine has no moveit_msgs) replays as its recording in either
-layout of RobotTrajectory, a plan of one arm taking the other from its start state; one cut
-short or whose definition differs from this build's is an error naming the bag, the message and
-the field. The goal sent to a trajectory controller (control_msgs/FollowJointTrajectoryActionGoal,
-written raw the same way) replays as its recording too, and one cut short is such an error."""
+time order, each arm moving between its points while the other's points come (a millisecond
+apart, they warn what one plan of both arms warns); a later plan supersedes, for its joints, an
+earlier one's points after its start; a bag of both recorded states and plans of the same joints
+is refused unless --topic picks one; a point of the wrong size or whose stamp is out of
+ros::Time's range is refused and counted, the others replay; times that do not increase, or a
+position not finite, are an error naming the message, the point and the joint. MoveIt's display
+of a plan (moveit_msgs/DisplayTrajectory, written raw with the definition a bag carries, as this
+machine has no moveit_msgs) replays as its recording in either layout of RobotTrajectory, a plan
+of one arm taking the other from its start state; one cut short or whose definition differs from
+this build's is an error naming the bag, the message and the field. The goal sent to a
+trajectory controller (control_msgs/FollowJointTrajectoryActionGoal, written raw the same way)
+replays as its recording too, and one cut short is such an error."""
 import io
 import json
 import os
@@ -30,7 +33,8 @@ from sensor_msgs.msg import JointState, MultiDOFJointState
 from std_msgs.msg import Header
 from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint, MultiDOFJointTrajectory
 
-from acm_test_util import LEFT_JOINTS, RIGHT_JOINTS, rosrun
+from acm_test_util import (LEFT_JOINTS, LEFT_TOWARDS_RIGHT, RIGHT_JOINTS, RIGHT_TOWARDS_LEFT,
+                           rosrun)
 
 PKG = 'arm_collision_monitor'
 
@@ -301,6 +305,65 @@ class ReplayTrajectoryTest(unittest.TestCase):
         self.assertEqual((report['messages'], report['cycles']), (300, 150))
         self.assertEqual((report['superseded_points'], report['incomplete_cycles']), (0, 0))
         self.assert_same_cycles(report, recorded)
+
+    def test_one_arm_plans_a_millisecond_apart_move_both_arms_at_once(self):
+        # Each arm swings joint 1 by 2 rad through the pose where the arms lean into each other,
+        # as one plan of both arms and as a plan of each arm whose points come 1 ms after the
+        # other's (a Kinova Gen3 user's plans missed 4 of 21 pairs). Taken as a staircase, one
+        # arm moving while the other waits at its last point, the arms never meet.
+        def swing(pose, way):
+            return [[pose[0] - way] + pose[1:], [pose[0] + way] + pose[1:]]
+
+        def plan(names, points, offset_s):
+            trajectory = JointTrajectory(joint_names=names)
+            for k, positions in enumerate(points):
+                trajectory.points.append(JointTrajectoryPoint(
+                    positions=positions, time_from_start=rospy.Duration(2.0 * k + offset_s)))
+            return trajectory
+
+        left, right = swing(LEFT_TOWARDS_RIGHT, 1.0), swing(RIGHT_TOWARDS_LEFT, -1.0)
+        start = rospy.Time(100)
+        both_path = os.path.join(self.directory, 'both_arms.bag')
+        with rosbag.Bag(both_path, 'w') as bag:
+            bag.write('/plan', plan(LEFT_JOINTS + RIGHT_JOINTS,
+                                    [l + r for l, r in zip(left, right)], 0.0), start)
+        apart_path = os.path.join(self.directory, 'one_arm_each.bag')
+        with rosbag.Bag(apart_path, 'w') as bag:
+            bag.write('/plan', plan(LEFT_JOINTS, left, 0.0), start)
+            bag.write('/plan', plan(RIGHT_JOINTS, right, 0.001), start)
+
+        def warned(path):
+            result = rosrun('replay', '--json', path)
+            self.assertEqual(result.returncode, 0, result.stderr)
+            return {(w[0], w[1]) for cycle in json.loads(result.stdout)['per_cycle']
+                    for w in cycle['warnings'] + cycle['between_samples']}
+
+        both = warned(both_path)
+        self.assertIn(('left_link7', 'right_link7'), both)
+        self.assertEqual(warned(apart_path), both)
+
+    def test_times_that_do_not_increase_or_a_position_not_finite_are_errors(self):
+        for name, times, bad_joint in (('backwards', (0.0, 1.5, 1.0), None),
+                                       ('not_finite', (0.0, 1.0, 2.0), 1)):
+            trajectory = JointTrajectory(joint_names=LEFT_JOINTS)
+            for k, t in enumerate(times):
+                positions = [0.1 * k] * 7
+                if k == 1 and bad_joint is not None:
+                    positions[bad_joint] = float('nan')
+                trajectory.points.append(JointTrajectoryPoint(
+                    positions=positions, time_from_start=rospy.Duration(t)))
+            path = os.path.join(self.directory, name + '.bag')
+            with rosbag.Bag(path, 'w') as bag:
+                bag.write('/left/plan', trajectory, rospy.Time(100))
+            result = rosrun('replay', '--json', path)
+            self.assertEqual(result.returncode, 1, result.stdout)
+            where = ('%s: trajectory_msgs/JointTrajectory on /left/plan at bag time 100.000000, '
+                     % path)
+            if bad_joint is None:
+                self.assertIn(where + 'point 2: time_from_start 1.000000 s does not increase past '
+                              'the point before it (1.500000 s)', result.stderr)
+            else:
+                self.assertIn(where + "point 1: joint 'left_joint2' at nan", result.stderr)
 
     def test_a_later_plan_supersedes_an_earlier_one_after_its_start(self):
         # Task 2 as one plan of both arms; then, from its cycle 50 on, a plan that holds the left

@@ -3,6 +3,7 @@
 #include "replay_bag.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <set>
@@ -74,18 +75,37 @@ class Plans {
   /// `counts`: its messages (points read) and refused and superseded points are counted.
   explicit Plans(Input* counts) : counts_(counts) {}
 
-  /// A trajectory starting at `start`. Returns its last point's stamp (`start` without one).
-  ros::Time AddTrajectory(const trajectory_msgs::JointTrajectory& plan, const ros::Time& start) {
+  /// A trajectory starting at `start`; `where` names its message for a LoadError. A point of
+  /// the wrong size or out of ros::Time's range is refused and counted; one whose
+  /// time_from_start does not increase past the last point taken, or with a position not
+  /// finite, is a LoadError: a trajectory controller refuses such a plan. Returns its last
+  /// point's stamp (`start` without one).
+  ros::Time AddTrajectory(const trajectory_msgs::JointTrajectory& plan, const ros::Time& start,
+                          const std::string& where) {
     Supersede(plan.joint_names, start);
     Joints joints{plan.joint_names, {}, start};
     ros::Time end = start;
-    for (const trajectory_msgs::JointTrajectoryPoint& point : plan.points) {
+    for (std::size_t k = 0; k < plan.points.size(); ++k) {
+      const trajectory_msgs::JointTrajectoryPoint& point = plan.points[k];
       ros::Time stamp;
       if (!IsReadable(joints.names, point.positions) || !IsInRange(start, point, &stamp)) {
         continue;
       }
+      const std::string point_where = where + ", point " + std::to_string(k);
+      if (!joints.points.empty() && !(stamp > end)) {
+        throw LoadError(point_where + ": time_from_start " +
+                        std::to_string(point.time_from_start.toSec()) + " s does not increase "
+                        "past the point before it (" + std::to_string((end - start).toSec()) +
+                        " s)");
+      }
+      for (std::size_t j = 0; j < point.positions.size(); ++j) {
+        if (!std::isfinite(point.positions[j])) {
+          throw LoadError(point_where + ": joint '" + joints.names[j] + "' at " +
+                          std::to_string(point.positions[j]));
+        }
+      }
       joints.points.push_back({stamp, next_order_++, point.positions});
-      joints.last = std::max(joints.last, stamp);
+      joints.last = stamp;
       end = stamp;
     }
     if (!joints.points.empty()) plans_.push_back(std::move(joints));
@@ -96,6 +116,34 @@ class Plans {
   void AddState(const sensor_msgs::JointState& state, const ros::Time& stamp) {
     if (!IsReadable(state.name, state.position)) return;
     plans_.push_back({state.name, {{stamp, next_order_++, state.position}}, stamp});
+  }
+
+  /// For each plan under way at `stamp` (a point before or at it and one after it), but
+  /// `except`: its joints where its controller has them then, `f(NamedPositions)`, linear
+  /// between its two points. So the cycles of plans of several arms (or of a plan beside
+  /// recorded states) move every arm at once, on the straight joint-space path between
+  /// consecutive cycles that the swept check takes, where holding the other arms at their last
+  /// points checked a staircase.
+  template <typename F>
+  void ForEachUnderWayAt(const ros::Time& stamp, const Joints* except, F&& f) {
+    for (const Joints& joints : plans_) {
+      const std::vector<Point>& points = joints.points;
+      if (&joints == except || points.size() < 2 || !(points.front().stamp < stamp) ||
+          !(stamp < points.back().stamp)) {
+        continue;
+      }
+      const auto after = std::upper_bound(
+          points.begin(), points.end(), stamp,
+          [](const ros::Time& t, const Point& point) { return t < point.stamp; });
+      const Point& p0 = *(after - 1);
+      const Point& p1 = *after;
+      const double s = (stamp - p0.stamp).toSec() / (p1.stamp - p0.stamp).toSec();
+      under_way_.resize(p0.positions.size());
+      for (std::size_t j = 0; j < under_way_.size(); ++j) {
+        under_way_[j] = p0.positions[j] + s * (p1.positions[j] - p0.positions[j]);
+      }
+      f(NamedPositions{joints.names, under_way_, stamp.toSec()});
+    }
   }
 
   /// Every point with its joints, by stamp, then in read order.
@@ -164,6 +212,7 @@ class Plans {
   std::vector<Joints> plans_;
   std::uint64_t next_order_ = 0;
   Input* counts_;
+  std::vector<double> under_way_;  // ForEachUnderWayAt's positions
 };
 
 // Samples merged into cycles: consecutive samples with the same stamp form one cycle. The stamp
@@ -226,6 +275,12 @@ class Cycles {
   bool has_group_ = false;
 };
 
+// "<bag>: <type> on <topic> at bag time <t>": the message `m` of the bag at `path`, for errors.
+std::string MessageWhere(const std::string& path, const rosbag::MessageInstance& m) {
+  return path + ": " + m.getDataType() + " on " + m.getTopic() + " at bag time " +
+         std::to_string(m.getTime().toSec());
+}
+
 // `read` (ReadDisplayTrajectory, or ReadGoalTrajectory's type bound) of the message `m` of the
 // bag at `path`, by the definition the bag carries; a LoadError naming the message when it
 // cannot be read.
@@ -237,8 +292,7 @@ auto ReadRaw(const std::string& path, const rosbag::MessageInstance& m, Read&& r
   try {
     return read(m.getMessageDefinition(), bytes.data(), bytes.size());
   } catch (const std::runtime_error& e) {
-    throw LoadError(path + ": " + m.getDataType() + " on " + m.getTopic() + " at bag time " +
-                    std::to_string(m.getTime().toSec()) + ": " + e.what());
+    throw LoadError(MessageWhere(path, m) + ": " + e.what());
   }
 }
 
@@ -258,16 +312,18 @@ PlanSources ReadPlans(const std::string& path, const rosbag::Bag& bag,
                       const std::vector<std::string>& topics, Plans* plans) {
   PlanSources sources;
   rosbag::View view(bag, rosbag::TypeQuery(kPlanTypes));
-  auto add = [&](const trajectory_msgs::JointTrajectory& plan, const ros::Time& start) {
+  auto add = [&](const trajectory_msgs::JointTrajectory& plan, const ros::Time& start,
+                 const std::string& where) {
     sources.joints.insert(plan.joint_names.begin(), plan.joint_names.end());
-    return plans->AddTrajectory(plan, start);
+    return plans->AddTrajectory(plan, start, where);
   };
   for (const rosbag::MessageInstance& m : view) {
     if (!IsRead(m, topics)) continue;
     sources.topics.insert(m.getTopic());
+    const std::string where = MessageWhere(path, m);
     if (const auto plan = m.instantiate<trajectory_msgs::JointTrajectory>()) {
       // A header.stamp of 0 (MoveIt's "start now") is the time the bag recorded it.
-      add(*plan, plan->header.stamp.isZero() ? m.getTime() : plan->header.stamp);
+      add(*plan, plan->header.stamp.isZero() ? m.getTime() : plan->header.stamp, where);
     } else if (m.getDataType() == kDisplayTrajectoryType) {
       // MoveIt's display of a plan, at the time the bag recorded it: the start state (the
       // joints the trajectories leave out too), then the trajectories one after the other.
@@ -276,8 +332,10 @@ PlanSources ReadPlans(const std::string& path, const rosbag::Bag& bag,
       const sensor_msgs::JointState& state = displayed.start_state;
       if (!state.name.empty()) plans->AddState(state, start);
       sources.joints.insert(state.name.begin(), state.name.end());
-      for (const trajectory_msgs::JointTrajectory& plan : displayed.trajectories) {
-        start = add(plan, plan.header.stamp.isZero() ? start : plan.header.stamp);
+      for (std::size_t k = 0; k < displayed.trajectories.size(); ++k) {
+        const trajectory_msgs::JointTrajectory& plan = displayed.trajectories[k];
+        start = add(plan, plan.header.stamp.isZero() ? start : plan.header.stamp,
+                    where + ", trajectory " + std::to_string(k));
       }
     } else {
       // An action goal's trajectory: header.stamp 0 is when the goal arrived.
@@ -286,7 +344,7 @@ PlanSources ReadPlans(const std::string& path, const rosbag::Bag& bag,
           path, m, [&](const std::string& definition, const std::uint8_t* data, std::size_t size) {
             return ReadGoalTrajectory(type, definition, data, size);
           });
-      add(plan, plan.header.stamp.isZero() ? m.getTime() : plan.header.stamp);
+      add(plan, plan.header.stamp.isZero() ? m.getTime() : plan.header.stamp, where);
     }
   }
   return sources;
@@ -339,6 +397,15 @@ Input ReadBag(const std::string& path, const std::vector<std::string>& topics,
   const PlanSources sources = ReadPlans(path, bag, topics, &plans);
   const auto planned = plans.InTimeOrder();
   Cycles cycles(workcell, &result);
+  // Each sample at `stamp` (of plan `joints`, null for a recorded state) with the other plans
+  // under way then.
+  auto add = [&](const NamedPositions& sample, const ros::Time& stamp,
+                 const Plans::Joints* joints) {
+    cycles.Add(sample, stamp);
+    plans.ForEachUnderWayAt(stamp, joints, [&](const NamedPositions& under_way) {
+      cycles.Add(under_way, stamp);
+    });
+  };
   // The planned points before `stamp` (all that are left when null); at equal stamps the
   // recorded state comes first, in the same cycle.
   std::size_t next = 0;
@@ -346,8 +413,8 @@ Input ReadBag(const std::string& path, const std::vector<std::string>& topics,
     for (; next < planned.size() && (stamp == nullptr || planned[next].second->stamp < *stamp);
          ++next) {
       const auto& [joints, point] = planned[next];
-      cycles.Add(NamedPositions{joints->names, point->positions, point->stamp.toSec()},
-                 point->stamp);
+      add(NamedPositions{joints->names, point->positions, point->stamp.toSec()}, point->stamp,
+          joints);
     }
   };
   for (const rosbag::MessageInstance& m : rosbag::View(bag, rosbag::TypeQuery(kJointStateType))) {
@@ -356,7 +423,7 @@ Input ReadBag(const std::string& path, const std::vector<std::string>& topics,
     if (topics.empty()) CheckNotPlanned(path, m, *msg, sources);
     ++result.messages;
     add_planned_before(&msg->header.stamp);
-    cycles.Add(ToNamedPositions(*msg), msg->header.stamp);
+    add(ToNamedPositions(*msg), msg->header.stamp, nullptr);
   }
   add_planned_before(nullptr);
   cycles.Finish(path);

@@ -14,15 +14,16 @@ namespace arm_collision_monitor {
 namespace replay {
 
 // The cycles of the bag at `path` for `workcell`'s joints. The recorded states (JointState) are
-// taken in bag order, as the node receives them; the planned points (each trajectory point a
-// sample at its start plus time_from_start, a DisplayTrajectory's start state one at the bag's
-// time) in time order, merged with the states by stamp. A plan supersedes, for its joints, the
-// points of earlier plans after its start, as a trajectory controller replaces a trajectory.
-// Consecutive samples with equal stamps form one cycle. `topics`: the topics read (empty: all);
-// without them, recorded states and planned paths of the same joint are an error (a bag
-// recorded with `rosbag record -a` holds both: what was planned and what was done). A
-// LoadError names the bag (and the message or topic) when it cannot be read, some joint is
-// never given, or a topic given holds none of the types read.
+// taken in bag order, as the node receives them; the planned points (each trajectory point a sample
+// at its start plus time_from_start, a DisplayTrajectory's start state one at the bag's time) in
+// time order, merged with the states by stamp. A plan supersedes, for its joints, the points of
+// earlier plans after its start, as a trajectory controller replaces a trajectory. Consecutive
+// samples with equal stamps form one cycle; at each sample's stamp the other plans under way give
+// their joints interpolated between their points. `topics`: the topics read (empty: all); without
+// them, recorded states and planned paths of the same joint are an error (a bag recorded with
+// `rosbag record -a` holds both: what was planned and what was done). A LoadError names the bag
+// (and the message or topic) when it cannot be read, some joint is never given, or a topic given
+// holds none of the types read.
 Input ReadBag(const std::string& path, const std::vector<std::string>& topics,
               const Workcell& workcell);
 
