@@ -5,14 +5,26 @@
 #include <tf2_eigen/tf2_eigen.h>
 
 #include "arm_collision_monitor/ros/monitor_node.h"
+#include "arm_collision_monitor/scene/unit_quaternion.h"
 #include "arm_collision_monitor/scene/solid_spec.h"
 
 namespace arm_collision_monitor {
 
 bool MonitorNode::ResolvePose(const geometry_msgs::Pose& pose, const std::string& frame,
                               Eigen::Isometry3d* X_WO, std::string* error) {
-  Eigen::Isometry3d X_FO;
-  tf2::fromMsg(pose, X_FO);
+  // tf2::fromMsg would take any quaternion: a zero one, or {w: 2}, as no rotation.
+  Eigen::Quaterniond R_FO;
+  const std::string why = ToUnitQuaternion(
+      Eigen::Vector4d(pose.orientation.x, pose.orientation.y, pose.orientation.z,
+                      pose.orientation.w),
+      &R_FO);
+  if (!why.empty()) {
+    *error = "pose.orientation: " + why;
+    return false;
+  }
+  Eigen::Isometry3d X_FO = Eigen::Isometry3d::Identity();
+  X_FO.linear() = R_FO.toRotationMatrix();
+  X_FO.translation() = Eigen::Vector3d(pose.position.x, pose.position.y, pose.position.z);
   if (frame.empty() || frame == fixed_frame_) {
     *X_WO = X_FO;
     return true;

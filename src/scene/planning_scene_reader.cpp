@@ -10,7 +10,7 @@
 
 #include "arm_collision_monitor/scene/resource_fetch.h"
 #include "arm_collision_monitor/scene/yaml_fields.h"
-#include "scene_quaternion.h"
+#include "arm_collision_monitor/scene/unit_quaternion.h"
 
 namespace arm_collision_monitor {
 namespace {

@@ -25,7 +25,7 @@
 
 #include "arm_collision_monitor/core/load_error.h"
 #include "arm_collision_monitor/scene/planning_scene_reader.h"
-#include "scene_quaternion.h"
+#include "arm_collision_monitor/scene/unit_quaternion.h"
 #include "text_trim.h"
 
 namespace arm_collision_monitor {

@@ -58,10 +58,10 @@ def cube_mesh(edge_m):
     return vertices, triangles
 
 
-def pose_at(xyz):
+def pose_at(xyz, w=1.0):
     p = Pose()
     p.position.x, p.position.y, p.position.z = xyz
-    p.orientation.w = 1.0
+    p.orientation.w = w
     return p
 
 
@@ -191,7 +191,15 @@ class ServiceEffectsTest(unittest.TestCase):
                 (dict(name='crate', type='sphere', dimensions_m=[0.1]), 'already used'),
                 (dict(name='drum', type='sphere', dimensions_m=[0.1], frame='no_such_frame'),
                  'no transform'),
-                (dict(name='drum', type='box', dimensions_m=[0.1, 0.1]), 'dimensions')]:
+                (dict(name='drum', type='box', dimensions_m=[0.1, 0.1]), 'dimensions'),
+                # Not unit quaternions (an iiwa user's {w: 2} and all zeros were taken as no
+                # rotation).
+                (dict(name='drum', type='sphere', dimensions_m=[0.1],
+                      pose=pose_at(CRATE_AWAY_M, w=2.0)),
+                 'pose.orientation: quaternion norm 2.000000 is not 1'),
+                (dict(name='drum', type='sphere', dimensions_m=[0.1],
+                      pose=pose_at(CRATE_AWAY_M, w=0.0)),
+                 'pose.orientation: a zero quaternion is not a rotation')]:
             kwargs.setdefault('pose', pose_at(CRATE_AWAY_M))
             res = add(**kwargs)
             self.assertFalse(res.success, kwargs)
@@ -199,6 +207,10 @@ class ServiceEffectsTest(unittest.TestCase):
         report = self.hold(c, HOME, HOME, 'after the refusals')
         self.assertEqual([p for p in warning_pairs(report) if 'crate' in p], crate_pairs)
 
+        res = service(node, 'move_object', MoveObject)(name='crate',
+                                                       pose=pose_at(CRATE_AWAY_M, w=0.0))
+        self.assertFalse(res.success, 'moved by a zero quaternion')
+        self.assertIn('a zero quaternion is not a rotation', res.message)
         res = service(node, 'move_object', MoveObject)(name='crate', pose=pose_at(CRATE_AWAY_M))
         self.assertTrue(res.success, res.message)
         report = self.hold(c, HOME, HOME, 'the crate moved away')

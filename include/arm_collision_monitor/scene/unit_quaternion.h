@@ -1,5 +1,6 @@
-// The planning-scene readers' quaternion policy (planning_scene_reader.h), shared by the YAML
-// reader and the scene geometry text reader. Private to the scene module.
+// The quaternion policy of poses read from outside: the planning-scene readers' (the YAML reader
+// and the scene geometry text reader, planning_scene_reader.h) and the node's live-object
+// services'.
 #pragma once
 
 #include <cmath>
