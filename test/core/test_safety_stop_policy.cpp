@@ -322,6 +322,38 @@ TEST_F(StopPolicyTest, StaleJointStopsInCycleAndOnTheTimer) {
   EXPECT_TRUE(policy_.stop());
 }
 
+// A stale stop naming many joints keeps the note of its hold once input is back: the names took
+// the whole reason and the note was cut off (an iiwa user's 14 joints read as if still stale).
+TEST(StopPolicy, HeldStaleReasonOfManyJointsSaysItIsHeld) {
+  std::vector<std::string> joints;
+  for (const char* arm : {"left", "right"}) {
+    for (int i = 1; i <= 7; ++i) {
+      joints.push_back(std::string(arm) + "_iiwa_joint_" + std::to_string(i));
+    }
+  }
+  JointMerger input(joints, kTimeout_s);
+  StopPolicy policy(kHold_s);
+  const std::vector<PrimitiveSpec> primitives = Primitives();
+  const std::vector<double> positions(joints.size(), 0.0);
+  auto cycle = [&](double now_s) {
+    ASSERT_EQ(input.Merge(NamedPositions{joints, positions, now_s}, now_s),
+              MergeStatus::kAccepted);
+    policy.ObserveClock(now_s);
+    if (policy.BeginCycle(MergeStatus::kAccepted, "", input)) {
+      policy.OnCycleReport(CleanReport(), "", primitives, input, now_s);
+    }
+    policy.EndCycle(now_s);
+  };
+  for (double t = 1.0; t <= 2.0; t += kStep_s) cycle(t);
+  ASSERT_FALSE(policy.stop());
+  ASSERT_TRUE(policy.CheckStaleness(input, 11.0).is_stale);
+  const std::string stale = policy.reason();
+  ASSERT_EQ(stale.rfind("14 joints not received for over input_timeout_s", 0), 0u) << stale;
+  cycle(11.0 + kStep_s);
+  EXPECT_TRUE(policy.stop());
+  EXPECT_EQ(policy.reason(), stale + " (no longer seen; the stop is held for stop_hold_s, 0.25 s)");
+}
+
 TEST_F(StopPolicyTest, IncompleteModelIsNotStaleOnTheTimer) {
   EXPECT_FALSE(policy_.CheckStaleness(input_, 100.0).is_stale);
   EXPECT_TRUE(policy_.stop());  // still the start-up stop
