@@ -313,10 +313,12 @@ void CheckEveryCollisionRead(const std::string& urdf_xml, const urdf::ModelInter
     const char* name = xml->Attribute("name");
     const urdf::LinkConstSharedPtr link = name == nullptr ? nullptr : model.getLink(name);
     if (link == nullptr) continue;
+    // A Drake <capsule> is read as three elements (ParseUrdfFile: the capsule idiom).
     std::size_t written = 0;
     for (const tinyxml2::XMLElement* c = xml->FirstChildElement("collision"); c != nullptr;
          c = c->NextSiblingElement("collision")) {
-      ++written;
+      const tinyxml2::XMLElement* geometry = c->FirstChildElement("geometry");
+      written += geometry != nullptr && geometry->FirstChildElement("capsule") != nullptr ? 3 : 1;
     }
     const std::size_t read =
         link->collision_array.empty() ? (link->collision ? 1 : 0) : link->collision_array.size();

@@ -46,7 +46,8 @@ UrdfLinkGeometry ReadUrdfLinkGeometry(const urdf::Link& link, const std::string&
 /// links would be missing. An expanded file's xmlns:xacro attribute on <robot> is fine.
 std::string CheckXacroLeft(const std::string& urdf_xml, const std::string& urdf_path);
 
-/// Fails unless urdfdom kept every <collision> of every link of the URDF text `urdf_xml`:
+/// Fails unless urdfdom kept every <collision> of every link of the URDF text `urdf_xml` (a
+/// Drake <capsule> as the three of its idiom, ParseUrdfFile):
 /// urdfdom drops an element it cannot parse (a mesh scale that is not 3 numbers, say) with
 /// only a console message, which would leave a link silently unchecked. Throws LoadError naming
 /// `urdf_path`, the link and the counts.

@@ -250,6 +250,34 @@ TEST(SceneLoader, CapsuleIdiomNeedsMatchingSpheres) {
   EXPECT_EQ(separate.primitives[1].name, "base/1");
 }
 
+// Drake's <capsule radius length> URDF extension, which urdfdom cannot parse (it drops the
+// link's collision elements from there on: an iiwa user's Drake URDF was refused, "has 1
+// <collision> elements but urdfdom read 0"): the capsule along z of its origin, `length`
+// between its end spheres' centres, beside the link's other elements, which keep their names.
+TEST(SceneLoader, DrakeCapsuleElementIsACapsule) {
+  const std::string urdf = WriteTempFile(
+      "drake_capsule.urdf",
+      "<?xml version=\"1.0\"?>\n<robot name=\"r\">\n  <link name=\"base\">\n"
+      "    <collision name=\"body\"><origin xyz=\"0.1 0.2 0.3\" rpy=\"1.5707963267948966 0 0\"/>"
+      "<geometry><capsule radius=\"0.05\" length=\"0.4\"/></geometry></collision>\n"
+      "    <collision><origin xyz=\"0 0 1\"/><geometry><box size=\"0.1 0.1 0.1\"/></geometry>"
+      "</collision>\n  </link>\n</robot>\n");
+  const Workcell w = LoadWorkcell(urdf, WriteTempFile("drake_capsule.yaml", kWorldLine));
+  ASSERT_EQ(w.primitives.size(), 2u);
+  const int body = w.FindPrimitive("base/body");
+  ASSERT_GE(body, 0);
+  const Capsule& c = std::get<Capsule>(w.primitives[body].shape_L);
+  // rpy (pi/2, 0, 0) turns z onto the y axis.
+  const Eigen::Vector3d a(0.1, 0.2 + 0.2, 0.3), b(0.1, 0.2 - 0.2, 0.3);
+  EXPECT_NEAR(std::min((c.p0_W - a).norm(), (c.p0_W - b).norm()), 0.0, 1e-12);
+  EXPECT_NEAR(std::min((c.p1_W - a).norm(), (c.p1_W - b).norm()), 0.0, 1e-12);
+  EXPECT_NEAR((c.p0_W - c.p1_W).norm(), 0.4, 1e-12);
+  EXPECT_EQ(c.radius_m, 0.05);
+  const Box& box = std::get<Box>(w.primitives[1 - body].shape_L);
+  EXPECT_EQ(box.X_WB.translation(), Eigen::Vector3d(0, 0, 1));
+  EXPECT_EQ(w.primitives[1 - body].name, "base/1");
+}
+
 // A bad size in a <collision> element stops start-up with a message naming the file, the link,
 // the element's index in the link and what was expected (ReadCollisionElement; urdfdom itself
 // drops an element whose numbers do not parse, which CheckEveryCollisionRead reports).
@@ -262,6 +290,10 @@ TEST(SceneLoader, BadCollisionGeometryNamesTheElement) {
        "<sphere radius> must be a finite number >= 0"},
       {"<origin xyz=\"0 0 0\"/><geometry><cylinder radius=\"0.1\" length=\"-1\"/></geometry>",
        "<cylinder radius, length> must be finite numbers >= 0"},
+      {"<origin xyz=\"0 0 0\"/><geometry><capsule radius=\"0.1\" length=\"x\"/></geometry>",
+       "<capsule>: <capsule radius, length> must be finite numbers >= 0"},
+      {"<origin xyz=\"0 0\"/><geometry><capsule radius=\"0.1\" length=\"1\"/></geometry>",
+       "<capsule>: <origin>:"},
   };
   for (std::size_t k = 0; k < cases.size(); ++k) {
     const std::string urdf = WriteTempFile(
