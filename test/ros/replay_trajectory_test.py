@@ -365,6 +365,24 @@ class ReplayTrajectoryTest(unittest.TestCase):
             else:
                 self.assertIn(where + "point 1: joint 'left_joint2' at nan", result.stderr)
 
+    def test_joints_never_given_are_explained_by_what_the_plans_held(self):
+        # A plan of both arms with one joint misspelt, and an empty one (a Kinova Gen3 user read
+        # only which model joints were missing).
+        names = LEFT_JOINTS + RIGHT_JOINTS
+        names[2] = 'left_joint_3'
+        plan = JointTrajectory(joint_names=names)
+        plan.points.append(JointTrajectoryPoint(positions=[0.0] * 14,
+                                                time_from_start=rospy.Duration(0.0)))
+        path = os.path.join(self.directory, 'misspelt.bag')
+        with rosbag.Bag(path, 'w') as bag:
+            bag.write('/plan', plan, rospy.Time(100))
+            bag.write('/plan', JointTrajectory(joint_names=LEFT_JOINTS), rospy.Time(101))
+        result = rosrun('replay', '--json', path)
+        self.assertEqual(result.returncode, 1, result.stdout)
+        self.assertIn("gives model joint 'left_joint3' (", result.stderr)
+        self.assertIn("; the plans name 1 joint(s) not in the model: 'left_joint_3'; 1 of the 2 "
+                      "trajectories read have no points", result.stderr)
+
     def test_a_later_plan_supersedes_an_earlier_one_after_its_start(self):
         # Task 2 as one plan of both arms; then, from its cycle 50 on, a plan that holds the left
         # arm at its pose there, with a point every 0.5 s. The left arm's points of the first plan

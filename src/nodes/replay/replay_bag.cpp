@@ -239,14 +239,15 @@ class Cycles {
     if (status != MergeStatus::kAccepted) ++result_->refused[MergeStatusName(status)];
   }
 
-  /// Ends the last cycle; a LoadError naming the bag at `path` and every joint never given.
-  void Finish(const std::string& path) {
+  /// Ends the last cycle; a LoadError naming the bag at `path`, every joint never given, and
+  /// `hint` (what the plans held that may explain it; "" for nothing).
+  void Finish(const std::string& path, const std::string& hint) {
     Flush();
     if (!input_.is_complete()) {
       const std::vector<std::string> missing = input_.MissingJoints();
       throw LoadError(path + ": no accepted sensor_msgs/JointState message or trajectory point " +
                       "gives " + ModelJointsText(missing) + " (" +
-                      JointDefaultsHint(missing.size()) + ")");
+                      JointDefaultsHint(missing.size()) + ")" + hint);
     }
   }
 
@@ -300,7 +301,33 @@ auto ReadRaw(const std::string& path, const rosbag::MessageInstance& m, Read&& r
 struct PlanSources {
   std::set<std::string> topics;
   std::unordered_set<std::string> joints;
+  std::size_t trajectories = 0, empty_trajectories = 0;  // read, and of those without points
 };
+
+// What the plans of `sources` held that may explain joints never given to `workcell`: joints
+// not in the model (a misspelt name), trajectories without points.
+std::string PlanHint(const PlanSources& sources, const Workcell& workcell) {
+  std::vector<std::string> unknown;
+  for (const std::string& name : sources.joints) {
+    if (std::find(workcell.joint_names.begin(), workcell.joint_names.end(), name) ==
+        workcell.joint_names.end()) {
+      unknown.push_back(name);
+    }
+  }
+  std::sort(unknown.begin(), unknown.end());
+  std::string hint;
+  if (!unknown.empty()) {
+    hint += "; the plans name " + std::to_string(unknown.size()) + " joint(s) not in the model:";
+    for (std::size_t k = 0; k < unknown.size(); ++k) {
+      hint += (k == 0 ? " '" : ", '") + unknown[k] + "'";
+    }
+  }
+  if (sources.empty_trajectories > 0) {
+    hint += "; " + std::to_string(sources.empty_trajectories) + " of the " +
+            std::to_string(sources.trajectories) + " trajectories read have no points";
+  }
+  return hint;
+}
 
 // Whether `m` is on one of `topics` (empty: all are read).
 bool IsRead(const rosbag::MessageInstance& m, const std::vector<std::string>& topics) {
@@ -315,6 +342,8 @@ PlanSources ReadPlans(const std::string& path, const rosbag::Bag& bag,
   auto add = [&](const trajectory_msgs::JointTrajectory& plan, const ros::Time& start,
                  const std::string& where) {
     sources.joints.insert(plan.joint_names.begin(), plan.joint_names.end());
+    ++sources.trajectories;
+    sources.empty_trajectories += plan.points.empty() ? 1 : 0;
     return plans->AddTrajectory(plan, start, where);
   };
   for (const rosbag::MessageInstance& m : view) {
@@ -426,7 +455,7 @@ Input ReadBag(const std::string& path, const std::vector<std::string>& topics,
     add(ToNamedPositions(*msg), msg->header.stamp, nullptr);
   }
   add_planned_before(nullptr);
-  cycles.Finish(path);
+  cycles.Finish(path, PlanHint(sources, workcell));
   return result;
 }
 
