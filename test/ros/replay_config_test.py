@@ -238,6 +238,26 @@ class ReplayConfigTest(unittest.TestCase):
         report = json.loads(result.stdout)
         self.assertEqual([c['time_s'] for c in report['per_cycle']], times)
 
+    def test_the_first_refused_message_is_named(self):
+        # A recording whose second message holds a NaN: refused and counted, and named (a
+        # Kinova Gen3 user read "1 messages refused (non_finite: 1)" and looked for it).
+        path = os.path.join(tempfile.mkdtemp(prefix='acm_refused_'), 'nan.bag')
+        with rosbag.Bag(path, 'w') as bag:
+            for k in range(3):
+                msg = JointState(name=LEFT_JOINTS + RIGHT_JOINTS, position=[0.0] * 14)
+                msg.header.stamp = rospy.Time(100) + rospy.Duration(0.05 * k)
+                if k == 1:
+                    msg.position[1] = float('nan')
+                bag.write('/joint_states', msg, msg.header.stamp)
+        result = rosrun('replay', '--json', '--scene', self.bundled_scene, path)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        report = json.loads(result.stdout)
+        self.assertEqual(report['refused_messages'], {'non_finite': 1})
+        first = "stamped 100.050000 s: non_finite (joint 'left_joint2' at nan)"
+        self.assertEqual(report['first_refused_message'], first)
+        self.assertIn('input: 1 messages refused (non_finite: 1) (the first %s), ' % first,
+                      rosrun('replay', '--scene', self.bundled_scene, path).stdout)
+
     def test_between_samples_lines_past_the_first_20_are_counted(self):
         # The swing of test_between_samples_lines_say_what_they_are, there and back four times:
         # more warnings between samples than the text prints (a Kinova Gen3 user's plan printed

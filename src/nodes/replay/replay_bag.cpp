@@ -236,7 +236,14 @@ class Cycles {
       has_group_ = true;
     }
     const MergeStatus status = input_.Merge(sample, stamp.toSec());
-    if (status != MergeStatus::kAccepted) ++result_->refused[MergeStatusName(status)];
+    if (status == MergeStatus::kAccepted) return;
+    ++result_->refused[MergeStatusName(status)];
+    if (result_->first_refused_message.empty()) {
+      const std::string why = input_.DescribeRefusal(sample, status, stamp.toSec());
+      result_->first_refused_message = "stamped " + std::to_string(stamp.toSec()) + " s: " +
+                                       MergeStatusName(status) +
+                                       (why.empty() ? "" : " (" + why + ")");
+    }
   }
 
   /// Ends the last cycle; a LoadError naming the bag at `path`, every joint never given, and

@@ -66,7 +66,11 @@ void PrintJsonCounts(const Options& options, const Input& input, std::size_t cyc
                 static_cast<unsigned long long>(count));
     comma = true;
   }
-  std::printf("},\n  \"superseded_points\": %llu,\n  \"position_less_messages\": %llu,\n",
+  std::printf("},\n  \"first_refused_message\": %s,\n",
+              input.first_refused_message.empty()
+                  ? "null"
+                  : JsonString(input.first_refused_message).c_str());
+  std::printf("  \"superseded_points\": %llu,\n  \"position_less_messages\": %llu,\n",
               static_cast<unsigned long long>(input.superseded_points),
               static_cast<unsigned long long>(input.position_less));
   for (const auto& [key, names] : {std::pair{"ignored_columns", &input.ignored_columns},
@@ -188,6 +192,9 @@ void PrintInputLines(const Input& input, const std::vector<CycleResult>& cycles,
                 static_cast<unsigned long long>(summary.refused_messages));
     for (const auto& [status, count] : input.refused) {
       std::printf(" (%s: %llu)", status.c_str(), static_cast<unsigned long long>(count));
+    }
+    if (!input.first_refused_message.empty()) {
+      std::printf(" (the first %s)", input.first_refused_message.c_str());
     }
     std::printf(", %llu cycles before every joint was received, %llu cycles refused by the "
                 "monitor",

@@ -39,6 +39,8 @@ struct Input {
   std::uint64_t messages = 0;  ///< samples read: JointState messages, trajectory points, rows
   /// MergeStatusName (or "time_out_of_range": a trajectory point's stamp) -> count
   std::map<std::string, std::uint64_t> refused;
+  /// the first refused message: its stamp (s, on the bag's clock) and why ("" if none)
+  std::string first_refused_message;
   std::uint64_t incomplete_cycles = 0;           ///< before every joint was received
   std::uint64_t superseded_points = 0;  ///< planned points (partly) replaced by a later plan
   std::uint64_t position_less = 0;      ///< messages and points naming joints without positions
