@@ -291,6 +291,14 @@ bool Monitor::RemoveObject(const std::string& name, std::string* error) {
     return false;
   }
   if (m.holder[o] >= 0 && !Detach(name, error)) return false;
+  // Its grasp targets go with it: the slot's next object is excused with no link.
+  const std::size_t object_count = m.model.objects.size();
+  for (int link = 0; link < m.model.kinematics->link_count(); ++link) {
+    std::uint8_t& is_target = m.grasp[static_cast<std::size_t>(link) * object_count + o];
+    if (!is_target) continue;
+    is_target = 0;
+    m.RefreshCompatibility(link, o);
+  }
   const std::uint32_t k_max = m.model.options.live_objects.max_primitives_per_object;
   const std::uint32_t first_s = static_cast<std::uint32_t>(slot) * k_max;
   const int count = m.live.shape_count[slot];

@@ -70,8 +70,9 @@ bool Monitor::Attach(const std::string& object, const std::string& link, std::st
     return false;
   }
   if (!m.IsAttachable(o)) {
-    SetError(error, "Attach: object '" + object + "' is not attachable in " +
-                        m.model.workcell->scene_path);
+    SetError(error, "Attach: object '" + object + "' is not attachable " +
+                        (m.model.LiveSlot(o) >= 0 ? std::string("(added with attachable false)")
+                                                  : "in " + m.model.workcell->scene_path));
     return false;
   }
   if (m.model.hold_radius_m[l] < 0.0) {
@@ -119,6 +120,12 @@ bool Monitor::Attach(const std::string& object, const std::string& link, std::st
   return true;
 }
 
+std::string Monitor::HolderOf(const std::string& object) const {
+  const Impl& m = *impl_;
+  const int o = m.FindObject(object);
+  return o < 0 || m.holder[o] < 0 ? "" : m.model.kinematics->link_name(m.holder[o]);
+}
+
 bool Monitor::Detach(const std::string& object, std::string* error) {
   Impl& m = *impl_;
   m.SyncKinematics();  // the object stays where it is let go: at the last good q
@@ -163,8 +170,11 @@ bool Monitor::SetGraspTarget(const std::string& link, const std::string& object,
     SetError(error, "SetGraspTarget: unknown object '" + object + "'");
     return false;
   }
+  // A scene object only with the links its scene file names; a live object (whose caller
+  // placed it) with any link.
   const auto& targets = m.model.workcell->grasp_targets;
-  if (std::none_of(targets.begin(), targets.end(), [&](const GraspTargetSpec& t) {
+  if (m.model.LiveSlot(o) < 0 &&
+      std::none_of(targets.begin(), targets.end(), [&](const GraspTargetSpec& t) {
         return t.link_index == l && t.object_index == o;
       })) {
     SetError(error, "SetGraspTarget: '" + object + "' is not a grasp target of link '" + link +

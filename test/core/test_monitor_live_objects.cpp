@@ -333,7 +333,11 @@ TEST_P(MonitorLiveObjects, AttachableLiveObjectIsHeldAndRemoved) {
   }
   std::string error;
   ASSERT_TRUE(monitor.AddObject("tool", chain, X_WO, 0.01, true, &error)) << error;
-  ASSERT_TRUE(monitor.Attach("tool", "right_link7", &error)) << error;
+  EXPECT_EQ(monitor.HolderOf("tool"), "");
+  ASSERT_TRUE(monitor.Attach("tool", "right_link6", &error)) << error;
+  EXPECT_EQ(monitor.HolderOf("tool"), "right_link6");
+  ASSERT_TRUE(monitor.Attach("tool", "right_link7", &error)) << error;  // handed on
+  EXPECT_EQ(monitor.HolderOf("tool"), "right_link7");
   Eigen::VectorXd carry_q = grasp_q;
   carry_q[test::JointIndex(*wc, "right_joint1")] += 0.3;
   const CycleReport& report = monitor.Update(carry_q);
@@ -349,6 +353,43 @@ TEST_P(MonitorLiveObjects, AttachableLiveObjectIsHeldAndRemoved) {
   EXPECT_EQ(monitor.live_object_count(), 0u);
   monitor.Update(grasp_q);
   ExpectValid(monitor, "removed while held");
+}
+
+// A live object may be made a grasp target of any link (a dual UR5e user's gripper closing on a
+// box added at run time was refused: only the scene file's grasp_targets were allowed), and
+// the excuse goes with the object: the next object in its slot is checked against that link.
+TEST_P(MonitorLiveObjects, LiveObjectIsAGraspTargetOfAnyLinkUntilRemoved) {
+  const auto wc = test::LoadBundledWorkcell();
+  Monitor monitor(wc, LiveOptions(GetParam()));
+  const Eigen::VectorXd grasp_q = test::ArmReachDown(*wc, "right", 0.9, -0.4, 1.0);
+  monitor.Update(grasp_q);
+  monitor.SyncShapes();
+  const Capsule& tip = std::get<Capsule>(monitor.shape_W(test::Prim(*wc, "right_link7")));
+  Eigen::Isometry3d X_WO = Eigen::Isometry3d::Identity();
+  X_WO.translation() = tip.p1_W;
+  const std::vector<Shape> box = {Box{Eigen::Isometry3d::Identity(), {0.03, 0.03, 0.03}}};
+  auto tip_warns = [&](const std::string& object) {
+    for (const Warning& w : monitor.Check(grasp_q).warnings) {
+      if (monitor.primitive(w.a).owner == "right_link7" && monitor.primitive(w.b).owner == object) {
+        return true;
+      }
+    }
+    return false;
+  };
+  std::string error;
+  ASSERT_TRUE(monitor.AddObject("crate", box, X_WO, 0.0, false, &error)) << error;
+  ASSERT_TRUE(tip_warns("crate"));
+  EXPECT_FALSE(monitor.Attach("crate", "right_link7", &error));
+  EXPECT_EQ(error, "Attach: object 'crate' is not attachable (added with attachable false)");
+  ASSERT_TRUE(monitor.SetGraspTarget("right_link7", "crate", true, &error)) << error;
+  EXPECT_FALSE(tip_warns("crate"));
+  // A scene object still only with the links its scene file names.
+  EXPECT_FALSE(monitor.SetGraspTarget("right_link7", "front_table_top", true, &error));
+  EXPECT_NE(error.find("is not a grasp target of link 'right_link7'"), std::string::npos) << error;
+  ASSERT_TRUE(monitor.RemoveObject("crate", &error)) << error;
+  ASSERT_TRUE(monitor.AddObject("drum", box, X_WO, 0.0, false, &error)) << error;
+  EXPECT_TRUE(tip_warns("drum"));
+  ExpectValid(monitor, "after the grasp target's object was removed");
 }
 
 // After adds, moves and removes (each once for warm-up), the cycles that follow allocate nothing.

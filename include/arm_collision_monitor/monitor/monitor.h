@@ -156,7 +156,11 @@ class Monitor {
   /// unknown names.
   bool Attach(const std::string& object, const std::string& link, std::string* error);
   bool Detach(const std::string& object, std::string* error);
-  /// Declares (or clears) `object` a grasp target of `link`: compatible while set.
+  /// The link holding `object`; "" when none holds it (or no such object).
+  std::string HolderOf(const std::string& object) const;
+  /// Declares (or clears) `object` a grasp target of `link`: compatible while set. A scene
+  /// object only with a link its scene file lists under grasp_targets; a live object with any
+  /// link (until it is removed).
   bool SetGraspTarget(const std::string& link, const std::string& object, bool is_target,
                       std::string* error);
   /// Replaces a link's primitives by its model variant `variant` (declared in the scene file;
