@@ -428,9 +428,13 @@ bool MonitorNode::OnCheck(CheckJointState::Request& req, CheckJointState::Respon
 }
 
 bool MonitorNode::OnAttach(AttachObject::Request& req, AttachObject::Response& res) {
+  const std::string previous = monitor_->HolderOf(req.object);
   res.success = monitor_->Attach(req.object, req.link, &res.message);
   if (res.success) {
-    res.message = "attached '" + req.object + "' to '" + req.link + "'";
+    res.message = "attached '" + req.object + "' to '" + req.link + "'" +
+                  (previous.empty() || previous == req.link
+                       ? ""
+                       : " (taken from '" + previous + "', which held it)");
   }
   return true;
 }

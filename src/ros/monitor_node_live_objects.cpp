@@ -29,6 +29,11 @@ bool MonitorNode::ResolvePose(const geometry_msgs::Pose& pose, const std::string
     *X_WO = X_FO;
     return true;
   }
+  // tf2's own message would blame the fixed frame when TF has neither.
+  if (!tf_buffer_._frameExists(frame)) {
+    *error = "frame '" + frame + "' is not known to TF (no transform to '" + fixed_frame_ + "')";
+    return false;
+  }
   try {
     const Eigen::Isometry3d X_WF = tf2::transformToEigen(
         tf_buffer_.lookupTransform(fixed_frame_, frame, ros::Time(0)));

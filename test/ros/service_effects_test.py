@@ -190,7 +190,7 @@ class ServiceEffectsTest(unittest.TestCase):
                 (dict(name='drum', type='cone', dimensions_m=[0.1]), 'unknown type'),
                 (dict(name='crate', type='sphere', dimensions_m=[0.1]), 'already used'),
                 (dict(name='drum', type='sphere', dimensions_m=[0.1], frame='no_such_frame'),
-                 'no transform'),
+                 "frame 'no_such_frame' is not known to TF"),
                 (dict(name='drum', type='box', dimensions_m=[0.1, 0.1]), 'dimensions'),
                 # Not unit quaternions (an iiwa user's {w: 2} and all zeros were taken as no
                 # rotation).
