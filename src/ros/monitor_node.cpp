@@ -1,6 +1,7 @@
 #include "arm_collision_monitor/ros/monitor_node.h"
 
 #include <algorithm>
+#include <cstdio>
 
 #include <boost/make_shared.hpp>
 
@@ -71,6 +72,7 @@ NodeOptions LoadNodeOptions(const ros::NodeHandle& private_nh) {
   ReadPositive(private_nh, "queue_size", false, &o.queue_size);
   ReadPositive(private_nh, "cycle_rate_hz", true, &o.cycle_rate_hz);
   ReadPositive(private_nh, "input_timeout_s", false, &o.input_timeout_s);
+  ReadPositive(private_nh, "frame_timeout_s", true, &o.frame_timeout_s);
   ReadPositive(private_nh, "stop_hold_s", true, &o.stop_hold_s);
   ReadPositive(private_nh, "stop_period_s", false, &o.stop_period_s);
   ReadPositive(private_nh, "marker_rate_hz", false, &o.marker_rate_hz);
@@ -221,12 +223,26 @@ void MonitorNode::OnCycleTimer(const ros::TimerEvent&) {
   }
 }
 
-void MonitorNode::UpdateBoundObjects() {
+void MonitorNode::UpdateBoundObjects(const ros::Time& now) {
   for (BoundObject& bound : bound_objects_) {
     std::string error;
     try {
-      const Eigen::Isometry3d X_WO = tf2::transformToEigen(
-          tf_buffer_.lookupTransform(fixed_frame_, bound.frame, ros::Time(0)));
+      const geometry_msgs::TransformStamped X =
+          tf_buffer_.lookupTransform(fixed_frame_, bound.frame, ros::Time(0));
+      // A broadcast frame (a static chain comes stamped 0) not sent for frame_timeout_s is
+      // stale: the object may have moved since (a tracker or a conveyor's driver stopped).
+      const double age_s = (now - X.header.stamp).toSec();
+      if (options_.frame_timeout_s > 0.0 && !X.header.stamp.isZero() &&
+          age_s > options_.frame_timeout_s) {
+        char text[128];
+        std::snprintf(text, sizeof(text),
+                      "its newest transform is %.3f s old, over ~frame_timeout_s (%.3f s)", age_s,
+                      options_.frame_timeout_s);
+        ++stale_frames_;
+        policy_.OnObjectPoseUnavailable(bound.object, bound.frame, text);
+        return;
+      }
+      const Eigen::Isometry3d X_WO = tf2::transformToEigen(X);
       // Most frames (a calibrated camera) do not move: skip the index update then.
       if ((bound.has_pose && X_WO.matrix() == bound.X_WO.matrix()) ||
           monitor_->SetObjectPose(bound.object, X_WO, &error)) {
@@ -256,7 +272,7 @@ void MonitorNode::RunCycle(std::chrono::steady_clock::time_point start) {
   report_.input_jumped = false;
   report_.swept_pairs = 0;
   if (policy_.BeginCycle(pending, pending_why_, *input_)) {
-    UpdateBoundObjects();
+    UpdateBoundObjects(now);
     // Each joint dated by the message that gave it (per-arm topics sample the arms apart).
     const std::vector<double>& stamps = input_->joint_stamps();
     const CycleReport& cycle = monitor_->Update(
@@ -512,6 +528,7 @@ void MonitorNode::DiagnoseInput(diagnostic_updater::DiagnosticStatusWrapper& sta
   status.addf("input timeout (s)", "%.3f", options_.input_timeout_s);
   status.add("stale episodes", stale_episodes_);
   status.add("tf lookup failures", tf_failures_);
+  status.add("stale tf frames", stale_frames_);
 }
 
 void MonitorNode::DiagnoseCycle(diagnostic_updater::DiagnosticStatusWrapper& status) {

@@ -6,7 +6,8 @@ to the TF frame camera_link. This node broadcasts that frame while it holds both
 /tf as tf2_msgs/TFMessage, what tf2_ros's TransformBroadcaster sends: Debian's python3-tf2-ros
 is not among the package's dependencies). At the scene's pose the cell is clear; moved onto the
 left arm's column the camera must warn against a left-arm link, its closest point on the camera
-near the new pose; moved back, the warning must clear."""
+near the new pose; moved back, the warning must clear. Not broadcast for ~frame_timeout_s, the
+frame is stale: a stop naming the object and the frame, until it comes back."""
 import math
 import sys
 import unittest
@@ -88,6 +89,25 @@ class FrameBoundObjectTest(unittest.TestCase):
         r = seen[-1]
         return 'input_status %d, stop %s (%s), warnings: %s' % (
             r.input_status, r.stop, r.stop_reason, describe_warnings(r))
+
+    def test_camera_frame_gone_stale_stops_until_it_is_back(self):
+        # The frame's broadcaster stops while the arms keep coming (a dual UR5e user's tray kept
+        # its last pose for 12 s without a word): past ~frame_timeout_s (0.5 s) a stop naming
+        # the object, its frame and the transform's age; the frame back, the stop clears.
+        self.wait_clear('before')
+        seen = []
+
+        def stale(report):
+            seen.append(report)
+            return report.stop and report.stop_reason.startswith(
+                "object '%s': pose from frame '%s' unavailable: its newest transform is "
+                % (OBJECT, FRAME))
+        report = self.client.publish_until(lambda: self.client.publish_pose(HOME, HOME), stale,
+                                           TIMEOUT_S)
+        self.assertIsNotNone(report, 'no stale-frame stop with camera_link silent; last seen: %s'
+                             % self.describe(seen))
+        self.assertIn('s old, over ~frame_timeout_s (0.500 s)', report.stop_reason)
+        self.wait_clear('with the frame back')
 
     def test_camera_frame_moves_into_the_arm_and_away(self):
         self.wait_clear('before')

@@ -46,6 +46,9 @@ struct NodeOptions {
   int queue_size = 100;            ///< ~queue_size per input topic (1 kHz input: ~0.1 s)
   double cycle_rate_hz = 0.0;      ///< ~cycle_rate_hz: 0 = one cycle per message
   double input_timeout_s = 0.25;   ///< ~input_timeout_s: staleness bound (5 cycles at 20 Hz)
+  /// ~frame_timeout_s: a frame-bound object's TF frame whose newest transform is older is stale
+  /// (a static frame never is); 0 = never
+  double frame_timeout_s = 0.5;
   double stop_hold_s = 0.25;       ///< ~stop_hold_s: minimum duration of a requested stop
   double stop_period_s = 0.1;      ///< ~stop_period_s: ~stop is re-published this often
   double marker_rate_hz = 10.0;    ///< ~marker_rate_hz: bound on ~markers and ~joint_states
@@ -79,7 +82,7 @@ class MonitorNode {
   /// One monitor cycle on the merged input; `start` is when the triggering message was taken.
   void RunCycle(std::chrono::steady_clock::time_point start);
   /// Moves frame-bound objects to their TF pose; tells the stop policy of the first failure.
-  void UpdateBoundObjects();
+  void UpdateBoundObjects(const ros::Time& now);
   /// Copies the policy's decision into the report and logs a change of the stop.
   void TakeStopDecision(bool was_stop);
   /// Messages refused so far: by the merger, and by the Monitor (out of limits).
@@ -164,6 +167,7 @@ class MonitorNode {
   double largest_step_m_ = 0.0;    ///< largest step motion bound over the run (m)
   std::uint64_t input_jumps_ = 0;  ///< cycles whose step exceeded max_step_m
   std::uint64_t tf_failures_ = 0;
+  std::uint64_t stale_frames_ = 0;  ///< cycles that found a bound object's frame stale
   std::uint64_t stale_episodes_ = 0;
   SampleWindow cycle_times_s_{kSampleWindow};  ///< the latest cycle times
   /// The latest accepted stamped messages' ages at arrival (ROS time less header.stamp).
