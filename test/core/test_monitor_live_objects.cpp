@@ -137,6 +137,16 @@ void ExpectValid(const Monitor& monitor, const std::string& context) {
   EXPECT_TRUE(monitor.ValidateIndex(&error)) << context << ": " << error;
 }
 
+// The right arm reaching down to (0.9, -0.4, 1.0), `monitor` updated there: the tip of its tool
+// (right_link7's capsule end) in W.
+Eigen::Vector3d RightToolTipAtGrasp(const Workcell& wc, Monitor* monitor,
+                                    Eigen::VectorXd* grasp_q) {
+  *grasp_q = test::ArmReachDown(wc, "right", 0.9, -0.4, 1.0);
+  monitor->Update(*grasp_q);
+  monitor->SyncShapes();
+  return std::get<Capsule>(monitor->shape_W(test::Prim(wc, "right_link7"))).p1_W;
+}
+
 class MonitorLiveObjects : public ::testing::TestWithParam<BroadPhaseMethod> {};
 
 TEST_P(MonitorLiveObjects, RandomAddMoveRemoveMatchesBruteForce) {
@@ -320,12 +330,9 @@ TEST(MonitorLiveObjectsSolids, BadSolidsAreRefused) {
 TEST_P(MonitorLiveObjects, AttachableLiveObjectIsHeldAndRemoved) {
   const auto wc = test::LoadBundledWorkcell();
   Monitor monitor(wc, LiveOptions(GetParam()));
-  const Eigen::VectorXd grasp_q = test::ArmReachDown(*wc, "right", 0.9, -0.4, 1.0);
-  monitor.Update(grasp_q);
-  monitor.SyncShapes();
-  const Capsule& tip = std::get<Capsule>(monitor.shape_W(test::Prim(*wc, "right_link7")));
+  Eigen::VectorXd grasp_q;
   Eigen::Isometry3d X_WO = Eigen::Isometry3d::Identity();
-  X_WO.translation() = tip.p1_W - Eigen::Vector3d(0.0, 0.0, 0.1);
+  X_WO.translation() = RightToolTipAtGrasp(*wc, &monitor, &grasp_q) - Eigen::Vector3d(0, 0, 0.1);
   std::vector<Shape> chain;
   for (int k = 0; k < 3; ++k) {
     chain.push_back(Capsule{Eigen::Vector3d(0.05 * k, 0, 0), Eigen::Vector3d(0.05 * k + 0.1, 0, 0),
@@ -361,12 +368,9 @@ TEST_P(MonitorLiveObjects, AttachableLiveObjectIsHeldAndRemoved) {
 TEST_P(MonitorLiveObjects, LiveObjectIsAGraspTargetOfAnyLinkUntilRemoved) {
   const auto wc = test::LoadBundledWorkcell();
   Monitor monitor(wc, LiveOptions(GetParam()));
-  const Eigen::VectorXd grasp_q = test::ArmReachDown(*wc, "right", 0.9, -0.4, 1.0);
-  monitor.Update(grasp_q);
-  monitor.SyncShapes();
-  const Capsule& tip = std::get<Capsule>(monitor.shape_W(test::Prim(*wc, "right_link7")));
+  Eigen::VectorXd grasp_q;
   Eigen::Isometry3d X_WO = Eigen::Isometry3d::Identity();
-  X_WO.translation() = tip.p1_W;
+  X_WO.translation() = RightToolTipAtGrasp(*wc, &monitor, &grasp_q);
   const std::vector<Shape> box = {Box{Eigen::Isometry3d::Identity(), {0.03, 0.03, 0.03}}};
   auto tip_warns = [&](const std::string& object) {
     for (const Warning& w : monitor.Check(grasp_q).warnings) {
