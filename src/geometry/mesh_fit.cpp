@@ -5,8 +5,8 @@
 #include "arm_collision_monitor/geometry/mesh_fit.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <random>
 #include <sstream>
@@ -280,6 +280,61 @@ std::vector<Points> SlabPoints(const Points& q, const TriangleMesh& mesh, const 
   return slabs;
 }
 
+bool IsInCapsule(const AxisCapsule& c, const Vector3d& p) {
+  const Vector3d d = p - c.line_point;
+  const double t = std::clamp(d.dot(c.axis), c.s0, c.s1);
+  return (d - t * c.axis).squaredNorm() <= c.radius_m * c.radius_m;
+}
+
+// How many points of a kMeshFitChainGridPoints^3 grid over both chains' box each chain's union
+// holds: comparable estimates of the unions' volumes, where the sum of the capsules' volumes
+// counts every overlap of neighbours twice.
+std::array<int, 2> GridPointsInside(const std::array<std::vector<AxisCapsule>, 2>& chains) {
+  Eigen::AlignedBox3d box;
+  for (const std::vector<AxisCapsule>& chain : chains) {
+    for (const AxisCapsule& c : chain) {
+      for (const double s : {c.s0, c.s1}) {
+        const Vector3d end = c.line_point + s * c.axis;
+        box.extend(end - Vector3d::Constant(c.radius_m));
+        box.extend(end + Vector3d::Constant(c.radius_m));
+      }
+    }
+  }
+  const Vector3d cell = box.sizes() / kMeshFitChainGridPoints;
+  std::array<int, 2> counts{0, 0};
+  for (int i = 0; i < kMeshFitChainGridPoints; ++i) {
+    for (int j = 0; j < kMeshFitChainGridPoints; ++j) {
+      for (int k = 0; k < kMeshFitChainGridPoints; ++k) {
+        const Vector3d p = box.min() + cell.cwiseProduct(Vector3d(i + 0.5, j + 0.5, k + 0.5));
+        for (int n = 0; n < 2; ++n) {
+          counts[n] += std::any_of(chains[n].begin(), chains[n].end(),
+                                   [&](const AxisCapsule& c) { return IsInCapsule(c, p); });
+        }
+      }
+    }
+  }
+  return counts;
+}
+
+// A chain's capsules: per slab the one along the chain's axis, or the slab's own smallest, the
+// chain of smaller union kept. A bent link wants its slabs' own axes; a straight round one the
+// chain's: a squat slab's smallest capsule lies across the link, sticking out of its sides past
+// the one capsule of the whole, where capsules along the axis overlap their neighbours.
+std::vector<AxisCapsule> ChainCapsules(const Points& q, const TriangleMesh& mesh,
+                                       const Vector3d& chain_axis, int count) {
+  std::array<std::vector<AxisCapsule>, 2> chains;  // along the axis, the slabs' own
+  std::vector<Vector2d> projected;
+  for (const Points& slab : SlabPoints(q, mesh, chain_axis, count)) {
+    if (slab.empty()) continue;
+    const Points shuffled_slab = ShuffledDistinct(slab);
+    chains[0].push_back(CapsuleAlong(shuffled_slab, chain_axis, projected));
+    chains[1].push_back(
+        BestCapsule(shuffled_slab, {PrincipalAxes(VertexCovariance(shuffled_slab))}));
+  }
+  const std::array<int, 2> inside = GridPointsInside(chains);
+  return inside[0] <= inside[1] ? chains[0] : chains[1];
+}
+
 // ---------------------------------------------------------------------------------------------
 // Oriented box.
 
@@ -466,37 +521,13 @@ std::vector<Shape> FitShapes_L(const TriangleMesh& mesh, const MeshFitOptions& o
     }
     shapes.resize(1);
   } else {
-    for (const Points& slab :
-         SlabPoints(local.q, mesh, surface_axes.col(0), options.capsule_count)) {
-      if (slab.empty()) continue;
-      const Points shuffled_slab = ShuffledDistinct(slab);
-      const AxisCapsule fit =
-          BestCapsule(shuffled_slab, {PrincipalAxes(VertexCovariance(shuffled_slab))});
+    for (const AxisCapsule& fit : ChainCapsules(local.q, mesh, surface_axes.col(0),
+                                                options.capsule_count)) {
       shapes.push_back(ToCapsule_L(fit, local.o_L, local.margin_m));
     }
   }
   return shapes;
 }
-
-// 64-bit FNV-1a, fed little-endian so the key does not depend on the platform's byte order.
-class Fnv1a64 {
- public:
-  void AddU64(std::uint64_t x) {
-    for (int byte = 0; byte < 8; ++byte) {
-      hash_ ^= (x >> (8 * byte)) & 0xffu;
-      hash_ *= 1099511628211ull;  // the FNV 64-bit prime
-    }
-  }
-  void AddDouble(double x) {
-    std::uint64_t bits = 0;
-    std::memcpy(&bits, &x, sizeof bits);
-    AddU64(bits);
-  }
-  std::uint64_t hash() const { return hash_; }
-
- private:
-  std::uint64_t hash_ = 14695981039346656037ull;  // the FNV 64-bit offset basis
-};
 
 }  // namespace
 
@@ -571,25 +602,6 @@ MeshFit FitMesh(const TriangleMesh& mesh, const MeshFitOptions& options) {
                                           : std::numeric_limits<double>::quiet_NaN();
   fit.excess_ratio = fit.fitted_volume_m3 / fit.mesh_volume_m3;
   return fit;
-}
-
-std::uint64_t MeshFitHash(const TriangleMesh& mesh, const MeshFitOptions& options) {
-  Fnv1a64 hash;
-  hash.AddU64(kMeshFitAlgorithmVersion);
-  hash.AddU64(mesh.vertices_L.size());
-  for (const Vector3d& p : mesh.vertices_L) {
-    for (int k = 0; k < 3; ++k) hash.AddDouble(p[k]);
-  }
-  hash.AddU64(mesh.triangles.size());
-  for (const auto& tri : mesh.triangles) {
-    for (const std::uint32_t index : tri) hash.AddU64(index);
-  }
-  hash.AddU64(static_cast<std::uint64_t>(options.kind));
-  // The capsule count changes only a chain's result; keying it otherwise would split the cache.
-  hash.AddU64(options.kind == MeshFitKind::kCapsuleChain
-                  ? static_cast<std::uint64_t>(options.capsule_count)
-                  : 0u);
-  return hash.hash();
 }
 
 }  // namespace arm_collision_monitor

@@ -107,9 +107,12 @@ struct MeshFit {
 /// kMeshFitSearchMinStep_rad); the smallest-volume capsule is kept.
 ///
 /// Capsule chain: the mesh is cut into capsule_count equal slabs along its surface's principal
-/// axis; every triangle is clipped to every slab it crosses (Sutherland-Hodgman), and each slab's
-/// vertices and clip points get a one-capsule fit as above (candidate axes from the principal
-/// axes of those points). Slabs holding no point (a mesh in separate parts) get no capsule.
+/// axis; every triangle is clipped to every slab it crosses (Sutherland-Hodgman). Two chains are
+/// fitted to the slabs' vertices and clip points: each slab's tight capsule along the chain's
+/// axis, and each slab's one-capsule fit as above (candidate axes from the principal axes of
+/// its points); the one whose union holds fewer points of a grid over both is kept (a straight
+/// round link keeps its axis, where a squat slab's own capsule would lie across it; a bent one
+/// follows its bend). Slabs holding no point (a mesh in separate parts) get no capsule.
 ///
 /// Tighter: the one-capsule fit above and the oriented-box fit below, the one of smaller volume
 /// kept (a boxy part gets a box, a long round one a capsule).
