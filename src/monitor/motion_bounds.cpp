@@ -10,10 +10,18 @@
 namespace arm_collision_monitor {
 
 double MaxBoxVertexDisplacement_m(const Box& b0, const Box& b1) {
+  // Corner v_B (+-h_x, +-h_y, +-h_z) moves by dt + (R1 - R0) v_B: the translation's change plus
+  // the rotation change's columns, scaled by the half extents, each with the corner's sign.
+  const Eigen::Matrix3d dR =
+      (b1.X_WB.linear() - b0.X_WB.linear()) * b0.half_extents_m.asDiagonal();
+  const Eigen::Vector3d dt = b1.X_WB.translation() - b0.X_WB.translation();
   double max_sq = 0.0;
-  for (int corner = 0; corner < 8; ++corner) {
-    const Eigen::Vector3d v_B = b0.Vertex_B(corner);
-    max_sq = std::max(max_sq, (b1.X_WB * v_B - b0.X_WB * v_B).squaredNorm());
+  for (const double sx : {-1.0, 1.0}) {
+    const Eigen::Vector3d x = dt + sx * dR.col(0);
+    for (const double sy : {-1.0, 1.0}) {
+      const Eigen::Vector3d xy = x + sy * dR.col(1);
+      max_sq = std::max({max_sq, (xy + dR.col(2)).squaredNorm(), (xy - dR.col(2)).squaredNorm()});
+    }
   }
   return std::sqrt(max_sq);
 }

@@ -317,6 +317,39 @@ TEST(MonitorMotionBounds, PointHelpers) {
   EXPECT_DOUBLE_EQ(MaxPointDisplacement_m(c, turned), std::sqrt(2.0));
 }
 
+// A box's displacement is that of its farthest-moving corner, each corner moved by both poses.
+TEST(MonitorMotionBounds, BoxDisplacementIsItsFarthestMovingCorner) {
+  std::mt19937_64 rng(31);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  auto random_pose = [&] {
+    Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+    X.linear() =
+        Eigen::Quaterniond(Eigen::Vector4d(u(rng), u(rng), u(rng), u(rng)).normalized())
+            .toRotationMatrix();
+    X.translation() = Eigen::Vector3d(u(rng), u(rng), u(rng)) * 3.0;
+    return X;
+  };
+  for (int trial = 0; trial < 1000; ++trial) {
+    Box b0;
+    b0.X_WB = random_pose();
+    b0.half_extents_m = Eigen::Vector3d(u(rng), u(rng), u(rng)).cwiseAbs() * 0.5;
+    Box b1 = b0;
+    // Half the trials a small motion (a cycle's), half an arbitrary one.
+    b1.X_WB = trial % 2 == 0 ? random_pose()
+                             : b0.X_WB * Eigen::AngleAxisd(0.01 * u(rng), Eigen::Vector3d(
+                                                               u(rng), u(rng), u(rng))
+                                                               .normalized());
+    if (trial % 2 == 1) b1.X_WB.translation() += Eigen::Vector3d(u(rng), u(rng), u(rng)) * 0.01;
+    double expected_m = 0.0;
+    for (int corner = 0; corner < 8; ++corner) {
+      const Eigen::Vector3d v_B = b0.Vertex_B(corner);
+      expected_m = std::max(expected_m, (b1.X_WB * v_B - b0.X_WB * v_B).norm());
+    }
+    EXPECT_NEAR(MaxPointDisplacement_m(b0, b1), expected_m, 1e-14 * (1.0 + expected_m))
+        << "trial " << trial;
+  }
+}
+
 // The swept check's interval bounds: tight for a point that runs straight at an obstacle point
 // and back (smallest) or away and back (largest), and bounds for any path of that length.
 TEST(MonitorMotionBounds, StretchBoundsAreTightAndHoldOnAnyPath) {
