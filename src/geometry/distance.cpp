@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <type_traits>
 
@@ -193,13 +194,21 @@ inline double SegmentBoxLowerBoundSq(const Vector3d& e0, const Vector3d& e1, con
   return (below + above).squaredNorm();
 }
 
-// The 8 vertices of `box` expressed in frame F, given X_FB, in Box::Vertex_B's order.
-std::array<Vector3d, 8> BoxVertices(const Eigen::Matrix3d& R_FB, const Vector3d& p_FB,
-                                    const Box& box) {
-  std::array<Vector3d, 8> v;
-  for (int k = 0; k < 8; ++k) v[k] = p_FB + R_FB * box.Vertex_B(k);
-  return v;
-}
+// The vertices of a box in frame F, each on demand in Box::Vertex_B's order: the centre plus or
+// minus each of the box's axes scaled by its half extent.
+struct BoxCorners {
+  BoxCorners(const Eigen::Matrix3d& R_FB, const Vector3d& p_FB, const Box& box)
+      : p_F(p_FB), half_axes_F(R_FB * box.half_extents_m.asDiagonal()) {}
+  Vector3d operator[](int k) const {
+    Vector3d v = p_F;
+    for (int i = 0; i < 3; ++i) {
+      v += ((k >> i) & 1 ? 1.0 : -1.0) * half_axes_F.col(i);
+    }
+    return v;
+  }
+  Vector3d p_F;
+  Eigen::Matrix3d half_axes_F;
+};
 
 // The 12 edges of a box as vertex index pairs (differ in exactly one bit).
 constexpr std::array<std::array<int, 2>, 12> kBoxEdges = {{{0, 1}, {2, 3}, {4, 5}, {6, 7},
@@ -215,13 +224,52 @@ struct BoxBoxSearch {
   Vector3d p_box = Vector3d::Zero();
 };
 
+// Per face of a box (bit 2k + 1: face +k, bit 2k: face -k, in its frame) whether the other box,
+// of centre c and half extents h_other rotated by R (its frame to this one's), reaches up to the
+// face's plane or beyond it, up to `margin` for rounding. At a closest pair the direction from
+// this box's point to the other's lies in the normal cone there, so it has no negative component
+// along the normal of a face through the point: an edge of this box can hold the point only
+// when the other box reaches both its faces' planes (in an overlap too: a common point on the
+// edge lies on both planes).
+unsigned FacesReached(const Eigen::Matrix3d& R, const Vector3d& c, const Vector3d& h_other,
+                      const Vector3d& h, double margin) {
+  const Vector3d reach = R.cwiseAbs() * h_other;
+  unsigned faces = 0;
+  for (int k = 0; k < 3; ++k) {
+    // Written so that NaN counts as reached.
+    if (!(c[k] - reach[k] > -h[k] + margin)) faces |= 1u << (2 * k);
+    if (!(c[k] + reach[k] < h[k] - margin)) faces |= 1u << (2 * k + 1);
+  }
+  return faces;
+}
+
+// Per set of faces reached (FacesReached), the edges (bit e: kBoxEdges[e]) both of whose faces
+// are in it: an edge's faces are those of the two axes its vertices share, on their bits' side.
+constexpr std::array<std::uint16_t, 64> EdgesOfFacesTable() {
+  std::array<std::uint16_t, 64> table{};
+  for (unsigned faces = 0; faces < 64; ++faces) {
+    for (int e = 0; e < 12; ++e) {
+      const int v = kBoxEdges[e][0];
+      const int along = e / 4;  // kBoxEdges runs along x, then y, then z
+      unsigned needed = 0;
+      for (int k = 0; k < 3; ++k) {
+        if (k != along) needed |= 1u << (2 * k + ((v >> k) & 1));
+      }
+      if ((faces & needed) == needed) table[faces] |= static_cast<std::uint16_t>(1u << e);
+    }
+  }
+  return table;
+}
+constexpr std::array<std::uint16_t, 64> kEdgesOfFaces = EdgesOfFacesTable();
+
 // Minimum over the edges of each box against the other box (segment-box, exact). Every closest
 // pair is covered: if either point is on an edge or a vertex, that edge is tried; if both are
 // inside faces, the faces are parallel and sliding along them keeps the distance until one
 // point reaches an edge. If the boxes meet, an extreme point of their intersection lies on an
-// edge of one inside the other, so that edge scores 0. Edges whose bounds are already farther
-// than `stop_sq` or the best so far are skipped; the search ends once best_sq < stop_sq (use
-// stop_sq = 0 for the exact minimum: it then ends at the first contact).
+// edge of one inside the other, so that edge scores 0. Edges of faces the other box does not
+// reach (kEdgesOfFaces) cannot hold a closest point, and edges whose bounds are already
+// farther than `stop_sq` or the best so far are skipped; the search ends once best_sq < stop_sq
+// (use stop_sq = 0 for the exact minimum: it then ends at the first contact).
 // Error <= kBoxDistanceErrorUlps * eps * S, S = max(|c_A - c_B|, box diagonals).
 BoxBoxSearch SearchBoxBox(const Box& a, const Box& b, double stop_sq) {
   // Relative poses from the difference of the centres, so far-away pairs keep local accuracy.
@@ -229,17 +277,27 @@ BoxBoxSearch SearchBoxBox(const Box& a, const Box& b, double stop_sq) {
   const Eigen::Matrix3d& R_WB = b.X_WB.linear();
   const Vector3d p_AB_W = b.X_WB.translation() - a.X_WB.translation();
   const Eigen::Matrix3d R_AB = R_WA.transpose() * R_WB;
-  const std::array<Vector3d, 8> vb_A =
-      BoxVertices(R_AB, R_WA.transpose() * p_AB_W, b);
-  const std::array<Vector3d, 8> va_B =
-      BoxVertices(R_AB.transpose(), -(R_WB.transpose() * p_AB_W), a);
+  const Vector3d p_AB_A = R_WA.transpose() * p_AB_W;
+  const Vector3d p_BA_B = -(R_WB.transpose() * p_AB_W);
+  // A few roundings of the centres' difference and of the extents, with room to spare.
+  const double margin = kBoxDistanceErrorUlps * std::numeric_limits<double>::epsilon() *
+                        (p_AB_W.cwiseAbs().sum() + a.half_extents_m.sum() +
+                         b.half_extents_m.sum());
+  const unsigned edges_of_b_kept = kEdgesOfFaces[FacesReached(
+      R_AB.transpose(), p_BA_B, a.half_extents_m, b.half_extents_m, margin)];
+  const unsigned edges_of_a_kept = kEdgesOfFaces[FacesReached(
+      R_AB, p_AB_A, b.half_extents_m, a.half_extents_m, margin)];
+  const BoxCorners vb_A(R_AB, p_AB_A, b);
+  const BoxCorners va_B(R_AB.transpose(), p_BA_B, a);
   BoxBoxSearch search;
   for (const bool edges_of_b : {true, false}) {
-    const std::array<Vector3d, 8>& v = edges_of_b ? vb_A : va_B;
+    const BoxCorners& v = edges_of_b ? vb_A : va_B;
     const Vector3d& h = edges_of_b ? a.half_extents_m : b.half_extents_m;
-    for (const auto& edge : kBoxEdges) {
-      const Vector3d& e0 = v[edge[0]];
-      const Vector3d& e1 = v[edge[1]];
+    for (unsigned kept = edges_of_b ? edges_of_b_kept : edges_of_a_kept; kept != 0;
+         kept &= kept - 1) {
+      const std::array<int, 2>& edge = kBoxEdges[__builtin_ctz(kept)];
+      const Vector3d e0 = v[edge[0]];
+      const Vector3d e1 = v[edge[1]];
       const double limit_sq = stop_sq > 0.0 ? std::min(search.best_sq, stop_sq) : search.best_sq;
       if (SegmentBoxLowerBoundSq(e0, e1, h) >= limit_sq) continue;
       const SegmentBoxPair sb = SegmentBoxClosest(e0, e1, h);
