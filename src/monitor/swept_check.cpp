@@ -86,7 +86,8 @@ void Monitor::Impl::CheckStepTolerance() {
       << std::max(speed_step_m, worst_urdf_m)
       << " m: the larger of max_speed_mps * cycle_period_s (" << speed_step_m
       << " m, cycle_period_s " << options.cycle_period_s
-      << " s, the input's expected period) and what the URDF velocity limits allow in a cycle ("
+      << " s, the input's expected period: the monitor options' cycle_period_s, to be set to "
+         "the period of faster input) and what the URDF velocity limits allow in a cycle ("
       << worst_urdf_m << " m) (the largest gap of the " << below << " moving primitive"
       << (below == 1 ? "" : "s") << " whose tolerance is below their motion)";
   if (!options.swept_check) {
