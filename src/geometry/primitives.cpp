@@ -9,8 +9,14 @@ Shape TransformShape(const Eigen::Isometry3d& X_WL, const Shape& shape_L) {
   if (const auto* capsule = std::get_if<Capsule>(&shape_L)) {
     return Capsule{X_WL * capsule->p0_W, X_WL * capsule->p1_W, capsule->radius_m};
   }
+  // X_WL * X_LB written out (Eigen's general transform product is a call; this runs for every
+  // moved box each cycle).
   const Box& box = std::get<Box>(shape_L);
-  return Box{X_WL * box.X_WB, box.half_extents_m};
+  Box out{Eigen::Isometry3d::Identity(), box.half_extents_m};
+  out.X_WB.linear().noalias() = X_WL.linear() * box.X_WB.linear();
+  out.X_WB.translation().noalias() = X_WL.linear() * box.X_WB.translation();
+  out.X_WB.translation() += X_WL.translation();
+  return out;
 }
 
 double MaxDistanceFromPoint_m(const Shape& shape, const Eigen::Vector3d& p) {
