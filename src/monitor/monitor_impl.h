@@ -371,6 +371,10 @@ struct Monitor::Impl {
   // Every static becomes reachable for good (indexed): a held live object was not part of the
   // start-up reach envelope (MonitorModel::ComputeReachSpheres).
   void MarkAllStaticsReachable();
+  // Whether link `link` may hold object `object` where it is (else why, for Attach's error): a
+  // scene object within the link's hold radius (the start-up reach envelope counts on it), a
+  // live one within kAttachMaxGap_m of the link's geometry (of its origin if it has none).
+  bool IsWithinHoldReach(int object, int link, std::string* why);
   // Whether `name` names a link, an object or a primitive (scene file or live) already.
   bool IsNameTaken(const std::string& name) const;
   // Slot use, presence flags and the objects' own compatible pairs agree.

@@ -2,6 +2,7 @@
 // moving environment objects) and the index bookkeeping they share. None allocates: every
 // structure they touch was sized at start-up.
 #include <algorithm>
+#include <limits>
 #include <sstream>
 
 #include "arm_collision_monitor/geometry/distance.h"
@@ -79,30 +80,21 @@ bool Monitor::Attach(const std::string& object, const std::string& link, std::st
     SetError(error, "Attach: link '" + link + "' has no moving joint above it");
     return false;
   }
-  const Eigen::Isometry3d& X_WL = m.LinkPose(l);  // a tool point may have no geometry
-  const Eigen::Isometry3d X_LW = X_WL.inverse(Eigen::Isometry);
-  const Eigen::Vector3d p_WLo = X_WL.translation();
-  // A live object was not in the start-up reach envelope, whose hold radius it need not keep:
-  // every static comes back into the check instead (MarkAllStaticsReachable).
-  const bool is_live = m.model.LiveSlot(o) >= 0;
-  for (const PrimitiveId id : m.model.objects[o].prims) {
-    const double reach_m = MaxDistanceFromPoint_m(m.shape_W[id], p_WLo);
-    if (!is_live && reach_m > m.model.hold_radius_m[l]) {
-      std::ostringstream msg;
-      msg << "Attach: object '" << object << "' reaches " << reach_m << " m from link '" << link
-          << "', more than the " << m.model.hold_radius_m[l]
-          << " m a held object may (link extent + kAttachMaxGap_m + largest object)";
-      SetError(error, msg.str());
-      return false;
-    }
+  std::string why;
+  if (!m.IsWithinHoldReach(o, l, &why)) {
+    SetError(error, "Attach: object '" + object + "' " + why);
+    return false;
   }
+  const Eigen::Isometry3d X_LW = m.LinkPose(l).inverse(Eigen::Isometry);
   // A held object moves with the arm, so it gets at least the holder's tolerance zone (the
   // seed's tolerance around each moving object).
   double holder_tol_m = 0.0;
   for (const PrimitiveId id : m.model.link_prims[l]) {
     holder_tol_m = std::max(holder_tol_m, m.tol_base[id]);
   }
-  if (is_live) m.MarkAllStaticsReachable();
+  // A live object was not in the start-up reach envelope, whose hold radius it need not keep:
+  // every static comes back into the check instead.
+  if (m.model.LiveSlot(o) >= 0) m.MarkAllStaticsReachable();
   const int previous = m.holder[o];
   for (const PrimitiveId id : m.model.objects[o].prims) {
     m.shape_C[id] = TransformShape(X_LW, m.shape_W[id]);
@@ -118,6 +110,43 @@ bool Monitor::Attach(const std::string& object, const std::string& link, std::st
   m.RefreshCompatibility(l, o);
   m.scene_changed = true;
   return true;
+}
+
+bool Monitor::Impl::IsWithinHoldReach(int object, int link, std::string* why) {
+  const Eigen::Isometry3d& X_WL = LinkPose(link);  // a tool point may have no geometry
+  const std::string link_name = "'" + model.kinematics->link_name(link) + "'";
+  std::ostringstream msg;
+  if (model.LiveSlot(object) < 0) {
+    for (const PrimitiveId id : model.objects[object].prims) {
+      const double reach_m = MaxDistanceFromPoint_m(shape_W[id], X_WL.translation());
+      if (reach_m > model.hold_radius_m[link]) {
+        msg << "reaches " << reach_m << " m from link " << link_name << ", more than the "
+            << model.hold_radius_m[link]
+            << " m a held object may (link extent + kAttachMaxGap_m + largest object)";
+        *why = msg.str();
+        return false;
+      }
+    }
+    return true;
+  }
+  // Live: the gap to the link's primitives, or to its origin.
+  const Capsule origin{X_WL.translation(), X_WL.translation(), 0.0};
+  double gap_m = std::numeric_limits<double>::infinity();
+  for (const PrimitiveId id : model.objects[object].prims) {
+    if (model.link_prims[link].empty()) {
+      gap_m = std::min(gap_m, ShapeDistance(origin, shape_W[id]).distance_m);
+    }
+    for (const PrimitiveId held_by : model.link_prims[link]) {
+      gap_m = std::min(gap_m, ShapeDistance(shape_W[held_by], shape_W[id]).distance_m);
+    }
+  }
+  if (gap_m <= kAttachMaxGap_m) return true;
+  msg << "is " << gap_m << " m from the "
+      << (model.link_prims[link].empty() ? "origin" : "geometry") << " of link " << link_name
+      << ", more than the " << kAttachMaxGap_m
+      << " m a held object may be (kAttachMaxGap_m): attach it in the grasp";
+  *why = msg.str();
+  return false;
 }
 
 std::string Monitor::HolderOf(const std::string& object) const {

@@ -3,6 +3,7 @@
 // independent all-pairs brute force; refusals that change nothing; capacity; no allocation in
 // Update after the scene changes.
 #include <cmath>
+#include <cstdlib>
 #include <random>
 
 #include "allocation_counter.h"
@@ -332,13 +333,29 @@ TEST_P(MonitorLiveObjects, AttachableLiveObjectIsHeldAndRemoved) {
   Monitor monitor(wc, LiveOptions(GetParam()));
   Eigen::VectorXd grasp_q;
   Eigen::Isometry3d X_WO = Eigen::Isometry3d::Identity();
-  X_WO.translation() = RightToolTipAtGrasp(*wc, &monitor, &grasp_q) - Eigen::Vector3d(0, 0, 0.1);
+  X_WO.translation() = RightToolTipAtGrasp(*wc, &monitor, &grasp_q);
   std::vector<Shape> chain;
   for (int k = 0; k < 3; ++k) {
     chain.push_back(Capsule{Eigen::Vector3d(0.05 * k, 0, 0), Eigen::Vector3d(0.05 * k + 0.1, 0, 0),
                             0.04});
   }
   std::string error;
+  // Out of the grasp (0.5 m below the tip), it is refused, and held by nothing.
+  ASSERT_TRUE(monitor.AddObject("far", chain, X_WO * Eigen::Translation3d(0, 0, -0.5), 0.01,
+                                true, &error))
+      << error;
+  EXPECT_FALSE(monitor.Attach("far", "right_link7", &error));
+  const std::string said = "Attach: object 'far' is ";
+  ASSERT_EQ(error.rfind(said, 0), 0u) << error;
+  // 0.5 m less the capsules' radii and the tip's reach below the link's capsule.
+  const double gap_m = std::atof(error.c_str() + said.size());
+  EXPECT_GT(gap_m, 0.3) << error;
+  EXPECT_LT(gap_m, 0.5) << error;
+  EXPECT_NE(error.find(" m from the geometry of link 'right_link7', more than the 0.1 m"),
+            std::string::npos)
+      << error;
+  EXPECT_EQ(monitor.HolderOf("far"), "");
+  ASSERT_TRUE(monitor.RemoveObject("far", &error)) << error;
   ASSERT_TRUE(monitor.AddObject("tool", chain, X_WO, 0.01, true, &error)) << error;
   EXPECT_EQ(monitor.HolderOf("tool"), "");
   ASSERT_TRUE(monitor.Attach("tool", "right_link6", &error)) << error;
