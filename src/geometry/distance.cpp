@@ -194,21 +194,24 @@ inline double SegmentBoxLowerBoundSq(const Vector3d& e0, const Vector3d& e1, con
   return (below + above).squaredNorm();
 }
 
-// The vertices of a box in frame F, each on demand in Box::Vertex_B's order: the centre plus or
-// minus each of the box's axes scaled by its half extent.
-struct BoxCorners {
-  BoxCorners(const Eigen::Matrix3d& R_FB, const Vector3d& p_FB, const Box& box)
-      : p_F(p_FB), half_axes_F(R_FB * box.half_extents_m.asDiagonal()) {}
-  Vector3d operator[](int k) const {
-    Vector3d v = p_F;
-    for (int i = 0; i < 3; ++i) {
-      v += ((k >> i) & 1 ? 1.0 : -1.0) * half_axes_F.col(i);
-    }
-    return v;
+// The 8 vertices of `box` in frame F (X_FB given), in Box::Vertex_B's order: the centre plus or
+// minus each of the box's axes scaled by its half extent, by halves (2, then 4, then 8 sums).
+std::array<Vector3d, 8> BoxVertices(const Eigen::Matrix3d& R_FB, const Vector3d& p_FB,
+                                    const Box& box) {
+  const Eigen::Matrix3d half_axes = R_FB * box.half_extents_m.asDiagonal();
+  std::array<Vector3d, 8> v;
+  v[0] = p_FB - half_axes.col(2);
+  v[4] = p_FB + half_axes.col(2);
+  for (const int k : {0, 4}) {
+    v[k + 2] = v[k] + half_axes.col(1);
+    v[k] -= half_axes.col(1);
   }
-  Vector3d p_F;
-  Eigen::Matrix3d half_axes_F;
-};
+  for (const int k : {0, 2, 4, 6}) {
+    v[k + 1] = v[k] + half_axes.col(0);
+    v[k] -= half_axes.col(0);
+  }
+  return v;
+}
 
 // The 12 edges of a box as vertex index pairs (differ in exactly one bit).
 constexpr std::array<std::array<int, 2>, 12> kBoxEdges = {{{0, 1}, {2, 3}, {4, 5}, {6, 7},
@@ -287,17 +290,17 @@ BoxBoxSearch SearchBoxBox(const Box& a, const Box& b, double stop_sq) {
       R_AB.transpose(), p_BA_B, a.half_extents_m, b.half_extents_m, margin)];
   const unsigned edges_of_a_kept = kEdgesOfFaces[FacesReached(
       R_AB, p_AB_A, b.half_extents_m, a.half_extents_m, margin)];
-  const BoxCorners vb_A(R_AB, p_AB_A, b);
-  const BoxCorners va_B(R_AB.transpose(), p_BA_B, a);
+  const std::array<Vector3d, 8> vb_A = BoxVertices(R_AB, p_AB_A, b);
+  const std::array<Vector3d, 8> va_B = BoxVertices(R_AB.transpose(), p_BA_B, a);
   BoxBoxSearch search;
   for (const bool edges_of_b : {true, false}) {
-    const BoxCorners& v = edges_of_b ? vb_A : va_B;
+    const std::array<Vector3d, 8>& v = edges_of_b ? vb_A : va_B;
     const Vector3d& h = edges_of_b ? a.half_extents_m : b.half_extents_m;
     for (unsigned kept = edges_of_b ? edges_of_b_kept : edges_of_a_kept; kept != 0;
          kept &= kept - 1) {
       const std::array<int, 2>& edge = kBoxEdges[__builtin_ctz(kept)];
-      const Vector3d e0 = v[edge[0]];
-      const Vector3d e1 = v[edge[1]];
+      const Vector3d& e0 = v[edge[0]];
+      const Vector3d& e1 = v[edge[1]];
       const double limit_sq = stop_sq > 0.0 ? std::min(search.best_sq, stop_sq) : search.best_sq;
       if (SegmentBoxLowerBoundSq(e0, e1, h) >= limit_sq) continue;
       const SegmentBoxPair sb = SegmentBoxClosest(e0, e1, h);
