@@ -373,7 +373,8 @@ struct Monitor::Impl {
   void MarkAllStaticsReachable();
   // Whether link `link` may hold object `object` where it is (else why, for Attach's error): a
   // scene object within the link's hold radius (the start-up reach envelope counts on it), a
-  // live one within kAttachMaxGap_m of the link's geometry (of its origin if it has none).
+  // live one within kAttachMaxGap_m of the geometry of the link and the links it carries (of its
+  // origin if none has any).
   bool IsWithinHoldReach(int object, int link, std::string* why);
   // Whether `name` names a link, an object or a primitive (scene file or live) already.
   bool IsNameTaken(const std::string& name) const;

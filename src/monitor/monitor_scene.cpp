@@ -129,20 +129,31 @@ bool Monitor::Impl::IsWithinHoldReach(int object, int link, std::string* why) {
     }
     return true;
   }
-  // Live: the gap to the link's primitives, or to its origin.
-  const Capsule origin{X_WL.translation(), X_WL.translation(), 0.0};
+  // Live: the gap to the geometry of the link and of the links it carries (a hand's fingers, a
+  // tool frame's gripper), or to its origin if none has any.
+  const KinematicModel& kinematics = *model.kinematics;
   double gap_m = std::numeric_limits<double>::infinity();
-  for (const PrimitiveId id : model.objects[object].prims) {
-    if (model.link_prims[link].empty()) {
-      gap_m = std::min(gap_m, ShapeDistance(origin, shape_W[id]).distance_m);
+  bool has_geometry = false;
+  for (int carried = link; carried < kinematics.link_count(); ++carried) {
+    int up = carried;  // parents precede their children
+    while (up > link) up = kinematics.parent_link(up);
+    if (up != link) continue;
+    for (const PrimitiveId held_by : model.link_prims[carried]) {
+      has_geometry = true;
+      for (const PrimitiveId id : model.objects[object].prims) {
+        gap_m = std::min(gap_m, ShapeDistance(shape_W[held_by], shape_W[id]).distance_m);
+      }
     }
-    for (const PrimitiveId held_by : model.link_prims[link]) {
-      gap_m = std::min(gap_m, ShapeDistance(shape_W[held_by], shape_W[id]).distance_m);
+  }
+  if (!has_geometry) {
+    const Capsule origin{X_WL.translation(), X_WL.translation(), 0.0};
+    for (const PrimitiveId id : model.objects[object].prims) {
+      gap_m = std::min(gap_m, ShapeDistance(origin, shape_W[id]).distance_m);
     }
   }
   if (gap_m <= kAttachMaxGap_m) return true;
-  msg << "is " << gap_m << " m from the "
-      << (model.link_prims[link].empty() ? "origin" : "geometry") << " of link " << link_name
+  msg << "is " << gap_m << " m from the " << (has_geometry ? "geometry" : "origin")
+      << " of link " << link_name << (has_geometry ? " and the links it carries" : "")
       << ", more than the " << kAttachMaxGap_m
       << " m a held object may be (kAttachMaxGap_m): attach it in the grasp";
   *why = msg.str();
