@@ -286,12 +286,13 @@ bool IsInCapsule(const AxisCapsule& c, const Vector3d& p) {
   return (d - t * c.axis).squaredNorm() <= c.radius_m * c.radius_m;
 }
 
-// How many points of a kMeshFitChainGridPoints^3 grid over both chains' box each chain's union
-// holds: comparable estimates of the unions' volumes, where the sum of the capsules' volumes
-// counts every overlap of neighbours twice.
-std::array<int, 2> GridPointsInside(const std::array<std::vector<AxisCapsule>, 2>& chains) {
+// How many points of a kMeshFitChainGridPoints^3 grid over all the chains' box each chain's
+// union holds: comparable estimates of the unions' volumes, where the sum of the capsules'
+// volumes counts every overlap of neighbours twice.
+using Chain = std::vector<AxisCapsule>;
+std::vector<int> GridPointsInside(const std::vector<Chain>& chains) {
   Eigen::AlignedBox3d box;
-  for (const std::vector<AxisCapsule>& chain : chains) {
+  for (const Chain& chain : chains) {
     for (const AxisCapsule& c : chain) {
       for (const double s : {c.s0, c.s1}) {
         const Vector3d end = c.line_point + s * c.axis;
@@ -301,12 +302,12 @@ std::array<int, 2> GridPointsInside(const std::array<std::vector<AxisCapsule>, 2
     }
   }
   const Vector3d cell = box.sizes() / kMeshFitChainGridPoints;
-  std::array<int, 2> counts{0, 0};
+  std::vector<int> counts(chains.size(), 0);
   for (int i = 0; i < kMeshFitChainGridPoints; ++i) {
     for (int j = 0; j < kMeshFitChainGridPoints; ++j) {
       for (int k = 0; k < kMeshFitChainGridPoints; ++k) {
         const Vector3d p = box.min() + cell.cwiseProduct(Vector3d(i + 0.5, j + 0.5, k + 0.5));
-        for (int n = 0; n < 2; ++n) {
+        for (std::size_t n = 0; n < chains.size(); ++n) {
           counts[n] += std::any_of(chains[n].begin(), chains[n].end(),
                                    [&](const AxisCapsule& c) { return IsInCapsule(c, p); });
         }
@@ -316,13 +317,15 @@ std::array<int, 2> GridPointsInside(const std::array<std::vector<AxisCapsule>, 2
   return counts;
 }
 
-// A chain's capsules: per slab the one along the chain's axis, or the slab's own smallest, the
-// chain of smaller union kept. A bent link wants its slabs' own axes; a straight round one the
-// chain's: a squat slab's smallest capsule lies across the link, sticking out of its sides past
-// the one capsule of the whole, where capsules along the axis overlap their neighbours.
-std::vector<AxisCapsule> ChainCapsules(const Points& q, const TriangleMesh& mesh,
-                                       const Vector3d& chain_axis, int count) {
-  std::array<std::vector<AxisCapsule>, 2> chains;  // along the axis, the slabs' own
+// A chain's capsules: per slab the one along the chain's axis, or the slab's own smallest, or
+// the whole mesh's one capsule (`one`) when neither chain is smaller: the one whose union holds
+// the fewest points of a grid over all three. A bent link wants its slabs' own axes; a straight
+// round one the chain's (a squat slab's smallest capsule lies across the link, sticking out of
+// its sides, where capsules along the axis overlap their neighbours); a knob on a short link
+// may want one capsule.
+Chain ChainCapsules(const Points& q, const TriangleMesh& mesh, const Vector3d& chain_axis,
+                    int count, const AxisCapsule& one) {
+  std::vector<Chain> chains(3);  // along the axis, the slabs' own, the one capsule
   std::vector<Vector2d> projected;
   for (const Points& slab : SlabPoints(q, mesh, chain_axis, count)) {
     if (slab.empty()) continue;
@@ -331,8 +334,9 @@ std::vector<AxisCapsule> ChainCapsules(const Points& q, const TriangleMesh& mesh
     chains[1].push_back(
         BestCapsule(shuffled_slab, {PrincipalAxes(VertexCovariance(shuffled_slab))}));
   }
-  const std::array<int, 2> inside = GridPointsInside(chains);
-  return inside[0] <= inside[1] ? chains[0] : chains[1];
+  chains[2] = {one};
+  const std::vector<int> inside = GridPointsInside(chains);
+  return chains[std::min_element(inside.begin(), inside.end()) - inside.begin()];
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -384,54 +388,6 @@ Box ToBox_L(const FrameBox& fit, const Vector3d& o_L, double margin_m) {
   box.X_WB.translation() = o_L + fit.R_LB * (0.5 * (fit.lo + fit.hi));
   box.half_extents_m = (0.5 * (fit.hi - fit.lo)).array() + margin_m;
   return box;
-}
-
-// ---------------------------------------------------------------------------------------------
-// Closedness and enclosed volume.
-
-// For each vertex, the first vertex at the identical position: exported meshes (STL) often
-// repeat a corner once per triangle, which must not make a closed surface look open.
-std::vector<std::uint32_t> MergedIndices(const Points& vertices) {
-  std::vector<std::uint32_t> order(vertices.size());
-  for (std::uint32_t i = 0; i < order.size(); ++i) order[i] = i;
-  auto less = [&](std::uint32_t a, std::uint32_t b) {
-    const Vector3d& p = vertices[a];
-    const Vector3d& r = vertices[b];
-    return std::tie(p.x(), p.y(), p.z(), a) < std::tie(r.x(), r.y(), r.z(), b);
-  };
-  std::sort(order.begin(), order.end(), less);
-  std::vector<std::uint32_t> merged(vertices.size());
-  for (std::size_t i = 0; i < order.size(); ++i) {
-    const bool is_repeat = i > 0 && vertices[order[i]] == vertices[order[i - 1]];
-    merged[order[i]] = is_repeat ? merged[order[i - 1]] : order[i];
-  }
-  return merged;
-}
-
-// Every directed edge used once and its reverse once (triangles that merging collapses to a
-// segment or point bound nothing and are skipped).
-bool IsClosedAndOriented(const TriangleMesh& mesh) {
-  const std::vector<std::uint32_t> merged = MergedIndices(mesh.vertices_L);
-  std::vector<std::uint64_t> edges;
-  edges.reserve(3 * mesh.triangles.size());
-  for (const auto& tri : mesh.triangles) {
-    const std::array<std::uint64_t, 3> v{merged[tri[0]], merged[tri[1]], merged[tri[2]]};
-    if (v[0] == v[1] || v[1] == v[2] || v[2] == v[0]) continue;
-    for (int k = 0; k < 3; ++k) edges.push_back(v[k] << 32 | v[(k + 1) % 3]);
-  }
-  if (edges.empty()) return false;
-  std::sort(edges.begin(), edges.end());
-  if (std::adjacent_find(edges.begin(), edges.end()) != edges.end()) return false;
-  return std::all_of(edges.begin(), edges.end(), [&](std::uint64_t e) {
-    return std::binary_search(edges.begin(), edges.end(), (e & 0xffffffffu) << 32 | e >> 32);
-  });
-}
-
-// Divergence theorem: the sum of the signed volumes of the tetrahedra (local origin, triangle).
-double EnclosedVolume_m3(const Points& q, const TriangleMesh& mesh) {
-  double six_volume = 0.0;
-  for (const auto& tri : mesh.triangles) six_volume += q[tri[0]].dot(q[tri[1]].cross(q[tri[2]]));
-  return std::abs(six_volume) / 6.0;
 }
 
 double ShapeVolume_m3(const Shape& shape) {
@@ -505,27 +461,30 @@ std::vector<Shape> FitShapes_L(const TriangleMesh& mesh, const MeshFitOptions& o
   const Matrix3d surface_axes = PrincipalAxes(SurfaceCovariance(local.q, mesh));
   const Points shuffled_q = ShuffledDistinct(local.q);
   std::vector<Shape> shapes;
-  if (options.kind != MeshFitKind::kCapsuleChain) {
-    if (options.kind != MeshFitKind::kOrientedBox) {
-      const Matrix3d vertex_axes = PrincipalAxes(VertexCovariance(shuffled_q));
-      const AxisCapsule fit = BestCapsule(shuffled_q, {surface_axes, vertex_axes});
-      shapes.push_back(ToCapsule_L(fit, local.o_L, local.margin_m));
-    }
-    if (options.kind != MeshFitKind::kOneCapsule) {
-      const FrameBox fit = BestBox(shuffled_q, {surface_axes});
-      shapes.push_back(ToBox_L(fit, local.o_L, local.margin_m));
-    }
-    // kTighter: of the capsule and the box (both hold every vertex), the smaller.
-    if (shapes.size() == 2 && ShapeVolume_m3(shapes[1]) < ShapeVolume_m3(shapes[0])) {
-      shapes.erase(shapes.begin());
-    }
-    shapes.resize(1);
-  } else {
-    for (const AxisCapsule& fit : ChainCapsules(local.q, mesh, surface_axes.col(0),
-                                                options.capsule_count)) {
-      shapes.push_back(ToCapsule_L(fit, local.o_L, local.margin_m));
-    }
+  AxisCapsule one;
+  if (options.kind != MeshFitKind::kOrientedBox) {
+    const Matrix3d vertex_axes = PrincipalAxes(VertexCovariance(shuffled_q));
+    one = BestCapsule(shuffled_q, {surface_axes, vertex_axes});
   }
+  if (options.kind == MeshFitKind::kCapsuleChain) {
+    for (const AxisCapsule& fit : ChainCapsules(local.q, mesh, surface_axes.col(0),
+                                                options.capsule_count, one)) {
+      shapes.push_back(ToCapsule_L(fit, local.o_L, local.margin_m));
+    }
+    return shapes;
+  }
+  if (options.kind != MeshFitKind::kOrientedBox) {
+    shapes.push_back(ToCapsule_L(one, local.o_L, local.margin_m));
+  }
+  if (options.kind != MeshFitKind::kOneCapsule) {
+    const FrameBox fit = BestBox(shuffled_q, {surface_axes});
+    shapes.push_back(ToBox_L(fit, local.o_L, local.margin_m));
+  }
+  // kTighter: of the capsule and the box (both hold every vertex), the smaller.
+  if (shapes.size() == 2 && ShapeVolume_m3(shapes[1]) < ShapeVolume_m3(shapes[0])) {
+    shapes.erase(shapes.begin());
+  }
+  shapes.resize(1);
   return shapes;
 }
 
@@ -597,8 +556,8 @@ MeshFit FitMesh(const TriangleMesh& mesh, const MeshFitOptions& options) {
   if (fit.check.status != MeshStatus::kOk) return fit;
   fit.shapes_L = FitShapes_L(mesh, options);
   for (const Shape& shape : fit.shapes_L) fit.fitted_volume_m3 += ShapeVolume_m3(shape);
-  fit.is_mesh_closed = IsClosedAndOriented(mesh);
-  fit.mesh_volume_m3 = fit.is_mesh_closed ? EnclosedVolume_m3(ToLocal(mesh.vertices_L).q, mesh)
+  fit.is_mesh_closed = IsClosedMesh(mesh);
+  fit.mesh_volume_m3 = fit.is_mesh_closed ? EnclosedVolume_m3(mesh)
                                           : std::numeric_limits<double>::quiet_NaN();
   fit.excess_ratio = fit.fitted_volume_m3 / fit.mesh_volume_m3;
   return fit;

@@ -12,14 +12,16 @@
 namespace arm_collision_monitor {
 namespace {
 
-// "1 capsule", "3 capsules (capsules:3)", "1 box", "1 box (tighter)".
+// "1 capsule", "3 capsules (capsules:3)", "1 capsule (capsules:3: no chain is smaller)",
+// "1 box", "1 box (tighter)".
 std::string FitText(const MeshFitOptions& options, const std::vector<Shape>& shapes) {
   const std::size_t count = shapes.size();
   const bool is_box = count > 0 && std::holds_alternative<Box>(shapes.front());
   std::string text = std::to_string(count) + (is_box ? " box" : " capsule");
   if (count != 1) text += is_box ? "es" : "s";
   if (options.kind == MeshFitKind::kCapsuleChain) {
-    text += " (capsules:" + std::to_string(options.capsule_count) + ")";
+    text += " (capsules:" + std::to_string(options.capsule_count) +
+            (count == 1 && options.capsule_count > 1 ? ": no chain is smaller)" : ")");
   } else if (options.kind == MeshFitKind::kTighter) {
     text += " (tighter)";
   }
@@ -52,6 +54,7 @@ std::string ReportLine(const std::string& where, const MeshFitOptions& options,
   if (fit.is_mesh_closed) {
     line.precision(3);
     line << "fitted/mesh volume " << fit.excess_ratio;
+    if (fit.shapes_L.size() > 1) line << " (the capsules' volumes summed: overlaps count twice)";
     if (options.kind == MeshFitKind::kOneCapsule && fit.excess_ratio >= kLooseMeshFitRatio) {
       line << " (a loose capsule: mesh_fit: tighter would give a boxy part its box)";
     }

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <random>
 
 #include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/scene/workcell.h"
@@ -190,8 +191,22 @@ TEST(SceneMeshLinks, MeshFitKindsEncloseTheNonConvexShape) {
       for (int k = 0; k < 3; ++k) EXPECT_GE(w.FindPrimitive("link0/" + std::to_string(k)), 0);
       ASSERT_EQ(w.notices.size(), 1u);
       EXPECT_NE(w.notices[0].find("3 capsules (capsules:3)"), std::string::npos) << w.notices[0];
+      // A chain's volume is the sum of its capsules', which the report says.
+      EXPECT_NE(w.notices[0].find(" (the capsules' volumes summed: overlaps count twice)"),
+                std::string::npos)
+          << w.notices[0];
     }
   }
+  // A ball: no chain of slabs is smaller than its one capsule (a sphere), which it keeps.
+  std::mt19937_64 rng(7);
+  WriteBytes(dir + "ball.obj", Obj(TessellatedCapsuleMesh(0.05, 0.0, 24, 8, 0.0, &rng)));
+  const Files files = WriteRobot(dir, {MeshCollision("ball.obj", kOrigin)}, "mesh_fit: capsules:3");
+  const Workcell w = LoadWorkcell(files.urdf, files.scene, CacheIn(dir));
+  EXPECT_EQ(ShapesOf(w, "link0").size(), 1u);
+  ASSERT_EQ(w.notices.size(), 1u);
+  EXPECT_NE(w.notices[0].find("mesh fit: 1 capsule (capsules:3: no chain is smaller) (radius "),
+            std::string::npos)
+      << w.notices[0];
 }
 
 TEST(SceneMeshLinks, ReportHasOneLinePerMeshWithTheExcessVolume) {

@@ -328,6 +328,6 @@ inline constexpr int kMeshFitChainGridPoints = 32;
 inline constexpr std::uint64_t kMeshFitShuffleSeed = 20261123;
 /// Version of the fitting algorithm, hashed into MeshFitHash: bump it when a fit's result
 /// changes, so that cached fits of the old algorithm are not reused.
-inline constexpr std::uint64_t kMeshFitAlgorithmVersion = 2;
+inline constexpr std::uint64_t kMeshFitAlgorithmVersion = 3;
 
 }  // namespace arm_collision_monitor

@@ -79,14 +79,12 @@ struct MeshFit {
   MeshCheck check;             ///< kOk, or why nothing was fitted (shapes_L empty).
   std::vector<Shape> shapes_L;  ///< In L; their union contains the mesh's solid.
   /// Sum of the primitives' volumes, m^3 (for a chain an upper bound of the union's volume:
-  /// neighbouring capsules' overlaps are counted twice).
+  /// neighbouring capsules' overlaps are counted twice, as the start-up report says).
   double fitted_volume_m3 = 0.0;
-  /// True iff the mesh, with vertices at identical positions merged, is closed and consistently
-  /// oriented: every edge is used exactly once in each direction.
+  /// IsClosedMesh(mesh).
   bool is_mesh_closed = false;
-  /// Volume the closed mesh encloses, m^3 (divergence theorem: the sum of the signed tetrahedra
-  /// of the triangles with a common apex, its absolute value). NaN when the mesh is not closed:
-  /// an open surface encloses no defined volume, and the report should say so.
+  /// EnclosedVolume_m3(mesh), m^3. NaN when the mesh is not closed: an open surface encloses no
+  /// defined volume, and the report should say so.
   double mesh_volume_m3 = 0.0;
   /// fitted_volume_m3 / mesh_volume_m3 (>= 1 up to the margin for a one-primitive fit); NaN
   /// when the mesh is not closed.
@@ -110,9 +108,10 @@ struct MeshFit {
 /// axis; every triangle is clipped to every slab it crosses (Sutherland-Hodgman). Two chains are
 /// fitted to the slabs' vertices and clip points: each slab's tight capsule along the chain's
 /// axis, and each slab's one-capsule fit as above (candidate axes from the principal axes of
-/// its points); the one whose union holds fewer points of a grid over both is kept (a straight
-/// round link keeps its axis, where a squat slab's own capsule would lie across it; a bent one
-/// follows its bend). Slabs holding no point (a mesh in separate parts) get no capsule.
+/// its points). Of these and the one capsule of the whole mesh, the one whose union holds the
+/// fewest points of a grid over all three is kept (a straight round link keeps its axis, where a
+/// squat slab's own capsule would lie across it; a bent one follows its bend; a ball or a knob
+/// stays one capsule). Slabs holding no point (a mesh in separate parts) get no capsule.
 ///
 /// Tighter: the one-capsule fit above and the oriented-box fit below, the one of smaller volume
 /// kept (a boxy part gets a box, a long round one a capsule).
@@ -121,6 +120,17 @@ struct MeshFit {
 /// frame's axes, and each candidate capsule axis completed by the principal axes of the
 /// projection), then a compass search of small rotations; the smallest-volume box is kept.
 MeshFit FitMesh(const TriangleMesh& mesh, const MeshFitOptions& options);
+
+/// True iff the mesh, with vertices at identical positions merged, is closed and consistently
+/// oriented: every edge is used as often in one direction as in the other (one closed shell, or
+/// several sharing edges or corners); triangles that merging collapses to a segment or a point
+/// bound nothing and are skipped.
+bool IsClosedMesh(const TriangleMesh& mesh);
+
+/// The volume a closed mesh encloses, m^3: by the divergence theorem the sum of the signed
+/// tetrahedra of the triangles with a common apex, its absolute value (shells that overlap count
+/// their common part twice).
+double EnclosedVolume_m3(const TriangleMesh& mesh);
 
 /// Cache key of a fit: 64-bit FNV-1a (Fowler, Noll, Vo) over kMeshFitAlgorithmVersion, the vertex
 /// coordinates' IEEE-754 bits, the triangle indices and the options (the capsule count only for
