@@ -22,6 +22,7 @@
 #include <cstdlib>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "arm_collision_monitor/core/load_error.h"
 #include "arm_collision_monitor/scene/planning_scene_reader.h"
@@ -80,10 +81,23 @@ class TokenReader {
     return value;
   }
 
-  double Positive(const std::string& what) {
-    const double value = Number(what);
-    if (!(value > 0.0)) Fail(what + " " + std::to_string(value) + " (expected a number > 0)");
-    return value;
+  /// A shape's dimensions, each named in `names` ("the box's size x", ...): numbers > 0, all on
+  /// one line as MoveIt writes them (a number short would otherwise take the pose's first).
+  std::vector<double> Dimensions(const std::vector<std::string>& names) {
+    std::vector<double> values;
+    int first_line = 0;
+    for (const std::string& name : names) {
+      const double value = Number(name);
+      if (values.empty()) first_line = line_;
+      if (line_ != first_line) {
+        Fail(name + " found here, after " + std::to_string(values.size()) + " of the " +
+             std::to_string(names.size()) + " dimensions on line " +
+             std::to_string(first_line) + " (expected a shape's dimensions on one line)");
+      }
+      if (!(value > 0.0)) Fail(name + " " + std::to_string(value) + " (expected a number > 0)");
+      values.push_back(value);
+    }
+    return values;
   }
 
   /// The next token as a count of at most `most`.
@@ -154,18 +168,18 @@ void ReadShape(TokenReader* in, const Eigen::Isometry3d& X_FO, SceneCollisionObj
     ScenePrimitive primitive;
     if (type == "sphere") {
       primitive.type = SolidPrimitiveType::kSphere;
-      primitive.dimensions_m = {in->Positive("the sphere's radius")};
+      primitive.dimensions_m = in->Dimensions({"the sphere's radius"});
     } else if (type == "box") {
       primitive.type = SolidPrimitiveType::kBox;
-      for (const char* axis : {"x", "y", "z"}) {
-        primitive.dimensions_m.push_back(in->Positive(std::string("the box's size ") + axis));
-      }
+      primitive.dimensions_m =
+          in->Dimensions({"the box's size x", "the box's size y", "the box's size z"});
     } else if (type == "cylinder" || type == "cone") {
       primitive.type =
           type == "cylinder" ? SolidPrimitiveType::kCylinder : SolidPrimitiveType::kCone;
-      const double radius_m = in->Positive("the " + type + "'s radius");
-      const double length_m = in->Positive("the " + type + "'s length");
-      primitive.dimensions_m = {length_m, radius_m};  // shape_msgs' order: height, radius
+      const std::vector<double> radius_length =
+          in->Dimensions({"the " + type + "'s radius", "the " + type + "'s length"});
+      // shape_msgs' order: height, radius
+      primitive.dimensions_m = {radius_length[1], radius_length[0]};
     } else if (type == "plane") {
       in->Fail("planes are not supported (expected box, sphere, cylinder, cone or mesh)");
     } else {
