@@ -120,6 +120,18 @@ std::string JointMerger::DescribeRefusal(const NamedPositions& input, MergeStatu
                                          double now_s) const {
   const std::vector<std::string>& names = input.names;
   auto is_model_joint = [&](const std::string& name) { return index_of_name_.count(name) > 0; };
+  // The first model joint whose last accepted stamp is later than the message's ("" if none).
+  auto backwards = [&]() -> std::string {
+    for (const std::string& name : names) {
+      const auto it = index_of_name_.find(name);
+      if (it == index_of_name_.end() || !(input.stamp_s < stamp_s_[it->second])) continue;
+      char text[64];
+      std::snprintf(text, sizeof(text), "' %.3f s before its last accepted stamp",
+                    stamp_s_[it->second] - input.stamp_s);
+      return "joint '" + name + text;
+    }
+    return "";
+  };
   switch (status) {
     case MergeStatus::kWrongSize: {
       if (input.positions.size() != names.size()) {
@@ -153,18 +165,12 @@ std::string JointMerger::DescribeRefusal(const NamedPositions& input, MergeStatu
       std::snprintf(text, sizeof(text), "stamped %.3f s %s its arrival, over input_timeout_s "
                     "(%.3f s)", std::abs(age_s), age_s >= 0.0 ? "before" : "after",
                     input_timeout_s_);
-      return text;
+      // Staleness is checked first; a stale message going back in time says that too.
+      const std::string behind = backwards();
+      return behind.empty() ? std::string(text) : text + ("; also " + behind);
     }
     case MergeStatus::kStampBackwards:
-      for (const std::string& name : names) {
-        const auto it = index_of_name_.find(name);
-        if (it == index_of_name_.end() || !(input.stamp_s < stamp_s_[it->second])) continue;
-        char text[64];
-        std::snprintf(text, sizeof(text), "' %.3f s before its last accepted stamp",
-                      stamp_s_[it->second] - input.stamp_s);
-        return "joint '" + name + text;
-      }
-      return "";
+      return backwards();
     default:
       return "";
   }

@@ -76,7 +76,8 @@ TEST(JointMerger, RefusalsLeaveQUntouchedAndAreCounted) {
        "none of its 2 names is a model joint, the first 'x'"},
       {{}, {}, 10.1, MergeStatus::kNoKnownJoints, "no name"},
       {{"a1"}, {1.0}, 10.1 - kTimeout_s - 0.01, MergeStatus::kStale,
-       "stamped 0.260 s before its arrival, over input_timeout_s (0.250 s)"},
+       "stamped 0.260 s before its arrival, over input_timeout_s (0.250 s); also joint 'a1' "
+       "0.160 s before its last accepted stamp"},
       {{"a1"}, {1.0}, 10.1 + kTimeout_s + 0.01, MergeStatus::kFutureStamp,
        "stamped 0.260 s after its arrival, over input_timeout_s (0.250 s)"},
       {{"x", "a2"}, {1.0, 2.0}, 9.99, MergeStatus::kStampBackwards,
