@@ -317,11 +317,11 @@ inline constexpr double kMeshFitSearchMinStep_rad = 1e-3;
 /// Most volume evaluations one compass search makes (dimensionless; typical 64), bounding the
 /// fit's time: each costs one pass over the vertices.
 inline constexpr int kMeshFitMaxSearchEvaluations = 64;
-/// Grid points per axis over which a capsule chain's two candidates (each slab's capsule along
-/// the chain's axis, or its own smallest one) compare their unions (dimensionless; typical 32):
-/// the points either union holds estimate its volume to a few per cent of the box, enough to
-/// tell a chain sticking out of a round link's sides from one along it; 32^3 point tests per
-/// capsule bound the fit's time.
+/// Grid points per axis over which a capsule chain's three candidates (each slab's capsule along
+/// the chain's axis, each slab's own smallest one, the whole mesh's one capsule) compare their
+/// unions (dimensionless; typical 32): the points a union holds estimate its volume to a few
+/// per cent of the box, enough to tell a chain sticking out of a round link's sides from one
+/// along it; 32^3 point tests per capsule bound the fit's time.
 inline constexpr int kMeshFitChainGridPoints = 32;
 /// Seed of the fixed shuffle in the smallest-enclosing-circle step (Welzl's algorithm expects
 /// random order; a fixed seed keeps fits deterministic).
