@@ -138,14 +138,16 @@ void ExpectValid(const Monitor& monitor, const std::string& context) {
   EXPECT_TRUE(monitor.ValidateIndex(&error)) << context << ": " << error;
 }
 
-// The right arm reaching down to (0.9, -0.4, 1.0), `monitor` updated there: the tip of its tool
-// (right_link7's capsule end) in W.
-Eigen::Vector3d RightToolTipAtGrasp(const Workcell& wc, Monitor* monitor,
-                                    Eigen::VectorXd* grasp_q) {
+// The right arm reaching down to (0.9, -0.4, 1.0), `monitor` updated there: a pose at the tip of
+// its tool (right_link7's capsule end), unrotated, in W.
+Eigen::Isometry3d RightToolTipAtGrasp(const Workcell& wc, Monitor* monitor,
+                                      Eigen::VectorXd* grasp_q) {
   *grasp_q = test::ArmReachDown(wc, "right", 0.9, -0.4, 1.0);
   monitor->Update(*grasp_q);
   monitor->SyncShapes();
-  return std::get<Capsule>(monitor->shape_W(test::Prim(wc, "right_link7"))).p1_W;
+  Eigen::Isometry3d X_WO = Eigen::Isometry3d::Identity();
+  X_WO.translation() = std::get<Capsule>(monitor->shape_W(test::Prim(wc, "right_link7"))).p1_W;
+  return X_WO;
 }
 
 class MonitorLiveObjects : public ::testing::TestWithParam<BroadPhaseMethod> {};
@@ -332,8 +334,7 @@ TEST_P(MonitorLiveObjects, AttachableLiveObjectIsHeldAndRemoved) {
   const auto wc = test::LoadBundledWorkcell();
   Monitor monitor(wc, LiveOptions(GetParam()));
   Eigen::VectorXd grasp_q;
-  Eigen::Isometry3d X_WO = Eigen::Isometry3d::Identity();
-  X_WO.translation() = RightToolTipAtGrasp(*wc, &monitor, &grasp_q);
+  const Eigen::Isometry3d X_WO = RightToolTipAtGrasp(*wc, &monitor, &grasp_q);
   std::vector<Shape> chain;
   for (int k = 0; k < 3; ++k) {
     chain.push_back(Capsule{Eigen::Vector3d(0.05 * k, 0, 0), Eigen::Vector3d(0.05 * k + 0.1, 0, 0),
@@ -387,8 +388,7 @@ TEST_P(MonitorLiveObjects, LiveObjectIsAGraspTargetOfAnyLinkUntilRemoved) {
   const auto wc = test::LoadBundledWorkcell();
   Monitor monitor(wc, LiveOptions(GetParam()));
   Eigen::VectorXd grasp_q;
-  Eigen::Isometry3d X_WO = Eigen::Isometry3d::Identity();
-  X_WO.translation() = RightToolTipAtGrasp(*wc, &monitor, &grasp_q);
+  const Eigen::Isometry3d X_WO = RightToolTipAtGrasp(*wc, &monitor, &grasp_q);
   const std::vector<Shape> box = {Box{Eigen::Isometry3d::Identity(), {0.03, 0.03, 0.03}}};
   auto tip_warns = [&](const std::string& object) {
     for (const Warning& w : monitor.Check(grasp_q).warnings) {
