@@ -1178,7 +1178,10 @@ def section_broadphase_workloads(out_dir, md):
 def section_real_robot(out_dir, md):
     """The bundled real robot replayed by each method, with its shipped capsule fits and with
     mesh_fit: tighter: all cycles and the moving ones."""
-    if not real_robot(out_dir):
+    fits = [(title, real_robot(out_dir, fit))
+            for fit, title in (("capsule", "as shipped (mesh_fit: capsule)"),
+                               ("tighter", "mesh_fit: tighter"))]
+    if not fits[0][1]:
         return
     md.append("\n## Real robot: the bundled dual_arm_shelf through replay\n\n")
     md.append("urdf/dual_arm_shelf.urdf (mesh links), its SRDF and planning scene "
@@ -1192,9 +1195,7 @@ def section_real_robot(out_dir, md):
               "peer's figure over ours. The second table fits the same meshes with `mesh_fit: "
               "tighter`, which makes the boxy ones boxes, as a user modelling a boxy robot "
               "would: the box-box and capsule-box paths of every method.\n")
-    for fit, title in (("capsule", "as shipped (mesh_fit: capsule)"),
-                       ("tighter", "mesh_fit: tighter")):
-        rr = real_robot(out_dir, fit)
+    for title, rr in fits:
         if not rr:
             continue
         md.append(f"\n**{title}**\n")
