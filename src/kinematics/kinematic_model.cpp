@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "arm_collision_monitor/core/constants.h"
@@ -289,6 +290,37 @@ void KinematicModel::ComputeLinkPosesOf(const Eigen::Ref<const Eigen::VectorXd>&
                                         std::vector<Eigen::Isometry3d>* X_WL) const {
   const int* const link_of = links.data();
   ComputePoses(q, [link_of](int i) { return link_of[i]; }, static_cast<int>(links.size()), X_WL);
+}
+
+void KinematicModel::UpdateLinkPosesOf(const Eigen::Ref<const Eigen::VectorXd>& q,
+                                       const Eigen::Ref<const Eigen::VectorXd>& q_before,
+                                       const std::vector<int>& links,
+                                       std::vector<Eigen::Isometry3d>* X_WL,
+                                       std::vector<Eigen::Isometry3d>* X_WL_before,
+                                       std::vector<std::uint8_t>* changed,
+                                       std::vector<int>* scratch) const {
+  std::uint8_t* const is_changed = changed->data();
+  int* const recomputed = scratch->data();
+  int count = 0;
+  // In link order, so a parent's flag is set before its children read it.
+  for (const int link : links) {
+    const FkStep& step = fk_steps_[link];
+    const int i = step.position_q_index;
+    const bool is_moved =
+        is_changed[step.parent] != 0 ||
+        (i >= 0 && std::memcmp(q.data() + i, q_before.data() + i, sizeof(double)) != 0);
+    is_changed[link] = is_moved ? 1 : 0;
+    if (is_moved) recomputed[count++] = link;
+  }
+  if (count == static_cast<int>(links.size())) {
+    // All of them: computed into X_WL_before, which then trades places with X_WL (no copies).
+    const int* const link_of = links.data();
+    ComputePoses(q, [link_of](int i) { return link_of[i]; }, count, X_WL_before);
+    X_WL->swap(*X_WL_before);
+    return;
+  }
+  for (int i = 0; i < count; ++i) (*X_WL_before)[recomputed[i]] = (*X_WL)[recomputed[i]];
+  ComputePoses(q, [recomputed](int i) { return recomputed[i]; }, count, X_WL);
 }
 
 KinematicModel KinematicModel::FromUrdfFile(const std::string& urdf_path) {

@@ -263,9 +263,9 @@ bool Monitor::Impl::IsProvablyClear(const Eigen::Ref<const Eigen::VectorXd>& q, 
 
 std::uint32_t Monitor::Impl::FollowKinematics(const Eigen::Ref<const Eigen::VectorXd>& q,
                                               bool is_step, double reindex_at_m) {
-  model.kinematics->ComputeLinkPosesOf(q, fk_links, &X_WL_next);
-  MarkChangedLinks(fk_links, X_WL, X_WL_next, &link_changed);
-  X_WL.swap(X_WL_next);
+  model.kinematics->UpdateLinkPosesOf(q, q_kinematics, fk_links, &X_WL, &X_WL_before,
+                                      &link_changed, &fk_scratch);
+  is_before_complete = false;
   is_pair_gap_known = false;
   q_kinematics = q;
   kinematics_behind = false;
@@ -477,18 +477,19 @@ void Monitor::Impl::InitData() {
   is_sphere_C.assign(n, 0);
   fk_targets.assign(link_count, 0);
   fk_links.reserve(link_count);
+  fk_scratch.reserve(link_count);
+  // The links fixed to the root keep their start poses in both (UpdateLinkPosesOf).
+  X_WL = model.X_WL_start;
+  X_WL_before = model.X_WL_start;
+  link_changed.assign(link_count, 0);
+  q_kinematics = model.q_start;
   for (PrimitiveId id = 0; id < n; ++id) SetCarrierBounds(id);
   PrepareBounds();
-  // The links fixed to the root keep their start poses in both (ComputeLinkPosesOf).
-  X_WL = model.X_WL_start;
-  X_WL_next = model.X_WL_start;
-  link_changed.assign(link_count, 0);
   bound_known.assign(n, 0);
   q_good = model.q_start;
   time_good_s = std::numeric_limits<double>::quiet_NaN();
   is_joint_time_good = false;
   joint_time_good_s.setConstant(model.q_start.size(), std::numeric_limits<double>::quiet_NaN());
-  q_kinematics = model.q_start;
   shape_W = model.shape_W_start;
   shape_prev_W = model.shape_W_start;
   moved.assign(n, 0);

@@ -66,17 +66,25 @@ struct Monitor::Impl {
   // ReindexMoved transforms and compares one point; SetCarrierBounds keeps it).
   std::vector<std::uint8_t> is_sphere_C;
   std::vector<double> tol_now;          // per primitive this cycle, m
-  // At q_kinematics; scratch, which FollowKinematics leaves at the kinematics before. Only the
-  // links in fk_links are kept current (LinkPose computes any other on demand).
-  std::vector<Eigen::Isometry3d> X_WL, X_WL_next;
+  // At q_kinematics. Only the links in fk_links are kept current (LinkPose computes any other
+  // on demand, and the holder of an object Attach fixes to it, with the links above it, joins
+  // fk_links so: the kinematics recomputes only the links a joint's change moves).
+  std::vector<Eigen::Isometry3d> X_WL;
+  // At the kinematics before the last one: current for the links the last one moved
+  // (link_changed; UpdateLinkPosesOf leaves them here), for the others of fk_links only once
+  // is_before_complete (StartPoses copies them when the swept check first needs them).
+  std::vector<Eigen::Isometry3d> X_WL_before;
+  bool is_before_complete = false;
   // The moving links the kinematics computes: those carrying a primitive (of any variant, or a
   // held object) and the moving links between them and the root (KinematicModel::MovingLinksTo;
   // PrepareBounds keeps it). A real robot's frames without geometry (cameras, tool points,
   // sensor mounts: 13 of a Baxter's 35 moving links) are skipped.
   std::vector<int> fk_links;
   std::vector<std::uint8_t> fk_targets;  // scratch of PrepareBounds: per link
-  // Scratch: per link of fk_links (the others are stale), moved by the kinematics.
+  // Per link: whether the last kinematics moved it (a joint between it and the root changed);
+  // current for the links of fk_links, 0 for the links that do not move.
   std::vector<std::uint8_t> link_changed;
+  std::vector<int> fk_scratch;  // KinematicModel::UpdateLinkPosesOf's, fk_links.size() entries
   // The smallest PairGap_m over the kept pairs since the last kinematics (SweepStep or
   // IsProvablyClear, whichever comes first).
   bool is_pair_gap_known = false;
@@ -309,6 +317,7 @@ struct Monitor::Impl {
     std::fill(fk_targets.begin(), fk_targets.end(), std::uint8_t{0});
     for (const PrimitiveId id : carried) fk_targets[carrier[id]] = 1;
     model.kinematics->MovingLinksTo(&fk_targets, &fk_links);
+    fk_scratch.resize(fk_links.size());  // within its reserve
   }
   // X_WL[link] at q_kinematics, computed first when the kinematics skips it (not in fk_links).
   const Eigen::Isometry3d& LinkPose(int link) {

@@ -369,9 +369,17 @@ const std::vector<Eigen::Isometry3d>& Monitor::Impl::StepPoses(
 }
 
 const std::vector<Eigen::Isometry3d>& Monitor::Impl::StartPoses() {
-  // Without bounded cycles since, the last kinematics was at q_start: FollowKinematics swapped
-  // its poses into X_WL_next.
-  if (!swept.is_behind) return X_WL_next;
+  // Without bounded cycles since, the kinematics before the last was at q_start: X_WL_before
+  // holds the poses the last one changed, X_WL the others.
+  if (!swept.is_behind) {
+    if (!is_before_complete) {
+      for (const int link : fk_links) {
+        if (!link_changed[link]) X_WL_before[link] = X_WL[link];
+      }
+      is_before_complete = true;
+    }
+    return X_WL_before;
+  }
   if (!swept.has_start) {
     model.kinematics->ComputeLinkPosesOf(swept.q_start, fk_links, &swept.X_WL_start);
     swept.has_start = true;

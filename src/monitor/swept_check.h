@@ -38,7 +38,7 @@ inline constexpr int kSweptPoseCacheSize = 32;
 struct SweptScratch {
   Eigen::VectorXd q_start;                 // the step's start: the last accepted q
   Eigen::VectorXd q_s;                     // a sample along the step
-  // Link poses at q_start (has_start), when is_behind (else Impl::X_WL_next holds them).
+  // Link poses at q_start (has_start), when is_behind (else Impl::X_WL_before holds them).
   std::vector<Eigen::Isometry3d> X_WL_start;
   std::vector<Eigen::Isometry3d> X_WL_s;      // link poses at q_s
   bool has_start = false;

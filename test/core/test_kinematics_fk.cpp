@@ -332,6 +332,76 @@ TEST(KinematicsFk, LinkPosesOfWriteExactlyTheLinksTheTargetsNeed) {
   }
 }
 
+// UpdateLinkPosesOf, over a run of seeded q that each change a random subset of the joints
+// (none, one, some, all), on a model with a mimic joint and on one with a prismatic and a mimic:
+// every link of the list bit for bit as ComputeLinkPoses at the new q, flagged changed exactly
+// when a joint above it changed (checked by a walk up to the root), with its pose at the q before
+// left in X_WL_before; the links that do not move are never flagged.
+void ExpectUpdateLinkPosesOfMatches(const std::string& urdf_path) {
+  const KinematicModel model = KinematicModel::FromUrdfFile(urdf_path);
+  const int n = model.link_count();
+  std::vector<int> links;
+  std::vector<std::uint8_t> all(n, 1);
+  model.MovingLinksTo(&all, &links);
+  std::mt19937_64 rng(kSeed);
+  std::uniform_real_distribution<double> angle(-1.5, 1.5);
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(model.q_size());
+  std::vector<Eigen::Isometry3d> X_WL(n), X_WL_before(n), X_full(n), X_was(n);
+  model.ComputeLinkPoses(q, &X_WL);
+  X_WL_before = X_WL;
+  std::vector<std::uint8_t> changed(n, 0);
+  std::vector<int> scratch(links.size());
+  int partial = 0, whole = 0, none = 0;
+  for (int sample = 0; sample < 400; ++sample) {
+    const Eigen::VectorXd q_before = q;
+    const int pattern = static_cast<int>(rng() % 4);  // none, one joint, some, all
+    std::vector<char> is_q_changed(model.q_size(), 0);
+    for (int i = 0; i < q.size(); ++i) {
+      is_q_changed[i] = pattern == 3 || (pattern == 2 && rng() % 2 == 0);
+    }
+    if (pattern == 1) is_q_changed[rng() % q.size()] = 1;
+    for (int i = 0; i < q.size(); ++i) {
+      if (is_q_changed[i]) q[i] = angle(rng);
+    }
+    X_was = X_WL;
+    model.UpdateLinkPosesOf(q, q_before, links, &X_WL, &X_WL_before, &changed, &scratch);
+    model.ComputeLinkPoses(q, &X_full);
+    int changed_count = 0;
+    for (const int link : links) {
+      bool is_expected = false;
+      for (int up = link; up > 0; up = model.parent_link(up)) {
+        const JointSpec& joint = model.joint(up);
+        const int i = joint.mimic_q_index >= 0 ? joint.mimic_q_index : joint.q_index;
+        is_expected |= i >= 0 && is_q_changed[i] && q[i] != q_before[i];
+      }
+      ASSERT_EQ(changed[link], is_expected ? 1 : 0) << model.link_name(link) << ", " << sample;
+      ASSERT_EQ(X_WL[link].matrix(), X_full[link].matrix()) << model.link_name(link);
+      if (is_expected) {
+        ASSERT_EQ(X_WL_before[link].matrix(), X_was[link].matrix()) << model.link_name(link);
+      }
+      changed_count += is_expected;
+    }
+    for (int link = 0; link < n; ++link) {
+      if (!model.is_moving(link)) {
+        ASSERT_EQ(changed[link], 0) << model.link_name(link);
+      }
+    }
+    none += changed_count == 0;
+    whole += changed_count == static_cast<int>(links.size());
+    partial += changed_count > 0 && changed_count < static_cast<int>(links.size());
+  }
+  // Each case came up often.
+  EXPECT_GT(none, 50);
+  EXPECT_GT(whole, 50);
+  EXPECT_GT(partial, 100);
+}
+
+TEST(KinematicsFk, UpdateLinkPosesOfRecomputesExactlyTheLinksBelowAChangedJoint) {
+  ExpectUpdateLinkPosesOfMatches(kWorkcellUrdf);
+  ExpectUpdateLinkPosesOfMatches(WriteAwkwardAxesUrdf());
+  ExpectUpdateLinkPosesOfMatches(kDataDir + "three_link_arm.urdf");
+}
+
 // SinCos against libm over seeded random angles and named adversarial ones. libm's own error
 // (below one unit of 2^-53 for results in [-1, 1]) is added to the stated bound.
 TEST(KinematicsFk, SinCosIsWithinItsStatedBoundOfLibm) {

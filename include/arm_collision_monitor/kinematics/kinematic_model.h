@@ -85,6 +85,21 @@ class KinematicModel {
   /// bit, as ComputeLinkPoses for the links it writes.
   void ComputeLinkPosesOf(const Eigen::Ref<const Eigen::VectorXd>& q, const std::vector<int>& links,
                           std::vector<Eigen::Isometry3d>* X_WL) const;
+  /// ComputeLinkPosesOf for those of `links` that the move from q_before to q moves: the links
+  /// below a joint whose position differs bit for bit between them (an actuated joint's q, or a
+  /// mimic joint's target's). Preconditions: X_WL holds the poses at q_before (of `links` and of
+  /// what ComputeLinkPosesOf reads); X_WL_before agrees with X_WL on the links that do not move.
+  /// For each of `links`, (*changed)[link] is set to 1 if it was recomputed, else 0, and a
+  /// recomputed link's pose at q_before is left in (*X_WL_before)[link]. When all of `links`
+  /// move, the two vectors trade places (no copies), so the entries of the moving links not in
+  /// `links` come back exchanged. `changed` holds one flag a link (link_count()), 0 for the
+  /// links that do not move; `scratch` has links.size() entries; no allocation. The same poses,
+  /// bit for bit, as ComputeLinkPosesOf.
+  void UpdateLinkPosesOf(const Eigen::Ref<const Eigen::VectorXd>& q,
+                         const Eigen::Ref<const Eigen::VectorXd>& q_before,
+                         const std::vector<int>& links, std::vector<Eigen::Isometry3d>* X_WL,
+                         std::vector<Eigen::Isometry3d>* X_WL_before,
+                         std::vector<std::uint8_t>* changed, std::vector<int>* scratch) const;
 
   /// Checks the invariants (parents precede children, q indices are 0..q_size()-1 once each,
   /// unit axes, lower <= upper, mimic targets actuated, the forward kinematics' precomputed
