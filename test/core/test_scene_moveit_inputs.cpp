@@ -162,6 +162,8 @@ TEST(SceneMoveitInputs, SrdfDefaultDisabledLinkIsCompatibleWithAllButItsEnabledP
       "  <enable_collisions link1='left_link7' link2='floor'/>\n"
       "  <disable_collisions link1='left_link7' link2='floor'/>\n"
       "  <disable_collisions link1='right_link7' link2='no_such_link'/>\n"
+      "  <disable_collisions link1='link7' link2='right_link6'/>\n"
+      "  <disable_collisions link1='ink7' link2='right_link6'/>\n"
       "</robot>\n");
   const Workcell w = LoadWorkcell(kUrdf, BundledSceneWith("default.yaml", "srdf: " + srdf));
   ExpectValid(w);
@@ -173,10 +175,14 @@ TEST(SceneMoveitInputs, SrdfDefaultDisabledLinkIsCompatibleWithAllButItsEnabledP
   EXPECT_TRUE(Compatible(w, "left_link7", "floor"));  // disabled wins over enabled
   EXPECT_FALSE(Compatible(w, "right_link7", "left_link6"));
   // A name the URDF and the scene do not know is told apart from a link without geometry.
-  const std::string unknown = FindWarning(w, "skipped 1 unknown name(s), neither a URDF link");
-  EXPECT_NE(unknown.find("(a typo, or a file of another robot?): 'no_such_link'"),
+  // A name the URDF has with a prefix (an SRDF of one arm) is shown with the links that carry
+  // it; the end of a name without a separator before it is not ('ink7').
+  const std::string unknown = FindWarning(w, "skipped 3 unknown name(s), neither a URDF link");
+  EXPECT_NE(unknown.find("(a typo, or a file of another robot?): 'no_such_link', 'link7', 'ink7'; "
+                         "the URDF has 'link7' as 'left_link7', 'right_link7'"),
             std::string::npos)
       << unknown;
+  EXPECT_EQ(unknown.find("' as", unknown.find("right_link7'") + 12), std::string::npos) << unknown;
   EXPECT_TRUE(FindWarning(w, "without primitives").empty());
 }
 
