@@ -63,8 +63,15 @@ CollisionElement ReadCollisionElement(const urdf::Collision& collision, std::siz
     case urdf::Geometry::BOX: {
       const urdf::Vector3& dim = static_cast<const urdf::Box&>(*collision.geometry).dim;
       e.size_m = Eigen::Vector3d(dim.x, dim.y, dim.z);
+      if ((e.size_m.array() == 0.0).all()) {
+        // A point, as the sphere of radius 0 is (kinova-ros writes its arms' end-effector
+        // frames so; FCL and so MoveIt read it as a box of no extent).
+        e.type = urdf::Geometry::SPHERE;
+        e.radius_m = 0.0;
+        break;
+      }
       if (!e.size_m.allFinite() || (e.size_m.array() <= 0.0).any()) {
-        throw LoadError(where + "<box size> must be 3 finite numbers > 0");
+        throw LoadError(where + "<box size> must be 3 finite numbers > 0, or all 0 (a point)");
       }
       break;
     }

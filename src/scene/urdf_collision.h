@@ -27,7 +27,8 @@ struct UrdfLinkGeometry {
 ///    capsule whose segment is the cylinder's axis (length L) with radius r, which encloses the
 ///    cylinder (it adds two hemispherical caps of radius r), or its bounding box, or the
 ///    smaller of the two;
-///  - sphere -> a zero-length capsule;  box -> a Box;
+///  - sphere -> a zero-length capsule;  box -> a Box, of size 0 0 0 a point (a sphere of
+///    radius 0);
 ///  - a cylinder plus two spheres of its radius centred on its end faces (the usual way of
 ///    writing a capsule in URDF) -> that one capsule;
 ///  - mesh (filename relative to the URDF's folder unless absolute or a URL, scale) -> the

@@ -278,6 +278,22 @@ TEST(SceneLoader, DrakeCapsuleElementIsACapsule) {
   EXPECT_EQ(w.primitives[1 - body].name, "base/1");
 }
 
+// A box of size 0 0 0 (kinova-ros's end-effector links) is a point at its origin, as a sphere
+// of radius 0 is; a box with one size 0 stays refused (BadCollisionGeometryNamesTheElement).
+TEST(SceneLoader, BoxOfSizeZeroIsAPoint) {
+  const std::string urdf = WriteTempFile(
+      "zero_box.urdf",
+      "<?xml version=\"1.0\"?>\n<robot name=\"r\">\n  <link name=\"base\">\n"
+      "    <collision><origin xyz=\"0.1 0.2 0.3\" rpy=\"0 0 0\"/><geometry><box size=\"0 0 0\"/>"
+      "</geometry></collision>\n  </link>\n</robot>\n");
+  const Workcell w = LoadWorkcell(urdf, WriteTempFile("zero_box.yaml", kWorldLine));
+  ASSERT_EQ(w.primitives.size(), 1u);
+  const Capsule& point = std::get<Capsule>(w.primitives[0].shape_L);
+  EXPECT_EQ(point.p0_W, Eigen::Vector3d(0.1, 0.2, 0.3));
+  EXPECT_EQ(point.p1_W, point.p0_W);
+  EXPECT_EQ(point.radius_m, 0.0);
+}
+
 // A bad size in a <collision> element stops start-up with a message naming the file, the link,
 // the element's index in the link and what was expected (ReadCollisionElement; urdfdom itself
 // drops an element whose numbers do not parse, which CheckEveryCollisionRead reports).
@@ -285,7 +301,7 @@ TEST(SceneLoader, BadCollisionGeometryNamesTheElement) {
   const std::string scene = WriteTempFile("bad_geometry.yaml", kWorldLine);
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"<origin xyz=\"0 0 0\"/><geometry><box size=\"0 1 1\"/></geometry>",
-       "<box size> must be 3 finite numbers > 0"},
+       "<box size> must be 3 finite numbers > 0, or all 0 (a point)"},
       {"<origin xyz=\"0 0 0\"/><geometry><sphere radius=\"-0.1\"/></geometry>",
        "<sphere radius> must be a finite number >= 0"},
       {"<origin xyz=\"0 0 0\"/><geometry><cylinder radius=\"0.1\" length=\"-1\"/></geometry>",
