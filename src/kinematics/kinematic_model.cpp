@@ -312,6 +312,7 @@ void KinematicModel::UpdateLinkPosesOf(const Eigen::Ref<const Eigen::VectorXd>& 
     is_changed[link] = is_moved ? 1 : 0;
     if (is_moved) recomputed[count++] = link;
   }
+  if (count == 0) return;
   if (count == static_cast<int>(links.size())) {
     // All of them: computed into X_WL_before, which then trades places with X_WL (no copies).
     const int* const link_of = links.data();

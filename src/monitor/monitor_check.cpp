@@ -87,6 +87,16 @@ void Monitor::ForceIndexStampsNearWrap(std::uint32_t steps_before_wrap) {
 }
 
 void Monitor::Impl::ValidatePrimitives(std::ostringstream* msg) const {
+  // The kinematics recomputes only the links a joint's change moves: every link it keeps
+  // current holds its pose at q_kinematics, bit for bit.
+  std::vector<Eigen::Isometry3d> X_WL_q(X_WL.size());
+  model.kinematics->ComputeLinkPoses(q_kinematics, &X_WL_q);
+  for (const int link : fk_links) {
+    if (X_WL[link].matrix() != X_WL_q[link].matrix()) {
+      *msg << "link " << model.kinematics->link_name(link) << " not at the last kinematics' q";
+      return;
+    }
+  }
   // The per-cycle loops visit `carried`: exactly the primitives with a carrier, ascending.
   std::vector<PrimitiveId> expected_carried;
   for (PrimitiveId id = 0; id < model.primitive_count; ++id) {

@@ -66,9 +66,9 @@ struct Monitor::Impl {
   // ReindexMoved transforms and compares one point; SetCarrierBounds keeps it).
   std::vector<std::uint8_t> is_sphere_C;
   std::vector<double> tol_now;          // per primitive this cycle, m
-  // At q_kinematics. Only the links in fk_links are kept current (LinkPose computes any other
-  // on demand, and the holder of an object Attach fixes to it, with the links above it, joins
-  // fk_links so: the kinematics recomputes only the links a joint's change moves).
+  // At q_kinematics, bit for bit, for every link in fk_links (Validate checks it): the
+  // kinematics recomputes only the links a joint's change moves, so a link joins fk_links with
+  // its pose computed (PrepareBounds). LinkPose computes any other link on demand.
   std::vector<Eigen::Isometry3d> X_WL;
   // At the kinematics before the last one: current for the links the last one moved
   // (link_changed; UpdateLinkPosesOf leaves them here), for the others of fk_links only once
@@ -318,6 +318,9 @@ struct Monitor::Impl {
     for (const PrimitiveId id : carried) fk_targets[carrier[id]] = 1;
     model.kinematics->MovingLinksTo(&fk_targets, &fk_links);
     fk_scratch.resize(fk_links.size());  // within its reserve
+    // The links new to fk_links at q_kinematics too (Attach's LinkPose has computed them; the
+    // kinematics then recomputes only the links a joint's change moves).
+    model.kinematics->ComputeLinkPoses(q_kinematics, &X_WL);
   }
   // X_WL[link] at q_kinematics, computed first when the kinematics skips it (not in fk_links).
   const Eigen::Isometry3d& LinkPose(int link) {

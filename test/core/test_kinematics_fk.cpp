@@ -333,16 +333,18 @@ TEST(KinematicsFk, LinkPosesOfWriteExactlyTheLinksTheTargetsNeed) {
 }
 
 // UpdateLinkPosesOf, over a run of seeded q that each change a random subset of the joints
-// (none, one, some, all), on a model with a mimic joint and on one with a prismatic and a mimic:
+// (none, one, some, all), for every moving link or those up to one target, on a model with a
+// mimic joint and on one with a prismatic and a mimic:
 // every link of the list bit for bit as ComputeLinkPoses at the new q, flagged changed exactly
 // when a joint above it changed (checked by a walk up to the root), with its pose at the q before
 // left in X_WL_before; the links that do not move are never flagged.
-void ExpectUpdateLinkPosesOfMatches(const std::string& urdf_path) {
+void ExpectUpdateLinkPosesOfMatches(const std::string& urdf_path, const std::string& target) {
   const KinematicModel model = KinematicModel::FromUrdfFile(urdf_path);
   const int n = model.link_count();
   std::vector<int> links;
-  std::vector<std::uint8_t> all(n, 1);
-  model.MovingLinksTo(&all, &links);
+  std::vector<std::uint8_t> targets(n, target.empty() ? 1 : 0);
+  if (!target.empty()) targets[model.FindLink(target)] = 1;
+  model.MovingLinksTo(&targets, &links);
   std::mt19937_64 rng(kSeed);
   std::uniform_real_distribution<double> angle(-1.5, 1.5);
   Eigen::VectorXd q = Eigen::VectorXd::Zero(model.q_size());
@@ -393,13 +395,14 @@ void ExpectUpdateLinkPosesOfMatches(const std::string& urdf_path) {
   // Each case came up often.
   EXPECT_GT(none, 50);
   EXPECT_GT(whole, 50);
-  EXPECT_GT(partial, 100);
+  EXPECT_GT(partial, 50);
 }
 
 TEST(KinematicsFk, UpdateLinkPosesOfRecomputesExactlyTheLinksBelowAChangedJoint) {
-  ExpectUpdateLinkPosesOfMatches(kWorkcellUrdf);
-  ExpectUpdateLinkPosesOfMatches(WriteAwkwardAxesUrdf());
-  ExpectUpdateLinkPosesOfMatches(kDataDir + "three_link_arm.urdf");
+  ExpectUpdateLinkPosesOfMatches(kWorkcellUrdf, "");
+  ExpectUpdateLinkPosesOfMatches(kWorkcellUrdf, "right_link4");  // the links up to it
+  ExpectUpdateLinkPosesOfMatches(WriteAwkwardAxesUrdf(), "");
+  ExpectUpdateLinkPosesOfMatches(kDataDir + "three_link_arm.urdf", "");
 }
 
 // SinCos against libm over seeded random angles and named adversarial ones. libm's own error
