@@ -56,7 +56,6 @@ TEST_P(MonitorDifferential, SmoothTrajectoriesMatchBruteForce) {
   const auto wc = LoadBundledWorkcell();
   std::mt19937_64 rng(test::PrintSeed(kSeed + 1));
   const test::JointLimits limits = LimitsOf(*wc);
-  const std::vector<std::string> names = wc->kinematics.ActuatedJointNames();
   int cycles_with_warnings = 0;
   for (int trajectory = 0; trajectory < 10; ++trajectory) {
     Monitor monitor(wc, OptionsFor(GetParam()));
@@ -64,11 +63,8 @@ TEST_P(MonitorDifferential, SmoothTrajectoriesMatchBruteForce) {
     Eigen::VectorXd q, q_path;
     for (int k = 0; k < 400; ++k) {
       path.At(k * monitor.options().cycle_period_s, &q_path);
-      const std::string arm = k % 2 == 0 ? "left_" : "right_";
       if (k == 0 || trajectory % 2 == 0) q = q_path;
-      for (int i = 0; i < q_path.size(); ++i) {
-        if (names[i].rfind(arm, 0) == 0) q[i] = q_path[i];
-      }
+      test::TakeArmsTurn(*wc, k, q_path, &q);
       const CycleReport checked = monitor.Check(q);
       const CycleReport& report = monitor.Update(q);
       const auto expected = ReferenceWarnings(*wc, q);

@@ -153,6 +153,17 @@ struct SmoothTrajectory {
   }
 };
 
+/// The arms in turns, as from one joint-state topic per arm: step k's arm (the left on even k,
+/// the right on odd; its joints named "left_..." or "right_...") takes its joints of q_path.
+inline void TakeArmsTurn(const Workcell& wc, int k, const Eigen::VectorXd& q_path,
+                         Eigen::VectorXd* q) {
+  const std::vector<std::string> names = wc.kinematics.ActuatedJointNames();
+  const std::string arm = k % 2 == 0 ? "left_" : "right_";
+  for (int i = 0; i < q_path.size(); ++i) {
+    if (names[i].rfind(arm, 0) == 0) (*q)[i] = q_path[i];
+  }
+}
+
 /// The scene state the reference needs to know besides q.
 struct ReferenceScene {
   std::map<int, std::string> variant_of_link;  ///< link index -> active variant ("" default)
