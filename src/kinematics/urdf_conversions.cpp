@@ -1,11 +1,15 @@
 #include "arm_collision_monitor/kinematics/urdf_conversions.h"
 
+#include <console_bridge/console.h>
+#include <strings.h>
 #include <tinyxml2.h>
 #include <urdf_parser/urdf_parser.h>
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
+#include <mutex>
 #include <sstream>
 #include <vector>
 
@@ -93,6 +97,86 @@ void RewriteDrakeCapsules(const std::string& urdf_path, tinyxml2::XMLElement* li
   for (tinyxml2::XMLElement* cap : caps) link->InsertEndChild(cap);
 }
 
+// While it lives, holds what urdfdom logs through console_bridge (its only account of why it
+// rejects a file), in order, for the caller to put in its error or pass on. console_bridge keeps
+// one handler before the current: captures must not overlap (ParseUrdfFile's lock).
+class ConsoleCapture : public console_bridge::OutputHandler {
+ public:
+  struct Entry {
+    std::string text;
+    console_bridge::LogLevel level;
+    const char* file;
+    int line;
+  };
+
+  ConsoleCapture() : previous_(console_bridge::getOutputHandler()) {
+    console_bridge::useOutputHandler(this);
+  }
+  ~ConsoleCapture() override { console_bridge::restorePreviousOutputHandler(); }
+  ConsoleCapture(const ConsoleCapture&) = delete;
+  ConsoleCapture& operator=(const ConsoleCapture&) = delete;
+
+  void log(const std::string& text, console_bridge::LogLevel level, const char* file,
+           int line) override {
+    entries_.push_back({text, level, file, line});
+  }
+  /// The errors, joined by "; ".
+  std::string Errors() const {
+    std::string joined;
+    for (const Entry& e : entries_) {
+      if (e.level < console_bridge::CONSOLE_BRIDGE_LOG_ERROR) continue;
+      joined += (joined.empty() ? "" : "; ") + e.text;
+    }
+    return joined;
+  }
+  /// Hands the entries to the handler that was in place before (the console by default): all,
+  /// or those below errors.
+  void PassOn(bool with_errors) const {
+    if (previous_ == nullptr) return;
+    for (const Entry& e : entries_) {
+      if (with_errors || e.level < console_bridge::CONSOLE_BRIDGE_LOG_ERROR) {
+        previous_->log(e.text, e.level, e.file, e.line);
+      }
+    }
+  }
+
+ private:
+  console_bridge::OutputHandler* previous_;
+  std::vector<Entry> entries_;
+};
+
+// Where urdfdom's `errors` point in `robot`: "<line>: joint 'j'" for the first name they give in
+// [brackets] or 'quotes' after the word "joint" or "link" that a <joint> or <link> of the file
+// has (its last: a name urdfdom finds twice is the later one's fault); empty if none.
+std::string ElementNamed(const std::string& errors, const tinyxml2::XMLElement* robot) {
+  for (std::size_t open = errors.find_first_of("['"); open != std::string::npos;
+       open = errors.find_first_of("['", open + 1)) {
+    const char close = errors[open] == '[' ? ']' : '\'';
+    const std::size_t end = errors.find(close, open + 1);
+    if (end == std::string::npos) break;
+    const std::string name = errors.substr(open + 1, end - open - 1);
+    const std::size_t word_end =
+        open == 0 ? std::string::npos : errors.find_last_not_of(' ', open - 1);
+    for (const char* kind : {"joint", "link"}) {
+      const std::size_t n = std::strlen(kind);
+      if (word_end == std::string::npos || word_end + 1 < n ||
+          strncasecmp(errors.c_str() + word_end + 1 - n, kind, n) != 0) {
+        continue;
+      }
+      const tinyxml2::XMLElement* last = nullptr;
+      for (const tinyxml2::XMLElement* e = robot->FirstChildElement(kind); e != nullptr;
+           e = e->NextSiblingElement(kind)) {
+        if (e->Attribute("name") != nullptr && name == e->Attribute("name")) last = e;
+      }
+      if (last != nullptr) {
+        return std::to_string(last->GetLineNum()) + ": " + kind + " '" + name + "'";
+      }
+    }
+    open = end;  // its closing mark opens nothing
+  }
+  return "";
+}
+
 }  // namespace
 
 urdf::ModelInterfaceSharedPtr ParseUrdfFile(const std::string& urdf_path) {
@@ -117,12 +201,23 @@ urdf::ModelInterfaceSharedPtr ParseUrdfFile(const std::string& urdf_path) {
   }
   tinyxml2::XMLPrinter printer;
   doc.Print(&printer);
-  const urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(printer.CStr());
+  urdf::ModelInterfaceSharedPtr model;
+  std::string errors;
+  {
+    static std::mutex capture_mutex;
+    const std::lock_guard<std::mutex> lock(capture_mutex);
+    const ConsoleCapture console;
+    model = urdf::parseURDF(printer.CStr());
+    // A file urdfdom takes may still have had errors (a <collision> it dropped): they go out.
+    console.PassOn(model != nullptr);
+    errors = console.Errors();
+  }
   if (!model) {
-    throw LoadError(urdf_path +
-                    ": not a valid URDF (urdfdom rejected it; its error line above, the one not "
-                    "naming urdfdom's own source, names the element); expected a <robot> whose "
-                    "links and joints form one tree");
+    const std::string element = robot != nullptr ? ElementNamed(errors, robot) : "";
+    throw LoadError(urdf_path + (element.empty() ? "" : ":" + element) +
+                    ": not a valid URDF: urdfdom rejected it" +
+                    (errors.empty() ? std::string(" without a reason") : ": " + errors) +
+                    " (expected a <robot> whose links and joints form one tree)");
   }
   return model;
 }

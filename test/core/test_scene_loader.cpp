@@ -542,6 +542,20 @@ TEST(SceneLoader, MalformedFilesAreRejected) {
                   {"malformed.urdf:4: malformed XML", "name=link", "expected a well-formed URDF"});
   ExpectLoadError([&] { LoadWorkcell(kData + "floating_joint.urdf", kScene); },
                   {"floating_joint.urdf", "joint 'free'", "floating"});
+  // What urdfdom rejects: its reasons (logged through console_bridge alone) in the error, with
+  // the line of the element they name.
+  const std::string head = "<robot name='r'>\n<link name='a'/>\n<link name='b'/>\n";
+  for (const auto& [body, parts] : std::vector<std::pair<std::string, std::vector<std::string>>>{
+           {"<joint name='j' type='revolut'>\n<parent link='a'/><child link='b'/></joint>\n",
+            {":4: joint 'j': not a valid URDF", "[j] has no known type [revolut]"}},
+           {"<joint name='j' type='fixed'>\n<parent link='c'/><child link='b'/></joint>\n",
+            {":4: joint 'j': not a valid URDF", "parent link [c] of joint [j] not found"}},
+           {"<link name='a'/>\n", {":4: link 'a': not a valid URDF", "'a' is not unique"}}}) {
+    const std::string urdf = WriteTempFile("rejected.urdf", head + body + "</robot>\n");
+    std::vector<std::string> all = parts;
+    all.insert(all.end(), {urdf, "urdfdom rejected it"});
+    ExpectLoadError([&] { LoadWorkcell(urdf, kScene); }, all);
+  }
 }
 
 TEST(SceneLoader, UnknownNamesAreRejected) {

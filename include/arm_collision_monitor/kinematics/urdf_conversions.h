@@ -13,7 +13,9 @@ namespace arm_collision_monitor {
 Eigen::Isometry3d UrdfPoseToIsometry(const urdf::Pose& pose);
 
 /// Parses the URDF at `urdf_path`. Throws LoadError naming the file when it cannot be opened, is
-/// not well-formed XML (with the line and the element) or urdfdom rejects it. Drake's
+/// not well-formed XML (with the line and the element) or urdfdom rejects it (with urdfdom's
+/// reasons, which it logs through console_bridge, and the line of the joint or link they name;
+/// what it logs for a file it takes goes on to the console). Drake's
 /// <capsule radius length> collision geometry, which urdfdom does not know, is read as the
 /// capsule idiom (a cylinder and a sphere on each end face, appended to the link's collision
 /// elements); a bad size or origin of one throws LoadError naming the link and the element.
