@@ -343,9 +343,14 @@ JointType JointTypeFromUrdf(int urdf_type, const std::string& where) {
       return JointType::kPrismatic;
     case urdf::Joint::FLOATING:
     case urdf::Joint::PLANAR:
+      // A simulator's URDF often floats the base on the world: the monitor works in the frame
+      // of the root link, so a base that stays put in the workcell is a fixed joint there.
       throw LoadError(where +
                       ": floating and planar joints are not supported (expected revolute, "
-                      "continuous, prismatic or fixed)");
+                      "continuous, prismatic or fixed): a joint state gives no pose of a free "
+                      "body; if it is the base on the world and the base stays put in the "
+                      "workcell, make it type='fixed' at the base's place (<origin>), or drop it "
+                      "and the world link: the monitor works in the root link's frame");
     default:
       throw LoadError(where +
                       ": unknown joint type (expected revolute, continuous, "
