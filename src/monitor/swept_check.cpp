@@ -6,7 +6,8 @@
 // less its relative motion bound, clears the threshold (conservative advancement, after
 // B. Mirtich, Impulse-based Dynamic Simulation of Rigid Body Systems, PhD thesis, UC Berkeley,
 // 1996); else the interval is bisected until a sample warns or the interval's relative motion
-// is at most twice the resolution, where a sample within threshold + resolution exists.
+// is at most twice the resolution, where a sample within threshold + resolution exists (and
+// up to kSweptRefineLevels levels further while its refinement samples last, to certify it).
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -419,10 +420,14 @@ void Monitor::Impl::SweepPair(PrimitiveId a, PrimitiveId b, double pair_motion_m
     warn_at(0.0, X_WL_start);
     return;
   }
-  const double resolution_m = model.options.swept_resolution_m;
+  const double resolved_m = 2.0 * model.options.swept_resolution_m;
+  const double finest_m = resolved_m / (1 << kSweptRefineLevels);
   // The first resolved interval's nearer end (NaN: none yet), and the samples left after it.
   double resolved_s = std::numeric_limits<double>::quiet_NaN();
   int samples_left = kSweptSamplesPastResolved;
+  // Samples left to bisect intervals within the resolution: those of one interval refined to
+  // the finest, shared by the pair's intervals.
+  int refinements_left = (1 << kSweptRefineLevels) - 1;
   int top = 0;
   swept.stack[top++] = SweptInterval{0.0, 1.0, d0_m, d1_m, 0};
   while (top > 0) {
@@ -432,13 +437,19 @@ void Monitor::Impl::SweepPair(PrimitiveId a, PrimitiveId b, double pair_motion_m
     const double motion_m = pair_motion_m * (iv.s1 - iv.s0);
     const double lower_m = SmallestOverStretch_m(iv.d0_m, iv.d1_m, motion_m);
     if (lower_m - cache.BoundMargin_m(lower_m) > threshold_m) continue;
-    if (motion_m <= 2.0 * resolution_m || iv.depth >= kMaxSweptBisections) {
+    // Within the resolution the interval is bisected only to certify it, while refinement
+    // samples last (a pair near its threshold that a fast input's step moves less than twice
+    // the resolution, which the bound alone would leave uncertified).
+    const bool is_within_resolution = motion_m <= resolved_m;
+    if (iv.depth >= kMaxSweptBisections ||
+        (is_within_resolution && (motion_m <= finest_m || refinements_left == 0))) {
       // Resolved: the nearer end is within threshold + motion / 2 <= threshold + resolution.
       // The pair warns; the search goes on for a sample within the threshold to report (a
       // contact just past a sample a hair above it), for a bounded number of samples.
       if (std::isnan(resolved_s)) resolved_s = iv.d0_m <= iv.d1_m ? iv.s0 : iv.s1;
       continue;
     }
+    if (is_within_resolution) --refinements_left;
     if (!std::isnan(resolved_s) && samples_left-- == 0) break;
     const double mid = 0.5 * (iv.s0 + iv.s1);
     const std::vector<Eigen::Isometry3d>& X_WL_mid = StepPoses(mid, q);

@@ -322,6 +322,74 @@ TEST(MonitorSwept, ContactJustPastANearMissSampleIsReportedInside) {
   EXPECT_GT(plate_warnings, 0);
 }
 
+// Fast input near a threshold: the tool 0.3 mm beyond its threshold from a live plate at one end
+// of a 1 ms step (left_joint1 by 1 mrad, a motion bound of about 1 mm), moving away from it, then
+// towards it. The bound alone does not certify such a step (its ends' mean less half the bound
+// is below the threshold), and it was not bisected (its motion is within twice the resolution):
+// it warned 'not certified clear' at the near end, fraction 0 or 1 (three new users' 1 kHz
+// bags). Bisected a few levels more, it is certified; the plate 0.3 mm inside the threshold
+// still warns, at that sample.
+TEST(MonitorSwept, FastStepsNearTheThresholdAreCertifiedClear) {
+  const auto wc = test::LoadBundledWorkcell();
+  const Eigen::VectorXd mid = test::ArmReachDown(*wc, "left", 0.7, 0.55, 0.9);
+  const int j1 = JointIndex(*wc, "left_joint1");
+  const MonitorOptions options = Unlimited();
+  const Box plate_O{Eigen::Isometry3d::Identity(), {0.15, 0.001, 0.15}};
+  // The tool's way as left_joint1 grows (+y or -y) at `mid`.
+  std::vector<Eigen::Isometry3d> X_WL(wc->kinematics.link_count());
+  const int link7 = wc->kinematics.FindLink("left_link7");
+  Eigen::VectorXd ahead = mid;
+  ahead[j1] += 0.01;
+  wc->kinematics.ComputeLinkPoses(ahead, &X_WL);
+  const double y_ahead = X_WL[link7].translation().y();
+  wc->kinematics.ComputeLinkPoses(mid, &X_WL);
+  const double way = y_ahead > X_WL[link7].translation().y() ? 1.0 : -1.0;
+  // The plate across that way at y: its gap to the left arm at `mid` less the threshold, over
+  // the arm's primitives (the plate's tolerance is 0).
+  auto gap_m = [&](double y) {
+    Box box = plate_O;
+    box.X_WB.translation() = Eigen::Vector3d(0.7, y, 0.95);
+    double gap = std::numeric_limits<double>::infinity();
+    for (const PrimitiveSpec& p : wc->primitives) {
+      if (p.group != "left" || !p.variant.empty()) continue;
+      const double d = ShapeDistance(TransformShape(X_WL[p.link_index], p.shape_L), box)
+                           .distance_m;
+      gap = std::min(gap, d - p.tolerance_m);
+    }
+    return gap;
+  };
+  const double y_far = 0.55 + way * 0.2;
+  Eigen::VectorXd away = mid;
+  away[j1] -= 0.001;
+  for (const double gap_at_mid_m : {0.0003, -0.0003}) {
+    const double y = y_far - way * (gap_m(y_far) - gap_at_mid_m);
+    ASSERT_NEAR(gap_m(y), gap_at_mid_m, 1e-9);
+    Eigen::Isometry3d X_WO = Eigen::Isometry3d::Identity();
+    X_WO.translation() = Eigen::Vector3d(0.7, y, 0.95);
+    for (const bool is_moving_away : {true, false}) {
+      const std::string context = std::string(is_moving_away ? "away from" : "towards") +
+                                  " the plate, " + std::to_string(gap_at_mid_m) + " m at mid";
+      Monitor monitor(wc, options);
+      std::string error;
+      ASSERT_TRUE(monitor.AddObject("plate", {plate_O}, X_WO, 0.0, false, &error)) << error;
+      const Eigen::VectorXd& q0 = is_moving_away ? mid : away;
+      const Eigen::VectorXd& q1 = is_moving_away ? away : mid;
+      const CycleReport report = RunStep(&monitor, q0, q1);
+      ASSERT_LE(report.step_motion_m, 2.0 * options.swept_resolution_m) << context;
+      ASSERT_GT(report.step_motion_m, 0.5 * options.swept_resolution_m) << context;
+      int plate_warnings = 0;
+      for (const Warning& w : report.warnings) {
+        if (monitor.primitive(w.b).owner != "plate") continue;
+        ++plate_warnings;
+        EXPECT_LT(w.distance_m, w.threshold_m) << context << ": " << monitor.primitive(w.a).name
+                                               << " at " << w.step_fraction << " of the step";
+      }
+      // Inside: the step's start warns at q0 (between samples) or its end at q1 (at q).
+      EXPECT_EQ(plate_warnings > 0, gap_at_mid_m < 0.0) << context;
+    }
+  }
+}
+
 // The left arm, stretched out, swings its base joint through the right arm (straight up) in
 // one step; the ends are found by scanning for clear poses either side of the contact.
 TEST(MonitorSwept, ArmsCrossInOneStep) {
