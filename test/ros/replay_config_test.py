@@ -136,8 +136,8 @@ class ReplayConfigTest(unittest.TestCase):
         self.assertIn("1 cycles refused by the monitor (the first, cycle 2 at 0.100 s: joint "
                       "'left_joint2' at 10, outside its limits [", text)
         # The summary never reads clear over refused cycles.
-        self.assertIn("summary: no warning at the samples of 5 cycles; 1 of them refused, not "
-                      "checked (the monitor asks a stop on each;", text)
+        self.assertIn("summary: no warning in 5 cycles; 1 cycles refused, not checked (the "
+                      "monitor asks a stop on each;", text)
         # Every row refused (say, angles in degrees): no cycle was checked.
         with open(csv_path, 'w') as f:
             f.write(','.join(LEFT_JOINTS + RIGHT_JOINTS) + '\n')
@@ -224,6 +224,15 @@ class ReplayConfigTest(unittest.TestCase):
         self.assertIn('swept check: 2 cycles warn between samples: 2 with a pair within its '
                       'threshold strictly between them, 0 only where the step starts within, 0 '
                       'only within swept_resolution_m, 0 with both of those; ', text)
+        # The summary counts the cycles that warn only between samples (the node stops on them;
+        # an ALOHA and a dual FR3 user read it as a count of all).
+        self.assertIn('summary: 2 of 3 cycles warn (1 at their sample, 1 only between samples); '
+                      'first at cycle 1 ', text)
+        report = json.loads(rosrun('replay', '--json', '--scene', self.bundled_scene,
+                                   csv_path).stdout)
+        self.assertEqual((report['warning_cycles'], report['between_samples_cycles'],
+                          report['warned_cycles']), (1, 2, 2))
+        self.assertEqual(report['first_between_samples']['cycle'], 1)
 
     def test_json_cycle_times_are_the_inputs_to_the_nanosecond(self):
         # An iiwa user's 1 kHz bag: times rounded to the millisecond made cycles share a time.
@@ -255,8 +264,13 @@ class ReplayConfigTest(unittest.TestCase):
         self.assertEqual(report['refused_messages'], {'non_finite': 1})
         first = "stamped 100.050000 s: non_finite (joint 'left_joint2' at nan)"
         self.assertEqual(report['first_refused_message'], first)
-        self.assertIn('input: 1 messages refused (non_finite: 1) (the first %s), ' % first,
-                      rosrun('replay', '--scene', self.bundled_scene, path).stdout)
+        # The refused message makes no cycle (it made one of the last accepted q, marked not
+        # refused, with its warnings: a dual FR3 user's bag), and the summary counts it.
+        self.assertEqual([c['time_s'] for c in report['per_cycle']], [0.0, 0.1])
+        text = rosrun('replay', '--scene', self.bundled_scene, path).stdout
+        self.assertIn('input: 1 messages refused (non_finite: 1) (the first %s), ' % first, text)
+        self.assertIn('summary: no warning in 2 cycles; 1 messages refused, no cycle (the node '
+                      'asks a stop on each;', text)
 
     def test_between_samples_lines_past_the_first_20_are_counted(self):
         # The swing of test_between_samples_lines_say_what_they_are, there and back four times:

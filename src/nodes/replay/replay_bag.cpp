@@ -215,9 +215,11 @@ class Plans {
   std::vector<double> under_way_;  // ForEachUnderWayAt's positions
 };
 
-// Samples merged into cycles: consecutive samples with the same stamp form one cycle. The stamp
-// checks compare each sample with its own stamp as "now": offline, time is the bag's. The
-// timeout only bounds stamps going backwards, which is still refused.
+// Samples merged into cycles: consecutive samples with the same stamp form one cycle, if the
+// merger accepts one of them (a refused message makes no cycle, as a refused planned point: the
+// node asks a stop instead of checking). The stamp checks compare each sample with its own stamp
+// as "now": offline, time is the bag's. The timeout only bounds stamps going backwards, which is
+// still refused.
 class Cycles {
  public:
   Cycles(const Workcell& workcell, Input* result)
@@ -234,9 +236,13 @@ class Cycles {
       Flush();
       group_stamp_ = stamp;
       has_group_ = true;
+      is_group_accepted_ = false;
     }
     const MergeStatus status = input_.Merge(sample, stamp.toSec());
-    if (status == MergeStatus::kAccepted) return;
+    if (status == MergeStatus::kAccepted) {
+      is_group_accepted_ = true;
+      return;
+    }
     ++result_->refused[MergeStatusName(status)];
     if (result_->first_refused_message.empty()) {
       const std::string why = input_.DescribeRefusal(sample, status, stamp.toSec());
@@ -261,7 +267,7 @@ class Cycles {
  private:
   // Ends the cycle of the samples so far (counted as incomplete before every joint is known).
   void Flush() {
-    if (!has_group_) return;
+    if (!has_group_ || !is_group_accepted_) return;
     if (!input_.is_complete()) {
       ++result_->incomplete_cycles;
       return;
@@ -281,6 +287,7 @@ class Cycles {
   Input* result_;
   ros::Time group_stamp_, first_stamp_;
   bool has_group_ = false;
+  bool is_group_accepted_ = false;  // a sample of the group was merged
 };
 
 // "<bag>: <type> on <topic> at bag time <t>": the message `m` of the bag at `path`, for errors.

@@ -83,11 +83,13 @@ void PrintJsonCounts(const Options& options, const Input& input, std::size_t cyc
   }
   std::printf("  \"incomplete_cycles\": %llu,\n  \"cycles\": %zu,\n"
               "  \"refused_cycles\": %llu,\n  \"warning_cycles\": %llu,\n"
-              "  \"between_samples_cycles\": %llu,\n  \"jumped_cycles\": %llu,\n",
+              "  \"between_samples_cycles\": %llu,\n  \"warned_cycles\": %llu,\n"
+              "  \"jumped_cycles\": %llu,\n",
               static_cast<unsigned long long>(input.incomplete_cycles), cycle_count,
               static_cast<unsigned long long>(summary.refused_cycles),
               static_cast<unsigned long long>(summary.warning_cycles),
               static_cast<unsigned long long>(summary.between_cycles),
+              static_cast<unsigned long long>(summary.warned_cycles),
               static_cast<unsigned long long>(summary.jumped_cycles));
 }
 
@@ -250,6 +252,7 @@ RunSummary Summarize(const Input& input, const std::vector<CycleResult>& cycles,
       ++summary.between_cycles;
       if (summary.first_between < 0) summary.first_between = static_cast<int>(k);
     }
+    summary.warned_cycles += !cycles[k].warnings.empty() || !cycles[k].between_samples.empty();
     summary.jumped_cycles += cycles[k].is_jumped;
   }
   summary.time_s = SummarizeTimings(std::move(times));
@@ -272,6 +275,16 @@ void PrintJson(const Options& options, const Workcell& wc, const Input& input,
                 name(w.b).c_str(), w.distance_m, w.threshold_m);
   } else {
     std::printf("  \"first_warning\": null,\n");
+  }
+  if (summary.first_between >= 0) {
+    const Warning& w = cycles[summary.first_between].between_samples.front();
+    std::printf("  \"first_between_samples\": {\"cycle\": %d, \"time_s\": %.9f, \"a\": %s, "
+                "\"b\": %s, \"distance_m\": %.9g, \"threshold_m\": %.9g, \"step_fraction\": "
+                "%.9g},\n",
+                summary.first_between, input.time_s[summary.first_between], name(w.a).c_str(),
+                name(w.b).c_str(), w.distance_m, w.threshold_m, w.step_fraction);
+  } else {
+    std::printf("  \"first_between_samples\": null,\n");
   }
   if (summary.first_refused >= 0) {
     std::printf("  \"first_refusal\": {\"cycle\": %d, \"time_s\": %.9f, \"reason\": %s},\n",
@@ -328,28 +341,43 @@ void PrintText(const Options& options, const Workcell& wc, const Input& input,
   PrintInputLines(input, cycles, summary);
   PrintWarningRuns(wc, input, cycles);
   if (is_swept) PrintBetweenSamples(wc, input, cycles, summary);
-  // A refused cycle is not checked (the monitor asks a stop instead): the summary says how
-  // many, so that a run of refused input never reads as clear.
+  // Refused cycles and messages are not checked (the monitor asks a stop instead): the summary
+  // says how many, so that a run of refused input never reads as clear.
   const unsigned long long refused = summary.refused_cycles;
-  const std::string unchecked =
-      refused == 0 ? ""
-                   : "; " + std::to_string(refused) + " of them refused, not checked (the " +
-                         "monitor asks a stop on each; see 'input:' above)";
-  if (summary.first >= 0) {
-    const Warning& w = cycles[summary.first].warnings.front();
-    std::printf("summary: %llu of %zu cycles warn; first at cycle %d (%.2f s): %s -- %s at "
-                "%.4f m%s\n",
-                static_cast<unsigned long long>(summary.warning_cycles), cycles.size(),
-                summary.first, input.time_s[summary.first], wc.primitives[w.a].name.c_str(),
-                wc.primitives[w.b].name.c_str(), w.distance_m, unchecked.c_str());
+  std::string unchecked;
+  if (refused > 0) {
+    unchecked += "; " + std::to_string(refused) + " cycles refused, not checked (the monitor " +
+                 "asks a stop on each; see 'input:' above)";
+  }
+  if (summary.refused_messages > 0) {
+    unchecked += "; " + std::to_string(summary.refused_messages) + " messages refused, no " +
+                 "cycle (the node asks a stop on each; see 'input:' above)";
+  }
+  // The first warning, at a sample or between two (the node stops on either).
+  const bool is_first_between =
+      summary.first_between >= 0 && (summary.first < 0 || summary.first_between < summary.first);
+  const int first = is_first_between ? summary.first_between : summary.first;
+  if (first >= 0) {
+    const Warning& w = is_first_between ? cycles[first].between_samples.front()
+                                        : cycles[first].warnings.front();
+    char where[64] = "";
+    if (is_first_between) {
+      std::snprintf(where, sizeof(where), " between samples, at %.3f of the step",
+                    w.step_fraction);
+    }
+    std::printf("summary: %llu of %zu cycles warn (%llu at their sample, %llu only between "
+                "samples); first at cycle %d (%.2f s): %s -- %s at %.4f m%s%s\n",
+                static_cast<unsigned long long>(summary.warned_cycles), cycles.size(),
+                static_cast<unsigned long long>(summary.warning_cycles),
+                static_cast<unsigned long long>(summary.warned_cycles - summary.warning_cycles),
+                first, input.time_s[first], wc.primitives[w.a].name.c_str(),
+                wc.primitives[w.b].name.c_str(), w.distance_m, where, unchecked.c_str());
   } else if (refused > 0 && refused == cycles.size()) {
     std::printf("summary: no cycle checked: all %llu refused (the monitor asks a stop on each; "
                 "see 'input:' above)\n",
                 refused);
   } else {
-    std::printf("summary: no warning at the samples of %zu cycles%s%s\n", cycles.size(),
-                summary.between_cycles > 0 ? " (but between them: see the swept check)" : "",
-                unchecked.c_str());
+    std::printf("summary: no warning in %zu cycles%s\n", cycles.size(), unchecked.c_str());
   }
   const TimingSummary& t = summary.time_s;
   const TimingSummary& m = summary.moving_time_s;

@@ -70,6 +70,8 @@ struct RunSummary {
   int first = -1;  ///< the first cycle with a warning at its q, -1 if none
   std::uint64_t between_cycles = 0;  ///< cycles with a warning between samples (swept check)
   int first_between = -1;            ///< the first of those, -1 if none
+  /// cycles with a warning at their q or between samples: those the node asks a stop in
+  std::uint64_t warned_cycles = 0;
   std::uint64_t jumped_cycles = 0;   ///< steps beyond max_step_m
   TimingSummary time_s;
   TimingSummary moving_time_s;  ///< over the moving cycles: the Monitor's idle ones left out
