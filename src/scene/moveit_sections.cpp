@@ -145,39 +145,6 @@ void AddCollisionObject(const SceneCollisionObject& object, const std::string& p
   AppendObject(spec, shapes_W, tolerance_m, origin, names, workcell);
 }
 
-// The URDF links that end in `name` after a separator ('_', '/' or '-'): `name` with a
-// prefix, as in an SRDF written for one arm, or for the robot without its mount.
-std::vector<std::string> PrefixedLinks(const KinematicModel& kinematics, const std::string& name) {
-  std::vector<std::string> links;
-  for (int link = 0; link < kinematics.link_count(); ++link) {
-    const std::string& full = kinematics.link_name(link);
-    if (full.size() <= name.size() + 1) continue;
-    const std::size_t start = full.size() - name.size();
-    const char separator = full[start - 1];
-    if (full.compare(start, name.size(), name) == 0 &&
-        (separator == '_' || separator == '/' || separator == '-')) {
-      links.push_back(full);
-    }
-  }
-  return links;
-}
-
-// For the skipped names that URDF links carry with a prefix (PrefixedLinks), at most three of
-// them: "; the URDF has 'link7' as 'left_link7', 'right_link7'"; "" when none.
-std::string PrefixedLinksHint(const KinematicModel& kinematics,
-                              const std::vector<std::string>& names) {
-  constexpr int kHintedNames = 3;
-  std::string hint;
-  int hinted = 0;
-  for (const std::string& name : names) {
-    const std::vector<std::string> links = PrefixedLinks(kinematics, name);
-    if (links.empty()) continue;
-    hint += (hint.empty() ? "; the URDF has '" : "; '") + name + "' as " + QuotedNames(links);
-    if (++hinted == kHintedNames) break;
-  }
-  return hint;
-}
-
 }  // namespace
 
 NamedFile FetchNamedFile(const YAML::Node& node, const Where& where,
@@ -234,7 +201,8 @@ std::vector<std::pair<PrimitiveId, PrimitiveId>> ResolveCollisionRules(
                                  " unknown name(s), neither a URDF link nor an object of the "
                                  "scene (a typo, or a file of another robot?): " +
                                  QuotedNames(unknown) +
-                                 PrefixedLinksHint(workcell->kinematics, unknown));
+                                 PrefixedNamesHint(workcell->kinematics.link_names(), unknown,
+                                                   "the URDF"));
   }
   return pairs;
 }

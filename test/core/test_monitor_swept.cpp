@@ -819,13 +819,14 @@ TEST(MonitorSwept, StartupToleranceCheck) {
     int arm_primitives = 0;
     for (const PrimitiveSpec& p : wc->primitives) arm_primitives += !p.group.empty();
     const std::string& notice = monitor.startup_notices()[0];
-    const std::string count_at = "(the largest gap of the ";
+    const std::string count_at = "(of the ";
     const std::size_t at = notice.find(count_at);
     ASSERT_NE(at, std::string::npos) << notice;
     const int below = std::atoi(notice.c_str() + at + count_at.size());
     EXPECT_GE(below, 2) << notice;
     EXPECT_LE(below, arm_primitives) << notice;
-    EXPECT_NE(notice.find(std::to_string(below) + " moving primitives whose tolerance is below"),
+    EXPECT_NE(notice.find(std::to_string(below) + " moving primitives whose tolerance is below "
+                                                  "their motion, the one furthest below)"),
               std::string::npos)
         << notice;
     // The motion named first is the larger of its two sources, each given.

@@ -115,6 +115,26 @@ class ReplayConfigTest(unittest.TestCase):
         self.assertEqual(report['cycles'], 20)
         self.assertEqual(report['incomplete_cycles'], 0)
 
+    def test_unknown_joint_names_are_shown_with_the_models(self):
+        # Two drivers of alike arms, each publishing the same unprefixed names on its own topic
+        # (an ALOHA's 'waist', 'shoulder', ...): none is a model joint. The error names what the
+        # input gave and the model's prefixed joints.
+        bag_path = os.path.join(tempfile.mkdtemp(prefix='acm_unprefixed_'), 'unprefixed.bag')
+        names = [joint.replace('left_', '') for joint in LEFT_JOINTS]
+        with rosbag.Bag(bag_path, 'w') as bag:
+            for k in range(4):
+                msg = JointState(name=names, position=[0.0] * len(names))
+                msg.header.stamp = rospy.Time(100) + rospy.Duration(0.05 * k)
+                bag.write('/%s_arm/joint_states' % ('left', 'right')[k % 2], msg,
+                          msg.header.stamp)
+        result = rosrun('replay', '--scene', self.bundled_scene, bag_path)
+        self.assertEqual(result.returncode, 1, result.stderr)
+        self.assertIn("; the input gives these names that are no joints of the model: %s; the "
+                      "model has 'joint1' as 'left_joint1', 'right_joint1'; 'joint2' as "
+                      "'left_joint2', 'right_joint2'; 'joint3' as 'left_joint3', 'right_joint3' "
+                      "(publish the model's joint names)" % ', '.join("'%s'" % n for n in names),
+                      result.stderr)
+
     def test_a_refused_cycle_names_its_joint(self):
         # Five rows at 20 Hz, the third with left_joint2 far outside its limits.
         directory = tempfile.mkdtemp(prefix='acm_refusal_')

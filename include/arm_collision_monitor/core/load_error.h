@@ -38,4 +38,40 @@ inline std::string QuotedNames(const std::vector<std::string>& names) {
   return text;
 }
 
+/// For names a file gives that `model_names` lack, those the model has with a prefix (ending in
+/// '_', '/' or '-': a file written for one arm, or a driver's unprefixed joint names), at most
+/// three names and four of the model's each: "; the URDF has 'link7' as 'left_link7',
+/// 'right_link7'" (`model`: "the URDF"); "" when none.
+inline std::string PrefixedNamesHint(const std::vector<std::string>& model_names,
+                                     const std::vector<std::string>& names,
+                                     const std::string& model) {
+  constexpr int kHintedNames = 3;
+  constexpr std::size_t kShownPerName = 4;
+  std::string hint;
+  int hinted = 0;
+  for (const std::string& name : names) {
+    std::vector<std::string> prefixed;
+    std::size_t more = 0;
+    for (const std::string& full : model_names) {
+      if (full.size() <= name.size() + 1) continue;
+      const std::size_t start = full.size() - name.size();
+      const char separator = full[start - 1];
+      if (full.compare(start, name.size(), name) != 0 ||
+          (separator != '_' && separator != '/' && separator != '-')) {
+        continue;
+      }
+      if (prefixed.size() < kShownPerName) {
+        prefixed.push_back(full);
+      } else {
+        ++more;
+      }
+    }
+    if (prefixed.empty()) continue;
+    hint += (hint.empty() ? "; " + model + " has '" : "; '") + name + "' as " +
+            QuotedNames(prefixed) + (more > 0 ? " and " + std::to_string(more) + " more" : "");
+    if (++hinted == kHintedNames) break;
+  }
+  return hint;
+}
+
 }  // namespace arm_collision_monitor

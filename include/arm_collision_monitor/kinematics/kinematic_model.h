@@ -49,6 +49,7 @@ class KinematicModel {
   /// root (its pose is X_WRoot).
   int link_count() const { return static_cast<int>(link_names_.size()); }
   const std::string& link_name(int link) const { return link_names_[link]; }
+  const std::vector<std::string>& link_names() const { return link_names_; }
   /// -1 if unknown.
   int FindLink(const std::string& name) const;
   /// Parent link index, -1 for the root.

@@ -223,7 +223,7 @@ class Plans {
 class Cycles {
  public:
   Cycles(const Workcell& workcell, Input* result)
-      : input_(workcell.joint_names, 1.0), result_(result) {
+      : input_(workcell.joint_names, 1.0), joint_names_(workcell.joint_names), result_(result) {
     input_.SetDefaults(workcell.joint_defaults);
   }
 
@@ -239,6 +239,7 @@ class Cycles {
       is_group_accepted_ = false;
     }
     const MergeStatus status = input_.Merge(sample, stamp.toSec());
+    if (input_.last_unknown_joints() > 0) NoteUnknownNames(sample.names);
     if (status == MergeStatus::kAccepted) {
       is_group_accepted_ = true;
       return;
@@ -258,13 +259,40 @@ class Cycles {
     Flush();
     if (!input_.is_complete()) {
       const std::vector<std::string> missing = input_.MissingJoints();
+      std::string unknown;
+      if (!unknown_names_.empty()) {
+        // Drivers of two alike arms publish the same names (an ALOHA's, 'waist' on each arm's
+        // topic): the model's, told apart, have prefixes.
+        unknown = "; the input gives " + std::string(unknown_names_.size() == kNotedNames
+                                                          ? "these names, and maybe more, "
+                                                          : "these names ") +
+                  "that are no joints of the model: " + QuotedNames(unknown_names_) +
+                  PrefixedNamesHint(joint_names_, unknown_names_, "the model") +
+                  " (publish the model's joint names)";
+      }
       throw LoadError(path + ": no accepted sensor_msgs/JointState message or trajectory point " +
                       "gives " + ModelJointsText(missing) + " (" +
-                      JointDefaultsHint(missing.size()) + ")" + hint);
+                      JointDefaultsHint(missing.size()) + ")" + unknown + hint);
     }
   }
 
  private:
+  static constexpr std::size_t kNotedNames = 8;  // unknown names noted for Finish's error
+
+  // Notes up to kNotedNames names of the input that are no model joints.
+  void NoteUnknownNames(const std::vector<std::string>& names) {
+    if (unknown_names_.size() == kNotedNames) return;
+    for (const std::string& name : names) {
+      if (std::find(joint_names_.begin(), joint_names_.end(), name) != joint_names_.end() ||
+          std::find(unknown_names_.begin(), unknown_names_.end(), name) !=
+              unknown_names_.end()) {
+        continue;
+      }
+      unknown_names_.push_back(name);
+      if (unknown_names_.size() == kNotedNames) return;
+    }
+  }
+
   // Ends the cycle of the samples so far (counted as incomplete before every joint is known).
   void Flush() {
     if (!has_group_ || !is_group_accepted_) return;
@@ -284,6 +312,8 @@ class Cycles {
   }
 
   JointMerger input_;
+  const std::vector<std::string>& joint_names_;
+  std::vector<std::string> unknown_names_;
   Input* result_;
   ros::Time group_stamp_, first_stamp_;
   bool has_group_ = false;
