@@ -193,9 +193,7 @@ void MonitorNode::OnJointState(const sensor_msgs::JointState::ConstPtr& msg) {
       pending_refusal_ = status;
       pending_why_ = why;
     }
-    ROS_WARN_THROTTLE(1.0, "arm_collision_monitor: refused a JointState (%s%s%s), %lu so far",
-                      MergeStatusName(status), why.empty() ? "" : ": ", why.c_str(),
-                      static_cast<unsigned long>(RefusedInputs()));
+    LogRefusal(input_->refused_with(status) == 1, MergeStatusName(status), why);
   }
   report_.unknown_joints = input_->last_unknown_joints();
   has_pending_input_ = true;
@@ -293,9 +291,9 @@ void MonitorNode::RunCycle(std::chrono::steady_clock::time_point start) {
     const std::string refusal =
         cycle.input == InputStatus::kOk ? std::string() : monitor_->DescribeRefusal(input_->q());
     if (!refusal.empty()) {
-      ROS_WARN_THROTTLE(1.0, "arm_collision_monitor: refused a JointState (%s: %s), %lu so far",
-                        SafetyStatusName(ToSafetyStatus(cycle.input)), refusal.c_str(),
-                        static_cast<unsigned long>(RefusedInputs()));
+      // What the merger passes and the monitor refuses: positions outside the joint limits.
+      LogRefusal(monitor_->refused_inputs() == 1, SafetyStatusName(ToSafetyStatus(cycle.input)),
+                 refusal);
     }
     policy_.OnCycleReport(cycle, refusal, primitives_, *input_, now.toSec());
   }
@@ -328,6 +326,17 @@ void MonitorNode::TakeStopDecision(bool was_stop) {
 
 std::uint64_t MonitorNode::RefusedInputs() const {
   return input_->refused() + monitor_->refused_inputs();
+}
+
+void MonitorNode::LogRefusal(bool is_first, const char* kind, const std::string& why) const {
+  const std::string text = std::string("arm_collision_monitor: refused a JointState (") + kind +
+                           (why.empty() ? "" : ": " + why) + "), " +
+                           std::to_string(RefusedInputs()) + " so far";
+  if (is_first) {
+    ROS_WARN("%s", text.c_str());
+  } else {
+    ROS_WARN_THROTTLE(1.0, "%s", text.c_str());
+  }
 }
 
 void MonitorNode::OnStalenessTimer(const ros::TimerEvent&) {

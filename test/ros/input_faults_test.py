@@ -10,6 +10,7 @@ import unittest
 import rospy
 import rostest
 from diagnostic_msgs.msg import DiagnosticArray
+from rosgraph_msgs.msg import Log
 from sensor_msgs.msg import JointState
 
 from arm_collision_monitor.msg import MonitorReport
@@ -31,6 +32,13 @@ class InputFaultsTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         rospy.init_node('input_faults_test')
+        # The node's log, from the start: which refusals it names.
+        cls.node_log = []
+        cls.log_sub = rospy.Subscriber('/rosout', Log, lambda m: cls.node_log.append(m.msg)
+                                       if m.name == NODE else None)
+        deadline = time.time() + 20.0
+        while cls.log_sub.get_num_connections() == 0 and time.time() < deadline:
+            time.sleep(0.05)
         cls.client = MonitorClient(NODE)
         assert cls.client.wait_connected(), 'the monitor never subscribed to its input topics'
         for name in ('check', 'attach', 'detach', 'set_grasp_target'):
@@ -143,6 +151,18 @@ class InputFaultsTest(unittest.TestCase):
     def test_09_no_known_joint_refused(self):
         self.refused_with(MonitorReport.INPUT_NO_KNOWN_JOINTS,
                           lambda: left_only([0.1, 0.2], names=['elbow', 'wrist']))
+
+    def test_09c_each_kind_of_refusal_is_logged(self):
+        # Refusals are logged once a second at most, but the first of each kind always: a dual
+        # FR3 user's burst of NaN messages hid the wrong-size ones from the log.
+        for kind in ('non_finite', 'wrong_size', 'stamp_backwards', 'stale', 'future_stamp',
+                     'no_known_joints'):
+            text = 'arm_collision_monitor: refused a JointState (%s' % kind
+            deadline = time.time() + 5.0
+            while not any(m.startswith(text) for m in self.node_log) and time.time() < deadline:
+                time.sleep(0.05)
+            self.assertTrue(any(m.startswith(text) for m in self.node_log),
+                            '%s: not in the log: %s' % (kind, self.node_log))
 
     def test_10_unknown_names_ignored_and_counted(self):
         c = self.client

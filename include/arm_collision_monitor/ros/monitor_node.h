@@ -87,6 +87,9 @@ class MonitorNode {
   void TakeStopDecision(bool was_stop);
   /// Messages refused so far: by the merger, and by the Monitor (out of limits).
   std::uint64_t RefusedInputs() const;
+  // Logs a refused JointState of `kind` for `why`: the first of its kind (`is_first`) always, the
+  // others at most once a second (a burst of one kind must not hide another).
+  void LogRefusal(bool is_first, const char* kind, const std::string& why) const;
   /// Publishes report_ as a shared pointer (see report_pool_).
   void PublishReport();
   void PublishStop(bool only_on_change);
