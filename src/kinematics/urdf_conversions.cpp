@@ -177,6 +177,33 @@ std::string ElementNamed(const std::string& errors, const tinyxml2::XMLElement* 
   return "";
 }
 
+// For a file urdfdom rejects: "; it is xacro ..." when `root` or an element below it is
+// xacro's (a package's unexpanded robot.urdf.xacro, perhaps one defining macros only), else "".
+std::string XacroNote(const tinyxml2::XMLElement* root) {
+  int count = 0;
+  const tinyxml2::XMLElement* first = nullptr;
+  std::vector<const tinyxml2::XMLElement*> pending{root};
+  while (!pending.empty()) {
+    const tinyxml2::XMLElement* e = pending.back();
+    pending.pop_back();
+    if (std::strncmp(e->Name(), "xacro:", 6) == 0) {
+      ++count;
+      if (first == nullptr || e->GetLineNum() < first->GetLineNum()) first = e;
+    }
+    for (const tinyxml2::XMLElement* c = e->FirstChildElement(); c != nullptr;
+         c = c->NextSiblingElement()) {
+      pending.push_back(c);
+    }
+  }
+  if (first == nullptr) return "";
+  const char* name = first->Attribute("name");
+  const std::string named = name != nullptr ? std::string(" name='") + name + "'" : "";
+  return "; it is xacro, not expanded (" + std::to_string(count) + " <xacro:...> element(s), " +
+         "the first <" + first->Name() + named + "> at line " +
+         std::to_string(first->GetLineNum()) +
+         "): expand it with xacro first, on a machine with ROS's xacro";
+}
+
 }  // namespace
 
 urdf::ModelInterfaceSharedPtr ParseUrdfFile(const std::string& urdf_path) {
@@ -217,6 +244,7 @@ urdf::ModelInterfaceSharedPtr ParseUrdfFile(const std::string& urdf_path) {
     throw LoadError(urdf_path + (element.empty() ? "" : ":" + element) +
                     ": not a valid URDF: urdfdom rejected it" +
                     (errors.empty() ? std::string(" without a reason") : ": " + errors) +
+                    (robot != nullptr ? XacroNote(robot) : "") +
                     " (expected a <robot> whose links and joints form one tree)");
   }
   return model;

@@ -556,6 +556,14 @@ TEST(SceneLoader, MalformedFilesAreRejected) {
     all.insert(all.end(), {urdf, "urdfdom rejected it"});
     ExpectLoadError([&] { LoadWorkcell(urdf, kScene); }, all);
   }
+  // A package's unexpanded xacro that only defines a macro (Interbotix ships its arms so): said.
+  const std::string xacro = WriteTempFile(
+      "macro_only.urdf.xacro",
+      "<robot name='r' xmlns:xacro='http://ros.org/wiki/xacro'>\n<xacro:macro name='arm'>\n"
+      "<link name='a'/>\n</xacro:macro>\n</robot>\n");
+  ExpectLoadError([&] { LoadWorkcell(xacro, kScene); },
+                  {xacro, "urdfdom rejected it", "it is xacro, not expanded (1 <xacro:...> "
+                   "element(s), the first <xacro:macro name='arm'> at line 2): expand it"});
 }
 
 TEST(SceneLoader, UnknownNamesAreRejected) {
