@@ -145,6 +145,32 @@ void AddCollisionObject(const SceneCollisionObject& object, const std::string& p
   AppendObject(spec, shapes_W, tolerance_m, origin, names, workcell);
 }
 
+// For links without primitives, the fixed child links with primitives (at most three links):
+// "; 'link1' has geometry on its fixed child 'link1_sc'" (a URDF that keeps its collision shapes
+// on such children, as franka_description's with_sc, while the SRDF names the parents); "".
+std::string FixedChildrenHint(const Workcell& workcell, const std::vector<std::string>& links) {
+  constexpr int kHintedLinks = 3;
+  const KinematicModel& kinematics = workcell.kinematics;
+  std::string hint;
+  int hinted = 0;
+  for (const std::string& name : links) {
+    const int link = kinematics.FindLink(name);
+    std::vector<std::string> children;
+    for (int child = 1; child < kinematics.link_count(); ++child) {
+      if (kinematics.parent_link(child) == link &&
+          kinematics.joint(child).type == JointType::kFixed &&
+          !ResolveNames(workcell, kinematics.link_name(child)).empty()) {
+        children.push_back(kinematics.link_name(child));
+      }
+    }
+    if (children.empty()) continue;
+    hint += "; '" + name + "' has geometry on its fixed child" +
+            (children.size() == 1 ? " " : "ren ") + QuotedNames(children);
+    if (++hinted == kHintedLinks) break;
+  }
+  return hint.empty() ? "" : hint + " (a rule holds for a link's own geometry: name the children)";
+}
+
 }  // namespace
 
 NamedFile FetchNamedFile(const YAML::Node& node, const Where& where,
@@ -194,7 +220,8 @@ std::vector<std::pair<PrimitiveId, PrimitiveId>> ResolveCollisionRules(
   if (!bare_links.empty()) {
     workcell->warnings.push_back(source + ": skipped " + std::to_string(bare_links.size()) +
                                  " link(s) without primitives (no collision geometry, or "
-                                 "ignored under links:): " + QuotedNames(bare_links));
+                                 "ignored under links:): " + QuotedNames(bare_links) +
+                                 FixedChildrenHint(*workcell, bare_links));
   }
   if (!unknown.empty()) {
     workcell->warnings.push_back(source + ": skipped " + std::to_string(unknown.size()) +

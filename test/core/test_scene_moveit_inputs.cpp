@@ -139,6 +139,14 @@ TEST(SceneMoveitInputs, SrdfDisabledPairsBecomeCompatible) {
                            "'right_tool'", "'world'"}) {
     EXPECT_NE(notice.find(name), std::string::npos) << name << " not in " << notice;
   }
+  // A bare link's fixed children with geometry are named (franka_description's with_sc URDF keeps
+  // the shapes on such children, which the stock SRDF does not name: a dual FR3 user).
+  EXPECT_NE(notice.find("; 'world' has geometry on its fixed children 'left_pedestal', "
+                        "'right_pedestal' (a rule holds for a link's own geometry: name the "
+                        "children)"),
+            std::string::npos)
+      << notice;
+  EXPECT_EQ(notice.find("'left_base_link' has"), std::string::npos) << notice;
   // srdfdom's warning too: this SRDF names robot 'workcell', the URDF 'dual_arm_workcell'.
   EXPECT_FALSE(FindWarning(w, "<robot name='workcell'> differs").empty());
   EXPECT_EQ(w.warnings.size(), base.warnings.size() + 2);
