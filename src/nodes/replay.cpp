@@ -72,6 +72,9 @@ const char* kUsage =
     "                 (default auto; overrides the config's broad_phase)\n"
     "  --topic T      read only topic T of the bag (repeatable): a bag that records both the\n"
     "                 joint states and planned paths of the same joints needs it\n"
+    "  --joint-prefix T=P  put P in front of the joint names of the bag's topic T\n"
+    "                 (repeatable): drivers of alike arms that publish the same names, one\n"
+    "                 topic each, as the node's ~input_joint_prefixes\n"
     "  --grasp L:O    declare object O the grasp target of link L before the first cycle\n"
     "                 (repeatable)\n"
     "  --task N       the grasp targets of the seed's task N (task 3: right_link7:front_box)\n"
@@ -105,6 +108,17 @@ bool ParseOptions(int argc, char** argv, Options* options, std::string* error) {
     } else if (arg == "--topic") {
       if (!value(&v)) return false;
       options->topics.push_back(v);
+    } else if (arg == "--joint-prefix") {
+      if (!value(&v)) return false;
+      const std::size_t equals = v.find('=');
+      if (equals == std::string::npos || equals == 0 || equals + 1 == v.size()) {
+        *error = "--joint-prefix expects topic=prefix, got '" + v + "'";
+        return false;
+      }
+      if (!options->joint_prefixes.emplace(v.substr(0, equals), v.substr(equals + 1)).second) {
+        *error = "--joint-prefix: topic '" + v.substr(0, equals) + "' given twice";
+        return false;
+      }
     } else if (arg == "--grasp") {
       if (!value(&v)) return false;
       const std::size_t colon = v.find(':');
@@ -316,11 +330,13 @@ int Run(const Options& options) {
   }
   const std::unique_ptr<Checker> checker = MakeChecker(options, workcell, monitor_options);
   const bool is_csv = EndsWith(options.input, ".csv");
-  if (is_csv && !options.topics.empty()) {
-    throw LoadError("--topic selects a bag's topics; " + options.input + " is a CSV file");
+  if (is_csv && (!options.topics.empty() || !options.joint_prefixes.empty())) {
+    throw LoadError(std::string(options.topics.empty() ? "--joint-prefix" : "--topic") +
+                    " is for a bag's topics; " + options.input + " is a CSV file");
   }
-  const Input input = is_csv ? ReadCsv(options.input, *workcell)
-                             : replay::ReadBag(options.input, options.topics, *workcell);
+  const Input input =
+      is_csv ? ReadCsv(options.input, *workcell)
+             : replay::ReadBag(options.input, options.topics, options.joint_prefixes, *workcell);
   std::vector<CycleResult> cycles(input.q.size());
   Eigen::VectorXd row_time_s;  // a CSV row's time, for every joint
   for (std::size_t k = 0; k < input.q.size(); ++k) {

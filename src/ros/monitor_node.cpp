@@ -69,6 +69,14 @@ NodeOptions LoadNodeOptions(const ros::NodeHandle& private_nh) {
     throw LoadError("parameter " + private_nh.resolveName("input_topics") +
                     ": expected at least one non-empty topic name");
   }
+  if (private_nh.hasParam("input_joint_prefixes") &&
+      (!private_nh.getParam("input_joint_prefixes", o.input_joint_prefixes) ||
+       (!o.input_joint_prefixes.empty() &&
+        o.input_joint_prefixes.size() != o.input_topics.size()))) {
+    throw LoadError("parameter " + private_nh.resolveName("input_joint_prefixes") +
+                    ": expected a list of one prefix per input topic (" +
+                    std::to_string(o.input_topics.size()) + ", as ~input_topics), or none");
+  }
   ReadPositive(private_nh, "queue_size", false, &o.queue_size);
   ReadPositive(private_nh, "cycle_rate_hz", true, &o.cycle_rate_hz);
   ReadPositive(private_nh, "input_timeout_s", false, &o.input_timeout_s);
@@ -123,9 +131,12 @@ MonitorNode::MonitorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   Advertise();
 
   PublishStop(/*only_on_change=*/false);
-  for (const std::string& topic : options_.input_topics) {
-    subscribers_.push_back(nh_.subscribe(topic, options_.queue_size, &MonitorNode::OnJointState,
-                                         this, ros::TransportHints().tcpNoDelay()));
+  prefixed_names_.resize(options_.input_topics.size());
+  for (std::size_t topic = 0; topic < options_.input_topics.size(); ++topic) {
+    subscribers_.push_back(nh_.subscribe<sensor_msgs::JointState>(
+        options_.input_topics[topic], options_.queue_size,
+        [this, topic](const sensor_msgs::JointState::ConstPtr& msg) { OnJointState(msg, topic); },
+        ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay()));
   }
   if (options_.cycle_rate_hz > 0.0) {
     cycle_timer_ = nh_.createTimer(ros::Duration(1.0 / options_.cycle_rate_hz),
@@ -173,11 +184,23 @@ void MonitorNode::Advertise() {
   diag_time_ = ros::WallTime::now();
 }
 
-void MonitorNode::OnJointState(const sensor_msgs::JointState::ConstPtr& msg) {
+void MonitorNode::OnJointState(const sensor_msgs::JointState::ConstPtr& msg, std::size_t topic) {
   const auto start = std::chrono::steady_clock::now();
   const ros::Time now = ClockNow();
   ++messages_;
-  const NamedPositions input = ToNamedPositions(*msg);
+  const std::vector<std::string>* names = &msg->name;
+  if (!options_.input_joint_prefixes.empty() && !options_.input_joint_prefixes[topic].empty()) {
+    PrefixedNames& cache = prefixed_names_[topic];
+    if (cache.names != msg->name) {
+      cache.names = msg->name;
+      cache.prefixed = msg->name;
+      for (std::string& name : cache.prefixed) {
+        name.insert(0, options_.input_joint_prefixes[topic]);
+      }
+    }
+    names = &cache.prefixed;
+  }
+  const NamedPositions input{*names, msg->position, msg->header.stamp.toSec()};
   const MergeStatus status = input_->Merge(input, now.toSec());
   // Nothing to merge: no cycle (the merger counts it; DiagnoseInput reports the count).
   if (status == MergeStatus::kNoPositions) return;

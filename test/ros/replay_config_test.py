@@ -134,6 +134,22 @@ class ReplayConfigTest(unittest.TestCase):
                       "'left_joint2', 'right_joint2'; 'joint3' as 'left_joint3', 'right_joint3' "
                       "(publish the model's joint names)" % ', '.join("'%s'" % n for n in names),
                       result.stderr)
+        # With a prefix per topic, as the node's ~input_joint_prefixes: the model's two arms (the
+        # first message, of the left arm alone, does not complete the model).
+        prefixes = ['--joint-prefix', '/left_arm/joint_states=left_',
+                    '--joint-prefix', '/right_arm/joint_states=right_']
+        result = rosrun('replay', '--json', '--scene', self.bundled_scene, *prefixes, bag_path)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        report = json.loads(result.stdout)
+        self.assertEqual((report['incomplete_cycles'], report['cycles']), (1, 3))
+        result = rosrun('replay', '--scene', self.bundled_scene, '--joint-prefix', 'left_',
+                        bag_path)
+        self.assertEqual(result.returncode, 2)
+        self.assertIn("--joint-prefix expects topic=prefix, got 'left_'", result.stderr)
+        result = rosrun('replay', '--scene', self.bundled_scene, '--joint-prefix',
+                        '/left_arm/states=left_', bag_path)
+        self.assertEqual(result.returncode, 1)
+        self.assertIn('--joint-prefix /left_arm/states: no ', result.stderr)
 
     def test_a_refused_cycle_names_its_joint(self):
         # Five rows at 20 Hz, the third with left_joint2 far outside its limits.

@@ -105,6 +105,11 @@ class StartupErrorsTest(unittest.TestCase):
             self.assertNotEqual(code, 0, 'started with %s = %s:\n%s' % (param, value, output))
             self.assertIn(param, output)
             self.assertIn(expected, output)
+        # One joint prefix for the two default input topics.
+        code, output = self.run_node(extra=['_input_joint_prefixes:=[left_]'], **self.defaults())
+        self.assertNotEqual(code, 0, 'started with one prefix for two topics:\n' + output)
+        self.assertIn('input_joint_prefixes: expected a list of one prefix per input topic (2, as '
+                      '~input_topics), or none', output)
 
 
 if __name__ == '__main__':

@@ -43,6 +43,9 @@ struct NodeOptions {
   std::string config_path;  ///< ~config: Monitor options YAML (required)
   /// ~input_topics: JointState topics merged by joint name (one per arm, or one combined).
   std::vector<std::string> input_topics{"left_arm/joint_states", "right_arm/joint_states"};
+  /// ~input_joint_prefixes: per input topic, put in front of its joint names (drivers of alike
+  /// arms that publish the same names, one topic each); empty: none.
+  std::vector<std::string> input_joint_prefixes;
   int queue_size = 100;            ///< ~queue_size per input topic (1 kHz input: ~0.1 s)
   double cycle_rate_hz = 0.0;      ///< ~cycle_rate_hz: 0 = one cycle per message
   double input_timeout_s = 0.25;   ///< ~input_timeout_s: staleness bound (5 cycles at 20 Hz)
@@ -66,7 +69,8 @@ class MonitorNode {
   ~MonitorNode();
 
  private:
-  void OnJointState(const sensor_msgs::JointState::ConstPtr& msg);
+  // A message of input topic `topic` (its index in NodeOptions::input_topics).
+  void OnJointState(const sensor_msgs::JointState::ConstPtr& msg, std::size_t topic);
   void OnCycleTimer(const ros::TimerEvent& event);
   void OnStalenessTimer(const ros::TimerEvent& event);
   void OnStopTimer(const ros::TimerEvent& event);
@@ -139,6 +143,12 @@ class MonitorNode {
   std::vector<BoundObject> bound_objects_;
 
   std::vector<ros::Subscriber> subscribers_;
+  // Per input topic with a joint prefix: the names of its last message and those prefixed (made
+  // again only when its names change).
+  struct PrefixedNames {
+    std::vector<std::string> names, prefixed;
+  };
+  std::vector<PrefixedNames> prefixed_names_;
   ros::Publisher report_pub_, stop_pub_, markers_pub_, joint_states_pub_;
   std::vector<ros::ServiceServer> services_;
   ros::Timer cycle_timer_, staleness_timer_, stop_timer_;

@@ -378,13 +378,27 @@ bool IsRead(const rosbag::MessageInstance& m, const std::vector<std::string>& to
   return topics.empty() || std::find(topics.begin(), topics.end(), m.getTopic()) != topics.end();
 }
 
-// The plans of the bag at `path` on `topics`, in bag order.
+// Per topic, a prefix of its joint names (ReadBag).
+using JointPrefixes = std::map<std::string, std::string>;
+
+// `names` with the prefix of `topic`, if it has one.
+void PrefixNames(const JointPrefixes& prefixes, const std::string& topic,
+                 std::vector<std::string>* names) {
+  const auto it = prefixes.find(topic);
+  if (it == prefixes.end()) return;
+  for (std::string& name : *names) name.insert(0, it->second);
+}
+
+// The plans of the bag at `path` on `topics`, in bag order, their joint names prefixed.
 PlanSources ReadPlans(const std::string& path, const rosbag::Bag& bag,
-                      const std::vector<std::string>& topics, Plans* plans) {
+                      const std::vector<std::string>& topics, const JointPrefixes& prefixes,
+                      Plans* plans) {
   PlanSources sources;
   rosbag::View view(bag, rosbag::TypeQuery(kPlanTypes));
-  auto add = [&](const trajectory_msgs::JointTrajectory& plan, const ros::Time& start,
+  std::string topic;  // of the message read
+  auto add = [&](trajectory_msgs::JointTrajectory plan, const ros::Time& start,
                  const std::string& where) {
+    PrefixNames(prefixes, topic, &plan.joint_names);
     sources.joints.insert(plan.joint_names.begin(), plan.joint_names.end());
     ++sources.trajectories;
     sources.empty_trajectories += plan.points.empty() ? 1 : 0;
@@ -392,7 +406,8 @@ PlanSources ReadPlans(const std::string& path, const rosbag::Bag& bag,
   };
   for (const rosbag::MessageInstance& m : view) {
     if (!IsRead(m, topics)) continue;
-    sources.topics.insert(m.getTopic());
+    topic = m.getTopic();
+    sources.topics.insert(topic);
     const std::string where = MessageWhere(path, m);
     if (const auto plan = m.instantiate<trajectory_msgs::JointTrajectory>()) {
       // A header.stamp of 0 (MoveIt's "start now") is the time the bag recorded it.
@@ -400,9 +415,10 @@ PlanSources ReadPlans(const std::string& path, const rosbag::Bag& bag,
     } else if (m.getDataType() == kDisplayTrajectoryType) {
       // MoveIt's display of a plan, at the time the bag recorded it: the start state (the
       // joints the trajectories leave out too), then the trajectories one after the other.
-      const DisplayedPlan displayed = ReadRaw(path, m, ReadDisplayTrajectory);
+      DisplayedPlan displayed = ReadRaw(path, m, ReadDisplayTrajectory);
       ros::Time start = m.getTime();
-      const sensor_msgs::JointState& state = displayed.start_state;
+      sensor_msgs::JointState& state = displayed.start_state;
+      PrefixNames(prefixes, topic, &state.name);
       if (!state.name.empty()) plans->AddState(state, start);
       sources.joints.insert(state.name.begin(), state.name.end());
       for (std::size_t k = 0; k < displayed.trajectories.size(); ++k) {
@@ -423,16 +439,17 @@ PlanSources ReadPlans(const std::string& path, const rosbag::Bag& bag,
   return sources;
 }
 
-// A LoadError unless each of `topics` holds a message of a type read in the bag at `path`.
+// A LoadError unless each of `topics` (of the command-line `option`) holds a message of a type
+// read in the bag at `path`.
 void CheckTopics(const std::string& path, rosbag::View* view,
-                 const std::vector<std::string>& topics) {
+                 const std::vector<std::string>& topics, const std::string& option) {
   for (const std::string& topic : topics) {
     bool is_found = false;
     for (const rosbag::ConnectionInfo* connection : view->getConnections()) {
       is_found |= connection->topic == topic;
     }
     if (!is_found) {
-      throw LoadError(path + ": --topic " + topic + ": no " + ReadTypesText() +
+      throw LoadError(path + ": " + option + " " + topic + ": no " + ReadTypesText() +
                       " message on it");
     }
   }
@@ -458,16 +475,19 @@ void CheckNotPlanned(const std::string& path, const rosbag::MessageInstance& m,
 }  // namespace
 
 Input ReadBag(const std::string& path, const std::vector<std::string>& topics,
-              const Workcell& workcell) {
+              const JointPrefixes& joint_prefixes, const Workcell& workcell) {
   rosbag::Bag bag(path, rosbag::bagmode::Read);
   std::vector<std::string> types = kPlanTypes;
   types.push_back(kJointStateType);
   rosbag::View all(bag, rosbag::TypeQuery(types));
   if (all.size() == 0) throw LoadError(path + ": no " + ReadTypesText() + " message");
-  CheckTopics(path, &all, topics);
+  CheckTopics(path, &all, topics, "--topic");
+  std::vector<std::string> prefixed_topics;
+  for (const auto& [topic, prefix] : joint_prefixes) prefixed_topics.push_back(topic);
+  CheckTopics(path, &all, prefixed_topics, "--joint-prefix");
   Input result;
   Plans plans(&result);
-  const PlanSources sources = ReadPlans(path, bag, topics, &plans);
+  const PlanSources sources = ReadPlans(path, bag, topics, joint_prefixes, &plans);
   const auto planned = plans.InTimeOrder();
   Cycles cycles(workcell, &result);
   // Each sample at `stamp` (of plan `joints`, null for a recorded state) with the other plans
@@ -493,6 +513,7 @@ Input ReadBag(const std::string& path, const std::vector<std::string>& topics,
   for (const rosbag::MessageInstance& m : rosbag::View(bag, rosbag::TypeQuery(kJointStateType))) {
     const auto msg = m.instantiate<sensor_msgs::JointState>();
     if (msg == nullptr || !IsRead(m, topics)) continue;
+    PrefixNames(joint_prefixes, m.getTopic(), &msg->name);
     if (topics.empty()) CheckNotPlanned(path, m, *msg, sources);
     ++result.messages;
     add_planned_before(&msg->header.stamp);

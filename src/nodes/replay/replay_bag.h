@@ -4,6 +4,7 @@
 // merged into cycles (src/nodes/replay.cpp runs them).
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -23,9 +24,10 @@ namespace replay {
 // them, recorded states and planned paths of the same joint are an error (a bag recorded with
 // `rosbag record -a` holds both: what was planned and what was done). A LoadError names the bag
 // (and the message or topic) when it cannot be read, some joint is never given, or a topic given
-// holds none of the types read.
+// holds none of the types read. `joint_prefixes`: per topic, a prefix of its joint names (its
+// states' and plans').
 Input ReadBag(const std::string& path, const std::vector<std::string>& topics,
-              const Workcell& workcell);
+              const std::map<std::string, std::string>& joint_prefixes, const Workcell& workcell);
 
 }  // namespace replay
 }  // namespace arm_collision_monitor

@@ -25,6 +25,9 @@ struct Options {
   bool json = false;
   std::vector<TaskGraspTarget> grasp_targets;
   std::vector<std::string> topics;  ///< --topic: the bag topics read (empty: all)
+  /// --joint-prefix: per bag topic, what its joint names get in front (drivers of alike arms
+  /// that publish the same names)
+  std::map<std::string, std::string> joint_prefixes;
   std::string input;
   bool help = false;  ///< -h or --help: print the usage on stdout and exit 0
 };
