@@ -270,6 +270,22 @@ class ReplayConfigTest(unittest.TestCase):
                           report['warned_cycles']), (1, 2, 2))
         self.assertEqual(report['first_between_samples']['cycle'], 1)
 
+    def test_a_contact_only_between_samples_is_the_first_warning(self):
+        # The left arm, leaning over, swings its base joint from 0.6 to -2.9 rad in one step past
+        # the right arm turned towards it: clear at both samples, in contact between them. The
+        # summary's first warning is that contact (it said the run had none at the samples).
+        csv_path = os.path.join(tempfile.mkdtemp(prefix='acm_between_first_'), 'swing.csv')
+        towards = [1.5708, 0.5, 0.0, 0.0, 0.0, 0.0, 0.0]
+        with open(csv_path, 'w') as f:
+            f.write(','.join(LEFT_JOINTS + RIGHT_JOINTS) + '\n')
+            for left, right in ((HOME, HOME), ([0.6, 0.5] + [0.0] * 5, towards),
+                                ([-2.9, 0.5] + [0.0] * 5, towards)):
+                f.write(','.join(str(x) for x in list(left) + list(right)) + '\n')
+        text = rosrun('replay', '--scene', self.bundled_scene, csv_path).stdout
+        self.assertRegex(text, r'summary: 1 of 3 cycles warn \(0 at their sample, 1 only between '
+                               r'samples\); first at cycle 2 \(0\.10 s\): left_link\d -- '
+                               r'right_link\d at 0\.0000 m between samples, at 0\.\d+ of the step')
+
     def test_json_cycle_times_are_the_inputs_to_the_nanosecond(self):
         # An iiwa user's 1 kHz bag: times rounded to the millisecond made cycles share a time.
         csv_path = os.path.join(tempfile.mkdtemp(prefix='acm_csv_times_'), 'times.csv')
