@@ -256,6 +256,45 @@ TEST(MonitorSwept, PlateMovedIntoPathAfterSweptStep) {
   EXPECT_GT(report.swept_pairs, 0u);
 }
 
+/// A plate across the left tool's way at `mid` (the left arm reaching down at x 0.7) as left
+/// joint `j1` grows: its pose `X_WO` at (0.7, y, 0.95) on the side the tool moves to, with its gap
+/// to the left arm at `mid`, less the arm's tolerances (the plate's own is 0), `gap_m`;
+/// `achieved_m` the gap measured there.
+struct PlateInTheWay {
+  Eigen::Isometry3d X_WO = Eigen::Isometry3d::Identity();
+  double achieved_m = 0.0;
+};
+
+PlateInTheWay PlaceInTheWay(const Workcell& wc, const Eigen::VectorXd& mid, int j1,
+                            const Box& plate_O, double gap_m) {
+  std::vector<Eigen::Isometry3d> X_WL(wc.kinematics.link_count());
+  const int link7 = wc.kinematics.FindLink("left_link7");
+  Eigen::VectorXd ahead = mid;
+  ahead[j1] += 0.01;
+  wc.kinematics.ComputeLinkPoses(ahead, &X_WL);
+  const double y_ahead = X_WL[link7].translation().y();
+  wc.kinematics.ComputeLinkPoses(mid, &X_WL);
+  const double way = y_ahead > X_WL[link7].translation().y() ? 1.0 : -1.0;  // +y or -y
+  auto gap_at = [&](double y) {
+    Box box = plate_O;
+    box.X_WB.translation() = Eigen::Vector3d(0.7, y, 0.95);
+    double gap = std::numeric_limits<double>::infinity();
+    for (const PrimitiveSpec& p : wc.primitives) {
+      if (p.group != "left" || !p.variant.empty()) continue;
+      const double d = ShapeDistance(TransformShape(X_WL[p.link_index], p.shape_L), box)
+                           .distance_m;
+      gap = std::min(gap, d - p.tolerance_m);
+    }
+    return gap;
+  };
+  const double y_far = 0.55 + way * 0.2;
+  const double y = y_far - way * (gap_at(y_far) - gap_m);
+  PlateInTheWay plate;
+  plate.X_WO.translation() = Eigen::Vector3d(0.7, y, 0.95);
+  plate.achieved_m = gap_at(y);
+  return plate;
+}
+
 // A contact just past a sample a hair above the threshold: the swing's midpoint passes a live
 // plate 0.3 mm beyond the tool's threshold, and the tool goes on into it. The bisection meets
 // the plate first in intervals ending at the midpoint, which resolve there (within threshold +
@@ -275,33 +314,10 @@ TEST(MonitorSwept, ContactJustPastANearMissSampleIsReportedInside) {
   PrimitiveId plate = 0;
   while (plate < monitor.primitive_count() && monitor.primitive(plate).owner != "plate") ++plate;
   ASSERT_LT(plate, monitor.primitive_count());
-  // The tool's way at the midpoint (+y or -y as left_joint1 grows), and the gap of the plate,
-  // across that way at y, to the left arm at the midpoint less its threshold.
-  std::vector<Eigen::Isometry3d> X_WL(wc->kinematics.link_count());
-  const int link7 = wc->kinematics.FindLink("left_link7");
-  Eigen::VectorXd ahead = mid;
-  ahead[j1] += 0.01;
-  wc->kinematics.ComputeLinkPoses(ahead, &X_WL);
-  const double y_ahead = X_WL[link7].translation().y();
-  wc->kinematics.ComputeLinkPoses(mid, &X_WL);
-  const double way = y_ahead > X_WL[link7].translation().y() ? 1.0 : -1.0;
-  auto gap_m = [&](double y) {
-    Box box = plate_O;
-    box.X_WB.translation() = Eigen::Vector3d(0.7, y, 0.95);
-    double gap = std::numeric_limits<double>::infinity();
-    for (PrimitiveId id = 0; id < wc->primitives.size(); ++id) {
-      const PrimitiveSpec& p = wc->primitives[id];
-      if (p.group != "left" || !p.variant.empty()) continue;
-      const double d = ShapeDistance(TransformShape(X_WL[p.link_index], p.shape_L), box)
-                           .distance_m;
-      gap = std::min(gap, d - monitor.tolerance_m(id) - monitor.tolerance_m(plate));
-    }
-    return gap;
-  };
-  const double y_far = 0.55 + way * 0.2;
-  const double y = y_far - way * (gap_m(y_far) - 0.0003);
-  ASSERT_NEAR(gap_m(y), 0.0003, 1e-9);
-  X_WO.translation() = Eigen::Vector3d(0.7, y, 0.95);
+  // The plate across the tool's way, 0.3 mm beyond the tool's threshold at the midpoint.
+  const PlateInTheWay in_the_way = PlaceInTheWay(*wc, mid, j1, plate_O, 0.0003);
+  ASSERT_NEAR(in_the_way.achieved_m, 0.0003, 1e-9);
+  X_WO = in_the_way.X_WO;
   ASSERT_TRUE(monitor.MoveObject("plate", X_WO, &error)) << error;
   Eigen::VectorXd q0 = mid, q1 = mid;
   q0[j1] -= 0.4;
@@ -335,37 +351,12 @@ TEST(MonitorSwept, FastStepsNearTheThresholdAreCertifiedClear) {
   const int j1 = JointIndex(*wc, "left_joint1");
   const MonitorOptions options = Unlimited();
   const Box plate_O{Eigen::Isometry3d::Identity(), {0.15, 0.001, 0.15}};
-  // The tool's way as left_joint1 grows (+y or -y) at `mid`.
-  std::vector<Eigen::Isometry3d> X_WL(wc->kinematics.link_count());
-  const int link7 = wc->kinematics.FindLink("left_link7");
-  Eigen::VectorXd ahead = mid;
-  ahead[j1] += 0.01;
-  wc->kinematics.ComputeLinkPoses(ahead, &X_WL);
-  const double y_ahead = X_WL[link7].translation().y();
-  wc->kinematics.ComputeLinkPoses(mid, &X_WL);
-  const double way = y_ahead > X_WL[link7].translation().y() ? 1.0 : -1.0;
-  // The plate across that way at y: its gap to the left arm at `mid` less the threshold, over
-  // the arm's primitives (the plate's tolerance is 0).
-  auto gap_m = [&](double y) {
-    Box box = plate_O;
-    box.X_WB.translation() = Eigen::Vector3d(0.7, y, 0.95);
-    double gap = std::numeric_limits<double>::infinity();
-    for (const PrimitiveSpec& p : wc->primitives) {
-      if (p.group != "left" || !p.variant.empty()) continue;
-      const double d = ShapeDistance(TransformShape(X_WL[p.link_index], p.shape_L), box)
-                           .distance_m;
-      gap = std::min(gap, d - p.tolerance_m);
-    }
-    return gap;
-  };
-  const double y_far = 0.55 + way * 0.2;
   Eigen::VectorXd away = mid;
   away[j1] -= 0.001;
   for (const double gap_at_mid_m : {0.0003, -0.0003}) {
-    const double y = y_far - way * (gap_m(y_far) - gap_at_mid_m);
-    ASSERT_NEAR(gap_m(y), gap_at_mid_m, 1e-9);
-    Eigen::Isometry3d X_WO = Eigen::Isometry3d::Identity();
-    X_WO.translation() = Eigen::Vector3d(0.7, y, 0.95);
+    const PlateInTheWay in_the_way = PlaceInTheWay(*wc, mid, j1, plate_O, gap_at_mid_m);
+    ASSERT_NEAR(in_the_way.achieved_m, gap_at_mid_m, 1e-9);
+    const Eigen::Isometry3d& X_WO = in_the_way.X_WO;
     for (const bool is_moving_away : {true, false}) {
       const std::string context = std::string(is_moving_away ? "away from" : "towards") +
                                   " the plate, " + std::to_string(gap_at_mid_m) + " m at mid";
