@@ -331,8 +331,9 @@ int Run(const Options& options) {
   const std::unique_ptr<Checker> checker = MakeChecker(options, workcell, monitor_options);
   const bool is_csv = EndsWith(options.input, ".csv");
   if (is_csv && (!options.topics.empty() || !options.joint_prefixes.empty())) {
-    throw LoadError(std::string(options.topics.empty() ? "--joint-prefix" : "--topic") +
-                    " is for a bag's topics; " + options.input + " is a CSV file");
+    throw LoadError(std::string(options.topics.empty() ? "--joint-prefix renames"
+                                                       : "--topic selects") +
+                    " a bag's topics; " + options.input + " is a CSV file");
   }
   const Input input =
       is_csv ? ReadCsv(options.input, *workcell)
