@@ -11,6 +11,7 @@
 #include <fstream>
 #include <mutex>
 #include <sstream>
+#include <thread>
 #include <vector>
 
 #include "arm_collision_monitor/core/load_error.h"
@@ -97,10 +98,12 @@ void RewriteDrakeCapsules(const std::string& urdf_path, tinyxml2::XMLElement* li
   for (tinyxml2::XMLElement* cap : caps) link->InsertEndChild(cap);
 }
 
-// While it lives, holds what urdfdom logs through console_bridge (its only account of why it
-// rejects a file), in order, for the caller to put in its error or pass on. console_bridge keeps
-// one handler before the current: captures must not overlap (ParseUrdfFile's lock).
-class ConsoleCapture : public console_bridge::OutputHandler {
+// urdfdom says why it rejects a file only through console_bridge's log. While ParseUrdfFile
+// parses, this handler keeps the parsing thread's messages (errors whatever the log level), and
+// passes the other threads' on to the handler it replaced. console_bridge keeps a pointer to it
+// afterwards (its previous handler, which rosconsole_bridge reinstates at exit), so it lives as
+// long as the process and, when not parsing, writes as console_bridge's own handler does.
+class UrdfdomLog : public console_bridge::OutputHandlerSTD {
  public:
   struct Entry {
     std::string text;
@@ -108,41 +111,96 @@ class ConsoleCapture : public console_bridge::OutputHandler {
     const char* file;
     int line;
   };
+  /// What one parse logged, and where it would have gone.
+  struct Captured {
+    std::vector<Entry> entries;
+    console_bridge::OutputHandler* before = nullptr;  // the handler then (null: none)
+    console_bridge::LogLevel level = console_bridge::CONSOLE_BRIDGE_LOG_WARN;  // the level then
 
-  ConsoleCapture() : previous_(console_bridge::getOutputHandler()) {
+    /// The errors, joined by "; ".
+    std::string Errors() const {
+      std::string joined;
+      for (const Entry& e : entries) {
+        if (e.level < console_bridge::CONSOLE_BRIDGE_LOG_ERROR) continue;
+        joined += (joined.empty() ? "" : "; ") + e.text;
+      }
+      return joined;
+    }
+    /// Hands the entries at the level then to the handler then: all, or those below errors.
+    void PassOn(bool with_errors) const {
+      if (before == nullptr) return;
+      for (const Entry& e : entries) {
+        const bool is_error = e.level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR;
+        if (e.level >= level && (with_errors || !is_error)) {
+          before->log(e.text, e.level, e.file, e.line);
+        }
+      }
+    }
+  };
+
+  static UrdfdomLog& Instance() {
+    static UrdfdomLog* const log = new UrdfdomLog;  // never destroyed: see above
+    return *log;
+  }
+
+  /// Keeps the calling thread's messages until End(). Calls must not overlap (ParseUrdfFile's
+  /// lock). console_bridge's lock is never taken while holding mutex_ (its log() holds it when
+  /// it calls log() below).
+  void Begin() {
+    const console_bridge::LogLevel level = console_bridge::getLogLevel();
+    console_bridge::OutputHandler* const before = console_bridge::getOutputHandler();
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      captured_ = Captured{{}, before, level};
+      thread_ = std::this_thread::get_id();
+      is_capturing_ = true;
+    }
+    if (level > console_bridge::CONSOLE_BRIDGE_LOG_ERROR) {
+      console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_ERROR);
+    }
     console_bridge::useOutputHandler(this);
   }
-  ~ConsoleCapture() override { console_bridge::restorePreviousOutputHandler(); }
-  ConsoleCapture(const ConsoleCapture&) = delete;
-  ConsoleCapture& operator=(const ConsoleCapture&) = delete;
+  /// Puts the handler and the level before Begin() back; returns what was kept.
+  Captured End() {
+    console_bridge::restorePreviousOutputHandler();
+    Captured captured;
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      is_capturing_ = false;
+      captured = std::move(captured_);
+    }
+    console_bridge::setLogLevel(captured.level);
+    return captured;
+  }
 
   void log(const std::string& text, console_bridge::LogLevel level, const char* file,
            int line) override {
-    entries_.push_back({text, level, file, line});
-  }
-  /// The errors, joined by "; ".
-  std::string Errors() const {
-    std::string joined;
-    for (const Entry& e : entries_) {
-      if (e.level < console_bridge::CONSOLE_BRIDGE_LOG_ERROR) continue;
-      joined += (joined.empty() ? "" : "; ") + e.text;
-    }
-    return joined;
-  }
-  /// Hands the entries to the handler that was in place before (the console by default): all,
-  /// or those below errors.
-  void PassOn(bool with_errors) const {
-    if (previous_ == nullptr) return;
-    for (const Entry& e : entries_) {
-      if (with_errors || e.level < console_bridge::CONSOLE_BRIDGE_LOG_ERROR) {
-        previous_->log(e.text, e.level, e.file, e.line);
+    console_bridge::OutputHandler* before = nullptr;
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      if (is_capturing_) {
+        if (std::this_thread::get_id() == thread_) {
+          captured_.entries.push_back({text, level, file, line});
+          return;
+        }
+        if (level < captured_.level) return;  // below the level the other thread set
+        before = captured_.before;
       }
+    }
+    if (before != nullptr) {
+      before->log(text, level, file, line);
+    } else {
+      OutputHandlerSTD::log(text, level, file, line);
     }
   }
 
  private:
-  console_bridge::OutputHandler* previous_;
-  std::vector<Entry> entries_;
+  UrdfdomLog() = default;
+
+  std::mutex mutex_;  // guards the members below: log() runs on any thread
+  Captured captured_;
+  std::thread::id thread_;
+  bool is_capturing_ = false;
 };
 
 // Where urdfdom's `errors` point in `robot`: "<line>: joint 'j'" for the first name they give in
@@ -229,16 +287,25 @@ urdf::ModelInterfaceSharedPtr ParseUrdfFile(const std::string& urdf_path) {
   tinyxml2::XMLPrinter printer;
   doc.Print(&printer);
   urdf::ModelInterfaceSharedPtr model;
-  std::string errors;
+  UrdfdomLog::Captured captured;
   {
-    static std::mutex capture_mutex;
-    const std::lock_guard<std::mutex> lock(capture_mutex);
-    const ConsoleCapture console;
-    model = urdf::parseURDF(printer.CStr());
-    // A file urdfdom takes may still have had errors (a <collision> it dropped): they go out.
-    console.PassOn(model != nullptr);
-    errors = console.Errors();
+    static std::mutex parse_mutex;  // one capture at a time
+    const std::lock_guard<std::mutex> lock(parse_mutex);
+    UrdfdomLog& urdfdom_log = UrdfdomLog::Instance();
+    urdfdom_log.Begin();
+    try {
+      model = urdf::parseURDF(printer.CStr());
+    } catch (const std::exception& e) {
+      captured = urdfdom_log.End();
+      const std::string errors = captured.Errors();
+      throw LoadError(urdf_path + ": not a valid URDF: urdfdom failed: " + e.what() +
+                      (errors.empty() ? "" : " (after: " + errors + ")"));
+    }
+    captured = urdfdom_log.End();
   }
+  // A file urdfdom takes may still have had errors (a <collision> it dropped): they go out.
+  captured.PassOn(model != nullptr);
+  const std::string errors = captured.Errors();
   if (!model) {
     const std::string element = robot != nullptr ? ElementNamed(errors, robot) : "";
     throw LoadError(urdf_path + (element.empty() ? "" : ":" + element) +

@@ -331,7 +331,7 @@ int Run(const Options& options) {
   const std::unique_ptr<Checker> checker = MakeChecker(options, workcell, monitor_options);
   const bool is_csv = EndsWith(options.input, ".csv");
   if (is_csv && (!options.topics.empty() || !options.joint_prefixes.empty())) {
-    throw LoadError(std::string(options.topics.empty() ? "--joint-prefix renames"
+    throw LoadError(std::string(options.topics.empty() ? "--joint-prefix applies to"
                                                        : "--topic selects") +
                     " a bag's topics; " + options.input + " is a CSV file");
   }

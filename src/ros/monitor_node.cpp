@@ -216,7 +216,8 @@ void MonitorNode::OnJointState(const sensor_msgs::JointState::ConstPtr& msg, std
       pending_refusal_ = status;
       pending_why_ = why;
     }
-    LogRefusal(input_->refused_with(status) == 1, MergeStatusName(status), why);
+    LogRefusal(input_->refused_with(status) == 1, MergeStatusName(status), why,
+               &merger_refusal_logged_);
   }
   report_.unknown_joints = input_->last_unknown_joints();
   has_pending_input_ = true;
@@ -316,7 +317,7 @@ void MonitorNode::RunCycle(std::chrono::steady_clock::time_point start) {
     if (!refusal.empty()) {
       // What the merger passes and the monitor refuses: positions outside the joint limits.
       LogRefusal(monitor_->refused_inputs() == 1, SafetyStatusName(ToSafetyStatus(cycle.input)),
-                 refusal);
+                 refusal, &monitor_refusal_logged_);
     }
     policy_.OnCycleReport(cycle, refusal, primitives_, *input_, now.toSec());
   }
@@ -351,15 +352,13 @@ std::uint64_t MonitorNode::RefusedInputs() const {
   return input_->refused() + monitor_->refused_inputs();
 }
 
-void MonitorNode::LogRefusal(bool is_first, const char* kind, const std::string& why) const {
-  const std::string text = std::string("arm_collision_monitor: refused a JointState (") + kind +
-                           (why.empty() ? "" : ": " + why) + "), " +
-                           std::to_string(RefusedInputs()) + " so far";
-  if (is_first) {
-    ROS_WARN("%s", text.c_str());
-  } else {
-    ROS_WARN_THROTTLE(1.0, "%s", text.c_str());
-  }
+void MonitorNode::LogRefusal(bool is_first, const char* kind, const std::string& why,
+                             ros::WallTime* last_logged) const {
+  const ros::WallTime now = ros::WallTime::now();
+  if (!is_first && (now - *last_logged).toSec() < 1.0) return;
+  *last_logged = now;
+  ROS_WARN("arm_collision_monitor: refused a JointState (%s%s%s), %lu so far", kind,
+           why.empty() ? "" : ": ", why.c_str(), static_cast<unsigned long>(RefusedInputs()));
 }
 
 void MonitorNode::OnStalenessTimer(const ros::TimerEvent&) {

@@ -1,5 +1,6 @@
 // LoadWorkcell: the bundled workcell, a third-party-style URDF, and every
 // kind of bad input, each rejected with a message naming the file and the element.
+#include <console_bridge/console.h>
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -556,6 +557,17 @@ TEST(SceneLoader, MalformedFilesAreRejected) {
     all.insert(all.end(), {urdf, "urdfdom rejected it"});
     ExpectLoadError([&] { LoadWorkcell(urdf, kScene); }, all);
   }
+  // With console_bridge silenced (as a process may set it), urdfdom's reasons still reach the
+  // error, and the level is back after.
+  const console_bridge::LogLevel level = console_bridge::getLogLevel();
+  console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_NONE);
+  const std::string silenced = WriteTempFile(
+      "silenced.urdf", head + "<joint name='j' type='revolut'>\n<parent link='a'/><child "
+                              "link='b'/></joint>\n</robot>\n");
+  ExpectLoadError([&] { LoadWorkcell(silenced, kScene); },
+                  {":4: joint 'j': not a valid URDF", "[j] has no known type [revolut]"});
+  EXPECT_EQ(console_bridge::getLogLevel(), console_bridge::CONSOLE_BRIDGE_LOG_NONE);
+  console_bridge::setLogLevel(level);
   // A package's unexpanded xacro that only defines a macro (Interbotix ships its arms so): said.
   const std::string xacro = WriteTempFile(
       "macro_only.urdf.xacro",

@@ -7,6 +7,7 @@ import sys
 import time
 import unittest
 
+import rosgraph
 import rospy
 import rostest
 from diagnostic_msgs.msg import DiagnosticArray
@@ -36,11 +37,14 @@ class InputFaultsTest(unittest.TestCase):
         cls.node_log = []
         cls.log_sub = rospy.Subscriber('/rosout', Log, lambda m: cls.node_log.append(m.msg)
                                        if m.name == NODE else None)
-        deadline = time.time() + 20.0
-        while cls.log_sub.get_num_connections() == 0 and time.time() < deadline:
-            time.sleep(0.05)
         cls.client = MonitorClient(NODE)
         assert cls.client.wait_connected(), 'the monitor never subscribed to its input topics'
+        # Connected to the monitor's own /rosout publisher (its first refusal is logged once).
+        monitor_uri = rosgraph.Master('/input_faults_test').lookupNode(NODE)
+        deadline = time.time() + 20.0
+        while (not any(c.endpoint_id == monitor_uri for c in cls.log_sub.impl.connections) and
+               time.time() < deadline):
+            time.sleep(0.05)
         for name in ('check', 'attach', 'detach', 'set_grasp_target'):
             rospy.wait_for_service(NODE + '/' + name, timeout=20.0)
 

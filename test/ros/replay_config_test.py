@@ -150,6 +150,11 @@ class ReplayConfigTest(unittest.TestCase):
                         '/left_arm/states=left_', bag_path)
         self.assertEqual(result.returncode, 1)
         self.assertIn('--joint-prefix /left_arm/states: no ', result.stderr)
+        result = rosrun('replay', '--scene', self.bundled_scene, '--topic',
+                        '/left_arm/joint_states', *(prefixes + [bag_path]))
+        self.assertEqual(result.returncode, 1)
+        self.assertIn('--joint-prefix /right_arm/joint_states: not among the topics read (--topic)',
+                      result.stderr)
 
     def test_a_refused_cycle_names_its_joint(self):
         # Five rows at 20 Hz, the third with left_joint2 far outside its limits.
@@ -321,8 +326,8 @@ class ReplayConfigTest(unittest.TestCase):
         self.assertEqual([c['time_s'] for c in report['per_cycle']], [0.0, 0.1])
         text = rosrun('replay', '--scene', self.bundled_scene, path).stdout
         self.assertIn('input: 1 messages refused (non_finite: 1) (the first %s), ' % first, text)
-        self.assertIn('summary: no warning in 2 cycles; 1 messages refused, no cycle (the node '
-                      'asks a stop on each;', text)
+        self.assertIn('summary: no warning in 2 cycles; 1 messages or planned points refused, no '
+                      'cycle (the node asks a stop on a message;', text)
 
     def test_between_samples_lines_past_the_first_20_are_counted(self):
         # The swing of test_between_samples_lines_say_what_they_are, there and back four times:

@@ -92,8 +92,10 @@ class MonitorNode {
   /// Messages refused so far: by the merger, and by the Monitor (out of limits).
   std::uint64_t RefusedInputs() const;
   // Logs a refused JointState of `kind` for `why`: the first of its kind (`is_first`) always, the
-  // others at most once a second (a burst of one kind must not hide another).
-  void LogRefusal(bool is_first, const char* kind, const std::string& why) const;
+  // others at most once a second after `*last_logged` (a burst of one kind must not hide
+  // another); nothing is formatted for a line not logged.
+  void LogRefusal(bool is_first, const char* kind, const std::string& why,
+                  ros::WallTime* last_logged) const;
   /// Publishes report_ as a shared pointer (see report_pool_).
   void PublishReport();
   void PublishStop(bool only_on_change);
@@ -149,6 +151,8 @@ class MonitorNode {
     std::vector<std::string> names, prefixed;
   };
   std::vector<PrefixedNames> prefixed_names_;
+  // When a refusal was last logged (LogRefusal): of the merger's, of the monitor's.
+  ros::WallTime merger_refusal_logged_, monitor_refusal_logged_;
   ros::Publisher report_pub_, stop_pub_, markers_pub_, joint_states_pub_;
   std::vector<ros::ServiceServer> services_;
   ros::Timer cycle_timer_, staleness_timer_, stop_timer_;

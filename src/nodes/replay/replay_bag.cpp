@@ -483,7 +483,12 @@ Input ReadBag(const std::string& path, const std::vector<std::string>& topics,
   if (all.size() == 0) throw LoadError(path + ": no " + ReadTypesText() + " message");
   CheckTopics(path, &all, topics, "--topic");
   std::vector<std::string> prefixed_topics;
-  for (const auto& [topic, prefix] : joint_prefixes) prefixed_topics.push_back(topic);
+  for (const auto& [topic, prefix] : joint_prefixes) {
+    if (!topics.empty() && std::find(topics.begin(), topics.end(), topic) == topics.end()) {
+      throw LoadError(path + ": --joint-prefix " + topic + ": not among the topics read (--topic)");
+    }
+    prefixed_topics.push_back(topic);
+  }
   CheckTopics(path, &all, prefixed_topics, "--joint-prefix");
   Input result;
   Plans plans(&result);

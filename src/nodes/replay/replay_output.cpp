@@ -349,10 +349,13 @@ void PrintText(const Options& options, const Workcell& wc, const Input& input,
     unchecked += "; " + std::to_string(refused) + " cycles refused, not checked (the monitor " +
                  "asks a stop on each; see 'input:' above)";
   }
+  std::string refused_messages;
   if (summary.refused_messages > 0) {
-    unchecked += "; " + std::to_string(summary.refused_messages) + " messages refused, no " +
-                 "cycle (the node asks a stop on each; see 'input:' above)";
+    refused_messages = "; " + std::to_string(summary.refused_messages) + " messages or planned " +
+                       "points refused, no cycle (the node asks a stop on a message; see " +
+                       "'input:' above)";
   }
+  unchecked += refused_messages;
   // The first warning, at a sample or between two (the node stops on either).
   const bool is_first_between =
       summary.first_between >= 0 && (summary.first < 0 || summary.first_between < summary.first);
@@ -374,8 +377,8 @@ void PrintText(const Options& options, const Workcell& wc, const Input& input,
                 wc.primitives[w.b].name.c_str(), w.distance_m, where, unchecked.c_str());
   } else if (refused > 0 && refused == cycles.size()) {
     std::printf("summary: no cycle checked: all %llu refused (the monitor asks a stop on each; "
-                "see 'input:' above)\n",
-                refused);
+                "see 'input:' above)%s\n",
+                refused, refused_messages.c_str());
   } else {
     std::printf("summary: no warning in %zu cycles%s\n", cycles.size(), unchecked.c_str());
   }
