@@ -187,7 +187,8 @@ class UrdfdomLog : public console_bridge::OutputHandlerSTD {
         before = captured_.before;
       }
     }
-    if (before != nullptr) {
+    // This handler was itself the one before (reinstated as console_bridge's current one).
+    if (before != nullptr && before != this) {
       before->log(text, level, file, line);
     } else {
       OutputHandlerSTD::log(text, level, file, line);

@@ -578,6 +578,23 @@ TEST(SceneLoader, MalformedFilesAreRejected) {
                    "element(s), the first <xacro:macro name='arm'> at line 2): expand it"});
 }
 
+// The handler that keeps urdfdom's messages stays console_bridge's "previous" one after a parse,
+// and rosconsole_bridge reinstates that one at exit: made current so, it must still be there (a
+// handler on the stack was not), write what is logged, and serve the next parse.
+TEST(SceneLoader, UrdfdomLogHandlerReinstatedStillWorks) {
+  const std::string urdf = WriteTempFile(
+      "reinstated.urdf", "<robot name='r'>\n<link name='a'/>\n<link name='b'/>\n<joint "
+                         "name='j' type='revolut'>\n<parent link='a'/><child link='b'/></joint>"
+                         "\n</robot>\n");
+  ExpectLoadError([&] { LoadWorkcell(urdf, kScene); }, {"[j] has no known type [revolut]"});
+  console_bridge::OutputHandler* const before = console_bridge::getOutputHandler();
+  console_bridge::restorePreviousOutputHandler();  // as rosconsole_bridge's proxy does at exit
+  ASSERT_NE(console_bridge::getOutputHandler(), before);
+  CONSOLE_BRIDGE_logError("logged through the reinstated handler");
+  ExpectLoadError([&] { LoadWorkcell(urdf, kScene); }, {":4: joint 'j'", "[revolut]"});
+  CONSOLE_BRIDGE_logError("and after the next parse");
+}
+
 TEST(SceneLoader, UnknownNamesAreRejected) {
   ExpectSceneError(kUrdf, kWorldLine + "links: {left_link9: {ignore: true}}\n",
                    {"links.left_link9", "unknown link"});
