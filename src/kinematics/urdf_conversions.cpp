@@ -245,7 +245,7 @@ std::string XacroNote(const tinyxml2::XMLElement* root) {
   while (!pending.empty()) {
     const tinyxml2::XMLElement* e = pending.back();
     pending.pop_back();
-    if (std::strncmp(e->Name(), "xacro:", 6) == 0) {
+    if (IsXacroElement(e)) {
       ++count;
       if (first == nullptr || e->GetLineNum() < first->GetLineNum()) first = e;
     }
@@ -264,6 +264,10 @@ std::string XacroNote(const tinyxml2::XMLElement* root) {
 }
 
 }  // namespace
+
+bool IsXacroElement(const tinyxml2::XMLElement* xml) {
+  return std::strncmp(xml->Name(), "xacro:", 6) == 0;
+}
 
 urdf::ModelInterfaceSharedPtr ParseUrdfFile(const std::string& urdf_path) {
   std::ifstream in(urdf_path);

@@ -119,7 +119,6 @@ MergeStatus JointMerger::ValidatePositions(const Layout& layout,
 std::string JointMerger::DescribeRefusal(const NamedPositions& input, MergeStatus status,
                                          double now_s) const {
   const std::vector<std::string>& names = input.names;
-  auto is_model_joint = [&](const std::string& name) { return index_of_name_.count(name) > 0; };
   // The first model joint whose last accepted stamp is later than the message's ("" if none).
   auto backwards = [&]() -> std::string {
     for (const std::string& name : names) {
@@ -147,7 +146,7 @@ std::string JointMerger::DescribeRefusal(const NamedPositions& input, MergeStatu
     }
     case MergeStatus::kNonFinite:
       for (std::size_t k = 0; k < names.size() && k < input.positions.size(); ++k) {
-        if (is_model_joint(names[k]) && !std::isfinite(input.positions[k])) {
+        if (IsModelJoint(names[k]) && !std::isfinite(input.positions[k])) {
           std::ostringstream text;
           text << "joint '" << names[k] << "' at " << input.positions[k];
           return text.str();

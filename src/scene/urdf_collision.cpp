@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <map>
 #include <filesystem>
 
@@ -174,15 +173,11 @@ UrdfLinkGeometry ReadUrdfLinkGeometry(const urdf::Link& link, const std::string&
 
 namespace {
 
-bool IsXacro(const tinyxml2::XMLElement* xml) {
-  return std::strncmp(xml->Name(), "xacro:", 6) == 0;
-}
-
 // `xml` as "<name attribute='value'>" for its first attribute holding ${...} or $(...), as
 // "<name>" when it is an xacro element; "" if neither.
 std::string XacroMark(const tinyxml2::XMLElement* xml) {
   const std::string name = xml->Name();
-  if (IsXacro(xml)) return "<" + name + ">";
+  if (IsXacroElement(xml)) return "<" + name + ">";
   for (const tinyxml2::XMLAttribute* a = xml->FirstAttribute(); a != nullptr; a = a->Next()) {
     const std::string value = a->Value();
     if (value.find("${") != std::string::npos || value.find("$(") != std::string::npos) {
@@ -222,7 +217,7 @@ std::string MacroCallHarm(const std::string& name, const MacroBodies& macros, in
     const std::string child_name = child->Name();
     if (child_name == "link" || child_name == "joint") {
       found = "its macro '" + name + "' writes a <" + child_name + ">";
-    } else if (IsXacro(child)) {
+    } else if (IsXacroElement(child)) {
       const std::string directive = child_name.substr(6);
       if (directive == "macro" || directive == "property" || directive == "arg") continue;
       if (directive == "include" || directive == "if" || directive == "unless" ||
@@ -269,7 +264,7 @@ std::string CheckXacroLeft(const std::string& urdf_xml, const std::string& urdf_
   for (const tinyxml2::XMLElement* child = robot->FirstChildElement(); child != nullptr;
        child = child->NextSiblingElement()) {
     const std::string name = child->Name();
-    if (!IsXacro(child)) {
+    if (!IsXacroElement(child)) {
       if (name == "link" || name == "joint") {
         const std::string found = FirstXacroIn(child);
         if (!found.empty()) refuse(found, "");

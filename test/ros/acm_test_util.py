@@ -2,7 +2,9 @@
 
 Every wait has a timeout and polls topics (never a fixed sleep standing in for a condition).
 """
+import shutil
 import subprocess
+import tempfile
 import threading
 import time
 
@@ -194,6 +196,13 @@ class MonitorClient(object):
         return self.publish_until(
             lambda: self.publish_pose(HOME, HOME),
             lambda r: r.input_status == MonitorReport.INPUT_OK and not r.stop, timeout_s)
+
+
+def temp_dir(test, prefix):
+    """A scratch directory of its own for `test` (a unittest.TestCase), removed when it ends."""
+    directory = tempfile.mkdtemp(prefix=prefix)
+    test.addCleanup(shutil.rmtree, directory, True)
+    return directory
 
 
 def rosrun(executable, *args, timeout_s=600):

@@ -7,7 +7,6 @@ goes to stderr with exit 2; a recording that never names a model joint is refuse
 naming it, and replays once the scene file's joint_defaults give it."""
 import json
 import os
-import tempfile
 import unittest
 
 import rosbag
@@ -18,7 +17,7 @@ import yaml
 from sensor_msgs.msg import JointState
 
 from acm_test_util import (HOME, LEFT_JOINTS, LEFT_TOWARDS_RIGHT, RIGHT_JOINTS,
-                           RIGHT_TOWARDS_LEFT, rosrun)
+                           RIGHT_TOWARDS_LEFT, rosrun, temp_dir)
 
 PKG = 'arm_collision_monitor'
 # The finding LoadWorkcell reports for test/data/replay_scene.yaml: cable_guide lies inside
@@ -88,7 +87,7 @@ class ReplayConfigTest(unittest.TestCase):
 
     def test_joint_defaults_fill_a_recording_of_one_arm(self):
         # A path recorded or planned for the left arm alone, 20 samples at 20 Hz.
-        directory = tempfile.mkdtemp(prefix='acm_joint_defaults_')
+        directory = temp_dir(self, 'acm_joint_defaults_')
         bag_path = os.path.join(directory, 'left_only.bag')
         with rosbag.Bag(bag_path, 'w') as bag:
             for k in range(20):
@@ -119,7 +118,7 @@ class ReplayConfigTest(unittest.TestCase):
         # Two drivers of alike arms, each publishing the same unprefixed names on its own topic
         # (an ALOHA's 'waist', 'shoulder', ...): none is a model joint. The error names what the
         # input gave and the model's prefixed joints.
-        bag_path = os.path.join(tempfile.mkdtemp(prefix='acm_unprefixed_'), 'unprefixed.bag')
+        bag_path = os.path.join(temp_dir(self, 'acm_unprefixed_'), 'unprefixed.bag')
         names = [joint.replace('left_', '') for joint in LEFT_JOINTS]
         with rosbag.Bag(bag_path, 'w') as bag:
             for k in range(4):
@@ -158,7 +157,7 @@ class ReplayConfigTest(unittest.TestCase):
 
     def test_a_refused_cycle_names_its_joint(self):
         # Five rows at 20 Hz, the third with left_joint2 far outside its limits.
-        directory = tempfile.mkdtemp(prefix='acm_refusal_')
+        directory = temp_dir(self, 'acm_refusal_')
         csv_path = os.path.join(directory, 'refused.csv')
         with open(csv_path, 'w') as f:
             f.write(','.join(LEFT_JOINTS + RIGHT_JOINTS) + '\n')
@@ -193,7 +192,7 @@ class ReplayConfigTest(unittest.TestCase):
         # A column of no model joint (a gripper the driver publishes) is ignored and listed; a
         # nan position is a refused cycle, named, not the end of the run; the peers refuse it
         # too.
-        directory = tempfile.mkdtemp(prefix='acm_csv_as_node_')
+        directory = temp_dir(self, 'acm_csv_as_node_')
         csv_path = os.path.join(directory, 'driver.csv')
         with open(csv_path, 'w') as f:
             f.write(','.join(LEFT_JOINTS + ['gripper_x'] + RIGHT_JOINTS) + '\n')
@@ -223,7 +222,7 @@ class ReplayConfigTest(unittest.TestCase):
         # A small arm's URDF mimic joint follows the joint it mimics: its column is not read (a
         # value that disagrees changes nothing) and is listed apart from columns of no joint.
         data = os.path.join(rospkg.RosPack().get_path(PKG), 'test', 'data')
-        csv_path = os.path.join(tempfile.mkdtemp(prefix='acm_csv_mimic_'), 'mimic.csv')
+        csv_path = os.path.join(temp_dir(self, 'acm_csv_mimic_'), 'mimic.csv')
         with open(csv_path, 'w') as f:
             f.write('shoulder,slide,finger_mimic,elbow,spin,gripper_x\n')
             f.write('0,0.01,0.5,0,0,0\n0.1,0.02,0.5,0.1,0,0\n')
@@ -241,7 +240,7 @@ class ReplayConfigTest(unittest.TestCase):
 
     def test_between_samples_lines_say_what_they_are(self):
         # Home, both arms swung into each other in one step, home again (20 Hz).
-        directory = tempfile.mkdtemp(prefix='acm_between_')
+        directory = temp_dir(self, 'acm_between_')
         csv_path = os.path.join(directory, 'swing.csv')
         with open(csv_path, 'w') as f:
             f.write(','.join(LEFT_JOINTS + RIGHT_JOINTS) + '\n')
@@ -274,12 +273,19 @@ class ReplayConfigTest(unittest.TestCase):
         self.assertEqual((report['warning_cycles'], report['between_samples_cycles'],
                           report['warned_cycles']), (1, 2, 2))
         self.assertEqual(report['first_between_samples']['cycle'], 1)
+        self.assertEqual(report['first_between_samples']['kind'], 'strictly_between')
+        # Each JSON entry has its kind, as each line has: the way back's at its start start within.
+        entries = [entry for cycle in report['per_cycle'] for entry in cycle['between_samples']]
+        self.assertTrue(any(entry[3] == 0.0 for entry in entries), entries)
+        for entry in entries:
+            self.assertEqual(entry[4], 'step_starts_within' if entry[3] == 0.0
+                             else 'strictly_between', entry)
 
     def test_a_contact_only_between_samples_is_the_first_warning(self):
         # The left arm, leaning over, swings its base joint from 0.6 to -2.9 rad in one step past
         # the right arm turned towards it: clear at both samples, in contact between them. The
         # summary's first warning is that contact (it said the run had none at the samples).
-        csv_path = os.path.join(tempfile.mkdtemp(prefix='acm_between_first_'), 'swing.csv')
+        csv_path = os.path.join(temp_dir(self, 'acm_between_first_'), 'swing.csv')
         towards = [1.5708, 0.5, 0.0, 0.0, 0.0, 0.0, 0.0]
         with open(csv_path, 'w') as f:
             f.write(','.join(LEFT_JOINTS + RIGHT_JOINTS) + '\n')
@@ -293,7 +299,7 @@ class ReplayConfigTest(unittest.TestCase):
 
     def test_json_cycle_times_are_the_inputs_to_the_nanosecond(self):
         # An iiwa user's 1 kHz bag: times rounded to the millisecond made cycles share a time.
-        csv_path = os.path.join(tempfile.mkdtemp(prefix='acm_csv_times_'), 'times.csv')
+        csv_path = os.path.join(temp_dir(self, 'acm_csv_times_'), 'times.csv')
         times = [0.0, 0.000504, 0.001, 0.001503217]
         with open(csv_path, 'w') as f:
             f.write(','.join(['time_s'] + LEFT_JOINTS + RIGHT_JOINTS) + '\n')
@@ -307,7 +313,7 @@ class ReplayConfigTest(unittest.TestCase):
     def test_the_first_refused_message_is_named(self):
         # A recording whose second message holds a NaN: refused and counted, and named (a
         # Kinova Gen3 user read "1 messages refused (non_finite: 1)" and looked for it).
-        path = os.path.join(tempfile.mkdtemp(prefix='acm_refused_'), 'nan.bag')
+        path = os.path.join(temp_dir(self, 'acm_refused_'), 'nan.bag')
         with rosbag.Bag(path, 'w') as bag:
             for k in range(3):
                 msg = JointState(name=LEFT_JOINTS + RIGHT_JOINTS, position=[0.0] * 14)
@@ -333,7 +339,7 @@ class ReplayConfigTest(unittest.TestCase):
         # The swing of test_between_samples_lines_say_what_they_are, there and back four times:
         # more warnings between samples than the text prints (a Kinova Gen3 user's plan printed
         # 20 and stopped without a word); --json has them all.
-        csv_path = os.path.join(tempfile.mkdtemp(prefix='acm_between_'), 'swings.csv')
+        csv_path = os.path.join(temp_dir(self, 'acm_between_'), 'swings.csv')
         with open(csv_path, 'w') as f:
             f.write(','.join(LEFT_JOINTS + RIGHT_JOINTS) + '\n')
             for k in range(9):

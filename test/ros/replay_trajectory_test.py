@@ -21,6 +21,7 @@ replays as its recording too, and one cut short is such an error."""
 import io
 import json
 import os
+import shutil
 import struct
 import tempfile
 import unittest
@@ -194,6 +195,7 @@ class ReplayTrajectoryTest(unittest.TestCase):
         cls.recording_task3 = os.path.join(package, 'test', 'bags', 'task3.bag')
         cls.samples = both_arm_samples(cls.recording)
         cls.directory = tempfile.mkdtemp(prefix='acm_replay_trajectory_')
+        cls.addClassCleanup(shutil.rmtree, cls.directory, True)
 
     @staticmethod
     def replay(bag_path):

@@ -7,6 +7,10 @@
 #include <Eigen/Geometry>
 #include <string>
 
+namespace tinyxml2 {
+class XMLElement;
+}
+
 namespace arm_collision_monitor {
 
 /// The rigid transform an URDF <origin> states (rpy applied as fixed-axis roll, pitch, yaw).
@@ -20,5 +24,8 @@ Eigen::Isometry3d UrdfPoseToIsometry(const urdf::Pose& pose);
 /// capsule idiom (a cylinder and a sphere on each end face, appended to the link's collision
 /// elements); a bad size or origin of one throws LoadError naming the link and the element.
 urdf::ModelInterfaceSharedPtr ParseUrdfFile(const std::string& urdf_path);
+
+/// Whether `xml` is one of xacro's elements (<xacro:macro>, <xacro:include>, a macro's call).
+bool IsXacroElement(const tinyxml2::XMLElement* xml);
 
 }  // namespace arm_collision_monitor

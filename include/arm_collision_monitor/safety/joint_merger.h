@@ -125,6 +125,8 @@ class JointMerger {
   /// (never received does not count: see is_complete()).
   bool IsStale(double now_s) const;
   const std::string& joint_name(int index) const { return joint_names_[index]; }
+  /// Whether `name` is a joint of the model (Merge ignores and counts the others).
+  bool IsModelJoint(const std::string& name) const { return index_of_name_.count(name) > 0; }
   int joint_count() const { return static_cast<int>(joint_names_.size()); }
   double input_timeout_s() const { return input_timeout_s_; }
 

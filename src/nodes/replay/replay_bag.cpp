@@ -283,7 +283,7 @@ class Cycles {
   void NoteUnknownNames(const std::vector<std::string>& names) {
     if (unknown_names_.size() == kNotedNames) return;
     for (const std::string& name : names) {
-      if (std::find(joint_names_.begin(), joint_names_.end(), name) != joint_names_.end() ||
+      if (input_.IsModelJoint(name) ||
           std::find(unknown_names_.begin(), unknown_names_.end(), name) !=
               unknown_names_.end()) {
         continue;

@@ -133,6 +133,12 @@ BetweenKind KindOf(const Warning& w) {
   return w.step_fraction == 0.0 ? BetweenKind::kFromTheStart : BetweenKind::kStrictlyBetween;
 }
 
+// The kind's name in --json.
+const char* KindName(const Warning& w) {
+  const char* const kNames[] = {"strictly_between", "step_starts_within", "within_resolution"};
+  return kNames[static_cast<int>(KindOf(w))];
+}
+
 // The swept check's warnings, one line each (the first kMaxLines, then how many more) with what
 // each is, and the counts.
 void PrintBetweenSamples(const Workcell& wc, const Input& input,
@@ -280,9 +286,9 @@ void PrintJson(const Options& options, const Workcell& wc, const Input& input,
     const Warning& w = cycles[summary.first_between].between_samples.front();
     std::printf("  \"first_between_samples\": {\"cycle\": %d, \"time_s\": %.9f, \"a\": %s, "
                 "\"b\": %s, \"distance_m\": %.9g, \"threshold_m\": %.9g, \"step_fraction\": "
-                "%.9g},\n",
+                "%.9g, \"kind\": \"%s\"},\n",
                 summary.first_between, input.time_s[summary.first_between], name(w.a).c_str(),
-                name(w.b).c_str(), w.distance_m, w.threshold_m, w.step_fraction);
+                name(w.b).c_str(), w.distance_m, w.threshold_m, w.step_fraction, KindName(w));
   } else {
     std::printf("  \"first_between_samples\": null,\n");
   }
@@ -307,7 +313,8 @@ void PrintJson(const Options& options, const Workcell& wc, const Input& input,
   }
   std::printf("},\n");
   // One entry per cycle: [[a, b, distance_m], ...] at its q (empty when clear), and the swept
-  // check's [[a, b, distance_m, step_fraction], ...] between the previous cycle's q and this.
+  // check's [[a, b, distance_m, step_fraction, kind], ...] between the previous cycle's q and
+  // this (kind: KindName).
   std::printf("  \"per_cycle\": [");
   for (std::size_t k = 0; k < cycles.size(); ++k) {
     std::printf("%s\n    {\"cycle\": %zu, \"time_s\": %.9f, \"refused\": %s, \"warnings\": [",
@@ -320,8 +327,8 @@ void PrintJson(const Options& options, const Workcell& wc, const Input& input,
     std::printf("], \"between_samples\": [");
     for (std::size_t i = 0; i < cycles[k].between_samples.size(); ++i) {
       const Warning& w = cycles[k].between_samples[i];
-      std::printf("%s[%s, %s, %.9g, %.9g]", i ? ", " : "", name(w.a).c_str(), name(w.b).c_str(),
-                  w.distance_m, w.step_fraction);
+      std::printf("%s[%s, %s, %.9g, %.9g, \"%s\"]", i ? ", " : "", name(w.a).c_str(),
+                  name(w.b).c_str(), w.distance_m, w.step_fraction, KindName(w));
     }
     std::printf("]}");
   }
