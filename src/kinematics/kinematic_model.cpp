@@ -110,6 +110,14 @@ std::vector<std::string> KinematicModel::ActuatedJointNames() const {
   return names;
 }
 
+std::vector<std::string> KinematicModel::MimicJointNames() const {
+  std::vector<std::string> names;
+  for (int link = 1; link < link_count(); ++link) {
+    if (joints_[link].mimic_q_index >= 0) names.push_back(joints_[link].name);
+  }
+  return names;
+}
+
 KinematicModel::FkStep KinematicModel::MakeFkStep(const JointSpec& joint, int parent) {
   FkStep step;
   step.parent = parent;

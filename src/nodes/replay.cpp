@@ -161,15 +161,10 @@ bool EndsWith(const std::string& s, const std::string& suffix) {
 
 Input ReadCsv(const std::string& path, const Workcell& workcell) {
   const JointCsv csv = ReadJointCsv(path);
-  std::vector<std::string> mimic_joints;
-  for (int link = 1; link < workcell.kinematics.link_count(); ++link) {
-    const JointSpec& joint = workcell.kinematics.joint(link);
-    if (joint.mimic_q_index >= 0) mimic_joints.push_back(joint.name);
-  }
   Input result;
-  result.q =
-      JointCsvInModelOrder(csv, workcell.joint_names, workcell.joint_defaults, mimic_joints,
-                           &result.ignored_columns, &result.mimic_columns);
+  result.q = JointCsvInModelOrder(csv, workcell.joint_names, workcell.joint_defaults,
+                                  workcell.kinematics.MimicJointNames(), &result.ignored_columns,
+                                  &result.mimic_columns);
   for (const double t : csv.time_s) result.time_s.push_back(t - csv.time_s.front());
   result.messages = result.q.size();
   return result;

@@ -21,7 +21,12 @@ std::string ResolveResourceName(const std::string& name, const std::string& base
   if (name.find("://") != std::string::npos) return name;
   const std::filesystem::path path(name);
   if (path.is_absolute()) return name;
-  return (std::filesystem::path(base_dir) / path).string();
+  // Absolute, so that an error names the file looked for, not a path that reads as taken from
+  // the working directory (the base is; the name is not).
+  const std::filesystem::path joined = std::filesystem::path(base_dir) / path;
+  std::error_code error;
+  const std::filesystem::path absolute = std::filesystem::absolute(joined, error);
+  return (error ? joined : absolute.lexically_normal()).string();
 }
 
 std::string ReadWholeFile(const std::string& path, const std::string& what) {

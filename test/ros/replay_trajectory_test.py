@@ -565,6 +565,10 @@ class ReplayTrajectoryTest(unittest.TestCase):
         self.assertEqual(report['position_less_messages'], 1)
         self.assertEqual(report['refused_messages'], {'wrong_size': 1, 'time_out_of_range': 1})
         self.assertEqual(report['cycles'], 20)  # refused points make no cycle
+        # The first is named: message and point (a Reachy 2 user found it only counted).
+        self.assertRegex(report['first_refused_message'],
+                         r'bad_points\.bag: trajectory_msgs/JointTrajectory on \S+ at bag time '
+                         r'[0-9.]+, point \d+: wrong_size \(7 positions for 14 joint names\)$')
 
     def test_a_bag_without_joint_input_names_both_types(self):
         path = os.path.join(self.directory, 'empty.bag')

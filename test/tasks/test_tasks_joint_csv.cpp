@@ -115,6 +115,27 @@ TEST(JointCsv, ColumnsOfNoModelJointAreIgnored) {
   EXPECT_TRUE(derived.empty());
 }
 
+// A misspelt or prefixed column leaves its model joint without one: the error shows the columns
+// the model does not know beside it (a Reachy 2 user's typo was named only as the joint missing).
+TEST(JointCsv, AMissingJointIsShownWithTheColumnsOfNoModelJoint) {
+  const JointCsv csv =
+      ReadJointCsv(WriteFile("typo", "b, finger_mimic, l_elbow_yaw_joint, c\n1, 9, 8, 2\n"));
+  try {
+    JointCsvInModelOrder(csv, {"l_elbow_yaw", "b", "left_c"}, {}, {"finger_mimic"});
+    ADD_FAILURE() << "no error for the missing columns";
+  } catch (const LoadError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("no column for 2 model joints: 'l_elbow_yaw', 'left_c' ("),
+              std::string::npos)
+        << what;
+    EXPECT_NE(what.find("; the header's columns that are no joints of the model: "
+                        "'l_elbow_yaw_joint', 'c'; the model has 'c' as 'left_c'"),
+              std::string::npos)
+        << what;
+    EXPECT_EQ(what.find("'finger_mimic'"), std::string::npos) << what;  // a mimic joint's
+  }
+}
+
 // A position may be nan or inf (the monitor refuses that cycle, as the node refuses such a
 // message); a time may not.
 TEST(JointCsv, NonFinitePositionsAreReadForTheMonitorToRefuse) {

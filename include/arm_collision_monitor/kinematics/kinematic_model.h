@@ -61,6 +61,8 @@ class KinematicModel {
   /// Names of the actuated joints in q order (depth-first over the tree, siblings by joint
   /// name, so the order does not depend on the order of elements in the file).
   std::vector<std::string> ActuatedJointNames() const;
+  /// Names of the mimic joints (their positions follow from the joints they mimic), by link.
+  std::vector<std::string> MimicJointNames() const;
   /// The link whose parent joint is named `joint_name`, -1 if unknown.
   int FindJointChildLink(const std::string& joint_name) const;
   /// True iff link `link` can move relative to the root (an actuated or mimic joint lies

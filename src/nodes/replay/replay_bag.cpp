@@ -88,7 +88,8 @@ class Plans {
     for (std::size_t k = 0; k < plan.points.size(); ++k) {
       const trajectory_msgs::JointTrajectoryPoint& point = plan.points[k];
       ros::Time stamp;
-      if (!IsReadable(joints.names, point.positions) || !IsInRange(start, point, &stamp)) {
+      if (!IsReadable(joints.names, point.positions, where, k) ||
+          !IsInRange(start, point, &stamp, where, k)) {
         continue;
       }
       const std::string point_where = where + ", point " + std::to_string(k);
@@ -112,9 +113,11 @@ class Plans {
     return end;
   }
 
-  /// A planned state (a DisplayTrajectory's start state) at `stamp`: it supersedes nothing.
-  void AddState(const sensor_msgs::JointState& state, const ros::Time& stamp) {
-    if (!IsReadable(state.name, state.position)) return;
+  /// A planned state (a DisplayTrajectory's start state) at `stamp`, of the message `where`: it
+  /// supersedes nothing.
+  void AddState(const sensor_msgs::JointState& state, const ros::Time& stamp,
+                const std::string& where) {
+    if (!IsReadable(state.name, state.position, where + ", start state", -1)) return;
     plans_.push_back({state.name, {{stamp, next_order_++, state.position}}, stamp});
   }
 
@@ -160,23 +163,37 @@ class Plans {
   }
 
  private:
+  // Counts a refused sample, point `k` (-1: none) of the message `where`, with its `reason`,
+  // which names the first.
+  void Refuse(const char* status, const std::string& where, int k, const std::string& reason) {
+    ++counts_->refused[status];
+    if (!counts_->first_refused_message.empty()) return;
+    counts_->first_refused_message = where + (k >= 0 ? ", point " + std::to_string(k) : "") +
+                                     ": " + status + " (" + reason + ")";
+  }
+
   // Whether a sample's positions match its names (one read message, refused if not; one
   // without positions is counted apart, JointMerger::GivesNoPositions).
-  bool IsReadable(const std::vector<std::string>& names, const std::vector<double>& positions) {
+  bool IsReadable(const std::vector<std::string>& names, const std::vector<double>& positions,
+                  const std::string& where, int k) {
     ++counts_->messages;
     if (positions.size() == names.size()) return true;
     if (JointMerger::GivesNoPositions(NamedPositions{names, positions})) {
       ++counts_->position_less;
       return false;
     }
-    ++counts_->refused[MergeStatusName(MergeStatus::kWrongSize)];
+    Refuse(MergeStatusName(MergeStatus::kWrongSize), where, k,
+           std::to_string(positions.size()) + " positions for " + std::to_string(names.size()) +
+               " joint names");
     return false;
   }
 
   bool IsInRange(const ros::Time& start, const trajectory_msgs::JointTrajectoryPoint& point,
-                 ros::Time* stamp) {
+                 ros::Time* stamp, const std::string& where, int k) {
     if (PointStamp(start, point, stamp)) return true;
-    ++counts_->refused["time_out_of_range"];
+    Refuse("time_out_of_range", where, k,
+           "time_from_start " + std::to_string(point.time_from_start.toSec()) +
+               " s from a start at " + std::to_string(start.toSec()) + " s");
     return false;
   }
 
@@ -223,7 +240,10 @@ class Plans {
 class Cycles {
  public:
   Cycles(const Workcell& workcell, Input* result)
-      : input_(workcell.joint_names, 1.0), joint_names_(workcell.joint_names), result_(result) {
+      : input_(workcell.joint_names, 1.0),
+        joint_names_(workcell.joint_names),
+        mimic_joints_(workcell.kinematics.MimicJointNames()),
+        result_(result) {
     input_.SetDefaults(workcell.joint_defaults);
   }
 
@@ -260,14 +280,15 @@ class Cycles {
     if (!input_.is_complete()) {
       const std::vector<std::string> missing = input_.MissingJoints();
       std::string unknown;
-      if (!unknown_names_.empty()) {
+      const std::vector<std::string>& ignored = result_->ignored_names;
+      if (!ignored.empty()) {
         // Drivers of two alike arms publish the same names (an ALOHA's, 'waist' on each arm's
         // topic): the model's, told apart, have prefixes.
-        unknown = "; the input gives " + std::string(unknown_names_.size() == kNotedNames
+        unknown = "; the input gives " + std::string(ignored.size() == kNotedNames
                                                           ? "these names, and maybe more, "
                                                           : "these names ") +
-                  "that are no joints of the model: " + QuotedNames(unknown_names_) +
-                  PrefixedNamesHint(joint_names_, unknown_names_, "the model") +
+                  "that are no joints of the model: " + QuotedNames(ignored) +
+                  PrefixedNamesHint(joint_names_, ignored, "the model") +
                   " (publish the model's joint names)";
       }
       throw LoadError(path + ": no accepted sensor_msgs/JointState message or trajectory point " +
@@ -277,19 +298,18 @@ class Cycles {
   }
 
  private:
-  static constexpr std::size_t kNotedNames = 8;  // unknown names noted for Finish's error
-
-  // Notes up to kNotedNames names of the input that are no model joints.
+  // Notes up to kNotedNames names of the input that are no model joints, and as many of mimic
+  // joints, apart.
   void NoteUnknownNames(const std::vector<std::string>& names) {
-    if (unknown_names_.size() == kNotedNames) return;
     for (const std::string& name : names) {
-      if (input_.IsModelJoint(name) ||
-          std::find(unknown_names_.begin(), unknown_names_.end(), name) !=
-              unknown_names_.end()) {
-        continue;
+      if (input_.IsModelJoint(name)) continue;
+      const bool is_mimic =
+          std::find(mimic_joints_.begin(), mimic_joints_.end(), name) != mimic_joints_.end();
+      std::vector<std::string>& noted = is_mimic ? result_->mimic_names : result_->ignored_names;
+      if (noted.size() < kNotedNames &&
+          std::find(noted.begin(), noted.end(), name) == noted.end()) {
+        noted.push_back(name);
       }
-      unknown_names_.push_back(name);
-      if (unknown_names_.size() == kNotedNames) return;
     }
   }
 
@@ -313,7 +333,7 @@ class Cycles {
 
   JointMerger input_;
   const std::vector<std::string>& joint_names_;
-  std::vector<std::string> unknown_names_;
+  const std::vector<std::string> mimic_joints_;
   Input* result_;
   ros::Time group_stamp_, first_stamp_;
   bool has_group_ = false;
@@ -419,7 +439,7 @@ PlanSources ReadPlans(const std::string& path, const rosbag::Bag& bag,
       ros::Time start = m.getTime();
       sensor_msgs::JointState& state = displayed.start_state;
       PrefixNames(prefixes, topic, &state.name);
-      if (!state.name.empty()) plans->AddState(state, start);
+      if (!state.name.empty()) plans->AddState(state, start, where);
       sources.joints.insert(state.name.begin(), state.name.end());
       for (std::size_t k = 0; k < displayed.trajectories.size(); ++k) {
         const trajectory_msgs::JointTrajectory& plan = displayed.trajectories[k];

@@ -74,7 +74,9 @@ void PrintJsonCounts(const Options& options, const Input& input, std::size_t cyc
               static_cast<unsigned long long>(input.superseded_points),
               static_cast<unsigned long long>(input.position_less));
   for (const auto& [key, names] : {std::pair{"ignored_columns", &input.ignored_columns},
-                                   std::pair{"mimic_columns", &input.mimic_columns}}) {
+                                   std::pair{"mimic_columns", &input.mimic_columns},
+                                   std::pair{"ignored_names", &input.ignored_names},
+                                   std::pair{"mimic_names", &input.mimic_names}}) {
     std::printf("  \"%s\": [", key);
     for (std::size_t i = 0; i < names->size(); ++i) {
       std::printf("%s%s", i > 0 ? ", " : "", JsonString((*names)[i]).c_str());
@@ -225,6 +227,18 @@ void PrintInputLines(const Input& input, const std::vector<CycleResult>& cycles,
                 "joints they mimic in the URDF): %s\n",
                 input.mimic_columns.size(), input.mimic_columns.size() == 1 ? "" : "s",
                 QuotedNames(input.mimic_columns).c_str());
+  }
+  // A bag's names, noted up to kNotedNames of each kind.
+  auto noted = [](const std::vector<std::string>& names) {
+    return QuotedNames(names) + (names.size() == kNotedNames ? ", maybe more" : "");
+  };
+  if (!input.ignored_names.empty()) {
+    std::printf("input: joint names in the messages that are no joints of the model, ignored: "
+                "%s\n", noted(input.ignored_names).c_str());
+  }
+  if (!input.mimic_names.empty()) {
+    std::printf("input: mimic joints in the messages, not read (their positions follow from the "
+                "joints they mimic in the URDF): %s\n", noted(input.mimic_names).c_str());
   }
   if (input.position_less > 0) {
     std::printf("input: %llu messages named joints without positions (ignored)\n",

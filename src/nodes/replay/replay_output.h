@@ -51,7 +51,13 @@ struct Input {
   /// a CSV's columns of the URDF's mimic joints, not read: their positions follow from the
   /// joints they mimic
   std::vector<std::string> mimic_columns;
+  /// a bag's joint names that are no model joints, and those of the URDF's mimic joints (not
+  /// read, as a CSV's columns): the first kNotedNames of each
+  std::vector<std::string> ignored_names, mimic_names;
 };
+
+/// How many names of each kind Input notes from a bag.
+inline constexpr std::size_t kNotedNames = 8;
 
 // One cycle's outcome: warning pairs with their distances at the cycle's q, those the swept
 // check found between the previous cycle's q and this one's (the Monitor only: the peers check

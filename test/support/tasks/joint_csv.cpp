@@ -152,6 +152,7 @@ std::vector<Eigen::VectorXd> JointCsvInModelOrder(
     model_index.emplace(model_joint_names[j], static_cast<int>(j));
   }
   std::vector<int> column_of(model_joint_names.size(), -1);
+  std::vector<std::string> unknown;  // columns that are no joints of the model, nor mimic ones
   for (std::size_t c = 0; c < csv.joint_names.size(); ++c) {
     const auto it = model_index.find(csv.joint_names[c]);
     if (it == model_index.end()) {
@@ -161,6 +162,7 @@ std::vector<Eigen::VectorXd> JointCsvInModelOrder(
                                         csv.joint_names[c]) != derived_joint_names.end();
       std::vector<std::string>* list = is_derived ? derived : ignored;
       if (list != nullptr) list->push_back(csv.joint_names[c]);
+      if (!is_derived) unknown.push_back(csv.joint_names[c]);
       continue;
     }
     column_of[it->second] = static_cast<int>(c);
@@ -176,8 +178,14 @@ std::vector<Eigen::VectorXd> JointCsvInModelOrder(
     if (column_of[j] < 0 && !has_default[j]) missing.push_back(model_joint_names[j]);
   }
   if (!missing.empty()) {
+    // A misspelt or prefixed name is among the columns the model does not know.
+    const std::string others =
+        unknown.empty() ? ""
+                        : "; the header's columns that are no joints of the model: " +
+                              QuotedNames(unknown) +
+                              PrefixedNamesHint(model_joint_names, unknown, "the model");
     throw LoadError(csv.path + ": header: no column for " + ModelJointsText(missing) + " (" +
-                    JointDefaultsHint(missing.size()) + ")");
+                    JointDefaultsHint(missing.size()) + ")" + others);
   }
   std::vector<Eigen::VectorXd> rows;
   rows.reserve(csv.rows.size());
