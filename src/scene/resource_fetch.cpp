@@ -22,11 +22,12 @@ std::string ResolveResourceName(const std::string& name, const std::string& base
   const std::filesystem::path path(name);
   if (path.is_absolute()) return name;
   // Absolute, so that an error names the file looked for, not a path that reads as taken from
-  // the working directory (the base is; the name is not).
+  // the working directory (the base is; the name is not). Not normalised: the system resolves
+  // a '..' after a symbolic link against the link's target.
   const std::filesystem::path joined = std::filesystem::path(base_dir) / path;
   std::error_code error;
   const std::filesystem::path absolute = std::filesystem::absolute(joined, error);
-  return (error ? joined : absolute.lexically_normal()).string();
+  return (error ? joined : absolute).string();
 }
 
 std::string ReadWholeFile(const std::string& path, const std::string& what) {

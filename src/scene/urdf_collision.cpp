@@ -187,14 +187,14 @@ std::string XacroMark(const tinyxml2::XMLElement* xml) {
   return "";
 }
 
-// The first xacro of `xml`'s subtree (itself included) as XacroMark gives it; "" if none.
-std::string FirstXacroIn(const tinyxml2::XMLElement* xml) {
-  std::string found = XacroMark(xml);
-  for (const tinyxml2::XMLElement* child = xml->FirstChildElement();
-       child != nullptr && found.empty(); child = child->NextSiblingElement()) {
-    found = FirstXacroIn(child);
+// The first element of `xml`'s subtree (itself included) that XacroMark marks; null if none.
+const tinyxml2::XMLElement* FirstXacroIn(const tinyxml2::XMLElement* xml) {
+  if (!XacroMark(xml).empty()) return xml;
+  for (const tinyxml2::XMLElement* child = xml->FirstChildElement(); child != nullptr;
+       child = child->NextSiblingElement()) {
+    if (const tinyxml2::XMLElement* found = FirstXacroIn(child)) return found;
   }
-  return found;
+  return nullptr;
 }
 
 using MacroBodies = std::map<std::string, const tinyxml2::XMLElement*>;
@@ -218,7 +218,7 @@ std::string MacroCallHarm(const std::string& name, const MacroBodies& macros, in
     if (child_name == "link" || child_name == "joint") {
       found = "its macro '" + name + "' writes a <" + child_name + ">";
     } else if (IsXacroElement(child)) {
-      const std::string directive = child_name.substr(6);
+      const std::string directive = child_name.substr(6);  // after "xacro:" (IsXacroElement)
       if (directive == "macro" || directive == "property" || directive == "arg") continue;
       if (directive == "include" || directive == "if" || directive == "unless" ||
           directive == "insert_block" || directive == "element" || directive == "call") {
@@ -241,14 +241,17 @@ std::string CheckXacroLeft(const std::string& urdf_xml, const std::string& urdf_
   }
   const tinyxml2::XMLElement* robot = doc.RootElement();
   if (robot == nullptr) return "";
-  auto refuse = [&](const std::string& found, const std::string& why) {
-    throw LoadError(urdf_path + ": " + found + why +
+  // `at` (line `at`'s, in `owner`: "link 'x': " or ""), as `found`, for reason `why`.
+  auto refuse = [&](const tinyxml2::XMLElement* at, const std::string& owner,
+                    const std::string& found, const std::string& why) {
+    throw LoadError(urdf_path + ":" + std::to_string(at->GetLineNum()) + ": " + owner + found +
+                    why +
                     ": xacro left in the file that changes the model (expected a plain URDF: "
-                    "expand it with xacro first, e.g. rosrun xacro xacro robot.urdf.xacro > "
-                    "robot.urdf)");
+                    "expand it with xacro first, on a machine with ROS's xacro (Debian's ROS has "
+                    "none), e.g. rosrun xacro xacro robot.urdf.xacro > robot.urdf)");
   };
   const std::string robot_mark = XacroMark(robot);
-  if (!robot_mark.empty()) refuse(robot_mark, "");
+  if (!robot_mark.empty()) refuse(robot, "", robot_mark, "");
   MacroBodies macros;
   for (const tinyxml2::XMLElement* child = robot->FirstChildElement("xacro:macro");
        child != nullptr; child = child->NextSiblingElement("xacro:macro")) {
@@ -266,12 +269,15 @@ std::string CheckXacroLeft(const std::string& urdf_xml, const std::string& urdf_
     const std::string name = child->Name();
     if (!IsXacroElement(child)) {
       if (name == "link" || name == "joint") {
-        const std::string found = FirstXacroIn(child);
-        if (!found.empty()) refuse(found, "");
+        if (const tinyxml2::XMLElement* found = FirstXacroIn(child)) {
+          const char* owner = child->Attribute("name");
+          refuse(found, name + " '" + (owner != nullptr ? owner : "") + "': ", XacroMark(found),
+                 "");
+        }
       }
       continue;
     }
-    const std::string directive = name.substr(6);
+    const std::string directive = name.substr(6);  // after "xacro:" (IsXacroElement)
     if (directive == "macro" || directive == "property" || directive == "arg") {
       ++definitions;
     } else if (directive == "include") {
@@ -279,10 +285,10 @@ std::string CheckXacroLeft(const std::string& urdf_xml, const std::string& urdf_
       includes.push_back(file != nullptr ? file : "");
     } else if (directive == "if" || directive == "unless" || directive == "insert_block" ||
                directive == "element" || directive == "call") {
-      refuse("<" + name + ">", "");
+      refuse(child, "", "<" + name + ">", "");
     } else {
       const std::string harm = MacroCallHarm(directive, macros, 0, &harms);
-      if (!harm.empty()) refuse("<" + name + ">", " (" + harm + ")");
+      if (!harm.empty()) refuse(child, "", "<" + name + ">", " (" + harm + ")");
       ++calls;
     }
   }

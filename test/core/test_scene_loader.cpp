@@ -479,7 +479,8 @@ TEST(SceneLoader, XacroLeftIsRefusedWhereItChangesTheModel) {
                                  "<geometry><sphere radius='${r}'/></geometry></collision></link>"
                                  "</robot>");
   ExpectLoadError([&] { LoadWorkcell(unexpanded, kScene); },
-                  {"unexpanded.urdf", "<sphere radius='${r}'>", "changes the model", expand});
+                  {"unexpanded.urdf:1: link 'a': <sphere radius='${r}'>", "changes the model",
+                   expand, "(Debian's ROS has none)"});
   const std::string scene = kData + "three_link_scene.yaml";
   // The three-link arm with `xacro` after its <robot> tag.
   auto with_xacro = [&](const std::string& xacro) {
@@ -524,7 +525,8 @@ TEST(SceneLoader, XacroLeftIsRefusedWhereItChangesTheModel) {
             "<xacro:maybe/>",
             {"<xacro:maybe>", "its macro 'maybe' holds <xacro:if>"}},
            {"<xacro:if value='true'><link name='extra'/></xacro:if>", {"<xacro:if>"}},
-           {"<link name='extra'><xacro:paint link='extra'/></link>", {"<xacro:paint>"}}}) {
+           {"<link name='extra'><xacro:paint link='extra'/></link>",
+            {"link 'extra': <xacro:paint>"}}}) {
     const std::string urdf = with_xacro(xacro);
     std::vector<std::string> all = parts;
     all.insert(all.end(), {urdf, "changes the model", expand});

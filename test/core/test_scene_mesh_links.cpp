@@ -4,9 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <random>
 
 #include "arm_collision_monitor/core/constants.h"
+#include "arm_collision_monitor/scene/resource_fetch.h"
 #include "arm_collision_monitor/scene/workcell.h"
 #include "load_error_expect.h"
 #include "mesh_file_writers.h"
@@ -519,6 +521,29 @@ TEST(SceneMeshLinks, BadMeshObjectsAreRejectedNamingSceneObjectAndFile) {
     all.push_back(files.scene);
     ExpectLoadError([&] { LoadWorkcell(files.urdf, files.scene, CacheIn(dir)); }, all);
   }
+}
+
+// A relative name in a URDF or scene file is taken from the file's folder and made absolute, so
+// that an error names the file looked for (a Reachy 2 user read a relative path as taken from
+// the working directory). Not normalised: '..' after a symbolic link is the parent of the link's
+// target, as the system opens it (package folders are often links into a source tree).
+TEST(SceneMeshLinks, ResourceNamesResolveFromTheirFilesFolder) {
+  EXPECT_EQ(ResolveResourceName("package://p/m.stl", "rel"), "package://p/m.stl");
+  EXPECT_EQ(ResolveResourceName("file:///a/m.stl", "rel"), "file:///a/m.stl");
+  EXPECT_EQ(ResolveResourceName("/a/../m.stl", "rel"), "/a/../m.stl");
+  EXPECT_EQ(ResolveResourceName("m.stl", "/base/dir"), "/base/dir/m.stl");
+  EXPECT_EQ(ResolveResourceName("m.stl", "rel/dir"),
+            (fs::current_path() / "rel/dir/m.stl").string());
+  const fs::path dir = fs::path(::testing::TempDir()) / "acm_resolve_link";
+  fs::remove_all(dir);
+  fs::create_directories(dir / "real" / "robot" / "urdf");
+  fs::create_directories(dir / "real" / "robot" / "meshes");
+  fs::create_directories(dir / "ws");
+  std::ofstream(dir / "real" / "robot" / "meshes" / "x.stl") << "solid x\nendsolid x\n";
+  fs::create_directory_symlink(dir / "real" / "robot" / "urdf", dir / "ws" / "urdf");
+  const std::string url = ResolveResourceName("../meshes/x.stl", (dir / "ws" / "urdf").string());
+  EXPECT_TRUE(fs::path(url).is_absolute()) << url;
+  EXPECT_EQ(ReadWholeFile(url, "a mesh"), "solid x\nendsolid x\n");
 }
 
 }  // namespace

@@ -300,7 +300,7 @@ class ReplayConfigTest(unittest.TestCase):
                           report['warned_cycles']), (1, 2, 2))
         self.assertEqual(report['first_between_samples']['cycle'], 1)
         self.assertEqual(report['first_between_samples']['kind'], 'strictly_between')
-        # Each JSON entry has its kind, as each line has: the way back's at its start start within.
+        # Each JSON entry has its kind, as each line has: those at the way back's start start within.
         entries = [entry for cycle in report['per_cycle'] for entry in cycle['between_samples']]
         self.assertTrue(any(entry[3] == 0.0 for entry in entries), entries)
         for entry in entries:

@@ -382,7 +382,8 @@ class ReplayTrajectoryTest(unittest.TestCase):
         result = rosrun('replay', '--json', path)
         self.assertEqual(result.returncode, 1, result.stdout)
         self.assertIn("gives model joint 'left_joint3' (", result.stderr)
-        self.assertIn("; the plans name 1 joint(s) not in the model: 'left_joint_3'; 1 of the 2 "
+        self.assertIn("; the input gives these names that are no joints of the model: "
+                      "'left_joint_3' (publish the model's joint names); 1 of the 2 "
                       "trajectories read have no points", result.stderr)
 
     def test_a_later_plan_supersedes_an_earlier_one_after_its_start(self):
@@ -565,10 +566,20 @@ class ReplayTrajectoryTest(unittest.TestCase):
         self.assertEqual(report['position_less_messages'], 1)
         self.assertEqual(report['refused_messages'], {'wrong_size': 1, 'time_out_of_range': 1})
         self.assertEqual(report['cycles'], 20)  # refused points make no cycle
-        # The first is named: message and point (a Reachy 2 user found it only counted).
+        # The one of the earliest stamp is named, with its message and point (a Reachy 2 user
+        # found a refused point only counted): the point dated before the plan's start, read
+        # after the short one.
         self.assertRegex(report['first_refused_message'],
-                         r'bad_points\.bag: trajectory_msgs/JointTrajectory on \S+ at bag time '
-                         r'[0-9.]+, point \d+: wrong_size \(7 positions for 14 joint names\)$')
+                         r'^stamped -400000000\.000000 s: \S+/bad_points\.bag: '
+                         r'trajectory_msgs/JointTrajectory on \S+ at bag time [0-9.]+, point 21: '
+                         r'time_out_of_range \(time_from_start -2000000000\.000000 s from a start '
+                         r'at [0-9.]+ s\)$')
+        path = os.path.join(self.directory, 'short_point.bag')
+        write_plan(path, self.samples[:20], bad_points=[short])
+        result, report = self.replay(path)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertRegex(report['first_refused_message'],
+                         r', point 20: wrong_size \(7 positions for 14 joint names\)$')
 
     def test_a_bag_without_joint_input_names_both_types(self):
         path = os.path.join(self.directory, 'empty.bag')

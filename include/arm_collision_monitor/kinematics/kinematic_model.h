@@ -61,7 +61,8 @@ class KinematicModel {
   /// Names of the actuated joints in q order (depth-first over the tree, siblings by joint
   /// name, so the order does not depend on the order of elements in the file).
   std::vector<std::string> ActuatedJointNames() const;
-  /// Names of the mimic joints (their positions follow from the joints they mimic), by link.
+  /// Names of the mimic joints (their positions follow from the joints they mimic), in link
+  /// order.
   std::vector<std::string> MimicJointNames() const;
   /// The link whose parent joint is named `joint_name`, -1 if unknown.
   int FindJointChildLink(const std::string& joint_name) const;

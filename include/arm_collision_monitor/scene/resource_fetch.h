@@ -14,8 +14,9 @@ namespace arm_collision_monitor {
 using ResourceFetcher = std::function<std::string(const std::string& url)>;
 
 /// `name` as a URL to fetch: a name with a scheme ("package://...", "file://...", ...) as
-/// given; a plain path relative to `base_dir` unless absolute, made absolute (a relative
-/// `base_dir` taken from the working directory) so that errors name the file looked for.
+/// given; an absolute path as given; a relative one joined to `base_dir` and made absolute (a
+/// relative `base_dir` taken from the working directory), so that errors name the file looked
+/// for, without normalising it (a '..' after a symbolic link is the link target's parent).
 std::string ResolveResourceName(const std::string& name, const std::string& base_dir);
 
 /// The core's fetcher: a plain file path or a file:// URL is read from the file system; any

@@ -56,6 +56,15 @@ bool PointStamp(const ros::Time& start, const trajectory_msgs::JointTrajectoryPo
   return true;
 }
 
+// Names the refusal of a sample stamped `stamp_s` as the first if none earlier was:
+// "stamped <t> s: " and what `describe` gives (made only then).
+template <typename Describe>
+void NoteRefusal(double stamp_s, Describe describe, Input* input) {
+  if (!(stamp_s < input->first_refused_stamp_s)) return;
+  input->first_refused_stamp_s = stamp_s;
+  input->first_refused_message = "stamped " + std::to_string(stamp_s) + " s: " + describe();
+}
+
 // A bag's planned samples: per plan, its points of its joints. A later plan supersedes, for
 // its joints, the earlier plans' points after its start (a trajectory controller's
 // replacement); their other joints stay.
@@ -75,9 +84,9 @@ class Plans {
   /// `counts`: its messages (points read) and refused and superseded points are counted.
   explicit Plans(Input* counts) : counts_(counts) {}
 
-  /// A trajectory starting at `start`; `where` names its message for a LoadError. A point of
-  /// the wrong size or out of ros::Time's range is refused and counted; one whose
-  /// time_from_start does not increase past the last point taken, or with a position not
+  /// A trajectory starting at `start`; `where` names its message for a LoadError and a refused
+  /// point. A point of the wrong size or out of ros::Time's range is refused and counted; one
+  /// whose time_from_start does not increase past the last point taken, or with a position not
   /// finite, is a LoadError: a trajectory controller refuses such a plan. Returns its last
   /// point's stamp (`start` without one).
   ros::Time AddTrajectory(const trajectory_msgs::JointTrajectory& plan, const ros::Time& start,
@@ -88,11 +97,12 @@ class Plans {
     for (std::size_t k = 0; k < plan.points.size(); ++k) {
       const trajectory_msgs::JointTrajectoryPoint& point = plan.points[k];
       ros::Time stamp;
-      if (!IsReadable(joints.names, point.positions, where, k) ||
-          !IsInRange(start, point, &stamp, where, k)) {
+      const std::string point_where = where + ", point " + std::to_string(k);
+      if (!IsReadable(joints.names, point.positions,
+                      start.toSec() + point.time_from_start.toSec(), point_where) ||
+          !IsInRange(start, point, &stamp, point_where)) {
         continue;
       }
-      const std::string point_where = where + ", point " + std::to_string(k);
       if (!joints.points.empty() && !(stamp > end)) {
         throw LoadError(point_where + ": time_from_start " +
                         std::to_string(point.time_from_start.toSec()) + " s does not increase "
@@ -117,7 +127,7 @@ class Plans {
   /// supersedes nothing.
   void AddState(const sensor_msgs::JointState& state, const ros::Time& stamp,
                 const std::string& where) {
-    if (!IsReadable(state.name, state.position, where + ", start state", -1)) return;
+    if (!IsReadable(state.name, state.position, stamp.toSec(), where + ", start state")) return;
     plans_.push_back({state.name, {{stamp, next_order_++, state.position}}, stamp});
   }
 
@@ -163,35 +173,34 @@ class Plans {
   }
 
  private:
-  // Counts a refused sample, point `k` (-1: none) of the message `where`, with its `reason`,
-  // which names the first.
-  void Refuse(const char* status, const std::string& where, int k, const std::string& reason) {
+  // Counts a refused sample, stamped `stamp_s`, of `where` (its message and point), with its
+  // `reason` (NoteRefusal).
+  void Refuse(const char* status, double stamp_s, const std::string& where,
+              const std::string& reason) {
     ++counts_->refused[status];
-    if (!counts_->first_refused_message.empty()) return;
-    counts_->first_refused_message = where + (k >= 0 ? ", point " + std::to_string(k) : "") +
-                                     ": " + status + " (" + reason + ")";
+    NoteRefusal(stamp_s, [&] { return where + ": " + status + " (" + reason + ")"; }, counts_);
   }
 
   // Whether a sample's positions match its names (one read message, refused if not; one
   // without positions is counted apart, JointMerger::GivesNoPositions).
   bool IsReadable(const std::vector<std::string>& names, const std::vector<double>& positions,
-                  const std::string& where, int k) {
+                  double stamp_s, const std::string& where) {
     ++counts_->messages;
     if (positions.size() == names.size()) return true;
     if (JointMerger::GivesNoPositions(NamedPositions{names, positions})) {
       ++counts_->position_less;
       return false;
     }
-    Refuse(MergeStatusName(MergeStatus::kWrongSize), where, k,
+    Refuse(MergeStatusName(MergeStatus::kWrongSize), stamp_s, where,
            std::to_string(positions.size()) + " positions for " + std::to_string(names.size()) +
                " joint names");
     return false;
   }
 
   bool IsInRange(const ros::Time& start, const trajectory_msgs::JointTrajectoryPoint& point,
-                 ros::Time* stamp, const std::string& where, int k) {
+                 ros::Time* stamp, const std::string& where) {
     if (PointStamp(start, point, stamp)) return true;
-    Refuse("time_out_of_range", where, k,
+    Refuse("time_out_of_range", start.toSec() + point.time_from_start.toSec(), where,
            "time_from_start " + std::to_string(point.time_from_start.toSec()) +
                " s from a start at " + std::to_string(start.toSec()) + " s");
     return false;
@@ -265,12 +274,13 @@ class Cycles {
       return;
     }
     ++result_->refused[MergeStatusName(status)];
-    if (result_->first_refused_message.empty()) {
-      const std::string why = input_.DescribeRefusal(sample, status, stamp.toSec());
-      result_->first_refused_message = "stamped " + std::to_string(stamp.toSec()) + " s: " +
-                                       MergeStatusName(status) +
-                                       (why.empty() ? "" : " (" + why + ")");
-    }
+    NoteRefusal(
+        stamp.toSec(),
+        [&] {
+          const std::string why = input_.DescribeRefusal(sample, status, stamp.toSec());
+          return MergeStatusName(status) + (why.empty() ? "" : " (" + why + ")");
+        },
+        result_);
   }
 
   /// Ends the last cycle; a LoadError naming the bag at `path`, every joint never given, and
@@ -368,29 +378,13 @@ struct PlanSources {
   std::size_t trajectories = 0, empty_trajectories = 0;  // read, and of those without points
 };
 
-// What the plans of `sources` held that may explain joints never given to `workcell`: joints
-// not in the model (a misspelt name), trajectories without points.
-std::string PlanHint(const PlanSources& sources, const Workcell& workcell) {
-  std::vector<std::string> unknown;
-  for (const std::string& name : sources.joints) {
-    if (std::find(workcell.joint_names.begin(), workcell.joint_names.end(), name) ==
-        workcell.joint_names.end()) {
-      unknown.push_back(name);
-    }
-  }
-  std::sort(unknown.begin(), unknown.end());
-  std::string hint;
-  if (!unknown.empty()) {
-    hint += "; the plans name " + std::to_string(unknown.size()) + " joint(s) not in the model:";
-    for (std::size_t k = 0; k < unknown.size(); ++k) {
-      hint += (k == 0 ? " '" : ", '") + unknown[k] + "'";
-    }
-  }
-  if (sources.empty_trajectories > 0) {
-    hint += "; " + std::to_string(sources.empty_trajectories) + " of the " +
-            std::to_string(sources.trajectories) + " trajectories read have no points";
-  }
-  return hint;
+// What the plans of `sources` held that may explain joints never given: trajectories without
+// points (their names that are no model joints, a misspelt one, Cycles::Finish gives with the
+// recorded states' ones).
+std::string PlanHint(const PlanSources& sources) {
+  if (sources.empty_trajectories == 0) return "";
+  return "; " + std::to_string(sources.empty_trajectories) + " of the " +
+         std::to_string(sources.trajectories) + " trajectories read have no points";
 }
 
 // Whether `m` is on one of `topics` (empty: all are read).
@@ -545,7 +539,7 @@ Input ReadBag(const std::string& path, const std::vector<std::string>& topics,
     add(ToNamedPositions(*msg), msg->header.stamp, nullptr);
   }
   add_planned_before(nullptr);
-  cycles.Finish(path, PlanHint(sources, workcell));
+  cycles.Finish(path, PlanHint(sources));
   return result;
 }
 

@@ -135,20 +135,24 @@ BetweenKind KindOf(const Warning& w) {
   return w.step_fraction == 0.0 ? BetweenKind::kFromTheStart : BetweenKind::kStrictlyBetween;
 }
 
-// The kind's name in --json.
-const char* KindName(const Warning& w) {
-  const char* const kNames[] = {"strictly_between", "step_starts_within", "within_resolution"};
-  return kNames[static_cast<int>(KindOf(w))];
-}
+// Per BetweenKind, in its order: its name in --json and its note in the text.
+struct BetweenKindText {
+  const char* name;
+  const char* note;
+};
+constexpr BetweenKindText kBetweenKinds[] = {
+    {"strictly_between", ""},
+    {"step_starts_within", " (the step starts within: the previous sample's warning)"},
+    {"within_resolution",
+     " (above the threshold here; not certified clear to swept_resolution_m near it)"}};
+
+const char* KindName(const Warning& w) { return kBetweenKinds[static_cast<int>(KindOf(w))].name; }
 
 // The swept check's warnings, one line each (the first kMaxLines, then how many more) with what
 // each is, and the counts.
 void PrintBetweenSamples(const Workcell& wc, const Input& input,
                          const std::vector<CycleResult>& cycles, const RunSummary& summary) {
   constexpr int kMaxLines = 20;
-  const char* const kNotes[] = {"", " (the step starts within: the previous sample's warning)",
-                                " (above the threshold here; not certified clear to "
-                                "swept_resolution_m near it)"};
   int lines = 0;
   // Cycles by their between-samples warnings: any contact strictly between the samples, else
   // only of one other kind, else of both.
@@ -164,7 +168,7 @@ void PrintBetweenSamples(const Workcell& wc, const Input& input,
                   "(threshold %.4f m)%s\n",
                   k, input.time_s[k], w.step_fraction, wc.primitives[w.a].name.c_str(),
                   wc.primitives[w.b].name.c_str(), w.distance_m, w.threshold_m,
-                  kNotes[static_cast<int>(kind)]);
+                  kBetweenKinds[static_cast<int>(kind)].note);
     }
     const bool is_start = has_kind[static_cast<int>(BetweenKind::kFromTheStart)];
     const bool is_resolution = has_kind[static_cast<int>(BetweenKind::kWithinResolution)];
@@ -194,7 +198,8 @@ void PrintBetweenSamples(const Workcell& wc, const Input& input,
 }
 
 // The "input:" lines: what the input had that no cycle checks (refused messages and cycles,
-// ignored columns, position-less messages, superseded planned points).
+// ignored columns and mimic joints' ones, a bag's ignored and mimic joint names, position-less
+// messages, superseded planned points).
 void PrintInputLines(const Input& input, const std::vector<CycleResult>& cycles,
                      const RunSummary& summary) {
   if (summary.refused_messages > 0 || input.incomplete_cycles > 0 || summary.refused_cycles > 0) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -42,8 +43,11 @@ struct Input {
   std::uint64_t messages = 0;  ///< samples read: JointState messages, trajectory points, rows
   /// MergeStatusName (or "time_out_of_range": a trajectory point's stamp) -> count
   std::map<std::string, std::uint64_t> refused;
-  /// the first refused message: its stamp (s, on the bag's clock) and why ("" if none)
+  /// the refused message or planned point of the earliest stamp (s, on the bag's clock):
+  /// "stamped <t> s: <status> (<why>)" for a message, "stamped <t> s: <message>, point <k>:
+  /// <status> (<why>)" for a point ("" if none), and that stamp
   std::string first_refused_message;
+  double first_refused_stamp_s = std::numeric_limits<double>::infinity();
   std::uint64_t incomplete_cycles = 0;           ///< before every joint was received
   std::uint64_t superseded_points = 0;  ///< planned points (partly) replaced by a later plan
   std::uint64_t position_less = 0;      ///< messages and points naming joints without positions

@@ -17,6 +17,8 @@ namespace {
 
 constexpr const char* kTimeColumn = "time_s";
 constexpr const char* kUtf8ByteOrderMark = "\xEF\xBB\xBF";
+// Columns of no model joint named in the error for a missing joint (JointCsvInModelOrder).
+constexpr std::size_t kNotedColumns = 8;
 
 std::string Trim(const std::string& s) {
   const std::size_t begin = s.find_first_not_of(" \t\r");
@@ -179,10 +181,13 @@ std::vector<Eigen::VectorXd> JointCsvInModelOrder(
   }
   if (!missing.empty()) {
     // A misspelt or prefixed name is among the columns the model does not know.
+    const std::size_t more = unknown.size() - std::min(unknown.size(), kNotedColumns);
+    unknown.resize(unknown.size() - more);
     const std::string others =
         unknown.empty() ? ""
                         : "; the header's columns that are no joints of the model: " +
                               QuotedNames(unknown) +
+                              (more > 0 ? " and " + std::to_string(more) + " more" : "") +
                               PrefixedNamesHint(model_joint_names, unknown, "the model");
     throw LoadError(csv.path + ": header: no column for " + ModelJointsText(missing) + " (" +
                     JointDefaultsHint(missing.size()) + ")" + others);

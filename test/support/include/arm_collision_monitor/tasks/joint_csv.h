@@ -30,9 +30,10 @@ JointCsv ReadJointCsv(const std::string& path);
 /// once at start-up. A column that is no model joint is ignored, as the node ignores such a
 /// name, and listed (when the lists are given): in `derived` for `derived_joint_names` (the
 /// URDF's mimic joints, whose positions follow from others), else in `ignored`. Every model
-/// joint must be a column or
-/// in `defaults` ((q index, position), Workcell::joint_defaults: the position in every row);
-/// otherwise throws LoadError naming the file and the joints (every missing one at once).
+/// joint must be a column or in `defaults` ((q index, position), Workcell::joint_defaults: the
+/// position in every row); otherwise throws LoadError naming the file and the joints (every
+/// missing one at once), with the columns of no model joint (the first kNotedColumns: a typo,
+/// a missing prefix, which PrefixedNamesHint shows).
 std::vector<Eigen::VectorXd> JointCsvInModelOrder(
     const JointCsv& csv, const std::vector<std::string>& model_joint_names,
     const std::vector<std::pair<int, double>>& defaults = {},
