@@ -59,6 +59,13 @@ void JointMerger::SetDefaults(const std::vector<std::pair<int, double>>& default
   }
 }
 
+void JointMerger::SetMimicJoints(const std::vector<std::string>& names) {
+  mimic_names_.clear();
+  mimic_names_.insert(names.begin(), names.end());
+  layouts_.clear();  // their counts change
+  last_layout_ = 0;
+}
+
 JointMerger::Layout JointMerger::BuildLayout(const std::vector<std::string>& names) const {
   Layout layout;
   layout.names = names;
@@ -67,7 +74,7 @@ JointMerger::Layout JointMerger::BuildLayout(const std::vector<std::string>& nam
   for (std::size_t k = 0; k < names.size(); ++k) {
     const auto it = index_of_name_.find(names[k]);
     if (it == index_of_name_.end()) {
-      ++layout.unknown_count;
+      ++(IsMimicJoint(names[k]) ? layout.mimic_count : layout.unknown_count);
       continue;
     }
     if (seen[it->second]) {
@@ -105,7 +112,7 @@ MergeStatus JointMerger::ValidatePositions(const Layout& layout,
   if (input.positions.size() != input.names.size() || layout.has_duplicate) {
     return MergeStatus::kWrongSize;
   }
-  if (layout.unknown_count == layout.names.size()) {
+  if (layout.unknown_count + layout.mimic_count == layout.names.size()) {
     return MergeStatus::kNoKnownJoints;
   }
   for (std::size_t k = 0; k < layout.q_index.size(); ++k) {
@@ -156,7 +163,11 @@ std::string JointMerger::DescribeRefusal(const NamedPositions& input, MergeStatu
     case MergeStatus::kNoKnownJoints:
       return names.empty() ? "no name"
                            : "none of its " + std::to_string(names.size()) +
-                                 " names is a model joint, the first '" + names.front() + "'";
+                                 " names is a model joint, the first '" + names.front() + "'" +
+                                 (IsMimicJoint(names.front())
+                                      ? " (a mimic joint: its position follows from the joint "
+                                        "it mimics in the URDF; give that one)"
+                                      : "");
     case MergeStatus::kStale:
     case MergeStatus::kFutureStamp: {
       const double age_s = now_s - input.stamp_s;
@@ -206,6 +217,8 @@ MergeStatus JointMerger::Merge(const NamedPositions& input, double now_s) {
   const Layout& layout = FindOrAddLayout(input.names);
   last_unknown_joints_ = layout.unknown_count;
   total_unknown_joints_ += layout.unknown_count;
+  last_mimic_joints_ = layout.mimic_count;
+  total_mimic_joints_ += layout.mimic_count;
   const double stamp_s = input.stamp_s == 0.0 ? now_s : input.stamp_s;
   MergeStatus status = ValidatePositions(layout, input);
   if (status == MergeStatus::kAccepted) {

@@ -118,6 +118,29 @@ TEST(JointMerger, UnknownNamesAreIgnoredAndCounted) {
   EXPECT_EQ(merger.q(), Eigen::Vector3d(1.0, 2.0, 3.0));
 }
 
+// A URDF mimic joint (a Piper's second finger, which joint_state_publisher and some drivers
+// publish) is no model joint either, but counted apart, and a refusal says what it is.
+TEST(JointMerger, MimicJointNamesAreIgnoredAndCountedApart) {
+  JointMerger merger(kJoints, kTimeout_s);
+  merger.SetMimicJoints({"a2_mimic"});
+  EXPECT_TRUE(merger.IsMimicJoint("a2_mimic"));
+  EXPECT_FALSE(merger.IsModelJoint("a2_mimic"));
+  EXPECT_EQ(MergeAt(&merger, {"a1", "a2_mimic", "x"}, {1.0, 9.0, 9.0}, 1.0, 1.0),
+            MergeStatus::kAccepted);
+  EXPECT_EQ(merger.last_unknown_joints(), 1u);
+  EXPECT_EQ(merger.last_mimic_joints(), 1u);
+  const std::vector<std::string> names = {"a2_mimic"};
+  const std::vector<double> positions = {0.5};
+  const NamedPositions mimic_only{names, positions, 1.0};
+  EXPECT_EQ(merger.Merge(mimic_only, 1.0), MergeStatus::kNoKnownJoints);
+  EXPECT_EQ(merger.total_unknown_joints(), 1u);
+  EXPECT_EQ(merger.total_mimic_joints(), 2u);
+  EXPECT_EQ(merger.DescribeRefusal(mimic_only, MergeStatus::kNoKnownJoints, 1.0),
+            "none of its 1 names is a model joint, the first 'a2_mimic' (a mimic joint: its "
+            "position follows from the joint it mimics in the URDF; give that one)");
+  EXPECT_EQ(merger.q()[0], 1.0);
+}
+
 TEST(JointMerger, MessagesWithoutPositionsAreIgnoredNotRefused) {
   // JointState's arrays may be empty: a driver publishing efforts only names its joints with no
   // position. Nothing is merged, nothing refused; a joint only such messages name goes stale.

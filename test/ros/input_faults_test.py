@@ -290,6 +290,14 @@ class InputFaultsTest(unittest.TestCase):
         self.assertTrue(beyond.message.startswith(
             "joint state refused: out_of_limits (joint 'left_joint2' at 10, outside its limits ["),
             beyond.message)
+        # A name that is no model joint is ignored and said (a Piper user's 'bogus_joint' was
+        # answered "0 warning(s)" without a word).
+        check = rospy.ServiceProxy(NODE + '/check', CheckJointState)
+        extra = check(joint_state(LEFT_JOINTS + RIGHT_JOINTS + ['bogus_joint'],
+                                  HOME + HOME + [0.0]))
+        self.assertTrue(extra.success, extra.message)
+        self.assertEqual(extra.message,
+                         "0 warning(s); ignored, no joints of the model: 'bogus_joint'")
         # The live model still gives a clear report on home input.
         report = c.publish_until(lambda: c.publish_pose(HOME, HOME), lambda r: True)
         self.assertEqual(report.warnings, [])
@@ -419,6 +427,8 @@ class InputFaultsTest(unittest.TestCase):
         self.assertEqual(sum(int(v) for k, v in inputs.items() if k.startswith('refused: ')),
                          int(inputs['refused (total)']), inputs)
         self.assertGreater(int(inputs['unknown joint names (total)']), 0)
+        # The bundled workcell has no mimic joint: none counted apart.
+        self.assertEqual(inputs['mimic joint names, ignored (total)'], '0')
         self.assertGreaterEqual(int(inputs['position-less messages (ignored)']), 5)
         self.assertGreater(int(inputs['stale episodes']), 0)
         self.assertIn('message rate (Hz)', inputs)

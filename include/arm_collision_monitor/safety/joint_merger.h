@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 #include <utility>
 #include <vector>
 
@@ -76,6 +77,11 @@ class JointMerger {
   /// leave out, e.g. a gripper's in a planned arm path).
   void SetDefaults(const std::vector<std::pair<int, double>>& defaults);
 
+  /// The URDF's mimic joints (KinematicModel::MimicJointNames): their positions follow from the
+  /// joints they mimic, so a message's mimic joints are ignored like unknown names but counted
+  /// apart, and a refusal says what they are. Call before the first Merge.
+  void SetMimicJoints(const std::vector<std::string>& names);
+
   /// Validates `input` (received at `now_s`, the same clock as its stamps) and, if it is
   /// acceptable, writes its model joints into q. Names that are not model joints are ignored and
   /// counted. Allocates only when a new name layout is seen.
@@ -127,12 +133,19 @@ class JointMerger {
   const std::string& joint_name(int index) const { return joint_names_[index]; }
   /// Whether `name` is a joint of the model (Merge ignores and counts the others).
   bool IsModelJoint(const std::string& name) const { return index_of_name_.count(name) > 0; }
+  /// Whether `name` is one of SetMimicJoints' (no model joint).
+  bool IsMimicJoint(const std::string& name) const { return mimic_names_.count(name) > 0; }
   int joint_count() const { return static_cast<int>(joint_names_.size()); }
   double input_timeout_s() const { return input_timeout_s_; }
 
-  /// Unknown names in the last merged message, and in all messages so far.
+  /// Unknown names in the last merged message, and in all messages so far (mimic joints'
+  /// names not among them).
   std::uint32_t last_unknown_joints() const { return last_unknown_joints_; }
   std::uint64_t total_unknown_joints() const { return total_unknown_joints_; }
+  /// Names of mimic joints (SetMimicJoints), ignored, in the last merged message and in all
+  /// messages so far.
+  std::uint32_t last_mimic_joints() const { return last_mimic_joints_; }
+  std::uint64_t total_mimic_joints() const { return total_mimic_joints_; }
   /// Messages refused by Merge() so far, in all and per status (indexed by its value).
   std::uint64_t refused() const { return refused_; }
   std::uint64_t refused_with(MergeStatus status) const;
@@ -148,7 +161,8 @@ class JointMerger {
   struct Layout {
     std::vector<std::string> names;
     std::vector<int> q_index;
-    std::uint32_t unknown_count = 0;
+    std::uint32_t unknown_count = 0;  // no model joint, nor a mimic one
+    std::uint32_t mimic_count = 0;
     bool has_duplicate = false;
   };
   const Layout& FindOrAddLayout(const std::vector<std::string>& names);
@@ -161,6 +175,7 @@ class JointMerger {
 
   std::vector<std::string> joint_names_;
   std::unordered_map<std::string, int> index_of_name_;
+  std::unordered_set<std::string> mimic_names_;
   double input_timeout_s_;
   Eigen::VectorXd q_;
   std::vector<double> stamp_s_;     ///< newest accepted stamp per joint (-inf: none)
@@ -174,6 +189,8 @@ class JointMerger {
   std::size_t last_layout_ = 0;
   std::uint32_t last_unknown_joints_ = 0;
   std::uint64_t total_unknown_joints_ = 0;
+  std::uint32_t last_mimic_joints_ = 0;
+  std::uint64_t total_mimic_joints_ = 0;
   std::uint64_t refused_ = 0;
   std::uint64_t refused_by_status_[kSafetyStatusCount] = {};
   std::uint64_t position_less_ = 0;

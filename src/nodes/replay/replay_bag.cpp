@@ -249,11 +249,9 @@ class Plans {
 class Cycles {
  public:
   Cycles(const Workcell& workcell, Input* result)
-      : input_(workcell.joint_names, 1.0),
-        joint_names_(workcell.joint_names),
-        mimic_joints_(workcell.kinematics.MimicJointNames()),
-        result_(result) {
+      : input_(workcell.joint_names, 1.0), joint_names_(workcell.joint_names), result_(result) {
     input_.SetDefaults(workcell.joint_defaults);
+    input_.SetMimicJoints(workcell.kinematics.MimicJointNames());
   }
 
   void Add(const NamedPositions& sample, const ros::Time& stamp) {
@@ -268,7 +266,9 @@ class Cycles {
       is_group_accepted_ = false;
     }
     const MergeStatus status = input_.Merge(sample, stamp.toSec());
-    if (input_.last_unknown_joints() > 0) NoteUnknownNames(sample.names);
+    if (input_.last_unknown_joints() + input_.last_mimic_joints() > 0) {
+      NoteUnknownNames(sample.names);
+    }
     if (status == MergeStatus::kAccepted) {
       is_group_accepted_ = true;
       return;
@@ -313,9 +313,8 @@ class Cycles {
   void NoteUnknownNames(const std::vector<std::string>& names) {
     for (const std::string& name : names) {
       if (input_.IsModelJoint(name)) continue;
-      const bool is_mimic =
-          std::find(mimic_joints_.begin(), mimic_joints_.end(), name) != mimic_joints_.end();
-      std::vector<std::string>& noted = is_mimic ? result_->mimic_names : result_->ignored_names;
+      std::vector<std::string>& noted =
+          input_.IsMimicJoint(name) ? result_->mimic_names : result_->ignored_names;
       if (noted.size() < kNotedNames &&
           std::find(noted.begin(), noted.end(), name) == noted.end()) {
         noted.push_back(name);
@@ -343,7 +342,6 @@ class Cycles {
 
   JointMerger input_;
   const std::vector<std::string>& joint_names_;
-  const std::vector<std::string> mimic_joints_;
   Input* result_;
   ros::Time group_stamp_, first_stamp_;
   bool has_group_ = false;
