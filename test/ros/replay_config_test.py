@@ -351,7 +351,8 @@ class ReplayConfigTest(unittest.TestCase):
         self.assertEqual(result.returncode, 0, result.stderr)
         report = json.loads(result.stdout)
         self.assertEqual(report['refused_messages'], {'non_finite': 1})
-        first = "stamped 100.050000 s: non_finite (joint 'left_joint2' at nan)"
+        first = ("stamped 100.050000 s: %s: sensor_msgs/JointState on /joint_states at bag time "
+                 "100.050000: non_finite (joint 'left_joint2' at nan)" % path)
         self.assertEqual(report['first_refused_message'], first)
         # The refused message makes no cycle (it made one of the last accepted q, marked not
         # refused, with its warnings: a dual FR3 user's bag), and the summary counts it.

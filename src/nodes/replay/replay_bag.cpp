@@ -56,6 +56,12 @@ bool PointStamp(const ros::Time& start, const trajectory_msgs::JointTrajectoryPo
   return true;
 }
 
+// "<bag>: <type> on <topic> at bag time <t>": the message `m` of the bag at `path`, for errors.
+std::string MessageWhere(const std::string& path, const rosbag::MessageInstance& m) {
+  return path + ": " + m.getDataType() + " on " + m.getTopic() + " at bag time " +
+         std::to_string(m.getTime().toSec());
+}
+
 // Names the refusal of a sample stamped `stamp_s` as the first if none earlier was:
 // "stamped <t> s: " and what `describe` gives (made only then).
 template <typename Describe>
@@ -248,13 +254,19 @@ class Plans {
 // still refused.
 class Cycles {
  public:
-  Cycles(const Workcell& workcell, Input* result)
-      : input_(workcell.joint_names, 1.0), joint_names_(workcell.joint_names), result_(result) {
+  /// `path`: the bag's, which names a refused message.
+  Cycles(const std::string& path, const Workcell& workcell, Input* result)
+      : input_(workcell.joint_names, 1.0),
+        path_(path),
+        joint_names_(workcell.joint_names),
+        result_(result) {
     input_.SetDefaults(workcell.joint_defaults);
     input_.SetMimicJoints(workcell.kinematics.MimicJointNames());
   }
 
-  void Add(const NamedPositions& sample, const ros::Time& stamp) {
+  /// `sample`, of the bag's `message` (null: a planned point's, named when read).
+  void Add(const NamedPositions& sample, const ros::Time& stamp,
+           const rosbag::MessageInstance* message) {
     if (JointMerger::GivesNoPositions(sample)) {  // nothing to merge, and no cycle of its own
       ++result_->position_less;
       return;
@@ -278,7 +290,8 @@ class Cycles {
         stamp.toSec(),
         [&] {
           const std::string why = input_.DescribeRefusal(sample, status, stamp.toSec());
-          return MergeStatusName(status) + (why.empty() ? "" : " (" + why + ")");
+          return (message != nullptr ? MessageWhere(path_, *message) + ": " : std::string()) +
+                 MergeStatusName(status) + (why.empty() ? "" : " (" + why + ")");
         },
         result_);
   }
@@ -341,6 +354,7 @@ class Cycles {
   }
 
   JointMerger input_;
+  const std::string path_;
   const std::vector<std::string>& joint_names_;
   Input* result_;
   ros::Time group_stamp_, first_stamp_;
@@ -348,11 +362,6 @@ class Cycles {
   bool is_group_accepted_ = false;  // a sample of the group was merged
 };
 
-// "<bag>: <type> on <topic> at bag time <t>": the message `m` of the bag at `path`, for errors.
-std::string MessageWhere(const std::string& path, const rosbag::MessageInstance& m) {
-  return path + ": " + m.getDataType() + " on " + m.getTopic() + " at bag time " +
-         std::to_string(m.getTime().toSec());
-}
 
 // `read` (ReadDisplayTrajectory, or ReadGoalTrajectory's type bound) of the message `m` of the
 // bag at `path`, by the definition the bag carries; a LoadError naming the message when it
@@ -506,14 +515,14 @@ Input ReadBag(const std::string& path, const std::vector<std::string>& topics,
   Plans plans(&result);
   const PlanSources sources = ReadPlans(path, bag, topics, joint_prefixes, &plans);
   const auto planned = plans.InTimeOrder();
-  Cycles cycles(workcell, &result);
-  // Each sample at `stamp` (of plan `joints`, null for a recorded state) with the other plans
-  // under way then.
+  Cycles cycles(path, workcell, &result);
+  // Each sample at `stamp` (of plan `joints`, null for a recorded state, the bag's `message`)
+  // with the other plans under way then.
   auto add = [&](const NamedPositions& sample, const ros::Time& stamp,
-                 const Plans::Joints* joints) {
-    cycles.Add(sample, stamp);
+                 const Plans::Joints* joints, const rosbag::MessageInstance* message) {
+    cycles.Add(sample, stamp, message);
     plans.ForEachUnderWayAt(stamp, joints, [&](const NamedPositions& under_way) {
-      cycles.Add(under_way, stamp);
+      cycles.Add(under_way, stamp, nullptr);
     });
   };
   // The planned points before `stamp` (all that are left when null); at equal stamps the
@@ -524,7 +533,7 @@ Input ReadBag(const std::string& path, const std::vector<std::string>& topics,
          ++next) {
       const auto& [joints, point] = planned[next];
       add(NamedPositions{joints->names, point->positions, point->stamp.toSec()}, point->stamp,
-          joints);
+          joints, nullptr);
     }
   };
   for (const rosbag::MessageInstance& m : rosbag::View(bag, rosbag::TypeQuery(kJointStateType))) {
@@ -534,7 +543,7 @@ Input ReadBag(const std::string& path, const std::vector<std::string>& topics,
     if (topics.empty()) CheckNotPlanned(path, m, *msg, sources);
     ++result.messages;
     add_planned_before(&msg->header.stamp);
-    add(ToNamedPositions(*msg), msg->header.stamp, nullptr);
+    add(ToNamedPositions(*msg), msg->header.stamp, nullptr, &m);
   }
   add_planned_before(nullptr);
   cycles.Finish(path, PlanHint(sources));

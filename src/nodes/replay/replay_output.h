@@ -44,8 +44,8 @@ struct Input {
   /// MergeStatusName (or "time_out_of_range": a trajectory point's stamp) -> count
   std::map<std::string, std::uint64_t> refused;
   /// the refused message or planned point of the earliest stamp (s, on the bag's clock):
-  /// "stamped <t> s: <status> (<why>)" for a message, "stamped <t> s: <message>, point <k>:
-  /// <status> (<why>)" for a point ("" if none), and that stamp
+  /// "stamped <t> s: <message>: <status> (<why>)", <message> with ", point <k>" for a point ("" if
+  /// none), and that stamp
   std::string first_refused_message;
   double first_refused_stamp_s = std::numeric_limits<double>::infinity();
   std::uint64_t incomplete_cycles = 0;           ///< before every joint was received
