@@ -362,7 +362,6 @@ class Cycles {
   bool is_group_accepted_ = false;  // a sample of the group was merged
 };
 
-
 // `read` (ReadDisplayTrajectory, or ReadGoalTrajectory's type bound) of the message `m` of the
 // bag at `path`, by the definition the bag carries; a LoadError naming the message when it
 // cannot be read.
