@@ -7,6 +7,7 @@
 #include <map>
 
 #include "arm_collision_monitor/core/load_error.h"
+#include "arm_collision_monitor/kinematics/urdf_conversions.h"
 #include "arm_collision_monitor/scene/resource_fetch.h"
 #include "text_trim.h"
 
@@ -71,8 +72,9 @@ SrdfCollisionRules ReadSrdfCollisionRules(const std::string& path) {
 SrdfCollisionRules ReadSrdfCollisionRulesText(const std::string& text, const std::string& path) {
   tinyxml2::XMLDocument doc;
   if (doc.Parse(text.c_str(), text.size()) != tinyxml2::XML_SUCCESS) {
-    Fail(path, doc.ErrorLineNum(), "(document)",
-         std::string("malformed XML: ") + doc.ErrorStr() + " (expected a well-formed SRDF)");
+    const int line = doc.ErrorLineNum();
+    throw LoadError(path + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": " +
+                    DescribeXmlError(doc) + " (expected a well-formed SRDF)");
   }
   const tinyxml2::XMLElement* robot = doc.RootElement();
   if (robot == nullptr || std::strcmp(robot->Name(), "robot") != 0) {

@@ -493,7 +493,7 @@ TEST(SceneMoveitInputs, MalformedSrdfNamesItsFileAndLine) {
       "malformed.srdf",
       "<robot name='workcell'>\n  <disable_collisions link1='left_link1' link2='left_link3'/>\n"
       "  <group name='arm'>\n</robot>\n");
-  ExpectBundledSceneError("srdf: " + srdf, {srdf + ":3:", "malformed XML", "name=group"});
+  ExpectBundledSceneError("srdf: " + srdf, {srdf + ":3:", "malformed XML", "<group>"});
   const std::string unknown =
       WriteTempFile("unknown_element.srdf",
                     "<robot name='workcell'>\n  <disable_colisions link1='a'/>\n</robot>\n");

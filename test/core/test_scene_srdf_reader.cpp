@@ -68,8 +68,14 @@ TEST(SrdfReader, BadInputNamesFileElementAndExpectation) {
       "bad.srdf",
       {
           {"<robot name='r'>\n<group name='arm'>\n</robot>\n",
-           {":2:", "malformed XML", "MISMATCHED_ELEMENT", "name=group", "well-formed SRDF"}},
-          {"", {"malformed XML", "EMPTY_DOCUMENT", "well-formed SRDF"}},
+           {":2:", "malformed XML (XML_ERROR_MISMATCHED_ELEMENT): <group> that begins on line 2 "
+                   "is closed by another element's end tag", "well-formed SRDF"}},
+          // The file ends before </robot> (a Flexiv Rizon user's): the element left open.
+          {"<robot name='r'>\n<group name='arm'>\n</group>\n",
+           {":1: malformed XML (XML_ERROR_PARSING): the file ends inside the element that "
+                  "begins on line 1 (its end tag", "well-formed SRDF"}},
+          {"", {"malformed XML (XML_ERROR_EMPTY_DOCUMENT): the file holds no element",
+                "well-formed SRDF"}},
           {"<?xml version='1.0'?>\n<model name='r'/>\n",
            {":2:", "<model>", "expected the root element <robot"}},
           {"<robot>\n<disable_collisions link1='a'/>\n</robot>\n",

@@ -6,8 +6,10 @@ on stderr before the run; --help and -h print the usage on stdout and exit 0, wh
 goes to stderr with exit 2; a recording that never names a model joint is refused with a message
 naming it, and replays once the scene file's joint_defaults give it."""
 import json
+import math
 import os
 import unittest
+from xml.etree import ElementTree
 
 import rosbag
 import rospkg
@@ -25,6 +27,15 @@ PKG = 'arm_collision_monitor'
 FINDING = ("'right_link1' and 'cable_guide' are within their tolerances in the home pose and "
            "in all")
 
+
+
+def rotation_columns(roll, pitch, yaw):
+    """The columns of Rz(yaw) Ry(pitch) Rx(roll), URDF's and the scene file's rpy."""
+    cr, sr, cp, sp = math.cos(roll), math.sin(roll), math.cos(pitch), math.sin(pitch)
+    cy, sy = math.cos(yaw), math.sin(yaw)
+    return [(cy * cp, sy * cp, -sp),
+            (cy * sp * sr - sy * cr, sy * sp * sr + cy * cr, cp * sr),
+            (cy * sp * cr + sy * sr, sy * sp * cr - cy * sr, cp * cr)]
 
 class ReplayConfigTest(unittest.TestCase):
 
@@ -114,10 +125,52 @@ class ReplayConfigTest(unittest.TestCase):
         self.assertEqual(report['cycles'], 20)
         self.assertEqual(report['incomplete_cycles'], 0)
 
+    def test_json_lists_every_primitive_in_its_frame(self):
+        # A Flexiv Rizon user, checking the distances with a reference of their own, had only
+        # the fits' sizes: --json lists each primitive, the frame of its geometry and that
+        # geometry. Here against the files: the bundled scene's solids and the URDF's cylinders.
+        bag = os.path.join(rospkg.RosPack().get_path(PKG), 'test', 'bags', 'task1.bag')
+        result = rosrun('replay', '--json', '--scene', self.bundled_scene, bag)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        listed = json.loads(result.stdout)['primitives']
+        primitives = {p['name']: p for p in listed}
+        self.assertEqual(len(primitives), len(listed), 'names not unique')
+        with open(self.bundled_scene) as f:
+            objects = yaml.safe_load(f)['objects']
+        for obj in objects:
+            p = primitives[obj['name']]
+            self.assertEqual((p['owner'], p['variant'], p['frame']), (obj['name'], '', 'world'))
+            self.assertEqual(p['box']['center_m'], obj['pose']['xyz_m'])
+            self.assertEqual(p['box']['half_extents_m'], [size / 2 for size in obj['size_m']])
+            roll, pitch, yaw = obj['pose'].get('rpy', [0.0, 0.0, 0.0])
+            for axis, expected in zip(p['box']['axes'], rotation_columns(roll, pitch, yaw)):
+                for got, want in zip(axis, expected):
+                    self.assertAlmostEqual(got, want, delta=1e-12, msg=obj['name'])
+        urdf = ElementTree.parse(os.path.join(rospkg.RosPack().get_path(PKG), 'urdf',
+                                              'workcell.urdf'))
+        cylinders = 0
+        for link in urdf.getroot().iter('link'):
+            if link.get('name') not in primitives:
+                continue  # a base link, whose geometry the scene ignores (links:)
+            for cylinder in link.findall('collision/geometry/cylinder'):
+                origin = link.find('collision/origin')
+                self.assertEqual(origin.get('rpy').split(), ['0', '0', '0'])
+                x, y, z = (float(v) for v in origin.get('xyz').split())
+                half_m = float(cylinder.get('length')) / 2
+                p = primitives[link.get('name')]
+                self.assertEqual(p['frame'], link.get('name'))
+                self.assertEqual(p['capsule']['radius_m'], float(cylinder.get('radius')))
+                for end, dz in (('p0_m', -half_m), ('p1_m', half_m)):
+                    for got, want in zip(p['capsule'][end], (x, y, z + dz)):
+                        self.assertAlmostEqual(got, want, delta=1e-12, msg=link.get('name'))
+                cylinders += 1
+        self.assertEqual(cylinders, 14)  # the two arms' links, a cylinder each
+
     def test_unknown_joint_names_are_shown_with_the_models(self):
         # Two drivers of alike arms, each publishing the same unprefixed names on its own topic
         # (an ALOHA's 'waist', 'shoulder', ...): none is a model joint. The error names what the
-        # input gave and the model's prefixed joints.
+        # input gave, the model's prefixed joints and the option that prefixes them (a Flexiv
+        # Rizon user's per-arm topics).
         bag_path = os.path.join(temp_dir(self, 'acm_unprefixed_'), 'unprefixed.bag')
         names = [joint.replace('left_', '') for joint in LEFT_JOINTS]
         with rosbag.Bag(bag_path, 'w') as bag:
@@ -131,7 +184,8 @@ class ReplayConfigTest(unittest.TestCase):
         self.assertIn("; the input gives these names that are no joints of the model: %s; the "
                       "model has 'joint1' as 'left_joint1', 'right_joint1'; 'joint2' as "
                       "'left_joint2', 'right_joint2'; 'joint3' as 'left_joint3', 'right_joint3' "
-                      "(publish the model's joint names)" % ', '.join("'%s'" % n for n in names),
+                      "(publish the model's joint names, or give each topic's prefix: "
+                      "--joint-prefix TOPIC=PREFIX)" % ', '.join("'%s'" % n for n in names),
                       result.stderr)
         # With a prefix per topic, as the node's ~input_joint_prefixes: the model's two arms (the
         # first message, of the left arm alone, does not complete the model).
@@ -173,10 +227,10 @@ class ReplayConfigTest(unittest.TestCase):
         self.assertIn("joint 'left_joint2' at 10, outside its limits [",
                       report['first_refusal']['reason'])
         text = rosrun('replay', '--scene', self.bundled_scene, csv_path).stdout
-        self.assertIn("1 cycles refused by the monitor (the first, cycle 2 at 0.100 s: joint "
+        self.assertIn("1 cycle refused by the monitor (the first, cycle 2 at 0.100 s: joint "
                       "'left_joint2' at 10, outside its limits [", text)
         # The summary never reads clear over refused cycles.
-        self.assertIn("summary: no warning in 5 cycles; 1 cycles refused, not checked (the "
+        self.assertIn("summary: no warning in 5 cycles; 1 cycle refused, not checked (the "
                       "monitor asks a stop on each;", text)
         # Every row refused (say, angles in degrees): no cycle was checked.
         with open(csv_path, 'w') as f:
@@ -358,8 +412,8 @@ class ReplayConfigTest(unittest.TestCase):
         # refused, with its warnings: a dual FR3 user's bag), and the summary counts it.
         self.assertEqual([c['time_s'] for c in report['per_cycle']], [0.0, 0.1])
         text = rosrun('replay', '--scene', self.bundled_scene, path).stdout
-        self.assertIn('input: 1 messages refused (non_finite: 1) (the first %s), ' % first, text)
-        self.assertIn('summary: no warning in 2 cycles; 1 messages or planned points refused, no '
+        self.assertIn('input: 1 message refused (non_finite: 1) (the first %s), ' % first, text)
+        self.assertIn('summary: no warning in 2 cycles; 1 message or planned point refused, no '
                       'cycle (the node asks a stop on a message;', text)
 
     def test_between_samples_lines_past_the_first_20_are_counted(self):

@@ -155,6 +155,10 @@ constexpr double kDefaultArmTolerance_m = 0.0305;
 constexpr int kAlwaysOverlappingSamples = 256;
 /// The seed of that sampling (printed in each warning it produces, so it can be reproduced).
 constexpr std::uint64_t kAlwaysOverlappingSeed = 20260521;
+/// A pair within its tolerances in the home pose and in at least this many of those samples
+/// (half), if not in all, gets its own finding: it would warn in most cycles (links whose
+/// fits, with the tolerances, reach each other across a short link between them).
+constexpr int kMostlyOverlappingSamples = kAlwaysOverlappingSamples / 2;
 
 // ---------------------------------------------------------------------------------------------
 // Monitor

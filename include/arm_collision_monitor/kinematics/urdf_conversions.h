@@ -8,6 +8,7 @@
 #include <string>
 
 namespace tinyxml2 {
+class XMLDocument;
 class XMLElement;
 }
 
@@ -24,6 +25,11 @@ Eigen::Isometry3d UrdfPoseToIsometry(const urdf::Pose& pose);
 /// capsule idiom (a cylinder and a sphere on each end face, appended to the link's collision
 /// elements); a bad size or origin of one throws LoadError naming the link and the element.
 urdf::ModelInterfaceSharedPtr ParseUrdfFile(const std::string& urdf_path);
+
+/// What went wrong in a document tinyxml2 failed to parse, for a file's error after its line
+/// (ErrorLineNum): tinyxml2's error name and, for the common ones, what to look for there (an
+/// element the file ends inside, an end tag that closes another element).
+std::string DescribeXmlError(const tinyxml2::XMLDocument& doc);
 
 /// Whether `xml` is one of xacro's elements (<xacro:macro>, <xacro:include>, a macro's call).
 bool IsXacroElement(const tinyxml2::XMLElement* xml);

@@ -307,12 +307,15 @@ class Cycles {
       if (!ignored.empty()) {
         // Drivers of two alike arms publish the same names (an ALOHA's, 'waist' on each arm's
         // topic): the model's, told apart, have prefixes.
+        // Such names with a prefix in the model: --joint-prefix puts it on them, topic by topic.
+        const std::string prefixed = PrefixedNamesHint(joint_names_, ignored, "the model");
         unknown = "; the input gives " + std::string(ignored.size() == kNotedNames
                                                           ? "these names, and maybe more, "
                                                           : "these names ") +
-                  "that are no joints of the model: " + QuotedNames(ignored) +
-                  PrefixedNamesHint(joint_names_, ignored, "the model") +
-                  " (publish the model's joint names)";
+                  "that are no joints of the model: " + QuotedNames(ignored) + prefixed +
+                  (prefixed.empty() ? " (publish the model's joint names)"
+                                    : " (publish the model's joint names, or give each topic's "
+                                      "prefix: --joint-prefix TOPIC=PREFIX)");
       }
       throw LoadError(path + ": no accepted sensor_msgs/JointState message or trajectory point " +
                       "gives " + ModelJointsText(missing) + " (" +

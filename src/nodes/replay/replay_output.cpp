@@ -13,6 +13,11 @@ namespace arm_collision_monitor {
 namespace replay {
 namespace {
 
+// "1 cycle", "2 cycles": a count with its noun, plural unless one.
+std::string Counted(unsigned long long count, const char* noun) {
+  return std::to_string(count) + " " + noun + (count == 1 ? "" : "s");
+}
+
 std::string JsonString(const std::string& s) {
   std::string out = "\"";
   for (const char c : s) {
@@ -93,6 +98,42 @@ void PrintJsonCounts(const Options& options, const Input& input, std::size_t cyc
               static_cast<unsigned long long>(summary.between_cycles),
               static_cast<unsigned long long>(summary.warned_cycles),
               static_cast<unsigned long long>(summary.jumped_cycles));
+}
+
+// "[x, y, z]" of a vector, to the bit (17 significant digits).
+std::string JsonVector(const Eigen::Vector3d& v) {
+  char text[96];
+  std::snprintf(text, sizeof(text), "[%.17g, %.17g, %.17g]", v.x(), v.y(), v.z());
+  return text;
+}
+
+// Every primitive as the monitor models it: its name, owner, model variant ("": the one active
+// at start), the frame its geometry is given in (its link's, or "world" for an object, at its
+// start pose) and that geometry to the bit, for a user's own reference to check the monitor's
+// distances against.
+void PrintJsonPrimitives(const Workcell& wc) {
+  std::printf("  \"primitives\": [");
+  for (std::size_t id = 0; id < wc.primitives.size(); ++id) {
+    const PrimitiveSpec& p = wc.primitives[id];
+    const std::string frame =
+        p.link_index >= 0 ? wc.kinematics.link_name(p.link_index) : std::string("world");
+    std::printf("%s\n    {\"name\": %s, \"owner\": %s, \"variant\": %s, \"frame\": %s, "
+                "\"tolerance_m\": %.17g, ",
+                id > 0 ? "," : "", JsonString(p.name).c_str(), JsonString(p.owner).c_str(),
+                JsonString(p.variant).c_str(), JsonString(frame).c_str(), p.tolerance_m);
+    if (const auto* c = std::get_if<Capsule>(&p.shape_L)) {
+      std::printf("\"capsule\": {\"p0_m\": %s, \"p1_m\": %s, \"radius_m\": %.17g}}",
+                  JsonVector(c->p0_W).c_str(), JsonVector(c->p1_W).c_str(), c->radius_m);
+      continue;
+    }
+    const Box& b = std::get<Box>(p.shape_L);
+    const Eigen::Matrix3d& R = b.X_WB.linear();
+    std::printf("\"box\": {\"center_m\": %s, \"axes\": [%s, %s, %s], \"half_extents_m\": %s}}",
+                JsonVector(b.X_WB.translation()).c_str(), JsonVector(R.col(0)).c_str(),
+                JsonVector(R.col(1)).c_str(), JsonVector(R.col(2)).c_str(),
+                JsonVector(b.half_extents_m).c_str());
+  }
+  std::printf("\n  ],\n");
 }
 
 // Runs of consecutive cycles with the same warning pairs, one line per pair, with the smallest
@@ -203,18 +244,16 @@ void PrintBetweenSamples(const Workcell& wc, const Input& input,
 void PrintInputLines(const Input& input, const std::vector<CycleResult>& cycles,
                      const RunSummary& summary) {
   if (summary.refused_messages > 0 || input.incomplete_cycles > 0 || summary.refused_cycles > 0) {
-    std::printf("input: %llu messages refused",
-                static_cast<unsigned long long>(summary.refused_messages));
+    std::printf("input: %s refused", Counted(summary.refused_messages, "message").c_str());
     for (const auto& [status, count] : input.refused) {
       std::printf(" (%s: %llu)", status.c_str(), static_cast<unsigned long long>(count));
     }
     if (!input.first_refused_message.empty()) {
       std::printf(" (the first %s)", input.first_refused_message.c_str());
     }
-    std::printf(", %llu cycles before every joint was received, %llu cycles refused by the "
-                "monitor",
-                static_cast<unsigned long long>(input.incomplete_cycles),
-                static_cast<unsigned long long>(summary.refused_cycles));
+    std::printf(", %s before every joint was received, %s refused by the monitor",
+                Counted(input.incomplete_cycles, "cycle").c_str(),
+                Counted(summary.refused_cycles, "cycle").c_str());
     if (summary.first_refused >= 0) {
       std::printf(" (the first, cycle %d at %.3f s: %s)", summary.first_refused,
                   input.time_s[summary.first_refused],
@@ -292,6 +331,7 @@ void PrintJson(const Options& options, const Workcell& wc, const Input& input,
                bool is_swept) {
   auto name = [&](PrimitiveId id) { return JsonString(wc.primitives[id].name); };
   PrintJsonCounts(options, input, cycles.size(), summary, is_swept);
+  PrintJsonPrimitives(wc);
   if (summary.first >= 0) {
     const Warning& w = cycles[summary.first].warnings.front();
     std::printf("  \"first_warning\": {\"cycle\": %d, \"time_s\": %.9f, \"a\": %s, \"b\": %s, "
@@ -372,13 +412,13 @@ void PrintText(const Options& options, const Workcell& wc, const Input& input,
   const unsigned long long refused = summary.refused_cycles;
   std::string unchecked;
   if (refused > 0) {
-    unchecked += "; " + std::to_string(refused) + " cycles refused, not checked (the monitor " +
+    unchecked += "; " + Counted(refused, "cycle") + " refused, not checked (the monitor " +
                  "asks a stop on each; see 'input:' above)";
   }
   std::string refused_messages;
   if (summary.refused_messages > 0) {
-    refused_messages = "; " + std::to_string(summary.refused_messages) + " messages or planned " +
-                       "points refused, no cycle (the node asks a stop on a message; see " +
+    refused_messages = "; " + Counted(summary.refused_messages, "message") + " or planned " +
+                       "point" + (summary.refused_messages == 1 ? "" : "s") + " refused, no cycle (the node asks a stop on a message; see " +
                        "'input:' above)";
   }
   unchecked += refused_messages;
