@@ -265,26 +265,34 @@ std::string XacroNote(const tinyxml2::XMLElement* root) {
 
 }  // namespace
 
-std::string DescribeXmlError(const tinyxml2::XMLDocument& doc) {
-  const std::string line = std::to_string(doc.ErrorLineNum());
+std::string MalformedXmlError(const std::string& path, const tinyxml2::XMLDocument& doc,
+                              const std::string& expected) {
+  const int line_number = doc.ErrorLineNum();
+  const std::string line = std::to_string(line_number);
   // tinyxml2 ends some errors with the element's name: "...: XMLElement name=group".
   const std::string detail = doc.ErrorStr();
   const std::string::size_type named = detail.find("XMLElement name=");
   const std::string element =
       named == std::string::npos ? "the element" : "<" + detail.substr(named + 16) + ">";
-  const std::string what = std::string("malformed XML (") + doc.ErrorName() + ")";
+  std::string what = std::string("malformed XML (") + doc.ErrorName() + ")";
   switch (doc.ErrorID()) {
     case tinyxml2::XML_ERROR_PARSING:  // what tinyxml2 reports when the text ends too early
-      return what + ": the file ends inside " + element + " that begins on line " + line +
-             " (its end tag, or that of an element inside it, is missing)";
+      what += ": the file ends inside the element that begins on line " + line +
+              " (its end tag is missing, and maybe those of the elements around it)";
+      break;
     case tinyxml2::XML_ERROR_MISMATCHED_ELEMENT:
-      return what + ": " + element + " that begins on line " + line +
-             " is closed by another element's end tag (its own is missing or misspelt)";
+      what += ": " + element + ", which begins on line " + line +
+              ", is closed by an end tag not its own (an end tag inside it is missing or "
+              "misspelt, or one has no start tag)";
+      break;
     case tinyxml2::XML_ERROR_EMPTY_DOCUMENT:
-      return what + ": the file holds no element";
+      what += ": the file holds no element";
+      break;
     default:
-      return what + " on line " + line + ": " + detail;
+      what += ": " + detail;
   }
+  return path + (line_number > 0 ? ":" + line : std::string()) + ": " + what +
+         " (expected a well-formed " + expected + ")";
 }
 
 bool IsXacroElement(const tinyxml2::XMLElement* xml) {
@@ -303,8 +311,7 @@ urdf::ModelInterfaceSharedPtr ParseUrdfFile(const std::string& urdf_path) {
   // urdfdom reports malformed XML without a line ("Error reading end tag"): tinyxml2 names it.
   tinyxml2::XMLDocument doc;
   if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS) {
-    throw LoadError(urdf_path + ":" + std::to_string(doc.ErrorLineNum()) + ": " +
-                    DescribeXmlError(doc) + " (expected a well-formed URDF)");
+    throw LoadError(MalformedXmlError(urdf_path, doc, "URDF"));
   }
   tinyxml2::XMLElement* robot = doc.RootElement();
   for (tinyxml2::XMLElement* link = robot ? robot->FirstChildElement("link") : nullptr;

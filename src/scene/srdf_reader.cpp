@@ -72,9 +72,7 @@ SrdfCollisionRules ReadSrdfCollisionRules(const std::string& path) {
 SrdfCollisionRules ReadSrdfCollisionRulesText(const std::string& text, const std::string& path) {
   tinyxml2::XMLDocument doc;
   if (doc.Parse(text.c_str(), text.size()) != tinyxml2::XML_SUCCESS) {
-    const int line = doc.ErrorLineNum();
-    throw LoadError(path + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": " +
-                    DescribeXmlError(doc) + " (expected a well-formed SRDF)");
+    throw LoadError(MalformedXmlError(path, doc, "SRDF"));
   }
   const tinyxml2::XMLElement* robot = doc.RootElement();
   if (robot == nullptr || std::strcmp(robot->Name(), "robot") != 0) {

@@ -129,12 +129,18 @@ std::vector<std::string> SampledConfigurationWarnings(const Workcell& w) {
                          ": they would warn in every cycle; if that is by design, list them "
                          "under compatible:");
     } else if (within[k] >= kMostlyOverlappingSamples) {
-      warnings.push_back(pair + std::to_string(within[k]) + " of " +
-                         std::to_string(kAlwaysOverlappingSamples) + sampled +
-                         ": they would warn in most cycles; if their links come that close by "
-                         "design, list them under compatible: (or the SRDF's "
-                         "disable_collisions), else a lower tolerance or another fit of their "
-                         "geometry (mesh_fit:, links:) may clear them");
+      // Excusing a pair of links is the SRDF's way; a link and an object stay checked.
+      const bool is_link_pair = w.primitives[candidates[k].first].object_index < 0 &&
+                                w.primitives[candidates[k].second].object_index < 0;
+      warnings.push_back(
+          pair + std::to_string(within[k]) + " of " + std::to_string(kAlwaysOverlappingSamples) +
+          sampled + " (half or more): they would warn in most cycles; " +
+          (is_link_pair ? "if the links come that close by design, list them under "
+                          "compatible: (or the SRDF's disable_collisions), else a lower "
+                          "tolerance or another fit of their geometry (mesh_fit:, links:) may "
+                          "clear them"
+                        : "a lower tolerance, another fit of the link's geometry (mesh_fit:, "
+                          "links:) or the object placed farther may clear them"));
     }
   }
   return warnings;

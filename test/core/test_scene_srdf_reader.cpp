@@ -68,12 +68,12 @@ TEST(SrdfReader, BadInputNamesFileElementAndExpectation) {
       "bad.srdf",
       {
           {"<robot name='r'>\n<group name='arm'>\n</robot>\n",
-           {":2:", "malformed XML (XML_ERROR_MISMATCHED_ELEMENT): <group> that begins on line 2 "
-                   "is closed by another element's end tag", "well-formed SRDF"}},
+           {":2: malformed XML (XML_ERROR_MISMATCHED_ELEMENT): <group>, which begins on line 2, "
+            "is closed by an end tag not its own", "well-formed SRDF"}},
           // The file ends before </robot> (a Flexiv Rizon user's): the element left open.
           {"<robot name='r'>\n<group name='arm'>\n</group>\n",
            {":1: malformed XML (XML_ERROR_PARSING): the file ends inside the element that "
-                  "begins on line 1 (its end tag", "well-formed SRDF"}},
+            "begins on line 1 (its end tag is missing", "well-formed SRDF"}},
           {"", {"malformed XML (XML_ERROR_EMPTY_DOCUMENT): the file holds no element",
                 "well-formed SRDF"}},
           {"<?xml version='1.0'?>\n<model name='r'/>\n",

@@ -28,7 +28,6 @@ FINDING = ("'right_link1' and 'cable_guide' are within their tolerances in the h
            "in all")
 
 
-
 def rotation_columns(roll, pitch, yaw):
     """The columns of Rz(yaw) Ry(pitch) Rx(roll), URDF's and the scene file's rpy."""
     cr, sr, cp, sp = math.cos(roll), math.sin(roll), math.cos(pitch), math.sin(pitch)
@@ -36,6 +35,7 @@ def rotation_columns(roll, pitch, yaw):
     return [(cy * cp, sy * cp, -sp),
             (cy * sp * sr - sy * cr, sy * sp * sr + cy * cr, cp * sr),
             (cy * sp * cr + sy * sr, sy * sp * cr - cy * sr, cp * cr)]
+
 
 class ReplayConfigTest(unittest.TestCase):
 
@@ -129,42 +129,69 @@ class ReplayConfigTest(unittest.TestCase):
         # A Flexiv Rizon user, checking the distances with a reference of their own, had only
         # the fits' sizes: --json lists each primitive, the frame of its geometry and that
         # geometry. Here against the files: the bundled scene's solids and the URDF's cylinders.
-        bag = os.path.join(rospkg.RosPack().get_path(PKG), 'test', 'bags', 'task1.bag')
-        result = rosrun('replay', '--json', '--scene', self.bundled_scene, bag)
-        self.assertEqual(result.returncode, 0, result.stderr)
-        listed = json.loads(result.stdout)['primitives']
-        primitives = {p['name']: p for p in listed}
-        self.assertEqual(len(primitives), len(listed), 'names not unique')
+        package = rospkg.RosPack().get_path(PKG)
+        bag = os.path.join(package, 'test', 'bags', 'task1.bag')
+        primitives = self.listed_primitives('--scene', self.bundled_scene, bag)
         with open(self.bundled_scene) as f:
             objects = yaml.safe_load(f)['objects']
         for obj in objects:
             p = primitives[obj['name']]
-            self.assertEqual((p['owner'], p['variant'], p['frame']), (obj['name'], '', 'world'))
+            # The bundled URDF's root, the fixed frame, is 'world'.
+            self.assertEqual((p['owner'], p['variant'], p['frame'], p['follows_frame'],
+                              p['attachable']),
+                             (obj['name'], '', 'world', obj.get('frame', ''),
+                              obj.get('attachable', False)))
             self.assertEqual(p['box']['center_m'], obj['pose']['xyz_m'])
             self.assertEqual(p['box']['half_extents_m'], [size / 2 for size in obj['size_m']])
             roll, pitch, yaw = obj['pose'].get('rpy', [0.0, 0.0, 0.0])
             for axis, expected in zip(p['box']['axes'], rotation_columns(roll, pitch, yaw)):
                 for got, want in zip(axis, expected):
                     self.assertAlmostEqual(got, want, delta=1e-12, msg=obj['name'])
-        urdf = ElementTree.parse(os.path.join(rospkg.RosPack().get_path(PKG), 'urdf',
-                                              'workcell.urdf'))
-        cylinders = 0
+        urdf = ElementTree.parse(os.path.join(package, 'urdf', 'workcell.urdf'))
+        checked = {'cylinder': 0, 'box': 0}
         for link in urdf.getroot().iter('link'):
             if link.get('name') not in primitives:
                 continue  # a base link, whose geometry the scene ignores (links:)
-            for cylinder in link.findall('collision/geometry/cylinder'):
-                origin = link.find('collision/origin')
-                self.assertEqual(origin.get('rpy').split(), ['0', '0', '0'])
-                x, y, z = (float(v) for v in origin.get('xyz').split())
-                half_m = float(cylinder.get('length')) / 2
-                p = primitives[link.get('name')]
-                self.assertEqual(p['frame'], link.get('name'))
-                self.assertEqual(p['capsule']['radius_m'], float(cylinder.get('radius')))
-                for end, dz in (('p0_m', -half_m), ('p1_m', half_m)):
-                    for got, want in zip(p['capsule'][end], (x, y, z + dz)):
-                        self.assertAlmostEqual(got, want, delta=1e-12, msg=link.get('name'))
-                cylinders += 1
-        self.assertEqual(cylinders, 14)  # the two arms' links, a cylinder each
+            p = primitives[link.get('name')]
+            self.assertEqual(p['frame'], link.get('name'))
+            self.assertNotIn('follows_frame', p)
+            for collision in link.findall('collision'):
+                self.assertEqual(collision.find('origin').get('rpy').split(), ['0', '0', '0'])
+                x, y, z = (float(v) for v in collision.find('origin').get('xyz').split())
+                cylinder = collision.find('geometry/cylinder')
+                if cylinder is not None:  # a capsule along the cylinder's axis, z
+                    half_m = float(cylinder.get('length')) / 2
+                    self.assertEqual(p['capsule']['radius_m'], float(cylinder.get('radius')))
+                    for end, dz in (('p0_m', -half_m), ('p1_m', half_m)):
+                        for got, want in zip(p['capsule'][end], (x, y, z + dz)):
+                            self.assertAlmostEqual(got, want, delta=1e-12, msg=link.get('name'))
+                    checked['cylinder'] += 1
+                box = collision.find('geometry/box')
+                if box is not None:  # a pedestal, on a fixed joint
+                    self.assertEqual(p['box']['center_m'], [x, y, z])
+                    self.assertEqual(p['box']['half_extents_m'],
+                                     [float(v) / 2 for v in box.get('size').split()])
+                    checked['box'] += 1
+        # The two arms' links, a cylinder each, and their pedestals.
+        self.assertEqual(checked, {'cylinder': 14, 'box': 2})
+        # A model whose root is not named 'world': objects are in its frame.
+        csv_path = os.path.join(temp_dir(self, 'acm_primitives_'), 'home.csv')
+        with open(csv_path, 'w') as f:
+            f.write('shoulder,elbow,spin,slide\n0,0,0,0\n')
+        primitives = self.listed_primitives(
+            '--urdf', os.path.join(package, 'test', 'data', 'three_link_arm.urdf'), '--scene',
+            os.path.join(package, 'test', 'data', 'three_link_scene.yaml'), csv_path)
+        self.assertEqual(primitives['table']['frame'], 'base_link')
+        self.assertEqual(primitives['table']['box']['center_m'], [0.7, 0.0, 0.3])
+
+    def listed_primitives(self, *args):
+        """replay --json's primitives by name (each name once)."""
+        result = rosrun('replay', '--json', *args)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        listed = json.loads(result.stdout)['primitives']
+        primitives = {p['name']: p for p in listed}
+        self.assertEqual(len(primitives), len(listed), 'names not unique')
+        return primitives
 
     def test_unknown_joint_names_are_shown_with_the_models(self):
         # Two drivers of alike arms, each publishing the same unprefixed names on its own topic
@@ -354,7 +381,8 @@ class ReplayConfigTest(unittest.TestCase):
                           report['warned_cycles']), (1, 2, 2))
         self.assertEqual(report['first_between_samples']['cycle'], 1)
         self.assertEqual(report['first_between_samples']['kind'], 'strictly_between')
-        # Each JSON entry has its kind, as each line has: those at the way back's start start within.
+        # Each JSON entry has its kind, as each line has: those at the way back's start start
+        # within.
         entries = [entry for cycle in report['per_cycle'] for entry in cycle['between_samples']]
         self.assertTrue(any(entry[3] == 0.0 for entry in entries), entries)
         for entry in entries:

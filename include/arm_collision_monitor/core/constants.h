@@ -156,8 +156,9 @@ constexpr int kAlwaysOverlappingSamples = 256;
 /// The seed of that sampling (printed in each warning it produces, so it can be reproduced).
 constexpr std::uint64_t kAlwaysOverlappingSeed = 20260521;
 /// A pair within its tolerances in the home pose and in at least this many of those samples
-/// (half), if not in all, gets its own finding: it would warn in most cycles (links whose
-/// fits, with the tolerances, reach each other across a short link between them).
+/// (half), if not in all, gets its own finding: it would warn in most cycles (two links whose
+/// fits, with the tolerances, reach each other across a short link between them; a link and an
+/// object placed within its reach).
 constexpr int kMostlyOverlappingSamples = kAlwaysOverlappingSamples / 2;
 
 // ---------------------------------------------------------------------------------------------

@@ -26,10 +26,12 @@ Eigen::Isometry3d UrdfPoseToIsometry(const urdf::Pose& pose);
 /// elements); a bad size or origin of one throws LoadError naming the link and the element.
 urdf::ModelInterfaceSharedPtr ParseUrdfFile(const std::string& urdf_path);
 
-/// What went wrong in a document tinyxml2 failed to parse, for a file's error after its line
-/// (ErrorLineNum): tinyxml2's error name and, for the common ones, what to look for there (an
-/// element the file ends inside, an end tag that closes another element).
-std::string DescribeXmlError(const tinyxml2::XMLDocument& doc);
+/// The error for the file at `path` that tinyxml2 failed to parse as XML: its line (when
+/// known), tinyxml2's error name and, for the common ones, what to look for there (the element
+/// the file ends inside, an element closed by another's end tag), then "expected a well-formed
+/// <expected>".
+std::string MalformedXmlError(const std::string& path, const tinyxml2::XMLDocument& doc,
+                              const std::string& expected);
 
 /// Whether `xml` is one of xacro's elements (<xacro:macro>, <xacro:include>, a macro's call).
 bool IsXacroElement(const tinyxml2::XMLElement* xml);

@@ -108,19 +108,25 @@ std::string JsonVector(const Eigen::Vector3d& v) {
 }
 
 // Every primitive as the monitor models it: its name, owner, model variant ("": the one active
-// at start), the frame its geometry is given in (its link's, or "world" for an object, at its
-// start pose) and that geometry to the bit, for a user's own reference to check the monitor's
-// distances against.
+// at start), the frame its geometry is given in (its link's, or for an object the fixed frame,
+// the URDF's root, at its start pose) and that geometry to the bit, for a user's own reference
+// to check the monitor's distances against; an object that moves at run time says how (the TF
+// frame it follows, or attachable: a link may pick it up).
 void PrintJsonPrimitives(const Workcell& wc) {
   std::printf("  \"primitives\": [");
   for (std::size_t id = 0; id < wc.primitives.size(); ++id) {
     const PrimitiveSpec& p = wc.primitives[id];
     const std::string frame =
-        p.link_index >= 0 ? wc.kinematics.link_name(p.link_index) : std::string("world");
+        p.link_index >= 0 ? wc.kinematics.link_name(p.link_index) : wc.fixed_frame;
     std::printf("%s\n    {\"name\": %s, \"owner\": %s, \"variant\": %s, \"frame\": %s, "
                 "\"tolerance_m\": %.17g, ",
                 id > 0 ? "," : "", JsonString(p.name).c_str(), JsonString(p.owner).c_str(),
                 JsonString(p.variant).c_str(), JsonString(frame).c_str(), p.tolerance_m);
+    if (p.object_index >= 0) {
+      const ObjectSpec& object = wc.objects[p.object_index];
+      std::printf("\"follows_frame\": %s, \"attachable\": %s, ",
+                  JsonString(object.frame).c_str(), object.is_attachable ? "true" : "false");
+    }
     if (const auto* c = std::get_if<Capsule>(&p.shape_L)) {
       std::printf("\"capsule\": {\"p0_m\": %s, \"p1_m\": %s, \"radius_m\": %.17g}}",
                   JsonVector(c->p0_W).c_str(), JsonVector(c->p1_W).c_str(), c->radius_m);
@@ -128,7 +134,8 @@ void PrintJsonPrimitives(const Workcell& wc) {
     }
     const Box& b = std::get<Box>(p.shape_L);
     const Eigen::Matrix3d& R = b.X_WB.linear();
-    std::printf("\"box\": {\"center_m\": %s, \"axes\": [%s, %s, %s], \"half_extents_m\": %s}}",
+    std::printf("\"box\": {\"center_m\": %s, \"axes\": [%s, %s, %s], "
+                "\"half_extents_m\": %s}}",
                 JsonVector(b.X_WB.translation()).c_str(), JsonVector(R.col(0)).c_str(),
                 JsonVector(R.col(1)).c_str(), JsonVector(R.col(2)).c_str(),
                 JsonVector(b.half_extents_m).c_str());
@@ -397,9 +404,9 @@ void PrintJson(const Options& options, const Workcell& wc, const Input& input,
 void PrintText(const Options& options, const Workcell& wc, const Input& input,
                const std::vector<CycleResult>& cycles, const RunSummary& summary,
                bool is_swept) {
-  std::printf("replay %s: method %s (%s), %zu cycles from %llu messages", options.input.c_str(),
+  std::printf("replay %s: method %s (%s), %s from %s", options.input.c_str(),
               options.method.c_str(), is_swept ? "swept check on" : "samples only",
-              cycles.size(), static_cast<unsigned long long>(input.messages));
+              Counted(cycles.size(), "cycle").c_str(), Counted(input.messages, "message").c_str());
   for (const TaskGraspTarget& t : options.grasp_targets) {
     std::printf(", grasp target %s:%s", t.link.c_str(), t.object.c_str());
   }
@@ -418,8 +425,9 @@ void PrintText(const Options& options, const Workcell& wc, const Input& input,
   std::string refused_messages;
   if (summary.refused_messages > 0) {
     refused_messages = "; " + Counted(summary.refused_messages, "message") + " or planned " +
-                       "point" + (summary.refused_messages == 1 ? "" : "s") + " refused, no cycle (the node asks a stop on a message; see " +
-                       "'input:' above)";
+                       (summary.refused_messages == 1 ? "point" : "points") +
+                       " refused, no cycle (the node asks a stop on a message; see 'input:' " +
+                       "above)";
   }
   unchecked += refused_messages;
   // The first warning, at a sample or between two (the node stops on either).
@@ -446,15 +454,16 @@ void PrintText(const Options& options, const Workcell& wc, const Input& input,
                 "see 'input:' above)%s\n",
                 refused, refused_messages.c_str());
   } else {
-    std::printf("summary: no warning in %zu cycles%s\n", cycles.size(), unchecked.c_str());
+    std::printf("summary: no warning in %s%s\n", Counted(cycles.size(), "cycle").c_str(),
+                unchecked.c_str());
   }
   const TimingSummary& t = summary.time_s;
   const TimingSummary& m = summary.moving_time_s;
-  std::printf("cycle time: p50 %.1f us, p99 %.1f us, max %.1f us, mean %.1f us; the %llu "
-              "moving cycles (q changed): p50 %.1f us, p99 %.1f us, max %.1f us, mean %.1f us\n",
+  std::printf("cycle time: p50 %.1f us, p99 %.1f us, max %.1f us, mean %.1f us; the %s "
+              "(q changed): p50 %.1f us, p99 %.1f us, max %.1f us, mean %.1f us\n",
               t.median * 1e6, t.p99 * 1e6, t.max * 1e6, t.mean * 1e6,
-              static_cast<unsigned long long>(m.count), m.median * 1e6,
-              m.p99 * 1e6, m.max * 1e6, m.mean * 1e6);
+              Counted(m.count, "moving cycle").c_str(), m.median * 1e6, m.p99 * 1e6,
+              m.max * 1e6, m.mean * 1e6);
   std::printf("broad phase:");
   for (std::size_t i = 0; i < std::size(kCounters); ++i) {
     std::string label = kCounters[i].first;
