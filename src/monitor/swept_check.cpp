@@ -89,8 +89,9 @@ void Monitor::Impl::CheckStepTolerance() {
       << " m, cycle_period_s " << options.cycle_period_s
       << " s, the input's expected period: the monitor options' cycle_period_s, to be set to "
          "the period of faster input) and what the URDF velocity limits allow in a cycle ("
-      << worst_urdf_m << " m) (of the " << below << " moving primitive"
-      << (below == 1 ? "" : "s") << " whose tolerance is below their motion, the one furthest "
+      << worst_urdf_m << " m, a bound: every joint at its limit at once, each at its longest "
+      << "lever) (of the " << below << " moving primitive" << (below == 1 ? "" : "s")
+      << " whose tolerance is below their motion, the one furthest "
       << "below)";
   if (!options.swept_check) {
     throw LoadError("monitor options: swept_check is false and " + msg.str() +

@@ -15,7 +15,17 @@ std::string FetchRosResource(const std::string& url) {
   try {
     resource = retriever.get(url);
   } catch (const resource_retriever::Exception& e) {
-    throw LoadError(std::string("cannot read it: ") + e.what());
+    std::string hint;
+    // resource_retriever's words for a package ROS does not know (the URL's host part).
+    const std::string prefix = "package://";
+    if (url.compare(0, prefix.size(), prefix) == 0 &&
+        std::string(e.what()).find("does not exist") != std::string::npos) {
+      const std::string package = url.substr(prefix.size(), url.find('/', prefix.size()) -
+                                                                prefix.size());
+      hint = " (ROS knows no package '" + package + "': source the setup.bash of the " +
+             "workspace that holds it, or add the directory above it to ROS_PACKAGE_PATH)";
+    }
+    throw LoadError(std::string("cannot read it: ") + e.what() + hint);
   }
   if (resource.size == 0) return "";
   return std::string(reinterpret_cast<const char*>(resource.data.get()), resource.size);

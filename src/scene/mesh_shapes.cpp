@@ -28,15 +28,15 @@ std::string FitText(const MeshFitOptions& options, const std::vector<Shape>& sha
   return text;
 }
 
-// The size of a one-primitive fit, "" for more: " (radius 0.052 m, 0.31 m long)" for a capsule
-// (end to end), " (0.1 x 0.08 x 0.2 m)" for a box (its edges).
+// The size of a one-primitive fit, "" for more: " (radius 0.052 m, 0.31 m end to end)" for a
+// capsule, " (0.1 x 0.08 x 0.2 m)" for a box (its edges).
 std::string SizeText(const std::vector<Shape>& shapes) {
   if (shapes.size() != 1) return "";
   std::ostringstream text;
   text.precision(3);
   if (const Capsule* c = std::get_if<Capsule>(&shapes.front())) {
     text << " (radius " << c->radius_m << " m, " << (c->p1_W - c->p0_W).norm() + 2.0 * c->radius_m
-         << " m long)";
+         << " m end to end)";
   } else {
     const Eigen::Vector3d edges_m = 2.0 * std::get<Box>(shapes.front()).half_extents_m;
     text << " (" << edges_m.x() << " x " << edges_m.y() << " x " << edges_m.z() << " m)";

@@ -90,9 +90,10 @@ class TokenReader {
       const double value = Number(name);
       if (values.empty()) first_line = line_;
       if (line_ != first_line) {
-        Fail(name + " found here, after " + std::to_string(values.size()) + " of the " +
-             std::to_string(names.size()) + " dimensions on line " +
-             std::to_string(first_line) + " (expected a shape's dimensions on one line)");
+        Fail("line " + std::to_string(first_line) + " holds " + std::to_string(values.size()) +
+             " of the " + std::to_string(names.size()) + " dimensions, and " + name +
+             " would be this line's first number (expected a shape's dimensions on one line, "
+             "as MoveIt writes them)");
       }
       if (!(value > 0.0)) Fail(name + " " + std::to_string(value) + " (expected a number > 0)");
       values.push_back(value);

@@ -8,7 +8,9 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <map>
 #include <random>
+#include <tuple>
 
 #include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/geometry/distance.h"
@@ -78,6 +80,74 @@ void SampleConfiguration(const KinematicModel& model, std::mt19937_64* rng, Eige
   }
 }
 
+// The findings of the pairs within their tolerances in the home pose and in within[k] of the
+// sampled configurations after it: those in all (every cycle would warn) and in half or more
+// (most would), one per pair of owners (links, objects) and kind, named by the owners where
+// their primitives have names of their own (a link of several: a Sawyer's finger pads), as
+// compatible: takes them.
+std::vector<std::string> OverlapFindings(
+    const Workcell& w, const std::vector<std::pair<PrimitiveId, PrimitiveId>>& pairs,
+    const std::vector<int>& within, const std::string& files) {
+  constexpr std::size_t kNamedPairs = 3;
+  struct Group {
+    std::vector<std::size_t> members;  // indices into pairs
+    int most_within = 0;
+  };
+  std::vector<Group> groups;
+  std::map<std::tuple<std::string, std::string, bool>, std::size_t> group_of;
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    if (within[k] < kMostlyOverlappingSamples) continue;
+    const auto key = std::make_tuple(w.primitives[pairs[k].first].owner,
+                                     w.primitives[pairs[k].second].owner,
+                                     within[k] == kAlwaysOverlappingSamples);
+    const auto [it, is_new] = group_of.emplace(key, groups.size());
+    if (is_new) groups.emplace_back();
+    Group& group = groups[it->second];
+    group.members.push_back(k);
+    group.most_within = std::max(group.most_within, within[k]);
+  }
+  const std::string sampled = " sampled configurations (seed " +
+                              std::to_string(kAlwaysOverlappingSeed) + ")";
+  std::vector<std::string> findings;
+  for (const Group& group : groups) {
+    const PrimitiveSpec& a = w.primitives[pairs[group.members.front()].first];
+    const PrimitiveSpec& b = w.primitives[pairs[group.members.front()].second];
+    std::string names = "'" + a.owner + "' and '" + b.owner + "'";
+    if (group.members.size() > 1 || a.name != a.owner || b.name != b.owner) {
+      names += " (" + std::to_string(group.members.size()) + " pair" +
+               (group.members.size() == 1 ? "" : "s") + " of their primitives:";
+      for (std::size_t i = 0; i < std::min(group.members.size(), kNamedPairs); ++i) {
+        const auto& [x, y] = pairs[group.members[i]];
+        names += std::string(i > 0 ? "," : "") + " '" + w.primitives[x].name + "' and '" +
+                 w.primitives[y].name + "'";
+      }
+      if (group.members.size() > kNamedPairs) names += ", ...";
+      names += ")";
+    }
+    const std::string pair =
+        files + names + " are within their tolerances in the home pose and in ";
+    if (group.most_within == kAlwaysOverlappingSamples) {
+      findings.push_back(pair + "all " + std::to_string(kAlwaysOverlappingSamples) + sampled +
+                         ": they would warn in every cycle; if that is by design, list them "
+                         "under compatible: ([" + a.owner + ", " + b.owner + "])");
+      continue;
+    }
+    // Excusing a pair of links is the SRDF's way; a link and an object stay checked.
+    const bool is_link_pair = a.object_index < 0 && b.object_index < 0;
+    findings.push_back(
+        pair + (group.members.size() > 1 ? "up to " : "") + std::to_string(group.most_within) +
+        " of " + std::to_string(kAlwaysOverlappingSamples) + sampled +
+        " (half or more): they would warn in most cycles; " +
+        (is_link_pair ? "if the links come that close by design, list them under "
+                        "compatible: (or the SRDF's disable_collisions), else a lower "
+                        "tolerance or another fit of their geometry (mesh_fit:, links:) may "
+                        "clear them"
+                      : "a lower tolerance, another fit of the link's geometry (mesh_fit:, "
+                        "links:) or the object placed farther may clear them"));
+  }
+  return findings;
+}
+
 // Start-up findings from sampled configurations of every model: primitives outside the world
 // cube in the home pose, and pairs within their tolerances in the home pose and in every sampled
 // configuration (they would warn in every cycle) or in half of them at least (in most cycles).
@@ -118,31 +188,8 @@ std::vector<std::string> SampledConfigurationWarnings(const Workcell& w) {
     shapes.Evaluate(q);
     for (std::size_t k = 0; k < candidates.size(); ++k) within[k] += is_within(candidates[k]);
   }
-  const std::string sampled = " sampled configurations (seed " +
-                              std::to_string(kAlwaysOverlappingSeed) + ")";
-  for (std::size_t k = 0; k < candidates.size(); ++k) {
-    const std::string pair = files + "'" + w.primitives[candidates[k].first].name + "' and '" +
-                             w.primitives[candidates[k].second].name +
-                             "' are within their tolerances in the home pose and in ";
-    if (within[k] == kAlwaysOverlappingSamples) {
-      warnings.push_back(pair + "all " + std::to_string(kAlwaysOverlappingSamples) + sampled +
-                         ": they would warn in every cycle; if that is by design, list them "
-                         "under compatible:");
-    } else if (within[k] >= kMostlyOverlappingSamples) {
-      // Excusing a pair of links is the SRDF's way; a link and an object stay checked.
-      const bool is_link_pair = w.primitives[candidates[k].first].object_index < 0 &&
-                                w.primitives[candidates[k].second].object_index < 0;
-      warnings.push_back(
-          pair + std::to_string(within[k]) + " of " + std::to_string(kAlwaysOverlappingSamples) +
-          sampled + " (half or more): they would warn in most cycles; " +
-          (is_link_pair ? "if the links come that close by design, list them under "
-                          "compatible: (or the SRDF's disable_collisions), else a lower "
-                          "tolerance or another fit of their geometry (mesh_fit:, links:) may "
-                          "clear them"
-                        : "a lower tolerance, another fit of the link's geometry (mesh_fit:, "
-                          "links:) or the object placed farther may clear them"));
-    }
-  }
+  const std::vector<std::string> pairs = OverlapFindings(w, candidates, within, files);
+  warnings.insert(warnings.end(), pairs.begin(), pairs.end());
   return warnings;
 }
 

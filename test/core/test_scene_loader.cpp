@@ -344,6 +344,28 @@ TEST(SceneLoader, PairsOverlappingInEveryConfigurationAreReported) {
   for (const std::string& warning : excused.warnings) {
     EXPECT_EQ(warning.find("'upper_arm' and"), std::string::npos) << warning;
   }
+  // A wrist of two primitives: one finding for the two links, named as compatible: takes them
+  // (a Sawyer user read 20 findings of primitives where 4 pairs of links excused them all).
+  const std::string two = WriteEditedArmUrdf(
+      "two_wrist.urdf", "<geometry><sphere radius=\"0.045\"/></geometry>\n    </collision>",
+      "<geometry><sphere radius=\"0.045\"/></geometry>\n    </collision>\n    <collision>\n"
+      "      <origin xyz=\"0.02 0 0\"/>\n      <geometry><sphere radius=\"0.03\"/></geometry>\n"
+      "    </collision>");
+  int wrist_findings = 0;
+  for (const std::string& warning :
+       LoadWorkcell(two, WriteTempFile("always_two.yaml", scene_text)).warnings) {
+    if (warning.find("'upper_arm' and 'wrist") == std::string::npos) continue;
+    ++wrist_findings;
+    EXPECT_NE(warning.find("'upper_arm' and 'wrist' (2 pairs of their primitives: 'upper_arm' "
+                           "and 'wrist/0', 'upper_arm' and 'wrist/1') are within their "
+                           "tolerances in the home pose and in all 256 sampled configurations"),
+              std::string::npos)
+        << warning;
+    EXPECT_NE(warning.find("list them under compatible: ([upper_arm, wrist])"),
+              std::string::npos)
+        << warning;
+  }
+  EXPECT_EQ(wrist_findings, 1);
 }
 
 TEST(SceneLoader, PairsOverlappingInMostConfigurationsAreReported) {

@@ -244,7 +244,7 @@ TEST(SceneMeshLinks, ReportHasOneLinePerMeshWithTheExcessVolume) {
   std::ostringstream size;
   size.precision(3);
   size << "mesh fit: 1 capsule (radius " << c.radius_m << " m, "
-       << (c.p1_W - c.p0_W).norm() + 2.0 * c.radius_m << " m long), ";
+       << (c.p1_W - c.p0_W).norm() + 2.0 * c.radius_m << " m end to end), ";
   EXPECT_NE(w.notices[0].find(size.str()), std::string::npos) << size.str() << w.notices[0];
   // An open mesh has no volume to compare with: the span of its vertices instead.
   EXPECT_NE(w.notices[1].find("open mesh: volume undefined (its vertices span 0.2 x 0.1 x 0.1 m "

@@ -193,8 +193,9 @@ TEST(PlanningSceneReader, BadSceneGeometryTextNamesLineObjectAndExpectation) {
           {OneTextObject("cylinder\n0.1 -2"),
            {":7:", "object 'a' shape 0", "the cylinder's length -2", "a number > 0"}},
           {OneTextObject("cylinder\n0.025"),
-           {":8:", "object 'a' shape 0", "the cylinder's length found here, after 1 of the 2 "
-            "dimensions on line 7 (expected a shape's dimensions on one line)"}},
+           {":8:", "object 'a' shape 0", "line 7 holds 1 of the 2 dimensions, and the "
+            "cylinder's length would be this line's first number (expected a shape's dimensions "
+            "on one line, as MoveIt writes them)"}},
           {OneTextObject("box\n1 nan 1"),
            {":7:", "'nan'", "the box's size y, a finite number"}},
           {OneTextObject("mesh\n3 1\n0 0 0\n1 0 0\n0 1 0\n0 1 3"),

@@ -102,7 +102,19 @@ TEST(RosResourceFetch, UnknownPackageIsALoadError) {
     FetchRosResource("package://no_such_package_acm/meshes/a.stl");
     ADD_FAILURE() << "expected a LoadError";
   } catch (const LoadError& e) {
-    EXPECT_NE(std::string(e.what()).find("no_such_package_acm"), std::string::npos) << e.what();
+    // What to do (a Sawyer user read only "Package [...] does not exist").
+    EXPECT_NE(std::string(e.what()).find("(ROS knows no package 'no_such_package_acm': source "
+                                         "the setup.bash of the workspace that holds it, or add "
+                                         "the directory above it to ROS_PACKAGE_PATH)"),
+              std::string::npos)
+        << e.what();
+  }
+  // A file missing from a package ROS knows: no such advice.
+  try {
+    FetchRosResource("package://arm_collision_monitor/no_such_mesh.stl");
+    ADD_FAILURE() << "expected a LoadError";
+  } catch (const LoadError& e) {
+    EXPECT_EQ(std::string(e.what()).find("ROS knows no package"), std::string::npos) << e.what();
   }
 }
 

@@ -321,15 +321,17 @@ class ReplayConfigTest(unittest.TestCase):
 
     def test_a_bags_names_of_no_model_joint_are_listed(self):
         # A recording of the small arm also naming its URDF mimic joint (a joint_state_publisher
-        # publishes it) and a gripper joint the URDF lacks: neither is read, both are listed,
-        # apart, as a CSV's columns are (a Reachy 2 user's extra joint went unmentioned).
+        # publishes it), a gripper joint the URDF lacks and a joint the URDF holds fixed: none is
+        # read, all are listed, mimic joints apart, as a CSV's columns are (a Reachy 2 user's
+        # extra joint went unmentioned), the fixed one marked (a Sawyer's driver publishes its
+        # fixed torso_t0).
         data = os.path.join(rospkg.RosPack().get_path(PKG), 'test', 'data')
         path = os.path.join(temp_dir(self, 'acm_bag_names_'), 'names.bag')
         with rosbag.Bag(path, 'w') as bag:
             for k in range(2):
                 msg = JointState(name=['shoulder', 'slide', 'finger_mimic', 'elbow', 'spin',
-                                       'gripper_x'],
-                                 position=[0.1 * k, 0.01, 0.5, 0.0, 0.0, 0.0])
+                                       'gripper_x', 'tool_joint'],
+                                 position=[0.1 * k, 0.01, 0.5, 0.0, 0.0, 0.0, 0.0])
                 msg.header.stamp = rospy.Time(10) + rospy.Duration(0.05 * k)
                 bag.write('/joint_states', msg, msg.header.stamp)
         args = ['--urdf', os.path.join(data, 'three_link_arm.urdf'), '--scene',
@@ -338,10 +340,10 @@ class ReplayConfigTest(unittest.TestCase):
         self.assertEqual(result.returncode, 0, result.stderr)
         report = json.loads(result.stdout)
         self.assertEqual((report['ignored_names'], report['mimic_names'], report['cycles']),
-                         (['gripper_x'], ['finger_mimic'], 2))
+                         (['gripper_x', 'tool_joint'], ['finger_mimic'], 2))
         text = rosrun('replay', *args).stdout
         self.assertIn("input: joint names in the messages that are no joints of the model, "
-                      "ignored: 'gripper_x'\n", text)
+                      "ignored: 'gripper_x', 'tool_joint' (a fixed joint of the URDF)\n", text)
         self.assertIn("input: mimic joints in the messages, not read (their positions follow from "
                       "the joints they mimic in the URDF): 'finger_mimic'\n", text)
 

@@ -247,9 +247,10 @@ void PrintBetweenSamples(const Workcell& wc, const Input& input,
 
 // The "input:" lines: what the input had that no cycle checks (refused messages and cycles,
 // ignored columns and mimic joints' ones, a bag's ignored and mimic joint names, position-less
-// messages, superseded planned points).
+// messages, superseded planned points). An ignored name of one of the URDF's fixed joints
+// (`fixed_joints`) says so.
 void PrintInputLines(const Input& input, const std::vector<CycleResult>& cycles,
-                     const RunSummary& summary) {
+                     const RunSummary& summary, const std::vector<std::string>& fixed_joints) {
   if (summary.refused_messages > 0 || input.incomplete_cycles > 0 || summary.refused_cycles > 0) {
     std::printf("input: %s refused", Counted(summary.refused_messages, "message").c_str());
     for (const auto& [status, count] : input.refused) {
@@ -268,10 +269,21 @@ void PrintInputLines(const Input& input, const std::vector<CycleResult>& cycles,
     }
     std::printf("\n");
   }
+  // The names, quoted, those of fixed joints marked.
+  auto described = [&](const std::vector<std::string>& names) {
+    std::string text;
+    for (const std::string& name : names) {
+      const bool is_fixed =
+          std::find(fixed_joints.begin(), fixed_joints.end(), name) != fixed_joints.end();
+      text += (text.empty() ? "'" : ", '") + name + "'" +
+              (is_fixed ? " (a fixed joint of the URDF)" : "");
+    }
+    return text;
+  };
   if (!input.ignored_columns.empty()) {
     std::printf("input: %zu column%s ignored, not joints of the model: %s\n",
                 input.ignored_columns.size(), input.ignored_columns.size() == 1 ? "" : "s",
-                QuotedNames(input.ignored_columns).c_str());
+                described(input.ignored_columns).c_str());
   }
   if (!input.mimic_columns.empty()) {
     std::printf("input: %zu column%s of mimic joints not read (their positions follow from the "
@@ -280,8 +292,8 @@ void PrintInputLines(const Input& input, const std::vector<CycleResult>& cycles,
                 QuotedNames(input.mimic_columns).c_str());
   }
   // A bag's names, noted up to kNotedNames of each kind.
-  auto noted = [](const std::vector<std::string>& names) {
-    return QuotedNames(names) + (names.size() == kNotedNames ? ", maybe more" : "");
+  auto noted = [&](const std::vector<std::string>& names) {
+    return described(names) + (names.size() == kNotedNames ? ", maybe more" : "");
   };
   if (!input.ignored_names.empty()) {
     std::printf("input: joint names in the messages that are no joints of the model, ignored: "
@@ -411,7 +423,7 @@ void PrintText(const Options& options, const Workcell& wc, const Input& input,
     std::printf(", grasp target %s:%s", t.link.c_str(), t.object.c_str());
   }
   std::printf("\n");
-  PrintInputLines(input, cycles, summary);
+  PrintInputLines(input, cycles, summary, wc.kinematics.FixedJointNames());
   PrintWarningRuns(wc, input, cycles);
   if (is_swept) PrintBetweenSamples(wc, input, cycles, summary);
   // Refused cycles and messages are not checked (the monitor asks a stop instead): the summary
@@ -460,7 +472,8 @@ void PrintText(const Options& options, const Workcell& wc, const Input& input,
   const TimingSummary& t = summary.time_s;
   const TimingSummary& m = summary.moving_time_s;
   std::printf("cycle time: p50 %.1f us, p99 %.1f us, max %.1f us, mean %.1f us; the %s "
-              "(q changed): p50 %.1f us, p99 %.1f us, max %.1f us, mean %.1f us\n",
+              "(the first, and q changed): p50 %.1f us, p99 %.1f us, max %.1f us, mean %.1f "
+              "us\n",
               t.median * 1e6, t.p99 * 1e6, t.max * 1e6, t.mean * 1e6,
               Counted(m.count, "moving cycle").c_str(), m.median * 1e6, m.p99 * 1e6,
               m.max * 1e6, m.mean * 1e6);
