@@ -90,7 +90,8 @@ void Monitor::Impl::CheckStepTolerance() {
       << " s, the input's expected period: the monitor options' cycle_period_s, to be set to "
          "the period of faster input) and what the URDF velocity limits allow in a cycle ("
       << worst_urdf_m << " m, a bound: every joint at its limit at once, each at its longest "
-      << "lever) (of the " << below << " moving primitive" << (below == 1 ? "" : "s")
+      << "lever; joints without a velocity limit not counted) (of the " << below
+      << " moving primitive" << (below == 1 ? "" : "s")
       << " whose tolerance is below their motion, the one furthest "
       << "below)";
   if (!options.swept_check) {

@@ -18,12 +18,14 @@ std::string FetchRosResource(const std::string& url) {
     std::string hint;
     // resource_retriever's words for a package ROS does not know (the URL's host part).
     const std::string prefix = "package://";
-    if (url.compare(0, prefix.size(), prefix) == 0 &&
-        std::string(e.what()).find("does not exist") != std::string::npos) {
-      const std::string package = url.substr(prefix.size(), url.find('/', prefix.size()) -
-                                                                prefix.size());
-      hint = " (ROS knows no package '" + package + "': source the setup.bash of the " +
-             "workspace that holds it, or add the directory above it to ROS_PACKAGE_PATH)";
+    if (url.compare(0, prefix.size(), prefix) == 0) {
+      const std::string package =
+          url.substr(prefix.size(), url.find('/', prefix.size()) - prefix.size());
+      if (!package.empty() && std::string(e.what()).find("Package [" + package +
+                                                         "] does not exist") != std::string::npos) {
+        hint = " (ROS knows no package '" + package + "': source the setup.bash of the " +
+               "workspace that holds it, or add the directory above it to ROS_PACKAGE_PATH)";
+      }
     }
     throw LoadError(std::string("cannot read it: ") + e.what() + hint);
   }

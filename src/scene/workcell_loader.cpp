@@ -5,12 +5,12 @@
 #include <urdf_model/model.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <map>
 #include <random>
-#include <tuple>
 
 #include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/geometry/distance.h"
@@ -45,8 +45,9 @@ void ComputeRigidBodies(const KinematicModel& model, bool root_is_frame,
   }
 }
 
-// The compatibility matrix: the automatic pairs (primitives of one rigid body, or of a body and
-// its parent body), then the scene's `listed` pairs.
+// The compatibility matrix: the automatic pairs (primitives of one rigid body: of links joined
+// by fixed joints, or of one object; or of a body and its parent body), then the scene's
+// `listed` pairs.
 CompatibilityMatrix ComputeCompatibility(
     const Workcell& w, const std::vector<std::pair<PrimitiveId, PrimitiveId>>& listed) {
   CompatibilityMatrix compatible(static_cast<std::uint32_t>(w.primitives.size()));
@@ -56,6 +57,10 @@ CompatibilityMatrix ComputeCompatibility(
   ComputeRigidBodies(w.kinematics, !root_has_geometry, &body_of_link, &parent_body);
   for (PrimitiveId a = 0; a < w.primitives.size(); ++a) {
     for (PrimitiveId b = a + 1; b < w.primitives.size(); ++b) {
+      // An object is one rigid body: its primitives (a mesh's fit, a planning-scene object's
+      // shapes) never meet but as they were made.
+      const int oa = w.primitives[a].object_index;
+      if (oa >= 0 && oa == w.primitives[b].object_index) compatible.Set(a, b, true);
       const int la = w.primitives[a].link_index;
       const int lb = w.primitives[b].link_index;
       if (la < 0 || lb < 0) continue;
@@ -80,63 +85,114 @@ void SampleConfiguration(const KinematicModel& model, std::mt19937_64* rng, Eige
   }
 }
 
+// How many pairs of the primitives of owners `a` and `b` (links or objects, every model
+// variant) are checked: not compatible, not both static.
+std::size_t CheckedPairs(const Workcell& w, const std::string& a, const std::string& b) {
+  std::size_t count = 0;
+  for (PrimitiveId x = 0; x < w.primitives.size(); ++x) {
+    if (w.primitives[x].owner != a) continue;
+    for (PrimitiveId y = 0; y < w.primitives.size(); ++y) {
+      if (w.primitives[y].owner != b || w.compatible.AreCompatible(x, y)) continue;
+      count += !(w.primitives[x].is_static && w.primitives[y].is_static);
+    }
+  }
+  return count;
+}
+
+// A name as a YAML flow sequence takes it: plain where that reads back the same, else quoted
+// (a planning scene's object ids are free text).
+std::string YamlName(const std::string& name) {
+  const bool is_plain = !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '/' || c == '.' ||
+           c == '-';
+  });
+  if (is_plain && name != "-") return name;
+  std::string quoted = "\"";
+  for (const char c : name) {
+    if (c == '"' || c == '\\') quoted += '\\';
+    quoted += c;
+  }
+  return quoted + "\"";
+}
+
 // The findings of the pairs within their tolerances in the home pose and in within[k] of the
-// sampled configurations after it: those in all (every cycle would warn) and in half or more
-// (most would), one per pair of owners (links, objects) and kind, named by the owners where
-// their primitives have names of their own (a link of several: a Sawyer's finger pads), as
-// compatible: takes them.
+// sampled configurations after it, one per pair of owners (links, objects): in all of them,
+// every cycle would warn; in half or more, most would. Where the pairs in all are every pair
+// the two owners have left to check (a Sawyer's finger pads: 4 primitive pairs of 2 links), the
+// finding names the owners, as compatible: takes them; else each such pair is named alone, since
+// excusing the owners would excuse their other pairs too.
 std::vector<std::string> OverlapFindings(
     const Workcell& w, const std::vector<std::pair<PrimitiveId, PrimitiveId>>& pairs,
     const std::vector<int>& within, const std::string& files) {
   constexpr std::size_t kNamedPairs = 3;
   struct Group {
-    std::vector<std::size_t> members;  // indices into pairs
+    std::string owner_a, owner_b;  // as its first pair has them; each pair in that order
+    std::vector<std::pair<PrimitiveId, PrimitiveId>> every, most;
     int most_within = 0;
   };
   std::vector<Group> groups;
-  std::map<std::tuple<std::string, std::string, bool>, std::size_t> group_of;
+  std::map<std::pair<std::string, std::string>, std::size_t> group_of;
   for (std::size_t k = 0; k < pairs.size(); ++k) {
     if (within[k] < kMostlyOverlappingSamples) continue;
-    const auto key = std::make_tuple(w.primitives[pairs[k].first].owner,
-                                     w.primitives[pairs[k].second].owner,
-                                     within[k] == kAlwaysOverlappingSamples);
-    const auto [it, is_new] = group_of.emplace(key, groups.size());
-    if (is_new) groups.emplace_back();
+    auto [x, y] = pairs[k];
+    const std::string& owner_x = w.primitives[x].owner;
+    const std::string& owner_y = w.primitives[y].owner;
+    // One group whichever comes first (a model variant's primitives come after the objects).
+    const auto [it, is_new] = group_of.emplace(std::minmax(owner_x, owner_y), groups.size());
+    if (is_new) groups.push_back({owner_x, owner_y, {}, {}, 0});
     Group& group = groups[it->second];
-    group.members.push_back(k);
-    group.most_within = std::max(group.most_within, within[k]);
+    if (w.primitives[x].owner != group.owner_a) std::swap(x, y);
+    if (within[k] == kAlwaysOverlappingSamples) {
+      group.every.emplace_back(x, y);
+    } else {
+      group.most.emplace_back(x, y);
+      group.most_within = std::max(group.most_within, within[k]);
+    }
   }
+  // "'a' and 'b'", or the owners with (some of) their pairs of primitives.
+  auto named = [&](const std::string& a, const std::string& b,
+                   const std::vector<std::pair<PrimitiveId, PrimitiveId>>& members) {
+    std::string text = "'" + a + "' and '" + b + "'";
+    const auto& [x, y] = members.front();
+    if (members.size() == 1 && w.primitives[x].name == a && w.primitives[y].name == b) {
+      return text;
+    }
+    text += " (" + std::to_string(members.size()) + " pair" + (members.size() == 1 ? "" : "s") +
+            " of their primitives:";
+    for (std::size_t i = 0; i < std::min(members.size(), kNamedPairs); ++i) {
+      text += std::string(i > 0 ? "," : "") + " '" + w.primitives[members[i].first].name +
+              "' and '" + w.primitives[members[i].second].name + "'";
+    }
+    return text + (members.size() > kNamedPairs ? ", ...)" : ")");
+  };
+  const std::string within_text = " are within their tolerances in the home pose and in ";
   const std::string sampled = " sampled configurations (seed " +
                               std::to_string(kAlwaysOverlappingSeed) + ")";
+  const std::string all = "all " + std::to_string(kAlwaysOverlappingSamples) + sampled +
+                          ": they would warn in every cycle; if that is by design, list them "
+                          "under compatible: ([";
   std::vector<std::string> findings;
   for (const Group& group : groups) {
-    const PrimitiveSpec& a = w.primitives[pairs[group.members.front()].first];
-    const PrimitiveSpec& b = w.primitives[pairs[group.members.front()].second];
-    std::string names = "'" + a.owner + "' and '" + b.owner + "'";
-    if (group.members.size() > 1 || a.name != a.owner || b.name != b.owner) {
-      names += " (" + std::to_string(group.members.size()) + " pair" +
-               (group.members.size() == 1 ? "" : "s") + " of their primitives:";
-      for (std::size_t i = 0; i < std::min(group.members.size(), kNamedPairs); ++i) {
-        const auto& [x, y] = pairs[group.members[i]];
-        names += std::string(i > 0 ? "," : "") + " '" + w.primitives[x].name + "' and '" +
-                 w.primitives[y].name + "'";
+    if (!group.every.empty() && group.every.size() == CheckedPairs(w, group.owner_a,
+                                                                   group.owner_b)) {
+      findings.push_back(files + named(group.owner_a, group.owner_b, group.every) + within_text +
+                         all + YamlName(group.owner_a) + ", " + YamlName(group.owner_b) + "])");
+    } else {
+      for (const auto& [x, y] : group.every) {
+        const std::string& a = w.primitives[x].name;
+        const std::string& b = w.primitives[y].name;
+        findings.push_back(files + "'" + a + "' and '" + b + "'" + within_text + all +
+                           YamlName(a) + ", " + YamlName(b) + "])");
       }
-      if (group.members.size() > kNamedPairs) names += ", ...";
-      names += ")";
     }
-    const std::string pair =
-        files + names + " are within their tolerances in the home pose and in ";
-    if (group.most_within == kAlwaysOverlappingSamples) {
-      findings.push_back(pair + "all " + std::to_string(kAlwaysOverlappingSamples) + sampled +
-                         ": they would warn in every cycle; if that is by design, list them "
-                         "under compatible: ([" + a.owner + ", " + b.owner + "])");
-      continue;
-    }
+    if (group.most.empty()) continue;
     // Excusing a pair of links is the SRDF's way; a link and an object stay checked.
-    const bool is_link_pair = a.object_index < 0 && b.object_index < 0;
+    const bool is_link_pair = w.primitives[group.most.front().first].object_index < 0 &&
+                              w.primitives[group.most.front().second].object_index < 0;
     findings.push_back(
-        pair + (group.members.size() > 1 ? "up to " : "") + std::to_string(group.most_within) +
-        " of " + std::to_string(kAlwaysOverlappingSamples) + sampled +
+        files + named(group.owner_a, group.owner_b, group.most) + within_text +
+        (group.most.size() > 1 ? "up to " : "") + std::to_string(group.most_within) + " of " +
+        std::to_string(kAlwaysOverlappingSamples) + sampled +
         " (half or more): they would warn in most cycles; " +
         (is_link_pair ? "if the links come that close by design, list them under "
                         "compatible: (or the SRDF's disable_collisions), else a lower "

@@ -407,6 +407,40 @@ TEST(MonitorScene, EveryJointValueIsCheckedInEveryPosition) {
   }
 }
 
+// A mesh object fitted by a chain of capsules, carried: its own capsules, which overlap at their
+// joints, never warn against each other (they were checked, so the carried rod warned in every
+// cycle).
+TEST(MonitorScene, AnObjectOfSeveralPrimitivesNeverWarnsAgainstItself) {
+  const std::string data = ACM_SOURCE_DIR "/test/data/";
+  const std::string scene = WriteTempFile(
+      "rod_scene.yaml", "world: {center_m: [0, 0, 1], edge_m: 4}\nmesh_fit: capsules:4\n"
+                        "arms: [{name: arm, root_link: upper_arm}]\n"
+                        "objects: [{name: rod, type: mesh, mesh: " +
+                            data + "meshes/forearm.stl, pose: {xyz_m: [0.5, 0.0, 0.6]}, "
+                                   "attachable: true, tolerance_m: 0.01}]\n");
+  const auto wc =
+      std::make_shared<const Workcell>(LoadWorkcell(data + "three_link_arm.urdf", scene));
+  Monitor monitor(wc, MonitorOptions{});
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(wc->kinematics.q_size());
+  monitor.Update(q);
+  std::string error;
+  ASSERT_TRUE(monitor.Attach("rod", "wrist", &error)) << error;
+  const ObjectSpec& rod = wc->objects[wc->FindObject("rod")];
+  ASSERT_GT(rod.primitive_count, 1);
+  const PrimitiveId rod_end = rod.primitive + static_cast<PrimitiveId>(rod.primitive_count);
+  auto is_rod = [&](PrimitiveId id) { return id >= rod.primitive && id < rod_end; };
+  for (int k = 1; k <= 10; ++k) {
+    q[0] = 0.1 * k;  // the shoulder turns, the rod with the arm
+    const CycleReport& report = monitor.Update(q);
+    ASSERT_EQ(report.input, InputStatus::kOk);
+    for (const Warning& w : report.warnings) {
+      EXPECT_FALSE(is_rod(w.a) && is_rod(w.b))
+          << wc->primitives[w.a].name << " -- " << wc->primitives[w.b].name << " at q0 " << q[0];
+    }
+  }
+  ExpectValid(monitor);
+}
+
 // The scene file's soft limits hold for a continuous joint too (the three-link arm's spin).
 TEST(MonitorScene, SoftLimitsOfAContinuousJointAreChecked) {
   const std::string data = ACM_SOURCE_DIR "/test/data/";

@@ -368,6 +368,66 @@ TEST(SceneLoader, PairsOverlappingInEveryConfigurationAreReported) {
   EXPECT_EQ(wrist_findings, 1);
 }
 
+// The findings of pairs that touch in every configuration name the two links or objects only
+// where excusing them excuses no other pair.
+TEST(SceneLoader, PairsOverlappingEverywhereAreGroupedOnlyWhereExcusingTheOwnersIsSafe) {
+  auto findings_of = [](const Workcell& w, const std::string& part) {
+    std::vector<std::string> found;
+    for (const std::string& warning : w.warnings) {
+      if (warning.find(part) != std::string::npos) found.push_back(warning);
+    }
+    return found;
+  };
+  // A post in the upper arm's axis, touched by its capsule and by a model variant's: both pairs
+  // of the two owners, one finding (the variant's primitives come after the objects, in the
+  // other order) with the entry that excuses them.
+  const std::string post = kWorldLine + "arms: [{name: arm, root_link: upper_arm}]\n"
+                           "objects: [{name: post, size_m: [0.02, 0.02, 0.02], "
+                           "pose: {xyz_m: [0, 0, 0.35]}}]\n";
+  const Workcell both = LoadWorkcell(
+      kArmUrdf, WriteTempFile("variant_post.yaml",
+                              post + "variants: [{link: upper_arm, name: fat, capsules: [{name: "
+                                     "core, p0_m: [0, 0, 0.1], p1_m: [0, 0, 0.3], radius_m: "
+                                     "0.05}]}]\n"));
+  const std::vector<std::string> grouped = findings_of(both, "'post'");
+  ASSERT_EQ(grouped.size(), 1u);
+  EXPECT_NE(grouped[0].find("'upper_arm' and 'post' (2 pairs of their primitives: 'upper_arm' "
+                            "and 'post', '"),
+            std::string::npos)
+      << grouped[0];
+  EXPECT_NE(grouped[0].find("compatible: ([upper_arm, post])"), std::string::npos) << grouped[0];
+  // The upper arm with a collar around its base, which holds a post beside the axis in every
+  // configuration, and a knob that meets the post at one shoulder angle: excusing the two
+  // links would excuse the knob, so the collar's pair alone is named.
+  const std::string arm = WriteEditedArmUrdf(
+      "collar_knob.urdf", "<geometry><cylinder radius=\"0.05\" length=\"0.4\"/></geometry>\n"
+                          "    </collision>",
+      "<geometry><cylinder radius=\"0.05\" length=\"0.4\"/></geometry>\n    </collision>\n"
+      "    <collision name=\"collar\">\n      <origin xyz=\"0 0 0.1\"/>\n"
+      "      <geometry><cylinder radius=\"0.35\" length=\"0.1\"/></geometry>\n"
+      "    </collision>\n    <collision name=\"knob\">\n      <origin xyz=\"0 0.3 0.3\"/>\n"
+      "      <geometry><sphere radius=\"0.03\"/></geometry>\n    </collision>");
+  const std::string beside = kWorldLine + "arms: [{name: arm, root_link: upper_arm}]\n"
+                             "objects: [{name: post, size_m: [0.02, 0.02, 0.5], "
+                             "pose: {xyz_m: [0.3, 0, 0.35]}}]\n";
+  const Workcell collar = LoadWorkcell(arm, WriteTempFile("collar_post.yaml", beside));
+  const std::vector<std::string> alone = findings_of(collar, "'post'");
+  ASSERT_EQ(alone.size(), 1u);
+  EXPECT_NE(alone[0].find("'upper_arm/collar' and 'post' are within their tolerances in the home "
+                          "pose and in all 256"),
+            std::string::npos)
+      << alone[0];
+  EXPECT_NE(alone[0].find("compatible: ([upper_arm/collar, post])"), std::string::npos)
+      << alone[0];
+  // The entry shown silences the finding and leaves the knob's pair checked.
+  const Workcell excused = LoadWorkcell(
+      arm, WriteTempFile("collar_post_excused.yaml",
+                         beside + "compatible: [[upper_arm/collar, post]]\n"));
+  EXPECT_TRUE(findings_of(excused, "'post'").empty()) << findings_of(excused, "'post'").front();
+  EXPECT_FALSE(excused.compatible.AreCompatible(excused.FindPrimitive("upper_arm/knob"),
+                                                excused.FindPrimitive("post")));
+}
+
 TEST(SceneLoader, PairsOverlappingInMostConfigurationsAreReported) {
   // The upper arm's capsule set 0.3 m off the shoulder's axis: at shoulder angle t (uniform in
   // its limits [-2.5, 2.5]) its axis is at x = 0.3 cos(t + 0.3) (the joint's yaw 0.3). The slab
@@ -416,6 +476,27 @@ TEST(SceneLoader, PairsOverlappingInMostConfigurationsAreReported) {
       reported |= warning.find(pair) != std::string::npos;
     }
     EXPECT_EQ(reported, is_reported) << "slab centre at x = " << x_m;
+  }
+}
+
+TEST(SceneLoader, PrimitivesOfOneObjectAreCompatible) {
+  // A mesh object fitted by a chain of capsules that overlap at their joints: one rigid body,
+  // never checked against itself (the start-up check called the attachable rod's own pairs
+  // "'rod' and 'rod'", and, carried, they would have warned in every cycle).
+  const Workcell w = LoadWorkcell(
+      kArmUrdf, WriteTempFile("rod.yaml", kWorldLine + "mesh_fit: capsules:4\n"
+                                              "objects: [{name: rod, type: mesh, mesh: " +
+                                              kData + "meshes/forearm.stl, pose: {xyz_m: [1, 1, "
+                                              "1]}, attachable: true, tolerance_m: 0.01}]\n"));
+  const ObjectSpec& rod = w.objects[w.FindObject("rod")];
+  ASSERT_GT(rod.primitive_count, 1);
+  for (int i = 0; i < rod.primitive_count; ++i) {
+    for (int j = i + 1; j < rod.primitive_count; ++j) {
+      EXPECT_TRUE(w.compatible.AreCompatible(rod.primitive + i, rod.primitive + j)) << i << j;
+    }
+  }
+  for (const std::string& warning : w.warnings) {
+    EXPECT_EQ(warning.find("'rod/"), std::string::npos) << warning;
   }
 }
 

@@ -109,9 +109,9 @@ TEST(RosResourceFetch, UnknownPackageIsALoadError) {
               std::string::npos)
         << e.what();
   }
-  // A file missing from a package ROS knows: no such advice.
+  // A file missing from a package ROS knows (its name saying "does not exist"): no such advice.
   try {
-    FetchRosResource("package://arm_collision_monitor/no_such_mesh.stl");
+    FetchRosResource("package://arm_collision_monitor/does not exist.stl");
     ADD_FAILURE() << "expected a LoadError";
   } catch (const LoadError& e) {
     EXPECT_EQ(std::string(e.what()).find("ROS knows no package"), std::string::npos) << e.what();

@@ -270,15 +270,16 @@ class ReplayConfigTest(unittest.TestCase):
         self.assertNotIn('no warning', text)
 
     def test_a_csv_is_read_as_the_node_reads_joint_states(self):
-        # A column of no model joint (a gripper the driver publishes) is ignored and listed; a
-        # nan position is a refused cycle, named, not the end of the run; the peers refuse it
-        # too.
+        # A column of no model joint (a gripper the driver publishes) is ignored and listed, as
+        # is one of a joint the URDF holds fixed, marked so; a nan position is a refused cycle,
+        # named, not the end of the run; the peers refuse it too.
         directory = temp_dir(self, 'acm_csv_as_node_')
         csv_path = os.path.join(directory, 'driver.csv')
         with open(csv_path, 'w') as f:
-            f.write(','.join(LEFT_JOINTS + ['gripper_x'] + RIGHT_JOINTS) + '\n')
+            f.write(','.join(LEFT_JOINTS + ['gripper_x'] + RIGHT_JOINTS + ['left_tool_joint']) +
+                    '\n')
             for k in range(5):
-                row = [str(0.01 * k)] * 15
+                row = [str(0.01 * k)] * 15 + ['0']
                 if k == 3:
                     row[2] = 'nan'
                 f.write(','.join(row) + '\n')
@@ -290,14 +291,15 @@ class ReplayConfigTest(unittest.TestCase):
                             csv_path)
             self.assertEqual(result.returncode, 0, result.stderr)
             report = json.loads(result.stdout)
-            self.assertEqual(report['ignored_columns'], ['gripper_x'], method)
+            self.assertEqual(report['ignored_columns'], ['gripper_x', 'left_tool_joint'], method)
             self.assertEqual(report['cycles'], 5, method)
             self.assertEqual(report['refused_cycles'], 1, method)
             self.assertEqual(report['first_refusal']['cycle'], 3, method)
             if method == 'auto':
                 self.assertIn("joint 'left_joint3' at nan", report['first_refusal']['reason'])
         text = rosrun('replay', '--scene', self.bundled_scene, csv_path).stdout
-        self.assertIn("input: 1 column ignored, not joints of the model: 'gripper_x'\n", text)
+        self.assertIn("input: 2 columns ignored, not joints of the model: 'gripper_x', "
+                      "'left_tool_joint' (a fixed joint of the URDF)\n", text)
 
     def test_a_csv_column_of_a_mimic_joint_is_listed_not_read(self):
         # A small arm's URDF mimic joint follows the joint it mimics: its column is not read (a

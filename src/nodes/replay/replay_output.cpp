@@ -269,7 +269,8 @@ void PrintInputLines(const Input& input, const std::vector<CycleResult>& cycles,
     }
     std::printf("\n");
   }
-  // The names, quoted, those of fixed joints marked.
+  // The names, quoted; a fixed joint's marked, since a driver may publish one (a Sawyer's
+  // torso_t0) and a user reading "no joints of the model" looks for a typo.
   auto described = [&](const std::vector<std::string>& names) {
     std::string text;
     for (const std::string& name : names) {
