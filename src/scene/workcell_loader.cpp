@@ -85,20 +85,6 @@ void SampleConfiguration(const KinematicModel& model, std::mt19937_64* rng, Eige
   }
 }
 
-// How many pairs of the primitives of owners `a` and `b` (links or objects, every model
-// variant) are checked: not compatible, not both static.
-std::size_t CheckedPairs(const Workcell& w, const std::string& a, const std::string& b) {
-  std::size_t count = 0;
-  for (PrimitiveId x = 0; x < w.primitives.size(); ++x) {
-    if (w.primitives[x].owner != a) continue;
-    for (PrimitiveId y = 0; y < w.primitives.size(); ++y) {
-      if (w.primitives[y].owner != b || w.compatible.AreCompatible(x, y)) continue;
-      count += !(w.primitives[x].is_static && w.primitives[y].is_static);
-    }
-  }
-  return count;
-}
-
 // A name as a YAML flow sequence takes it: plain where that reads back the same, else quoted
 // (a planning scene's object ids are free text).
 std::string YamlName(const std::string& name) {
@@ -106,25 +92,146 @@ std::string YamlName(const std::string& name) {
     return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '/' || c == '.' ||
            c == '-';
   });
-  if (is_plain && name != "-") return name;
+  // yaml-cpp reads these plain scalars as null.
+  const bool is_null = name == "null" || name == "Null" || name == "NULL";
+  if (is_plain && !is_null && name != "-") return name;
   std::string quoted = "\"";
   for (const char c : name) {
-    if (c == '"' || c == '\\') quoted += '\\';
-    quoted += c;
+    if (c == '\n') {
+      quoted += "\\n";
+    } else if (c == '\t') {
+      quoted += "\\t";
+    } else if (c == '\r') {
+      quoted += "\\r";
+    } else {
+      if (c == '"' || c == '\\') quoted += '\\';
+      quoted += c;
+    }
   }
   return quoted + "\"";
 }
 
+// The start-up findings of pairs of primitives that touch in the sampled configurations, and the
+// compatible: entries that would excuse them: an entry's name stands for what the loader reads
+// it as (a link's or object's name for all of its primitives, model variants' too; a
+// primitive's own name for it alone), so an entry is shown only where it excuses no pair
+// beyond those found in every configuration.
+class OverlapReport {
+ public:
+  OverlapReport(const Workcell& w, const std::string& files) : w_(w), files_(files) {
+    for (PrimitiveId id = 0; id < w.primitives.size(); ++id) {
+      of_owner_[w.primitives[id].owner].push_back(id);
+    }
+  }
+
+  // The pairs of one pair of owners: `every` (within in all samples) and `most` (in half or
+  // more, up to `most_within`), each pair's first primitive of the first owner.
+  void Add(const std::string& owner_a, const std::string& owner_b,
+           const std::vector<std::pair<PrimitiveId, PrimitiveId>>& every,
+           const std::vector<std::pair<PrimitiveId, PrimitiveId>>& most, int most_within) {
+    if (!every.empty() && IsExcusedOnlyAmong(owner_a, owner_b, every)) {
+      findings_.push_back(files_ + Named(owner_a, owner_b, every) + kWithin + Every() +
+                          "if that is by design, list them under compatible: ([" +
+                          YamlName(owner_a) + ", " + YamlName(owner_b) + "])");
+    } else {
+      for (const auto& pair : every) {
+        const std::string& a = w_.primitives[pair.first].name;
+        const std::string& b = w_.primitives[pair.second].name;
+        findings_.push_back(
+            files_ + "'" + a + "' and '" + b + "'" + kWithin + Every() +
+            (IsExcusedOnlyAmong(a, b, {pair})
+                 ? "if that is by design, list them under compatible: ([" + YamlName(a) +
+                       ", " + YamlName(b) + "])"
+                 : "compatible: cannot excuse them alone ('" + a + "' or '" + b +
+                       "' names a link or object, all of whose primitives it would excuse, "
+                       "model variants' too): a lower tolerance or another fit of their "
+                       "geometry (mesh_fit:, links:) may clear them"));
+      }
+    }
+    if (most.empty()) return;
+    // Excusing a pair of links is the SRDF's way; a link and an object stay checked.
+    const bool is_link_pair = w_.primitives[most.front().first].object_index < 0 &&
+                              w_.primitives[most.front().second].object_index < 0;
+    findings_.push_back(
+        files_ + Named(owner_a, owner_b, most) + kWithin + (most.size() > 1 ? "up to " : "") +
+        std::to_string(most_within) + " of " + std::to_string(kAlwaysOverlappingSamples) +
+        Sampled() + " (half or more): they would warn in most cycles; " +
+        (is_link_pair ? "if the links come that close by design, list them under "
+                        "compatible: (or the SRDF's disable_collisions), else a lower "
+                        "tolerance or another fit of their geometry (mesh_fit:, links:) may "
+                        "clear them"
+                      : "a lower tolerance, another fit of the link's geometry (mesh_fit:, "
+                        "links:) or the object placed farther may clear them"));
+  }
+
+  const std::vector<std::string>& findings() const { return findings_; }
+
+ private:
+  static constexpr const char* kWithin = " are within their tolerances in the home pose and in ";
+  static constexpr std::size_t kNamedPairs = 3;
+
+  static std::string Sampled() {
+    return " sampled configurations (seed " + std::to_string(kAlwaysOverlappingSeed) + ")";
+  }
+  static std::string Every() {
+    return "all " + std::to_string(kAlwaysOverlappingSamples) + Sampled() +
+           ": they would warn in every cycle; ";
+  }
+
+  // What the loader reads `name` as: an owner's name, all its primitives; else the primitive.
+  std::vector<PrimitiveId> Resolved(const std::string& name) const {
+    const auto owner = of_owner_.find(name);
+    if (owner != of_owner_.end()) return owner->second;
+    const int id = w_.FindPrimitive(name);
+    if (id < 0) return {};
+    return {static_cast<PrimitiveId>(id)};
+  }
+
+  // Whether the entry [a, b] excuses no pair still checked but those of `found`.
+  bool IsExcusedOnlyAmong(const std::string& a, const std::string& b,
+                          const std::vector<std::pair<PrimitiveId, PrimitiveId>>& found) const {
+    for (const PrimitiveId x : Resolved(a)) {
+      for (const PrimitiveId y : Resolved(b)) {
+        const bool is_checked = !w_.compatible.AreCompatible(x, y) &&
+                                !(w_.primitives[x].is_static && w_.primitives[y].is_static);
+        if (is_checked && std::find(found.begin(), found.end(), std::make_pair(x, y)) ==
+                              found.end()) {
+          return false;
+        }
+      }
+    }
+    return true;
+  }
+
+  // "'a' and 'b'", or the owners with (some of) their pairs of primitives.
+  std::string Named(const std::string& a, const std::string& b,
+                    const std::vector<std::pair<PrimitiveId, PrimitiveId>>& members) const {
+    std::string text = "'" + a + "' and '" + b + "'";
+    const auto& [x, y] = members.front();
+    if (members.size() == 1 && w_.primitives[x].name == a && w_.primitives[y].name == b) {
+      return text;
+    }
+    text += " (" + std::to_string(members.size()) + " pair" + (members.size() == 1 ? "" : "s") +
+            " of their primitives:";
+    for (std::size_t i = 0; i < std::min(members.size(), kNamedPairs); ++i) {
+      text += std::string(i > 0 ? "," : "") + " '" + w_.primitives[members[i].first].name +
+              "' and '" + w_.primitives[members[i].second].name + "'";
+    }
+    return text + (members.size() > kNamedPairs ? ", ...)" : ")");
+  }
+
+  const Workcell& w_;
+  const std::string files_;
+  std::map<std::string, std::vector<PrimitiveId>> of_owner_;
+  std::vector<std::string> findings_;
+};
+
 // The findings of the pairs within their tolerances in the home pose and in within[k] of the
-// sampled configurations after it, one per pair of owners (links, objects): in all of them,
-// every cycle would warn; in half or more, most would. Where the pairs in all are every pair
-// the two owners have left to check (a Sawyer's finger pads: 4 primitive pairs of 2 links), the
-// finding names the owners, as compatible: takes them; else each such pair is named alone, since
-// excusing the owners would excuse their other pairs too.
+// sampled configurations after it, one group per pair of owners (links, objects): in all of
+// them, every cycle would warn; in half or more, most would (OverlapReport).
 std::vector<std::string> OverlapFindings(
     const Workcell& w, const std::vector<std::pair<PrimitiveId, PrimitiveId>>& pairs,
     const std::vector<int>& within, const std::string& files) {
-  constexpr std::size_t kNamedPairs = 3;
   struct Group {
     std::string owner_a, owner_b;  // as its first pair has them; each pair in that order
     std::vector<std::pair<PrimitiveId, PrimitiveId>> every, most;
@@ -149,59 +256,9 @@ std::vector<std::string> OverlapFindings(
       group.most_within = std::max(group.most_within, within[k]);
     }
   }
-  // "'a' and 'b'", or the owners with (some of) their pairs of primitives.
-  auto named = [&](const std::string& a, const std::string& b,
-                   const std::vector<std::pair<PrimitiveId, PrimitiveId>>& members) {
-    std::string text = "'" + a + "' and '" + b + "'";
-    const auto& [x, y] = members.front();
-    if (members.size() == 1 && w.primitives[x].name == a && w.primitives[y].name == b) {
-      return text;
-    }
-    text += " (" + std::to_string(members.size()) + " pair" + (members.size() == 1 ? "" : "s") +
-            " of their primitives:";
-    for (std::size_t i = 0; i < std::min(members.size(), kNamedPairs); ++i) {
-      text += std::string(i > 0 ? "," : "") + " '" + w.primitives[members[i].first].name +
-              "' and '" + w.primitives[members[i].second].name + "'";
-    }
-    return text + (members.size() > kNamedPairs ? ", ...)" : ")");
-  };
-  const std::string within_text = " are within their tolerances in the home pose and in ";
-  const std::string sampled = " sampled configurations (seed " +
-                              std::to_string(kAlwaysOverlappingSeed) + ")";
-  const std::string all = "all " + std::to_string(kAlwaysOverlappingSamples) + sampled +
-                          ": they would warn in every cycle; if that is by design, list them "
-                          "under compatible: ([";
-  std::vector<std::string> findings;
-  for (const Group& group : groups) {
-    if (!group.every.empty() && group.every.size() == CheckedPairs(w, group.owner_a,
-                                                                   group.owner_b)) {
-      findings.push_back(files + named(group.owner_a, group.owner_b, group.every) + within_text +
-                         all + YamlName(group.owner_a) + ", " + YamlName(group.owner_b) + "])");
-    } else {
-      for (const auto& [x, y] : group.every) {
-        const std::string& a = w.primitives[x].name;
-        const std::string& b = w.primitives[y].name;
-        findings.push_back(files + "'" + a + "' and '" + b + "'" + within_text + all +
-                           YamlName(a) + ", " + YamlName(b) + "])");
-      }
-    }
-    if (group.most.empty()) continue;
-    // Excusing a pair of links is the SRDF's way; a link and an object stay checked.
-    const bool is_link_pair = w.primitives[group.most.front().first].object_index < 0 &&
-                              w.primitives[group.most.front().second].object_index < 0;
-    findings.push_back(
-        files + named(group.owner_a, group.owner_b, group.most) + within_text +
-        (group.most.size() > 1 ? "up to " : "") + std::to_string(group.most_within) + " of " +
-        std::to_string(kAlwaysOverlappingSamples) + sampled +
-        " (half or more): they would warn in most cycles; " +
-        (is_link_pair ? "if the links come that close by design, list them under "
-                        "compatible: (or the SRDF's disable_collisions), else a lower "
-                        "tolerance or another fit of their geometry (mesh_fit:, links:) may "
-                        "clear them"
-                      : "a lower tolerance, another fit of the link's geometry (mesh_fit:, "
-                        "links:) or the object placed farther may clear them"));
-  }
-  return findings;
+  OverlapReport report(w, files);
+  for (const Group& g : groups) report.Add(g.owner_a, g.owner_b, g.every, g.most, g.most_within);
+  return report.findings();
 }
 
 // Start-up findings from sampled configurations of every model: primitives outside the world

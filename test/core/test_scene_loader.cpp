@@ -396,6 +396,23 @@ TEST(SceneLoader, PairsOverlappingEverywhereAreGroupedOnlyWhereExcusingTheOwners
             std::string::npos)
       << grouped[0];
   EXPECT_NE(grouped[0].find("compatible: ([upper_arm, post])"), std::string::npos) << grouped[0];
+  // A variant's capsule far off the post: 'upper_arm', the name of the link's one default
+  // primitive, stands for the variant's too, so no entry can excuse the default's pair alone.
+  const Workcell side = LoadWorkcell(
+      kArmUrdf, WriteTempFile("variant_side.yaml",
+                              post + "variants: [{link: upper_arm, name: thin, capsules: [{name: "
+                                     "side, p0_m: [0.4, 0, 0.1], p1_m: [0.4, 0, 0.3], radius_m: "
+                                     "0.01}]}]\n"));
+  const std::vector<std::string> no_entry = findings_of(side, "'post'");
+  ASSERT_EQ(no_entry.size(), 1u);
+  EXPECT_NE(no_entry[0].find("'upper_arm' and 'post' are within their tolerances in the home "
+                             "pose and in all 256"),
+            std::string::npos)
+      << no_entry[0];
+  EXPECT_NE(no_entry[0].find("compatible: cannot excuse them alone ('upper_arm' or 'post' names "
+                             "a link or object, all of whose primitives it would excuse"),
+            std::string::npos)
+      << no_entry[0];
   // The upper arm with a collar around its base, which holds a post beside the axis in every
   // configuration, and a knob that meets the post at one shoulder angle: excusing the two
   // links would excuse the knob, so the collar's pair alone is named.
@@ -426,6 +443,37 @@ TEST(SceneLoader, PairsOverlappingEverywhereAreGroupedOnlyWhereExcusingTheOwners
   EXPECT_TRUE(findings_of(excused, "'post'").empty()) << findings_of(excused, "'post'").front();
   EXPECT_FALSE(excused.compatible.AreCompatible(excused.FindPrimitive("upper_arm/knob"),
                                                 excused.FindPrimitive("post")));
+}
+
+// The entry a finding shows reads back as the names it holds, however odd (a planning scene's
+// object ids are free text): appended to the scene, it silences the finding.
+TEST(SceneLoader, TheEntryAFindingShowsExcusesItsPair) {
+  for (const std::string& name :
+       {std::string("post #1"), std::string("null"), std::string("say \"hi\" \\ now")}) {
+    std::string quoted = "\"";  // the name in the scene file, YAML double-quoted
+    for (const char c : name) {
+      if (c == '"' || c == '\\') quoted += '\\';
+      quoted += c;
+    }
+    const std::string scene = kWorldLine + "arms: [{name: arm, root_link: upper_arm}]\n"
+                              "objects: [{name: " + quoted + "\", size_m: [0.02, 0.02, 0.02], "
+                              "pose: {xyz_m: [0, 0, 0.35]}}]\n";
+    const Workcell w = LoadWorkcell(kArmUrdf, WriteTempFile("odd_name.yaml", scene));
+    std::string entry;
+    for (const std::string& warning : w.warnings) {
+      const std::size_t at = warning.find("list them under compatible: (");
+      if (warning.find("'" + name + "'") == std::string::npos || at == std::string::npos) continue;
+      const std::size_t from = at + std::string("list them under compatible: (").size();
+      entry = warning.substr(from, warning.rfind(')') - from);
+    }
+    ASSERT_FALSE(entry.empty()) << name;
+    const Workcell excused =
+        LoadWorkcell(kArmUrdf, WriteTempFile("odd_name_excused.yaml",
+                                             scene + "compatible: [" + entry + "]\n"));
+    EXPECT_TRUE(excused.compatible.AreCompatible(excused.FindPrimitive("upper_arm"),
+                                                 excused.FindPrimitive(name)))
+        << name << ": " << entry;
+  }
 }
 
 TEST(SceneLoader, PairsOverlappingInMostConfigurationsAreReported) {
