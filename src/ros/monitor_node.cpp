@@ -449,6 +449,7 @@ bool MonitorNode::OnCheck(CheckJointState::Request& req, CheckJointState::Respon
     const std::string why = input_->DescribeRefusal(input, status, ros::Time::now().toSec());
     res.message = std::string("joint state refused: ") + MergeStatusName(status) +
                   (why.empty() ? "" : " (" + why + ")");
+    res.report.stop_reason = res.message;
     return true;
   }
   const std::vector<std::string> missing = input_->MissingJointsNotIn(req.joint_state.name);
@@ -458,6 +459,7 @@ bool MonitorNode::OnCheck(CheckJointState::Request& req, CheckJointState::Respon
     res.report.stop = true;
     res.message = "no position for " + ModelJointsText(missing) +
                   ": never received, and not in the request";
+    res.report.stop_reason = res.message;
     return true;
   }
   const CycleReport report = monitor_->Check(q);
@@ -482,6 +484,14 @@ bool MonitorNode::OnCheck(CheckJointState::Request& req, CheckJointState::Respon
                             : std::string("joint state refused: ") +
                                   SafetyStatusName(input_status) + " (" +
                                   monitor_->DescribeRefusal(q) + ")";
+  // The reason a cycle of this q would give its stop (the warnings' as the live report has it).
+  if (report.stop && !report.warnings.empty()) {
+    char reason[512];
+    FormatWarningsReason(report.warnings, primitives_, reason, sizeof(reason));
+    res.report.stop_reason = reason;
+  } else if (report.stop) {
+    res.report.stop_reason = res.message;
+  }
   return true;
 }
 

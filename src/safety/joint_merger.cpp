@@ -131,9 +131,15 @@ std::string JointMerger::DescribeRefusal(const NamedPositions& input, MergeStatu
     for (const std::string& name : names) {
       const auto it = index_of_name_.find(name);
       if (it == index_of_name_.end() || !(input.stamp_s < stamp_s_[it->second])) continue;
+      // Under a millisecond (two drivers' messages racing) in microseconds, not "0.000 s".
+      const double back_s = stamp_s_[it->second] - input.stamp_s;
       char text[64];
-      std::snprintf(text, sizeof(text), "' %.3f s before its last accepted stamp",
-                    stamp_s_[it->second] - input.stamp_s);
+      if (back_s >= 1e-3) {
+        std::snprintf(text, sizeof(text), "' %.3f s before its last accepted stamp", back_s);
+      } else {
+        std::snprintf(text, sizeof(text), "' %.1f us before its last accepted stamp",
+                      back_s * 1e6);
+      }
       return "joint '" + name + text;
     }
     return "";

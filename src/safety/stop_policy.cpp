@@ -151,26 +151,33 @@ void StopPolicy::OnCycleReport(const CycleReport& report, const std::string& ref
     Raise(Rank::kJumped, SafetyStatus::kOk, "input jumped: a %.3f m step in one cycle",
           report.step_motion_m);
   } else if (!report.warnings.empty()) {
-    // The pair deepest in its tolerance zone (a touching pair before one near its threshold).
-    const Warning& w = *std::min_element(
-        report.warnings.begin(), report.warnings.end(), [](const Warning& x, const Warning& y) {
-          return x.distance_m - x.threshold_m < y.distance_m - y.threshold_m;
-        });
-    // A pair found between samples says where; one found only within swept_resolution_m of
-    // its threshold (no sample inside it) says so.
-    char where[128] = "";
-    if (w.between_samples) {
-      std::snprintf(where, sizeof(where), " between samples, at %.3f of the step%s",
-                    w.step_fraction,
-                    w.distance_m < w.threshold_m
-                        ? ""
-                        : " (within swept_resolution_m of its threshold: not certified clear)");
-    }
-    Raise(Rank::kWarning, SafetyStatus::kOk,
-          "%zu warning(s), the deepest %s - %s at %.4f m (threshold %.4f m)%s",
-          report.warnings.size(), primitives[w.a].name.c_str(), primitives[w.b].name.c_str(),
-          w.distance_m, w.threshold_m, where);
+    char text[kReasonCapacity];
+    FormatWarningsReason(report.warnings, primitives, text, sizeof(text));
+    Raise(Rank::kWarning, SafetyStatus::kOk, "%s", text);
   }
+}
+
+void FormatWarningsReason(const std::vector<Warning>& warnings,
+                          const std::vector<PrimitiveSpec>& primitives, char* text,
+                          std::size_t size) {
+  // The pair deepest in its tolerance zone (a touching pair before one near its threshold).
+  const Warning& w = *std::min_element(
+      warnings.begin(), warnings.end(), [](const Warning& x, const Warning& y) {
+        return x.distance_m - x.threshold_m < y.distance_m - y.threshold_m;
+      });
+  // A pair found between samples says where; one found only within swept_resolution_m of its
+  // threshold (no sample inside it) says so.
+  char where[128] = "";
+  if (w.between_samples) {
+    std::snprintf(where, sizeof(where), " between samples, at %.3f of the step%s",
+                  w.step_fraction,
+                  w.distance_m < w.threshold_m
+                      ? ""
+                      : " (within swept_resolution_m of its threshold: not certified clear)");
+  }
+  std::snprintf(text, size, "%zu warning(s), the deepest %s - %s at %.4f m (threshold %.4f m)%s",
+                warnings.size(), primitives[w.a].name.c_str(), primitives[w.b].name.c_str(),
+                w.distance_m, w.threshold_m, where);
 }
 
 void StopPolicy::EndCycle(double now_s) {

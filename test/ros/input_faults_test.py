@@ -280,11 +280,16 @@ class InputFaultsTest(unittest.TestCase):
         self.assertTrue(res.success)
         self.assertTrue(res.report.stop)
         self.assertGreater(len(res.report.warnings), 0)
+        # A stop says why, as a live report does ("" only without a stop: a Doosan user's
+        # reply had stop true and no reason).
+        self.assertTrue(res.report.stop_reason.startswith(
+            '%d warning(s), the deepest ' % len(res.report.warnings)), res.report.stop_reason)
         bad = self.check([float('nan')] * 7, HOME)
         self.assertFalse(bad.success)
         self.assertEqual(bad.report.input_status, MonitorReport.INPUT_NON_FINITE)
         self.assertEqual(bad.message,
                          "joint state refused: non_finite (joint 'left_joint1' at nan)")
+        self.assertEqual(bad.report.stop_reason, bad.message)
         beyond = self.check([0.0, 10.0, 0, 0, 0, 0, 0], HOME)
         self.assertFalse(beyond.success)
         self.assertTrue(beyond.message.startswith(

@@ -29,6 +29,13 @@ namespace arm_collision_monitor {
 
 SafetyStatus ToSafetyStatus(InputStatus status);
 
+/// The stop reason of a cycle's `warnings` (not empty), naming the pair deepest in its tolerance
+/// zone by `primitives`: "N warning(s), the deepest a - b at d m (threshold t m)", and where
+/// between samples; written into `text` (`size` bytes, cut there), without allocating.
+void FormatWarningsReason(const std::vector<Warning>& warnings,
+                          const std::vector<PrimitiveSpec>& primitives, char* text,
+                          std::size_t size);
+
 /// What a staleness check found.
 struct StaleCheck {
   bool is_stale = false;
