@@ -17,7 +17,8 @@ CycleReport Monitor::Check(const Eigen::Ref<const Eigen::VectorXd>& q) const {
   if (m.IsIdle(q)) {  // the last report, no work
     r.input = m.report.input;
     r.warnings = m.report.warnings;
-    r.stop = m.report.stop;
+    // Not the live stop, which a jump into q may have raised: a check has no step.
+    r.stop = r.input != InputStatus::kOk || !r.warnings.empty();
     return r;
   }
   r.input = m.CheckInput(q);

@@ -87,9 +87,14 @@ bool Monitor::Attach(const std::string& object, const std::string& link, std::st
   }
   const Eigen::Isometry3d X_LW = m.LinkPose(l).inverse(Eigen::Isometry);
   // A held object moves with the arm, so it gets at least the holder's tolerance zone (the
-  // seed's tolerance around each moving object).
+  // seed's tolerance around each moving object): that of the nearest link up the chain with
+  // geometry, for a holder without (a tool frame, the usual one to attach to).
+  int with_geometry = l;
+  while (with_geometry > 0 && m.model.link_prims[with_geometry].empty()) {
+    with_geometry = m.model.kinematics->parent_link(with_geometry);
+  }
   double holder_tol_m = 0.0;
-  for (const PrimitiveId id : m.model.link_prims[l]) {
+  for (const PrimitiveId id : m.model.link_prims[with_geometry]) {
     holder_tol_m = std::max(holder_tol_m, m.tol_base[id]);
   }
   // A live object was not in the start-up reach envelope, whose hold radius it need not keep:

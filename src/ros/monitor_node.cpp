@@ -484,9 +484,10 @@ bool MonitorNode::OnCheck(CheckJointState::Request& req, CheckJointState::Respon
                             : std::string("joint state refused: ") +
                                   SafetyStatusName(input_status) + " (" +
                                   monitor_->DescribeRefusal(q) + ")";
-  // The reason a cycle of this q would give its stop (the warnings' as the live report has it).
-  if (report.stop && !report.warnings.empty()) {
-    char reason[512];
+  // The reason a cycle of this q would give its stop: a refusal's first (the warnings of a
+  // refused q are the live model's), else the warnings' as the live report has it.
+  if (report.stop && report.input == InputStatus::kOk && !report.warnings.empty()) {
+    char reason[kReasonCapacity];
     FormatWarningsReason(report.warnings, primitives_, reason, sizeof(reason));
     res.report.stop_reason = reason;
   } else if (report.stop) {

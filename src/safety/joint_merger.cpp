@@ -131,13 +131,14 @@ std::string JointMerger::DescribeRefusal(const NamedPositions& input, MergeStatu
     for (const std::string& name : names) {
       const auto it = index_of_name_.find(name);
       if (it == index_of_name_.end() || !(input.stamp_s < stamp_s_[it->second])) continue;
-      // Under a millisecond (two drivers' messages racing) in microseconds, not "0.000 s".
+      // Under a millisecond (two drivers' messages racing) in whole microseconds, not
+      // "0.000 s" (a stamp near 1.7e9 s holds no finer than a quarter microsecond).
       const double back_s = stamp_s_[it->second] - input.stamp_s;
       char text[64];
-      if (back_s >= 1e-3) {
+      if (back_s >= 0.9995e-3) {
         std::snprintf(text, sizeof(text), "' %.3f s before its last accepted stamp", back_s);
       } else {
-        std::snprintf(text, sizeof(text), "' %.1f us before its last accepted stamp",
+        std::snprintf(text, sizeof(text), "' %.0f us before its last accepted stamp",
                       back_s * 1e6);
       }
       return "joint '" + name + text;

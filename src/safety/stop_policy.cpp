@@ -10,7 +10,6 @@ namespace {
 
 // Longest reason kept (characters): names of two primitives with where between samples, or a
 // joint and a TF error, fit, and the note of a held stop after them.
-constexpr std::size_t kReasonCapacity = 384;
 // Of which the other stale joints' names may take (characters), leaving room for the rest.
 constexpr std::size_t kReasonNamesCapacity = 120;
 

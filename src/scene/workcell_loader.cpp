@@ -129,24 +129,37 @@ class OverlapReport {
   void Add(const std::string& owner_a, const std::string& owner_b,
            const std::vector<std::pair<PrimitiveId, PrimitiveId>>& every,
            const std::vector<std::pair<PrimitiveId, PrimitiveId>>& most, int most_within) {
-    if (!every.empty() && IsExcusedOnlyAmong(owner_a, owner_b, every)) {
+    std::vector<std::pair<PrimitiveId, PrimitiveId>> found = every;  // sorted, for lookups
+    std::sort(found.begin(), found.end());
+    if (!every.empty() && IsExcusedOnlyAmong(owner_a, owner_b, found)) {
       findings_.push_back(files_ + Named(owner_a, owner_b, every) + kWithin + Every() +
                           "if that is by design, list them under compatible: ([" +
                           YamlName(owner_a) + ", " + YamlName(owner_b) + "])");
-    } else {
-      for (const auto& pair : every) {
-        const std::string& a = w_.primitives[pair.first].name;
-        const std::string& b = w_.primitives[pair.second].name;
-        findings_.push_back(
-            files_ + "'" + a + "' and '" + b + "'" + kWithin + Every() +
-            (IsExcusedOnlyAmong(a, b, {pair})
-                 ? "if that is by design, list them under compatible: ([" + YamlName(a) +
-                       ", " + YamlName(b) + "])"
-                 : "compatible: cannot excuse them alone ('" + a + "' or '" + b +
-                       "' names a link or object, all of whose primitives it would excuse, "
-                       "model variants' too): a lower tolerance or another fit of their "
-                       "geometry (mesh_fit:, links:) may clear them"));
+    } else if (!every.empty()) {
+      // Each pair's own entry where its names excuse no other (a link's or object's name
+      // stands for all its primitives), up to kNamedPairs of them in one finding.
+      std::string entries;
+      std::size_t unnamed = 0;
+      for (std::size_t i = 0; i < every.size(); ++i) {
+        const std::string& a = w_.primitives[every[i].first].name;
+        const std::string& b = w_.primitives[every[i].second].name;
+        if (!IsExcusedOnlyAmong(a, b, found)) {
+          ++unnamed;
+        } else if (i < kNamedPairs) {
+          entries += std::string(entries.empty() ? "" : ", ") + "[" + YamlName(a) + ", " +
+                     YamlName(b) + "]";
+        }
       }
+      findings_.push_back(
+          files_ + Named(owner_a, owner_b, every) + kWithin + Every() +
+          (entries.empty() ? "" : "if that is by design, list them under compatible: (" +
+                                      entries + (every.size() > kNamedPairs ? ", ...)" : ")")) +
+          (unnamed == 0 ? ""
+                        : std::string(entries.empty() ? "" : "; ") + std::to_string(unnamed) +
+                              " of them compatible: cannot excuse alone (their names stand "
+                              "for a link or object, all of whose primitives an entry would "
+                              "excuse, model variants' too): a lower tolerance or another fit "
+                              "of their geometry (mesh_fit:, links:) may clear them"));
     }
     if (most.empty()) return;
     // Excusing a pair of links is the SRDF's way; a link and an object stay checked.
@@ -187,15 +200,14 @@ class OverlapReport {
     return {static_cast<PrimitiveId>(id)};
   }
 
-  // Whether the entry [a, b] excuses no pair still checked but those of `found`.
+  // Whether the entry [a, b] excuses no pair still checked but those of `found` (sorted).
   bool IsExcusedOnlyAmong(const std::string& a, const std::string& b,
                           const std::vector<std::pair<PrimitiveId, PrimitiveId>>& found) const {
     for (const PrimitiveId x : Resolved(a)) {
       for (const PrimitiveId y : Resolved(b)) {
         const bool is_checked = !w_.compatible.AreCompatible(x, y) &&
                                 !(w_.primitives[x].is_static && w_.primitives[y].is_static);
-        if (is_checked && std::find(found.begin(), found.end(), std::make_pair(x, y)) ==
-                              found.end()) {
+        if (is_checked && !std::binary_search(found.begin(), found.end(), std::make_pair(x, y))) {
           return false;
         }
       }

@@ -207,8 +207,16 @@ inline std::vector<ReferenceWarning> ReferenceWarnings(const Workcell& wc,
     const auto held = scene.held.find(static_cast<PrimitiveId>(i));
     if (held != scene.held.end()) {
       shape[i] = TransformShape(X_WL[held->second.link], held->second.shape_L);
+      // The tolerance of the holder's, or of its nearest ancestor's with geometry (a tool frame
+      // has none).
+      auto has_geometry = [&](int link) {
+        return std::any_of(wc.primitives.begin(), wc.primitives.end(),
+                           [&](const PrimitiveSpec& l) { return l.link_index == link; });
+      };
+      int holder = held->second.link;
+      while (holder > 0 && !has_geometry(holder)) holder = wc.kinematics.parent_link(holder);
       for (const PrimitiveSpec& l : wc.primitives) {
-        if (l.link_index == held->second.link) tol[i] = std::max(tol[i], l.tolerance_m);
+        if (l.link_index == holder) tol[i] = std::max(tol[i], l.tolerance_m);
       }
     } else {
       const auto moved = scene.moved_objects_W.find(static_cast<PrimitiveId>(i));

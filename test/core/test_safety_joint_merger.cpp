@@ -84,7 +84,7 @@ TEST(JointMerger, RefusalsLeaveQUntouchedAndAreCounted) {
        "joint 'a2' 0.010 s before its last accepted stamp"},
       // Under a millisecond (a Doosan user's racing publishers read "0.000 s").
       {{"a2"}, {2.0}, 10.0 - 2.5e-4, MergeStatus::kStampBackwards,
-       "joint 'a2' 250.0 us before its last accepted stamp"},
+       "joint 'a2' 250 us before its last accepted stamp"},
   };
   std::uint64_t refused = 0;
   for (const Case& c : cases) {

@@ -409,8 +409,9 @@ TEST(SceneLoader, PairsOverlappingEverywhereAreGroupedOnlyWhereExcusingTheOwners
                              "pose and in all 256"),
             std::string::npos)
       << no_entry[0];
-  EXPECT_NE(no_entry[0].find("compatible: cannot excuse them alone ('upper_arm' or 'post' names "
-                             "a link or object, all of whose primitives it would excuse"),
+  EXPECT_NE(no_entry[0].find("they would warn in every cycle; 1 of them compatible: cannot "
+                             "excuse alone (their names stand for a link or object, all of "
+                             "whose primitives an entry would excuse, model variants' too)"),
             std::string::npos)
       << no_entry[0];
   // The upper arm with a collar around its base, which holds a post beside the axis in every
@@ -430,8 +431,9 @@ TEST(SceneLoader, PairsOverlappingEverywhereAreGroupedOnlyWhereExcusingTheOwners
   const Workcell collar = LoadWorkcell(arm, WriteTempFile("collar_post.yaml", beside));
   const std::vector<std::string> alone = findings_of(collar, "'post'");
   ASSERT_EQ(alone.size(), 1u);
-  EXPECT_NE(alone[0].find("'upper_arm/collar' and 'post' are within their tolerances in the home "
-                          "pose and in all 256"),
+  EXPECT_NE(alone[0].find("'upper_arm' and 'post' (1 pair of their primitives: 'upper_arm/collar' "
+                          "and 'post') are within their tolerances in the home pose and in all "
+                          "256"),
             std::string::npos)
       << alone[0];
   EXPECT_NE(alone[0].find("compatible: ([upper_arm/collar, post])"), std::string::npos)
@@ -449,11 +451,12 @@ TEST(SceneLoader, PairsOverlappingEverywhereAreGroupedOnlyWhereExcusingTheOwners
 // object ids are free text): appended to the scene, it silences the finding.
 TEST(SceneLoader, TheEntryAFindingShowsExcusesItsPair) {
   for (const std::string& name :
-       {std::string("post #1"), std::string("null"), std::string("say \"hi\" \\ now")}) {
+       {std::string("post #1"), std::string("null"), std::string("say \"hi\" \\ now"),
+        std::string("two\nlines")}) {
     std::string quoted = "\"";  // the name in the scene file, YAML double-quoted
     for (const char c : name) {
       if (c == '"' || c == '\\') quoted += '\\';
-      quoted += c;
+      quoted += c == '\n' ? std::string("\\n") : std::string(1, c);
     }
     const std::string scene = kWorldLine + "arms: [{name: arm, root_link: upper_arm}]\n"
                               "objects: [{name: " + quoted + "\", size_m: [0.02, 0.02, 0.02], "

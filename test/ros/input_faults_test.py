@@ -295,6 +295,8 @@ class InputFaultsTest(unittest.TestCase):
         self.assertTrue(beyond.message.startswith(
             "joint state refused: out_of_limits (joint 'left_joint2' at 10, outside its limits ["),
             beyond.message)
+        # The refusal, not the live model's warnings that the reply carries with it.
+        self.assertEqual(beyond.report.stop_reason, beyond.message)
         # A name that is no model joint is ignored and said (a Piper user's 'bogus_joint' was
         # answered "0 warning(s)" without a word).
         check = rospy.ServiceProxy(NODE + '/check', CheckJointState)

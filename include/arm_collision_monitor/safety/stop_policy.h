@@ -29,6 +29,10 @@ namespace arm_collision_monitor {
 
 SafetyStatus ToSafetyStatus(InputStatus status);
 
+/// The longest stop reason, in bytes with its end (reserved once, so the cycle never allocates;
+/// a longer one is cut).
+constexpr std::size_t kReasonCapacity = 384;
+
 /// The stop reason of a cycle's `warnings` (not empty), naming the pair deepest in its tolerance
 /// zone by `primitives`: "N warning(s), the deepest a - b at d m (threshold t m)", and where
 /// between samples; written into `text` (`size` bytes, cut there), without allocating.
