@@ -384,12 +384,17 @@ TEST(SceneLoader, PairsOverlappingEverywhereAreGroupedOnlyWhereExcusingTheOwners
   const std::string post = kWorldLine + "arms: [{name: arm, root_link: upper_arm}]\n"
                            "objects: [{name: post, size_m: [0.02, 0.02, 0.02], "
                            "pose: {xyz_m: [0, 0, 0.35]}}]\n";
-  const Workcell both = LoadWorkcell(
-      kArmUrdf, WriteTempFile("variant_post.yaml",
-                              post + "variants: [{link: upper_arm, name: fat, capsules: [{name: "
-                                     "core, p0_m: [0, 0, 0.1], p1_m: [0, 0, 0.3], radius_m: "
-                                     "0.05}]}]\n"));
-  const std::vector<std::string> grouped = findings_of(both, "'post'");
+  // The findings naming the post, with the upper arm's variant of one capsule (x, r).
+  auto with_variant = [&](const std::string& x, const std::string& r) {
+    return findings_of(
+        LoadWorkcell(kArmUrdf, WriteTempFile("variant_post.yaml",
+                                             post + "variants: [{link: upper_arm, name: v, "
+                                                    "capsules: [{name: c, p0_m: [" + x +
+                                                    ", 0, 0.1], p1_m: [" + x +
+                                                    ", 0, 0.3], radius_m: " + r + "}]}]\n")),
+        "'post'");
+  };
+  const std::vector<std::string> grouped = with_variant("0", "0.05");
   ASSERT_EQ(grouped.size(), 1u);
   EXPECT_NE(grouped[0].find("'upper_arm' and 'post' (2 pairs of their primitives: 'upper_arm' "
                             "and 'post', '"),
@@ -398,12 +403,7 @@ TEST(SceneLoader, PairsOverlappingEverywhereAreGroupedOnlyWhereExcusingTheOwners
   EXPECT_NE(grouped[0].find("compatible: ([upper_arm, post])"), std::string::npos) << grouped[0];
   // A variant's capsule far off the post: 'upper_arm', the name of the link's one default
   // primitive, stands for the variant's too, so no entry can excuse the default's pair alone.
-  const Workcell side = LoadWorkcell(
-      kArmUrdf, WriteTempFile("variant_side.yaml",
-                              post + "variants: [{link: upper_arm, name: thin, capsules: [{name: "
-                                     "side, p0_m: [0.4, 0, 0.1], p1_m: [0.4, 0, 0.3], radius_m: "
-                                     "0.01}]}]\n"));
-  const std::vector<std::string> no_entry = findings_of(side, "'post'");
+  const std::vector<std::string> no_entry = with_variant("0.4", "0.01");
   ASSERT_EQ(no_entry.size(), 1u);
   EXPECT_NE(no_entry[0].find("'upper_arm' and 'post' are within their tolerances in the home "
                              "pose and in all 256"),
