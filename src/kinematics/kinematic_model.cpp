@@ -111,20 +111,16 @@ std::vector<std::string> KinematicModel::ActuatedJointNames() const {
 }
 
 std::vector<std::string> KinematicModel::MimicJointNames() const {
-  return JointNamesWhere([](const JointSpec& joint) { return joint.mimic_q_index >= 0; });
-}
-
-std::vector<std::string> KinematicModel::FixedJointNames() const {
-  return JointNamesWhere([](const JointSpec& joint) { return joint.type == JointType::kFixed; });
-}
-
-std::vector<std::string> KinematicModel::JointNamesWhere(
-    bool (*is_picked)(const JointSpec&)) const {
   std::vector<std::string> names;
   for (int link = 1; link < link_count(); ++link) {
-    if (is_picked(joints_[link])) names.push_back(joints_[link].name);
+    if (joints_[link].mimic_q_index >= 0) names.push_back(joints_[link].name);
   }
   return names;
+}
+
+bool KinematicModel::IsFixedJoint(const std::string& joint_name) const {
+  const int link = FindJointChildLink(joint_name);
+  return link > 0 && joints_[link].type == JointType::kFixed;
 }
 
 KinematicModel::FkStep KinematicModel::MakeFkStep(const JointSpec& joint, int parent) {

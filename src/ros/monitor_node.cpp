@@ -472,10 +472,9 @@ bool MonitorNode::OnCheck(CheckJointState::Request& req, CheckJointState::Respon
   res.success = report.input == InputStatus::kOk;
   // The request's names that are no model joints, said (merged, they were ignored).
   std::string ignored;
-  const std::vector<std::string> fixed = workcell_->kinematics.FixedJointNames();
   for (const std::string& name : req.joint_state.name) {
     if (input_->IsModelJoint(name)) continue;
-    const bool is_fixed = std::find(fixed.begin(), fixed.end(), name) != fixed.end();
+    const bool is_fixed = workcell_->kinematics.IsFixedJoint(name);
     ignored += (ignored.empty() ? "; ignored, no joints of the model: '" : ", '") + name + "'" +
                (input_->IsMimicJoint(name) ? " (a mimic joint)" : "") +
                (is_fixed ? " (a fixed joint of the URDF)" : "");

@@ -495,7 +495,10 @@ TEST(KinematicsFk, JointTypesLimitsAndMimicAreRead) {
   EXPECT_EQ(finger.mimic_q_index, slide.q_index);
   EXPECT_EQ(finger.mimic_multiplier, -1.0);
   EXPECT_EQ(model.MimicJointNames(), std::vector<std::string>{"finger_mimic"});
-  EXPECT_EQ(model.FixedJointNames(), std::vector<std::string>{"tool_joint"});
+  EXPECT_TRUE(model.IsFixedJoint("tool_joint"));
+  EXPECT_FALSE(model.IsFixedJoint("slide"));
+  EXPECT_FALSE(model.IsFixedJoint("finger_mimic"));
+  EXPECT_FALSE(model.IsFixedJoint("no_such_joint"));
   EXPECT_NEAR(model.joint(model.FindJointChildLink("shoulder")).axis_J.norm(), 1.0, 1e-15);
   // Every parent precedes its children.
   for (int link = 1; link < model.link_count(); ++link) EXPECT_LT(model.parent_link(link), link);

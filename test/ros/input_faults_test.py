@@ -305,6 +305,12 @@ class InputFaultsTest(unittest.TestCase):
         self.assertTrue(extra.success, extra.message)
         self.assertEqual(extra.message,
                          "0 warning(s); ignored, no joints of the model: 'bogus_joint'")
+        # A fixed joint of the URDF a driver publishes is marked so (a Sawyer's torso_t0).
+        fixed = check(joint_state(LEFT_JOINTS + RIGHT_JOINTS + ['left_tool_joint', 'bogus'],
+                                  HOME + HOME + [0.0, 0.0]))
+        self.assertEqual(fixed.message,
+                         "0 warning(s); ignored, no joints of the model: 'left_tool_joint' "
+                         "(a fixed joint of the URDF), 'bogus'")
         # The live model still gives a clear report on home input.
         report = c.publish_until(lambda: c.publish_pose(HOME, HOME), lambda r: True)
         self.assertEqual(report.warnings, [])

@@ -64,8 +64,9 @@ class KinematicModel {
   /// Names of the mimic joints (their positions follow from the joints they mimic), in link
   /// order.
   std::vector<std::string> MimicJointNames() const;
-  /// Names of the fixed joints, in link order (a driver may publish one: a Sawyer's torso_t0).
-  std::vector<std::string> FixedJointNames() const;
+  /// True iff the URDF has a fixed joint named `joint_name` (a driver may publish one: a
+  /// Sawyer's torso_t0).
+  bool IsFixedJoint(const std::string& joint_name) const;
   /// The link whose parent joint is named `joint_name`, -1 if unknown.
   int FindJointChildLink(const std::string& joint_name) const;
   /// True iff link `link` can move relative to the root (an actuated or mimic joint lies
@@ -159,8 +160,6 @@ class KinematicModel {
     Eigen::Matrix3d K2 = Eigen::Matrix3d::Zero();
   };
   static FkStep MakeFkStep(const JointSpec& joint, int parent);
-  // The names of the joints `is_picked` takes, in link order.
-  std::vector<std::string> JointNamesWhere(bool (*is_picked)(const JointSpec&)) const;
   // The joint position (rad or m) that q gives the joint of `step`.
   static double JointPosition(const FkStep& step, const Eigen::Ref<const Eigen::VectorXd>& q) {
     return step.multiplier * q[step.position_q_index] + step.offset;

@@ -247,10 +247,10 @@ void PrintBetweenSamples(const Workcell& wc, const Input& input,
 
 // The "input:" lines: what the input had that no cycle checks (refused messages and cycles,
 // ignored columns and mimic joints' ones, a bag's ignored and mimic joint names, position-less
-// messages, superseded planned points). An ignored name of one of the URDF's fixed joints
-// (`fixed_joints`) says so.
+// messages, superseded planned points). An ignored name of one of the `model`'s fixed joints
+// says so.
 void PrintInputLines(const Input& input, const std::vector<CycleResult>& cycles,
-                     const RunSummary& summary, const std::vector<std::string>& fixed_joints) {
+                     const RunSummary& summary, const KinematicModel& model) {
   if (summary.refused_messages > 0 || input.incomplete_cycles > 0 || summary.refused_cycles > 0) {
     std::printf("input: %s refused", Counted(summary.refused_messages, "message").c_str());
     for (const auto& [status, count] : input.refused) {
@@ -274,10 +274,8 @@ void PrintInputLines(const Input& input, const std::vector<CycleResult>& cycles,
   auto described = [&](const std::vector<std::string>& names) {
     std::string text;
     for (const std::string& name : names) {
-      const bool is_fixed =
-          std::find(fixed_joints.begin(), fixed_joints.end(), name) != fixed_joints.end();
       text += (text.empty() ? "'" : ", '") + name + "'" +
-              (is_fixed ? " (a fixed joint of the URDF)" : "");
+              (model.IsFixedJoint(name) ? " (a fixed joint of the URDF)" : "");
     }
     return text;
   };
@@ -424,7 +422,7 @@ void PrintText(const Options& options, const Workcell& wc, const Input& input,
     std::printf(", grasp target %s:%s", t.link.c_str(), t.object.c_str());
   }
   std::printf("\n");
-  PrintInputLines(input, cycles, summary, wc.kinematics.FixedJointNames());
+  PrintInputLines(input, cycles, summary, wc.kinematics);
   PrintWarningRuns(wc, input, cycles);
   if (is_swept) PrintBetweenSamples(wc, input, cycles, summary);
   // Refused cycles and messages are not checked (the monitor asks a stop instead): the summary
