@@ -78,6 +78,11 @@ const CycleReport& Monitor::Update(const Eigen::Ref<const Eigen::VectorXd>& q,
 }
 
 const CycleReport& Monitor::Impl::Cycle(const Eigen::Ref<const Eigen::VectorXd>& q) {
+  if (!model.turning_links.empty() && Unwind(q)) return CycleOf(q_unwound);
+  return CycleOf(q);
+}
+
+const CycleReport& Monitor::Impl::CycleOf(const Eigen::Ref<const Eigen::VectorXd>& q) {
   // Idle cycle: same input bit for bit and an unchanged scene give the same report (the joints
   // were at q_good at these times too).
   if (IsIdle(q)) {
@@ -96,17 +101,39 @@ const CycleReport& Monitor::Impl::Cycle(const Eigen::Ref<const Eigen::VectorXd>&
   return report;
 }
 
+bool Monitor::Impl::Unwind(const Eigen::Ref<const Eigen::VectorXd>& q) {
+  if (!has_good || q.size() != q_good.size()) return false;
+  constexpr double kTurn = 2.0 * 3.14159265358979323846;
+  bool is_unwound = false;
+  for (const int link : model.turning_links) {
+    const JointSpec& joint = model.kinematics->joint(link);
+    const double move = q[joint.q_index] - q_good[joint.q_index];
+    // NaN and infinities stay, for CheckInput to refuse.
+    if (!(std::abs(move) > 0.5 * kTurn && std::isfinite(move)) ||
+        IsWithinVelocityLimit(joint, std::abs(move))) {
+      continue;
+    }
+    if (!is_unwound) q_unwound = q;
+    is_unwound = true;
+    q_unwound[joint.q_index] = q[joint.q_index] - kTurn * std::round(move / kTurn);
+  }
+  return is_unwound;
+}
+
+bool Monitor::Impl::IsWithinVelocityLimit(const JointSpec& joint, double move) const {
+  const int i = joint.q_index;
+  const double elapsed_s = (joint_time_s != nullptr ? joint_time_s[i] : time_s) -
+                           (is_joint_time_good ? joint_time_good_s[i] : time_good_s);
+  return !(move > 0.0) ||
+         (elapsed_s > 0.0 && move <= kJumpVelocityFactor * joint.max_velocity * elapsed_s);
+}
+
 bool Monitor::Impl::IsWithinVelocityLimits(const Eigen::Ref<const Eigen::VectorXd>& q) const {
   const KinematicModel& kinematics = *model.kinematics;
   for (int link = 1; link < kinematics.link_count(); ++link) {
     const JointSpec& joint = kinematics.joint(link);
-    const int i = joint.q_index;
-    if (i < 0) continue;
-    const double move = std::abs(q[i] - q_good[i]);
-    const double elapsed_s = (joint_time_s != nullptr ? joint_time_s[i] : time_s) -
-                             (is_joint_time_good ? joint_time_good_s[i] : time_good_s);
-    if (move > 0.0 && !(elapsed_s > 0.0 &&
-                        move <= kJumpVelocityFactor * joint.max_velocity * elapsed_s)) {
+    if (joint.q_index < 0) continue;
+    if (!IsWithinVelocityLimit(joint, std::abs(q[joint.q_index] - q_good[joint.q_index]))) {
       return false;
     }
   }
@@ -487,6 +514,7 @@ void Monitor::Impl::InitData() {
   PrepareBounds();
   bound_known.assign(n, 0);
   q_good = model.q_start;
+  q_unwound = model.q_start;
   time_good_s = std::numeric_limits<double>::quiet_NaN();
   is_joint_time_good = false;
   joint_time_good_s.setConstant(model.q_start.size(), std::numeric_limits<double>::quiet_NaN());

@@ -98,6 +98,7 @@ struct Monitor::Impl {
   // with (IsProvablyClear: an upper bound for every primitive; read in the next bounded cycle).
   double largest_since_m = 0.0;
   Eigen::VectorXd q_good;               // the last accepted q
+  Eigen::VectorXd q_unwound;            // Unwind's (preallocated)
   // When q_good was sampled (Update's times, s): one time for every joint, or, when
   // is_joint_time_good, each joint's own in joint_time_good_s (preallocated).
   double time_good_s = std::numeric_limits<double>::quiet_NaN();
@@ -144,8 +145,10 @@ struct Monitor::Impl {
   }
   // A good q: a bounded cycle if the bounds allow, else the kinematics and the narrow phase.
   void RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q);
-  // Monitor::Update, with its sample times in time_s or joint_time_s.
+  // Monitor::Update, with its sample times in time_s or joint_time_s: the cycle of q, or of
+  // q_unwound (Unwind).
   const CycleReport& Cycle(const Eigen::Ref<const Eigen::VectorXd>& q);
+  const CycleReport& CycleOf(const Eigen::Ref<const Eigen::VectorXd>& q);
   // q_good is q now: its times are this cycle's.
   void DateGood() {
     is_joint_time_good = joint_time_s != nullptr;
@@ -155,10 +158,19 @@ struct Monitor::Impl {
       time_good_s = time_s;
     }
   }
-  // Whether every joint's move from q_good to q is within kJumpVelocityFactor times its
+  // Whether `joint`'s move by `move` (>= 0) from q_good is within kJumpVelocityFactor times its
   // velocity limit over its time since then (from q_good's sample time to this cycle's; false
-  // when that is not positive, or a moving joint has no limit).
+  // when that is not positive, or the joint moves and has no limit).
+  bool IsWithinVelocityLimit(const JointSpec& joint, double move) const;
+  // IsWithinVelocityLimit for every joint's move from q_good to q.
   bool IsWithinVelocityLimits(const Eigen::Ref<const Eigen::VectorXd>& q) const;
+  // q, with the position of each continuous joint without limits (MonitorModel::turning_links)
+  // moved by whole turns to the nearest to q_good's where, as given, it is more than half a
+  // turn from it and beyond the joint's velocity limit over the time since: a driver's angle
+  // reported wrapped (into [-pi, pi]: Kinova's kortex driver), whose move across the wrap is
+  // the short one. A move the limit allows stays as given (a planned path's controller turns
+  // the joint the long way). True when a position moved: q so unwound is then in q_unwound.
+  bool Unwind(const Eigen::Ref<const Eigen::VectorXd>& q);
   // True when, without kinematics, every moving primitive's joint-space motion bound since
   // q_kinematics keeps it within its slack and every kept pair's bound, less those motions,
   // still clears its threshold -- then no pair can warn. `step_m`: the step's largest bound

@@ -138,6 +138,10 @@ void MonitorModel::BuildStartPose() {
     if (joint.q_index < 0) continue;
     if (std::isfinite(joint.lower)) q_lower[joint.q_index] = joint.lower - kJointLimitMargin;
     if (std::isfinite(joint.upper)) q_upper[joint.q_index] = joint.upper + kJointLimitMargin;
+    if (joint.type == JointType::kContinuous && !std::isfinite(joint.lower) &&
+        !std::isfinite(joint.upper)) {
+      turning_links.push_back(link);
+    }
   }
   // Each joint at 0, or at its limit nearer 0 (finite: so are the limits).
   q_start = Eigen::VectorXd::Zero(kinematics->q_size());

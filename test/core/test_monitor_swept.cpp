@@ -772,6 +772,95 @@ TEST(MonitorSwept, JointsDatedApartAreTimedFromTheirOwnSamples) {
   EXPECT_TRUE(unsized.Update(left_moved, Eigen::VectorXd::Constant(3, 6.0)).input_jumped);
 }
 
+/// The bundled workcell with left_joint1 continuous (no position limits; 1 rad/s) and
+/// `object_line` (a YAML list entry) among the scene's objects.
+std::shared_ptr<const Workcell> LoadWithContinuousJoint1(const std::string& object_line) {
+  std::ifstream in(ACM_SOURCE_DIR "/urdf/workcell.urdf");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string urdf = text.str();
+  for (const auto& [from, to] :
+       {std::pair<std::string, std::string>{"<joint name=\"left_joint1\" type=\"revolute\">",
+                                            "<joint name=\"left_joint1\" type=\"continuous\">"},
+        {"<limit lower=\"-2.967060\" upper=\"2.967060\" velocity=\"1.0\"",
+         "<limit velocity=\"1.0\""}}) {
+    const std::size_t at = urdf.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) urdf.replace(at, from.size(), to);
+  }
+  const std::string urdf_path = ::testing::TempDir() + "/continuous_joint1.urdf";
+  std::ofstream(urdf_path) << urdf;
+  const std::string scene_path = ::testing::TempDir() + "/continuous_joint1.yaml";
+  std::ifstream scene_in(ACM_SOURCE_DIR "/config/scene.yaml");
+  std::stringstream scene;
+  scene << scene_in.rdbuf();
+  std::string scene_text = scene.str();
+  scene_text.insert(scene_text.find("\nobjects:\n") + 10, "  " + object_line + "\n");
+  std::ofstream(scene_path) << scene_text;
+  return std::make_shared<const Workcell>(LoadWorkcell(urdf_path, scene_path));
+}
+
+/// Whether `warnings` hold a pair of `object`'s.
+bool WarnsWith(const Workcell& wc, const std::vector<Warning>& warnings,
+               const std::string& object) {
+  for (const Warning& w : warnings) {
+    if (wc.primitives[w.a].name == object || wc.primitives[w.b].name == object) return true;
+  }
+  return false;
+}
+
+// A continuous joint without limits that a driver reports wrapped into [-pi, pi] (Kinova's
+// kortex driver): at 1 kHz, turning at 1 rad/s across pi, its reading goes from 3.141 to
+// -3.141. That step is the short one: no jump (the long way round was a 2 pi turn in 1 ms,
+// far beyond the velocity limit) and no warning against a block that only the long way round
+// meets. A turn the long way that the velocity limit allows (5.98 rad in 10 s) is what a
+// planned path's controller makes: swept that way, it meets the block; the same reading 0.2 s
+// after is the short way again.
+TEST(MonitorSwept, WrappedReadingsOfAContinuousJointTakeTheShortWay) {
+  const auto plain = LoadWithContinuousJoint1("- {name: spare, size_m: [0.1, 0.1, 0.1], pose: "
+                                              "{xyz_m: [0.0, 0.0, 5.5]}}");
+  auto pose = [&](double q1) {
+    return MakeQ(*plain, {{"left_joint1", q1}, {"left_joint2", 1.0}});
+  };
+  // The block where the left wrist is with joint 1 at 0, opposite where it turns below.
+  std::vector<Eigen::Isometry3d> X_WL(plain->kinematics.link_count());
+  plain->kinematics.ComputeLinkPoses(pose(0.0), &X_WL);
+  const Eigen::Vector3d p_W = X_WL[plain->kinematics.FindLink("left_link6")].translation();
+  std::ostringstream block;
+  block << "- {name: block, size_m: [0.1, 0.1, 0.1], pose: {xyz_m: [" << p_W.x() << ", "
+        << p_W.y() << ", " << p_W.z() << "]}}";
+  const auto wc = LoadWithContinuousJoint1(block.str());
+  ASSERT_TRUE(WarnsWith(*wc, Monitor(wc, Unlimited()).Update(pose(0.0), 0.0).warnings, "block"));
+  const double pi = 3.14159265358979323846;
+  auto wrapped = [&](double q1) { return std::atan2(std::sin(q1), std::cos(q1)); };
+  {
+    Monitor monitor(wc, MonitorOptions{});
+    for (int k = 0; k <= 20; ++k) {
+      const double q1 = 3.131 + 0.001 * k;
+      const CycleReport& report = monitor.Update(pose(wrapped(q1)), 0.001 * k);
+      const std::string context = "joint 1 at " + std::to_string(q1) + " rad, reported " +
+                                  std::to_string(wrapped(q1));
+      EXPECT_FALSE(report.input_jumped) << context;
+      EXPECT_LT(report.step_motion_m, 0.01) << context;
+      EXPECT_FALSE(WarnsWith(*wc, report.warnings, "block")) << context;
+    }
+    ASSERT_LT(wrapped(3.151), 0.0);
+  }
+  const double start = 3.0;
+  const double end = wrapped(start + 0.3);  // -2.98: 5.98 rad the long way
+  for (const auto& [elapsed_s, is_long_way] : {std::pair{10.0, true}, std::pair{0.2, false}}) {
+    Monitor monitor(wc, MonitorOptions{});
+    ASSERT_FALSE(WarnsWith(*wc, monitor.Update(pose(start), 0.0).warnings, "block"));
+    const CycleReport& report = monitor.Update(pose(end), elapsed_s);
+    const std::string context = "3.0 to " + std::to_string(end) + " rad in " +
+                                std::to_string(elapsed_s) + " s";
+    EXPECT_FALSE(report.input_jumped) << context;
+    EXPECT_EQ(report.step_motion_m > 2.0 * pi * 0.3, is_long_way) << context;
+    EXPECT_EQ(WarnsWith(*wc, report.warnings, "block"), is_long_way) << context;
+    EXPECT_EQ(report.stop, !report.warnings.empty()) << context;
+  }
+}
+
 // A long step far from everything at both ends: each pair's distances at the two ends, less its
 // motion bound, leave twice the threshold, so no pair is bisected, though for many pairs the
 // motion bound exceeds the distance at the end (a test of the end alone would bisect them).
