@@ -27,7 +27,6 @@ using Eigen::Vector2d;
 using Eigen::Vector3d;
 using Points = std::vector<Vector3d>;
 
-constexpr double kPi = 3.14159265358979323846;
 
 double CapsuleVolume_m3(double radius_m, double length_m) {
   return kPi * radius_m * radius_m * length_m + 4.0 / 3.0 * kPi * radius_m * radius_m * radius_m;

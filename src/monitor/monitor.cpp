@@ -78,8 +78,10 @@ const CycleReport& Monitor::Update(const Eigen::Ref<const Eigen::VectorXd>& q,
 }
 
 const CycleReport& Monitor::Impl::Cycle(const Eigen::Ref<const Eigen::VectorXd>& q) {
-  if (!model.turning_links.empty() && Unwind(q)) return CycleOf(q_unwound);
-  return CycleOf(q);
+  if (model.turning_links.empty()) return CycleOf(q);
+  const CycleReport& cycle = Unwind(q) ? CycleOf(q_unwound) : CycleOf(q);
+  if (cycle.input == InputStatus::kOk) turns_good = turns_next;
+  return cycle;
 }
 
 const CycleReport& Monitor::Impl::CycleOf(const Eigen::Ref<const Eigen::VectorXd>& q) {
@@ -102,22 +104,28 @@ const CycleReport& Monitor::Impl::CycleOf(const Eigen::Ref<const Eigen::VectorXd
 }
 
 bool Monitor::Impl::Unwind(const Eigen::Ref<const Eigen::VectorXd>& q) {
-  if (!has_good || q.size() != q_good.size()) return false;
-  constexpr double kTurn = 2.0 * 3.14159265358979323846;
-  bool is_unwound = false;
+  if (q.size() != q_good.size()) return false;  // refused as it is
+  constexpr double kTurn = 2.0 * kPi;
+  bool has_turns = false;
   for (const int link : model.turning_links) {
     const JointSpec& joint = model.kinematics->joint(link);
-    const double move = q[joint.q_index] - q_good[joint.q_index];
-    // NaN and infinities stay, for CheckInput to refuse.
-    if (!(std::abs(move) > 0.5 * kTurn && std::isfinite(move)) ||
-        IsWithinVelocityLimit(joint, std::abs(move))) {
-      continue;
+    const int i = joint.q_index;
+    double turns = turns_good[i];
+    // The move in q_good's turns: 0 for the same reading (an idle cycle stays idle). NaN and
+    // infinities stay, for CheckInput to refuse; so does the first cycle's (no q_good yet).
+    const double move = (q[i] + turns) - q_good[i];
+    if (has_good && std::abs(move) > 0.5 * kTurn && std::isfinite(move)) {
+      const double wrap = kTurn * std::round(move / kTurn);
+      if (!IsWithinVelocityLimit(joint, std::abs(move)) &&
+          IsWithinVelocityLimit(joint, std::abs(move - wrap))) {
+        turns -= wrap;
+      }
     }
-    if (!is_unwound) q_unwound = q;
-    is_unwound = true;
-    q_unwound[joint.q_index] = q[joint.q_index] - kTurn * std::round(move / kTurn);
+    turns_next[i] = turns;
+    has_turns |= turns != 0.0;
   }
-  return is_unwound;
+  if (has_turns) q_unwound = q + turns_next;
+  return has_turns;
 }
 
 bool Monitor::Impl::IsWithinVelocityLimit(const JointSpec& joint, double move) const {
@@ -514,6 +522,8 @@ void Monitor::Impl::InitData() {
   PrepareBounds();
   bound_known.assign(n, 0);
   q_good = model.q_start;
+  turns_good.setZero(model.q_start.size());
+  turns_next.setZero(model.q_start.size());
   q_unwound = model.q_start;
   time_good_s = std::numeric_limits<double>::quiet_NaN();
   is_joint_time_good = false;

@@ -98,7 +98,10 @@ struct Monitor::Impl {
   // with (IsProvablyClear: an upper bound for every primitive; read in the next bounded cycle).
   double largest_since_m = 0.0;
   Eigen::VectorXd q_good;               // the last accepted q
-  Eigen::VectorXd q_unwound;            // Unwind's (preallocated)
+  // Per joint, the whole turns added to its readings (MonitorModel::turning_links; 0 for the
+  // others): turns_good those of q_good, turns_next the cycle's (Unwind); q_unwound the
+  // cycle's q with them. Preallocated.
+  Eigen::VectorXd turns_good, turns_next, q_unwound;
   // When q_good was sampled (Update's times, s): one time for every joint, or, when
   // is_joint_time_good, each joint's own in joint_time_good_s (preallocated).
   double time_good_s = std::numeric_limits<double>::quiet_NaN();
@@ -145,9 +148,10 @@ struct Monitor::Impl {
   }
   // A good q: a bounded cycle if the bounds allow, else the kinematics and the narrow phase.
   void RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q);
-  // Monitor::Update, with its sample times in time_s or joint_time_s: the cycle of q, or of
-  // q_unwound (Unwind).
+  // Monitor::Update, with its sample times in time_s or joint_time_s: CycleOf q, or of
+  // q_unwound (Unwind), whose turns are kept when the cycle accepts it.
   const CycleReport& Cycle(const Eigen::Ref<const Eigen::VectorXd>& q);
+  // The cycle of q: idle, refused or run (RunCycle).
   const CycleReport& CycleOf(const Eigen::Ref<const Eigen::VectorXd>& q);
   // q_good is q now: its times are this cycle's.
   void DateGood() {
@@ -164,12 +168,15 @@ struct Monitor::Impl {
   bool IsWithinVelocityLimit(const JointSpec& joint, double move) const;
   // IsWithinVelocityLimit for every joint's move from q_good to q.
   bool IsWithinVelocityLimits(const Eigen::Ref<const Eigen::VectorXd>& q) const;
-  // q, with the position of each continuous joint without limits (MonitorModel::turning_links)
-  // moved by whole turns to the nearest to q_good's where, as given, it is more than half a
-  // turn from it and beyond the joint's velocity limit over the time since: a driver's angle
-  // reported wrapped (into [-pi, pi]: Kinova's kortex driver), whose move across the wrap is
-  // the short one. A move the limit allows stays as given (a planned path's controller turns
-  // the joint the long way). True when a position moved: q so unwound is then in q_unwound.
+  // The readings of a continuous joint without limits (MonitorModel::turning_links) in
+  // q_good's turns: turns_next is turns_good but where a reading's move from the last
+  // accepted one is more than half a turn, beyond the joint's velocity bound over the time
+  // since (IsWithinVelocityLimit), and the move the other way round is within it -- the
+  // driver reported the angle wrapped (into [-pi, pi]: Kinova's kortex driver), and the joint
+  // took the short way: whole turns are added there. Any other move stays as given (a
+  // trajectory controller turns the joint along a plan's points as they are; without a
+  // velocity limit or sample times nothing tells a wrap). True when some joint has turns: q
+  // with them is then in q_unwound.
   bool Unwind(const Eigen::Ref<const Eigen::VectorXd>& q);
   // True when, without kinematics, every moving primitive's joint-space motion bound since
   // q_kinematics keeps it within its slack and every kept pair's bound, less those motions,

@@ -32,14 +32,18 @@ MonitorOptions Unlimited() {
   return options;
 }
 
-/// The bundled scene with `object_line` (one YAML list entry) added to its objects.
+/// `object_line` (one YAML list entry) added to the objects of the bundled scene's `scene`.
+void AddObjectLine(const std::string& object_line, std::string* scene) {
+  const std::size_t at = scene->find("\nobjects:\n");
+  ASSERT_NE(at, std::string::npos);
+  scene->insert(at + 10, "  " + object_line + "\n");
+}
+
+/// The bundled scene with `object_line` added to its objects.
 std::shared_ptr<const Workcell> LoadSceneWith(const std::string& name,
                                               const std::string& object_line) {
-  return test::LoadBundledSceneEdited("swept_" + name, [&](std::string* scene) {
-    const std::size_t at = scene->find("\nobjects:\n");
-    EXPECT_NE(at, std::string::npos);
-    scene->insert(at + 10, "  " + object_line + "\n");
-  });
+  return test::LoadBundledSceneEdited(
+      "swept_" + name, [&](std::string* scene) { AddObjectLine(object_line, scene); });
 }
 
 /// YAML list entries (for LoadSceneWith) of 3 cm cubes on a grid: count[a] along axis a from
@@ -772,9 +776,12 @@ TEST(MonitorSwept, JointsDatedApartAreTimedFromTheirOwnSamples) {
   EXPECT_TRUE(unsized.Update(left_moved, Eigen::VectorXd::Constant(3, 6.0)).input_jumped);
 }
 
-/// The bundled workcell with left_joint1 continuous (no position limits; 1 rad/s) and
-/// `object_line` (a YAML list entry) among the scene's objects.
-std::shared_ptr<const Workcell> LoadWithContinuousJoint1(const std::string& object_line) {
+/// The bundled workcell with left_joint1 continuous (no position limits, `velocity` rad/s),
+/// `more_urdf` before the URDF's end and `object_line` among the scene's objects.
+std::shared_ptr<const Workcell> LoadWithContinuousJoint1(const std::string& name,
+                                                         const std::string& velocity,
+                                                         const std::string& more_urdf,
+                                                         const std::string& object_line) {
   std::ifstream in(ACM_SOURCE_DIR "/urdf/workcell.urdf");
   std::stringstream text;
   text << in.rdbuf();
@@ -783,21 +790,17 @@ std::shared_ptr<const Workcell> LoadWithContinuousJoint1(const std::string& obje
        {std::pair<std::string, std::string>{"<joint name=\"left_joint1\" type=\"revolute\">",
                                             "<joint name=\"left_joint1\" type=\"continuous\">"},
         {"<limit lower=\"-2.967060\" upper=\"2.967060\" velocity=\"1.0\"",
-         "<limit velocity=\"1.0\""}}) {
+         "<limit velocity=\"" + velocity + "\""},
+        {"</robot>", more_urdf + "</robot>"}}) {
     const std::size_t at = urdf.find(from);
     EXPECT_NE(at, std::string::npos) << from;
     if (at != std::string::npos) urdf.replace(at, from.size(), to);
   }
-  const std::string urdf_path = ::testing::TempDir() + "/continuous_joint1.urdf";
+  const std::string urdf_path = ::testing::TempDir() + "/" + name + ".urdf";
   std::ofstream(urdf_path) << urdf;
-  const std::string scene_path = ::testing::TempDir() + "/continuous_joint1.yaml";
-  std::ifstream scene_in(ACM_SOURCE_DIR "/config/scene.yaml");
-  std::stringstream scene;
-  scene << scene_in.rdbuf();
-  std::string scene_text = scene.str();
-  scene_text.insert(scene_text.find("\nobjects:\n") + 10, "  " + object_line + "\n");
-  std::ofstream(scene_path) << scene_text;
-  return std::make_shared<const Workcell>(LoadWorkcell(urdf_path, scene_path));
+  return test::LoadSceneEdited(urdf_path, name, [&](std::string* scene) {
+    AddObjectLine(object_line, scene);
+  });
 }
 
 /// Whether `warnings` hold a pair of `object`'s.
@@ -809,55 +812,139 @@ bool WarnsWith(const Workcell& wc, const std::vector<Warning>& warnings,
   return false;
 }
 
+/// The wrapped-reading cases: left_joint1 continuous, the left arm leaning out (joint 2 at 1
+/// rad), and a block where its wrist is with joint 1 at 0, which it meets only on the long way
+/// round from near pi.
+class WrappedReadings : public ::testing::Test {
+ protected:
+  /// The workcell of `velocity` and `more_urdf` (LoadWithContinuousJoint1) with the block.
+  static std::shared_ptr<const Workcell> Load(const std::string& name,
+                                              const std::string& velocity = "1.0",
+                                              const std::string& more_urdf = "") {
+    const auto plain = LoadWithContinuousJoint1(
+        name + "_plain", velocity, more_urdf,
+        "- {name: spare, size_m: [0.1, 0.1, 0.1], pose: {xyz_m: [0.0, 0.0, 5.5]}}");
+    std::vector<Eigen::Isometry3d> X_WL(plain->kinematics.link_count());
+    plain->kinematics.ComputeLinkPoses(Pose(*plain, 0.0), &X_WL);
+    const Eigen::Vector3d p_W = X_WL[plain->kinematics.FindLink("left_link6")].translation();
+    std::ostringstream block;
+    block << "- {name: block, size_m: [0.1, 0.1, 0.1], pose: {xyz_m: [" << p_W.x() << ", "
+          << p_W.y() << ", " << p_W.z() << "]}}";
+    const auto wc = LoadWithContinuousJoint1(name, velocity, more_urdf, block.str());
+    EXPECT_TRUE(WarnsWith(*wc, Monitor(wc, Unlimited()).Update(Pose(*wc, 0.0), 0.0).warnings,
+                          "block"));
+    return wc;
+  }
+  static Eigen::VectorXd Pose(const Workcell& wc, double q1) {
+    return MakeQ(wc, {{"left_joint1", q1}, {"left_joint2", 1.0}});
+  }
+  /// q1 as a driver that wraps into [-pi, pi] reports it.
+  static double Wrapped(double q1) { return std::atan2(std::sin(q1), std::cos(q1)); }
+  /// Joint 1 turning at 1 rad/s from 3.131 to 3.151 rad across pi, reported wrapped at 1 kHz
+  /// from `t0_s` (without times when `is_timed` is false): the largest step motion, and
+  /// whether any cycle jumped or warned against the block.
+  struct Crossing {
+    double largest_step_m = 0.0;
+    bool is_jumped = false;
+    bool warns = false;
+  };
+  static Crossing CrossPi(const Workcell& wc, Monitor* monitor, bool is_timed = true,
+                          double t0_s = 0.0) {
+    Crossing crossing;
+    for (int k = 0; k <= 20; ++k) {
+      const Eigen::VectorXd q = Pose(wc, Wrapped(3.131 + 0.001 * k));
+      const CycleReport& report =
+          is_timed ? monitor->Update(q, t0_s + 0.001 * k) : monitor->Update(q);
+      crossing.largest_step_m = std::max(crossing.largest_step_m, report.step_motion_m);
+      crossing.is_jumped |= report.input_jumped;
+      crossing.warns |= WarnsWith(wc, report.warnings, "block");
+    }
+    return crossing;
+  }
+  static void ExpectValid(const Monitor& monitor) {
+    std::string why;
+    EXPECT_TRUE(monitor.Validate(&why)) << why;
+  }
+};
+
 // A continuous joint without limits that a driver reports wrapped into [-pi, pi] (Kinova's
 // kortex driver): at 1 kHz, turning at 1 rad/s across pi, its reading goes from 3.141 to
-// -3.141. That step is the short one: no jump (the long way round was a 2 pi turn in 1 ms,
-// far beyond the velocity limit) and no warning against a block that only the long way round
-// meets. A turn the long way that the velocity limit allows (5.98 rad in 10 s) is what a
-// planned path's controller makes: swept that way, it meets the block; the same reading 0.2 s
-// after is the short way again.
-TEST(MonitorSwept, WrappedReadingsOfAContinuousJointTakeTheShortWay) {
-  const auto plain = LoadWithContinuousJoint1("- {name: spare, size_m: [0.1, 0.1, 0.1], pose: "
-                                              "{xyz_m: [0.0, 0.0, 5.5]}}");
-  auto pose = [&](double q1) {
-    return MakeQ(*plain, {{"left_joint1", q1}, {"left_joint2", 1.0}});
-  };
-  // The block where the left wrist is with joint 1 at 0, opposite where it turns below.
-  std::vector<Eigen::Isometry3d> X_WL(plain->kinematics.link_count());
-  plain->kinematics.ComputeLinkPoses(pose(0.0), &X_WL);
-  const Eigen::Vector3d p_W = X_WL[plain->kinematics.FindLink("left_link6")].translation();
-  std::ostringstream block;
-  block << "- {name: block, size_m: [0.1, 0.1, 0.1], pose: {xyz_m: [" << p_W.x() << ", "
-        << p_W.y() << ", " << p_W.z() << "]}}";
-  const auto wc = LoadWithContinuousJoint1(block.str());
-  ASSERT_TRUE(WarnsWith(*wc, Monitor(wc, Unlimited()).Update(pose(0.0), 0.0).warnings, "block"));
-  const double pi = 3.14159265358979323846;
-  auto wrapped = [&](double q1) { return std::atan2(std::sin(q1), std::cos(q1)); };
+// -3.141. That step is the short one: no jump (the long way round was a 2 pi turn in 1 ms, far
+// beyond the velocity limit) and no warning against the block that only the long way meets.
+// The same reading after a pause of 10 s is no move at all (an idle cycle), and the turn back
+// across pi the short way again. A turn the long way that the velocity limit allows (5.98 rad
+// in 10 s) is what a planned path's controller makes: swept that way, it meets the block; the
+// same reading 0.2 s after is the short way again.
+TEST_F(WrappedReadings, TakeTheShortWay) {
+  const auto wc = Load("continuous_joint1");
   {
     Monitor monitor(wc, MonitorOptions{});
-    for (int k = 0; k <= 20; ++k) {
-      const double q1 = 3.131 + 0.001 * k;
-      const CycleReport& report = monitor.Update(pose(wrapped(q1)), 0.001 * k);
-      const std::string context = "joint 1 at " + std::to_string(q1) + " rad, reported " +
-                                  std::to_string(wrapped(q1));
-      EXPECT_FALSE(report.input_jumped) << context;
-      EXPECT_LT(report.step_motion_m, 0.01) << context;
-      EXPECT_FALSE(WarnsWith(*wc, report.warnings, "block")) << context;
-    }
-    ASSERT_LT(wrapped(3.151), 0.0);
+    const Crossing crossing = CrossPi(*wc, &monitor);
+    EXPECT_FALSE(crossing.is_jumped);
+    EXPECT_LT(crossing.largest_step_m, 0.01);
+    EXPECT_FALSE(crossing.warns);
+    ASSERT_LT(Wrapped(3.151), 0.0);
+    const CycleReport& later = monitor.Update(Pose(*wc, Wrapped(3.151)), 10.0);
+    EXPECT_EQ(later.step_motion_m, 0.0);
+    EXPECT_FALSE(WarnsWith(*wc, later.warnings, "block"));
+    const CycleReport& back = monitor.Update(Pose(*wc, 3.141), 10.01);
+    EXPECT_FALSE(back.input_jumped);
+    EXPECT_LT(back.step_motion_m, 0.02);
+    EXPECT_FALSE(WarnsWith(*wc, back.warnings, "block"));
+    ExpectValid(monitor);
   }
-  const double start = 3.0;
-  const double end = wrapped(start + 0.3);  // -2.98: 5.98 rad the long way
+  const double pi = kPi;
+  const double end = Wrapped(3.3);  // -2.98: 5.98 rad the long way from 3.0
   for (const auto& [elapsed_s, is_long_way] : {std::pair{10.0, true}, std::pair{0.2, false}}) {
     Monitor monitor(wc, MonitorOptions{});
-    ASSERT_FALSE(WarnsWith(*wc, monitor.Update(pose(start), 0.0).warnings, "block"));
-    const CycleReport& report = monitor.Update(pose(end), elapsed_s);
+    ASSERT_FALSE(WarnsWith(*wc, monitor.Update(Pose(*wc, 3.0), 0.0).warnings, "block"));
+    const CycleReport& report = monitor.Update(Pose(*wc, end), elapsed_s);
     const std::string context = "3.0 to " + std::to_string(end) + " rad in " +
                                 std::to_string(elapsed_s) + " s";
     EXPECT_FALSE(report.input_jumped) << context;
     EXPECT_EQ(report.step_motion_m > 2.0 * pi * 0.3, is_long_way) << context;
     EXPECT_EQ(WarnsWith(*wc, report.warnings, "block"), is_long_way) << context;
     EXPECT_EQ(report.stop, !report.warnings.empty()) << context;
+    ExpectValid(monitor);
+  }
+}
+
+// Without a velocity limit (0 in the URDF) or without sample times nothing tells a wrapped
+// reading from a turn the long way: the reading is taken as given (its 2 pi step meets the
+// block, and stops), as before the unwinding.
+TEST_F(WrappedReadings, WithoutAVelocityLimitOrTimesAreTakenAsGiven) {
+  const auto unlimited = Load("continuous_joint1_no_velocity", "0");
+  const auto limited = Load("continuous_joint1_untimed");
+  for (const auto& [wc, is_timed] : {std::pair{unlimited, true}, std::pair{limited, false}}) {
+    Monitor monitor(wc, Unlimited());
+    const Crossing crossing = CrossPi(*wc, &monitor, is_timed);
+    const std::string context = is_timed ? "velocity 0" : "no times";
+    EXPECT_GT(crossing.largest_step_m, 1.0) << context;
+    EXPECT_TRUE(crossing.warns) << context;
+    ExpectValid(monitor);
+  }
+}
+
+// A mimic joint that follows the continuous joint by half its angle would not come back to its
+// pose after a whole turn of its leader: the leader's readings are then never unwound (the
+// 2 pi step across the wrap is swept as given); by twice the angle it would, and they are.
+TEST_F(WrappedReadings, NotUnwoundWhereAMimicJointFollowsByOtherThanWholeTurns) {
+  for (const auto& [multiplier, is_unwound] : {std::pair{"0.5", false}, std::pair{"2", true}}) {
+    const std::string mimic =
+        std::string("  <link name=\"left_spinner\"/>\n"
+                    "  <joint name=\"left_spinner_joint\" type=\"revolute\">\n"
+                    "    <parent link=\"left_link1\"/><child link=\"left_spinner\"/>\n"
+                    "    <axis xyz=\"0 0 1\"/>\n"
+                    "    <limit lower=\"-100\" upper=\"100\" velocity=\"1.0\" effort=\"1\"/>\n"
+                    "    <mimic joint=\"left_joint1\" multiplier=\"") +
+        multiplier + "\"/>\n  </joint>\n";
+    const auto wc = Load(std::string("continuous_joint1_mimic_") + (is_unwound ? "2" : "half"),
+                         "1.0", mimic);
+    Monitor monitor(wc, Unlimited());
+    const Crossing crossing = CrossPi(*wc, &monitor);
+    EXPECT_EQ(crossing.largest_step_m < 0.01, is_unwound) << "multiplier " << multiplier;
+    EXPECT_EQ(crossing.warns, !is_unwound) << "multiplier " << multiplier;
+    ExpectValid(monitor);
   }
 }
 

@@ -33,10 +33,12 @@ inline std::shared_ptr<const Workcell> LoadBundledWorkcell() {
   return workcell;
 }
 
-/// The bundled URDF with the bundled scene file's text after `edit` (written as `name`.yaml in
-/// the test's temporary directory): scenes that differ from the bundled one in a few lines.
+/// The URDF `urdf_path` with the bundled scene file's text after `edit` (written as
+/// `name`.yaml in the test's temporary directory): scenes that differ from the bundled one in a
+/// few lines.
 template <typename Edit>
-std::shared_ptr<const Workcell> LoadBundledSceneEdited(const std::string& name, Edit&& edit) {
+std::shared_ptr<const Workcell> LoadSceneEdited(const std::string& urdf_path,
+                                                const std::string& name, Edit&& edit) {
   std::ifstream in(ACM_SOURCE_DIR "/config/scene.yaml");
   std::stringstream text;
   text << in.rdbuf();
@@ -44,7 +46,13 @@ std::shared_ptr<const Workcell> LoadBundledSceneEdited(const std::string& name, 
   edit(&scene);
   const std::string path = ::testing::TempDir() + "/" + name + ".yaml";
   std::ofstream(path) << scene;
-  return std::make_shared<const Workcell>(LoadWorkcell(ACM_SOURCE_DIR "/urdf/workcell.urdf", path));
+  return std::make_shared<const Workcell>(LoadWorkcell(urdf_path, path));
+}
+
+/// LoadSceneEdited with the bundled URDF.
+template <typename Edit>
+std::shared_ptr<const Workcell> LoadBundledSceneEdited(const std::string& name, Edit&& edit) {
+  return LoadSceneEdited(ACM_SOURCE_DIR "/urdf/workcell.urdf", name, std::forward<Edit>(edit));
 }
 
 inline MonitorOptions OptionsFor(BroadPhaseMethod method) {

@@ -165,6 +165,9 @@ constexpr int kMostlyOverlappingSamples = kAlwaysOverlappingSamples / 2;
 // Monitor
 // ---------------------------------------------------------------------------------------------
 
+/// pi (Eigen and <cmath> give it only as macros).
+inline constexpr double kPi = 3.14159265358979323846;
+
 /// How far (rad for revolute, m for prismatic joints) a joint position may lie outside its URDF
 /// limits before the cycle's input is refused. Typical 0.01: encoders and controllers overshoot
 /// limits by a few milliradians; a larger excursion means a corrupt or mis-ordered message.

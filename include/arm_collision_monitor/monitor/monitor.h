@@ -131,7 +131,12 @@ class Monitor {
   /// One cycle. `q` holds one position per Workcell::joint_names() entry (rad or m). Never
   /// throws and does not allocate in the steady state; a malformed `q` is refused (see
   /// InputStatus), counted, and fails safe. `time_s`: when `q` was sampled (s, any epoch; NaN
-  /// when unknown), which tells a sparse path's large step from a jump (input_jumped).
+  /// when unknown), which tells a sparse path's large step from a jump (input_jumped), and a
+  /// wrapped reading of a continuous joint without limits (MonitorModel::turning_links): one
+  /// that moves more than half a turn, beyond the joint's velocity bound over the time since,
+  /// where the move the other way round is within it, gets whole turns added (one pose), so
+  /// that the step takes the short way; the idle test and the swept path then see q so
+  /// unwound. Without a velocity limit or a time, q is taken as given.
   const CycleReport& Update(const Eigen::Ref<const Eigen::VectorXd>& q,
                             double time_s = std::numeric_limits<double>::quiet_NaN());
   /// The same with each joint's own sample time (one per joint, as q; any other size counts as
