@@ -303,6 +303,13 @@ Aabb ReadWorld(const YAML::Node& node, const Where& where) {
   const Eigen::Vector3d center_W =
       yaml_fields::ReadVector3(node["center_m"], where.Child("center_m"));
   const double edge_m = yaml_fields::ReadPositiveDouble(node["edge_m"], where.Child("edge_m"));
+  if (edge_m > kMaxWorldEdge_m) {
+    where.Child("edge_m").Fail(
+        node["edge_m"], "expected at most " +
+                            std::to_string(static_cast<long long>(kMaxWorldEdge_m)) +
+                            " m (the monitor's distance bounds keep 1e-9 of the edge in hand "
+                            "against rounding), got " + node["edge_m"].Scalar());
+  }
   return Aabb::Cube(center_W, edge_m);
 }
 

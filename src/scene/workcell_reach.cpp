@@ -3,7 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
+#include <string>
 
 #include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/core/load_error.h"
@@ -25,6 +27,41 @@ double MaxAttachableDiameter_m(const Workcell& w) {
     diameter_m = std::max(diameter_m, (box.max_W - box.min_W).norm());
   }
   return diameter_m;
+}
+
+// The refusal of a derived world cube of edge `edge_m` over kMaxWorldEdge_m: the link that
+// reaches farthest and the prismatic joint above it that slides farthest (the usual cause:
+// URDF limits of +/-1e9 m for a joint that has none).
+LoadError TooLargeWorld(const Workcell& w, const WorkcellReach& reach, double edge_m) {
+  const KinematicModel& model = w.kinematics;
+  int farthest = 0;
+  for (int link = 1; link < model.link_count(); ++link) {
+    if (reach.spheres[link].radius_m > reach.spheres[farthest].radius_m) farthest = link;
+  }
+  int slider = -1;
+  for (int link = farthest; link > 0; link = model.parent_link(link)) {
+    const double travel_m = PrismaticTravel_m(model.joint(link));
+    if (travel_m > 0.0 && (slider < 0 || travel_m > PrismaticTravel_m(model.joint(slider)))) {
+      slider = link;
+    }
+  }
+  char text[256];
+  std::snprintf(text, sizeof(text), "%.6g m wide, over the %.0f m", edge_m, kMaxWorldEdge_m);
+  std::string why = w.scene_path + ": world: missing, and the cube derived from the arms' " +
+                    "reach and the objects is " + text +
+                    " a world may span (the monitor's distance bounds keep 1e-9 of the edge in "
+                    "hand against rounding)";
+  if (reach.spheres[farthest].radius_m >= 0.0) {
+    std::snprintf(text, sizeof(text), "%.6g", reach.spheres[farthest].radius_m);
+    why += ": link '" + model.link_name(farthest) + "' reaches " + text + " m";
+    if (slider > 0) {
+      std::snprintf(text, sizeof(text), "%.6g", PrismaticTravel_m(model.joint(slider)));
+      why += ", below prismatic joint '" + model.joint(slider).name + "' of " + w.urdf_path +
+             ", which slides " + text + " m within its limits";
+    }
+  }
+  return LoadError(why + "; give the joint its real limits (joint_limits: in the scene file "
+                         "narrows them) or world: {center_m: [x, y, z], edge_m: e}");
 }
 
 }  // namespace
@@ -120,6 +157,7 @@ Aabb DeriveWorldCube(const Workcell& w) {
   }
   all = all.Inflated(max_tolerance_m);
   const double edge_m = (all.max_W - all.min_W).maxCoeff() + 2.0 * kDerivedWorldMargin_m;
+  if (edge_m > kMaxWorldEdge_m) throw TooLargeWorld(w, reach, edge_m);
   return Aabb::Cube(0.5 * (all.min_W + all.max_W), edge_m);
 }
 

@@ -161,6 +161,38 @@ TEST(SceneWorldCube, ExplicitWorldWins) {
       {"'table'", "not inside the world cube"});
 }
 
+// A world cube over kMaxWorldEdge_m would make the monitor's rounding margin metres long: a
+// prismatic joint with URDF limits of +/-1e9 m (a MOVO user's "no limits") is refused, naming
+// the link, the joint and the URDF, when the cube is derived; joint_limits: narrowing it in the
+// scene file loads; a world: of such an edge is refused naming edge_m.
+TEST(SceneWorldCube, WorldOverTheLargestEdgeIsRefused) {
+  const std::string urdf = std::regex_replace(
+      ReadText(kData + "three_link_arm.urdf"),
+      std::regex("<limit lower=\"0\" upper=\"0.2\" velocity=\"0.1\""),
+      "<limit lower=\"-1e9\" upper=\"1e9\" velocity=\"0.1\"");
+  const std::string huge = WriteTempFile("huge_slide.urdf", urdf);
+  ASSERT_NE(urdf, ReadText(kData + "three_link_arm.urdf"));
+  const std::string scene =
+      WithoutWorld("huge_slide_no_world.yaml", kData + "three_link_scene.yaml");
+  ExpectLoadError([&] { LoadWorkcell(huge, scene); },
+                  {scene, "world: missing", "over the 10000 m", "link 'finger_a' reaches 1e+09",
+                   "prismatic joint 'slide' of " + huge, "slides 1e+09 m", "joint_limits:",
+                   "world: {center_m"});
+  const std::string narrowed = WriteTempFile(
+      "huge_slide_narrowed.yaml",
+      ReadText(scene) + "joint_limits: {slide: {lower: 0.0, upper: 0.2}}\n");
+  const Workcell w = LoadWorkcell(huge, narrowed);
+  EXPECT_LT((w.world_W.max_W - w.world_W.min_W).x(), kLargeDerivedWorldEdge_m);
+  ExpectLoadError(
+      [&] {
+        LoadWorkcell(kData + "three_link_arm.urdf",
+                     WriteTempFile("huge_world.yaml",
+                                   std::regex_replace(ReadText(kData + "three_link_scene.yaml"),
+                                                      std::regex("edge_m: 4.0"), "edge_m: 2e4")));
+      },
+      {"huge_world.yaml", "world.edge_m", "expected at most 10000 m", "got 2e4"});
+}
+
 TEST(SceneWorldCube, ReachSpheresOnlyForLinksBelowAMovingJoint) {
   const Workcell w = LoadWorkcell(kData + "three_link_arm.urdf", kData + "three_link_scene.yaml");
   const WorkcellReach reach = ComputeWorkcellReach(w);

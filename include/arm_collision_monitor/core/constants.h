@@ -222,6 +222,11 @@ inline constexpr double kLiveObjectRotationTolerance = 1e-6;
 /// room for what the broad phase grows boxes by (index slack, speed-scaled tolerance: a box
 /// beyond the cube is still checked, only in the border cells). Typical 0.10.
 inline constexpr double kDerivedWorldMargin_m = 0.10;
+/// The longest edge (m) of a world cube, given or derived: the Monitor's distance bounds keep
+/// kLowerBoundMarginPerMetre of it in hand against rounding, 10 um at this edge, well below any
+/// swept_resolution_m; a much larger cube (a prismatic joint whose URDF limits are +/-1e9 m)
+/// would make that margin metres long, and every pair within it a warning.
+inline constexpr double kMaxWorldEdge_m = 1e4;
 /// A derived world cube with a longer edge (m) than this names its farthest primitive in its
 /// start-up notice: a workcell of arms spans a few metres (the seed's 6.35 m), so such a cube
 /// most likely comes from a unit or origin error in one link or object (a YuMi URDF's stand
