@@ -428,6 +428,33 @@ void PushChildrenByJointName(const urdf::Link& link, int index, std::vector<Pend
   }
 }
 
+// The refusal of a URDF whose links are not all below its root: with one root, they hang in a
+// loop of joints (a mistyped <parent link>), found by walking up from one of them.
+LoadError UnreachedLinks(const urdf::ModelInterface& urdf_model, const KinematicModel& model,
+                         const std::string& urdf_path) {
+  std::vector<std::string> unreached;
+  for (const auto& [name, link] : urdf_model.links_) {
+    if (model.FindLink(name) < 0) unreached.push_back(name);
+  }
+  std::vector<std::string> loop;
+  urdf::LinkConstSharedPtr link = urdf_model.getLink(unreached.front());
+  while (link && std::find(loop.begin(), loop.end(), link->name) == loop.end()) {
+    loop.push_back(link->name);
+    link = link->getParent();
+  }
+  std::string why = urdf_path + ": " + std::to_string(unreached.size()) +
+                    (unreached.size() == 1 ? " link is" : " links are") +
+                    " not below the root link '" + model.link_name(0) + "' (" +
+                    QuotedNames(unreached) + ")";
+  if (link) {
+    const urdf::JointConstSharedPtr joint = link->parent_joint;
+    why += ": their joints form a loop, each link's <parent link> below it (joint '" +
+           joint->name + "' has parent '" + joint->parent_link_name + "' and child '" +
+           joint->child_link_name + "'); is a <parent link> mistyped?";
+  }
+  return LoadError(why);
+}
+
 }  // namespace
 
 KinematicModel KinematicModel::FromUrdf(const urdf::ModelInterface& urdf_model,
@@ -465,6 +492,9 @@ KinematicModel KinematicModel::FromUrdf(const urdf::ModelInterface& urdf_model,
     model.joints_.push_back(spec);
     model.is_moving_.push_back(is_moving ? 1 : 0);
     PushChildrenByJointName(*current.link, index, &stack);
+  }
+  if (static_cast<std::size_t>(model.link_count()) != urdf_model.links_.size()) {
+    throw UnreachedLinks(urdf_model, model, urdf_path);
   }
   for (const auto& [link, mimic] : mimics) model.ResolveMimic(link, *mimic, urdf_path);
   model.fk_steps_.resize(model.link_count());

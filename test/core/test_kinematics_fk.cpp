@@ -516,6 +516,38 @@ TEST(KinematicsFk, FloatingJointIsRejectedNamingTheJoint) {
   }
 }
 
+// A mistyped <parent link> that names a link below the joint's own child leaves that part of
+// the chain in a loop, not below the root (urdfdom accepts it: one root): refused, naming the
+// links and a joint of the loop (a Techman user's URDF lost six links without a word).
+TEST(KinematicsFk, LinksInALoopOfJointsAreRejected) {
+  const std::string path = ::testing::TempDir() + "joint_loop.urdf";
+  std::ofstream(path) << "<robot name='r'>\n"
+                         "  <link name='base'/><link name='a'/><link name='b'/><link name='c'/>\n"
+                         "  <joint name='j1' type='fixed'><parent link='base'/>"
+                         "<child link='c'/></joint>\n"
+                         "  <joint name='j2' type='revolute'><parent link='b'/><child link='a'/>"
+                         "<axis xyz='0 0 1'/><limit lower='-1' upper='1' velocity='1' "
+                         "effort='1'/></joint>\n"
+                         "  <joint name='j3' type='revolute'><parent link='a'/><child link='b'/>"
+                         "<axis xyz='0 0 1'/><limit lower='-1' upper='1' velocity='1' "
+                         "effort='1'/></joint>\n"
+                         "</robot>\n";
+  try {
+    KinematicModel::FromUrdfFile(path);
+    FAIL() << "expected LoadError";
+  } catch (const LoadError& e) {
+    const std::string message = e.what();
+    for (const std::string& part : std::vector<std::string>{
+             path + ": 2 links are not below the root link 'base' ('a', 'b')", "form a loop",
+          "is a <parent link> mistyped?"}) {
+      EXPECT_NE(message.find(part), std::string::npos) << part << " not in " << message;
+    }
+    EXPECT_TRUE(message.find("joint 'j2' has parent 'b' and child 'a'") != std::string::npos ||
+                message.find("joint 'j3' has parent 'a' and child 'b'") != std::string::npos)
+        << message;
+  }
+}
+
 TEST(KinematicsFk, MissingAndMalformedUrdfAreRejectedNamingTheFile) {
   for (const std::string& path : {kDataDir + "does_not_exist.urdf", kDataDir + "malformed.urdf"}) {
     try {
