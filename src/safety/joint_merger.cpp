@@ -226,10 +226,13 @@ MergeStatus JointMerger::Merge(const NamedPositions& input, double now_s) {
   total_unknown_joints_ += layout.unknown_count;
   last_mimic_joints_ = layout.mimic_count;
   total_mimic_joints_ += layout.mimic_count;
-  const double stamp_s = input.stamp_s == 0.0 ? now_s : input.stamp_s;
+  // An unstamped message (0) was sampled when it arrived: its order cannot be checked (a clock
+  // behind the stamps of the joints' other messages, simulated time published at 100 Hz, would
+  // make it go backwards), and each joint's stamp stays where it is if later.
+  const bool is_unstamped = input.stamp_s == 0.0;
   MergeStatus status = ValidatePositions(layout, input);
-  if (status == MergeStatus::kAccepted) {
-    status = ValidateStamp(layout, stamp_s, now_s);
+  if (status == MergeStatus::kAccepted && !is_unstamped) {
+    status = ValidateStamp(layout, input.stamp_s, now_s);
   }
   if (status != MergeStatus::kAccepted) {
     return Refuse(status);
@@ -248,7 +251,7 @@ MergeStatus JointMerger::Merge(const NamedPositions& input, double now_s) {
       --awaiting_count_;
     }
     q_[i] = input.positions[k];
-    stamp_s_[i] = stamp_s;
+    stamp_s_[i] = is_unstamped ? std::max(stamp_s_[i], now_s) : input.stamp_s;
     received_s_[i] = now_s;
   }
   return MergeStatus::kAccepted;

@@ -172,6 +172,15 @@ TEST(JointMerger, ZeroStampMeansReceiptTime) {
   EXPECT_EQ(MergeAt(&merger, {"a1"}, {1.0}, 0.0, 100.0), MergeStatus::kAccepted);
   // Taken as stamped 100 s: an explicit earlier stamp is now backwards.
   EXPECT_EQ(MergeAt(&merger, {"a1"}, {1.0}, 99.99, 100.0), MergeStatus::kStampBackwards);
+  // After stamped messages, an unstamped one is not checked against their stamps: under
+  // simulated time (a clock published at 100 Hz) the receipt time may be behind them. The
+  // joint's stamp stays the later one.
+  ASSERT_EQ(MergeAt(&merger, {"a1", "a2"}, {1.0, 2.0}, 100.5, 100.5), MergeStatus::kAccepted);
+  EXPECT_EQ(MergeAt(&merger, {"a1"}, {1.5}, 0.0, 100.49), MergeStatus::kAccepted);
+  EXPECT_EQ(merger.joint_stamps()[0], 100.5);
+  EXPECT_EQ(MergeAt(&merger, {"a1"}, {1.6}, 0.0, 100.6), MergeStatus::kAccepted);
+  EXPECT_EQ(merger.joint_stamps()[0], 100.6);
+  EXPECT_EQ(merger.joint_stamps()[1], 100.5);
 }
 
 TEST(JointMerger, SilentJointGoesStale) {

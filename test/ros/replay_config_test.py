@@ -448,6 +448,32 @@ class ReplayConfigTest(unittest.TestCase):
         self.assertIn('summary: no warning in 2 cycles; 1 message or planned point refused, no '
                       'cycle (the node asks a stop on a message;', text)
 
+    def test_stamps_are_taken_as_the_node_takes_them(self):
+        # Five messages 0.05 s apart: the second stamped 100 s ahead of the time the bag
+        # recorded it (refused future_stamp, as the node refuses it; accepted, it made each
+        # later message go backwards: a Techman user's bag froze an arm for 4 s), the fourth
+        # unstamped (0: sampled when recorded, as the node takes it; refused stamp_backwards).
+        path = os.path.join(temp_dir(self, 'acm_stamps_'), 'stamps.bag')
+        with rosbag.Bag(path, 'w') as bag:
+            for k in range(5):
+                recorded_at = rospy.Time(100) + rospy.Duration(0.05 * k)
+                msg = JointState(name=LEFT_JOINTS + RIGHT_JOINTS, position=[0.01 * k] * 14)
+                msg.header.stamp = recorded_at
+                if k == 1:
+                    msg.header.stamp += rospy.Duration(100)
+                if k == 3:
+                    msg.header.stamp = rospy.Time(0)
+                bag.write('/joint_states', msg, recorded_at)
+        result = rosrun('replay', '--json', '--scene', self.bundled_scene, path)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        report = json.loads(result.stdout)
+        self.assertEqual(report['refused_messages'], {'future_stamp': 1})
+        self.assertTrue(report['first_refused_message'].startswith(
+            'stamped 200.050000 s: %s: sensor_msgs/JointState on /joint_states at bag time '
+            '100.050000: future_stamp' % path), report['first_refused_message'])
+        self.assertEqual([round(c['time_s'], 9) for c in report['per_cycle']],
+                         [0.0, 0.1, 0.15, 0.2])
+
     def test_between_samples_lines_past_the_first_20_are_counted(self):
         # The swing of test_between_samples_lines_say_what_they_are, there and back four times:
         # more warnings between samples than the text prints (a Kinova Gen3 user's plan printed

@@ -264,9 +264,15 @@ class Cycles {
     input_.SetMimicJoints(workcell.kinematics.MimicJointNames());
   }
 
-  /// `sample`, of the bag's `message` (null: a planned point's, named when read).
+  /// `sample`, of the bag's `message` (null: a planned point's, named when read), stamped
+  /// `stamp`. A recorded message is refused as the node refuses it when its stamp is further
+  /// ahead of the time the bag recorded it than the input timeout (future_stamp): a stamp far
+  /// ahead would freeze its joints, each later sample of them going backwards.
   void Add(const NamedPositions& sample, const ros::Time& stamp,
            const rosbag::MessageInstance* message) {
+    // Not stale against the recorder's time: a bag's stamps may be a robot's own clock, behind.
+    const double now_s =
+        message != nullptr ? std::min(stamp, message->getTime()).toSec() : stamp.toSec();
     if (JointMerger::GivesNoPositions(sample)) {  // nothing to merge, and no cycle of its own
       ++result_->position_less;
       return;
@@ -277,7 +283,7 @@ class Cycles {
       has_group_ = true;
       is_group_accepted_ = false;
     }
-    const MergeStatus status = input_.Merge(sample, stamp.toSec());
+    const MergeStatus status = input_.Merge(sample, now_s);
     if (input_.last_unknown_joints() + input_.last_mimic_joints() > 0) {
       NoteUnknownNames(sample.names);
     }
@@ -289,7 +295,7 @@ class Cycles {
     NoteRefusal(
         stamp.toSec(),
         [&] {
-          const std::string why = input_.DescribeRefusal(sample, status, stamp.toSec());
+          const std::string why = input_.DescribeRefusal(sample, status, now_s);
           return (message != nullptr ? MessageWhere(path_, *message) + ": " : std::string()) +
                  MergeStatusName(status) + (why.empty() ? "" : " (" + why + ")");
         },
@@ -544,8 +550,12 @@ Input ReadBag(const std::string& path, const std::vector<std::string>& topics,
     PrefixNames(joint_prefixes, m.getTopic(), &msg->name);
     if (topics.empty()) CheckNotPlanned(path, m, *msg, sources);
     ++result.messages;
-    add_planned_before(&msg->header.stamp);
-    add(ToNamedPositions(*msg), msg->header.stamp, nullptr, &m);
+    // An unstamped message (0) was sampled when the bag recorded it, as the node takes it.
+    const ros::Time stamp = msg->header.stamp.isZero() ? m.getTime() : msg->header.stamp;
+    add_planned_before(&stamp);
+    NamedPositions sample = ToNamedPositions(*msg);
+    sample.stamp_s = stamp.toSec();
+    add(sample, stamp, nullptr, &m);
   }
   add_planned_before(nullptr);
   cycles.Finish(path, PlanHint(sources));
