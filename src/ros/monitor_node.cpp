@@ -205,8 +205,9 @@ void MonitorNode::OnJointState(const sensor_msgs::JointState::ConstPtr& msg, std
   const MergeStatus status = input_->Merge(input, now.toSec());
   // Nothing to merge: no cycle (the merger counts it; DiagnoseInput reports the count).
   if (status == MergeStatus::kNoPositions) return;
+  trigger_stamp_ = msg->header.stamp.isZero() ? now : msg->header.stamp;
   if (status == MergeStatus::kAccepted) {
-    newest_input_stamp_ = msg->header.stamp.isZero() ? now : msg->header.stamp;
+    newest_input_stamp_ = trigger_stamp_;
     // How late messages arrive (transport and the subscriber's queue): a node falling behind
     // fast input shows here first.
     if (!msg->header.stamp.isZero()) input_ages_s_.Add((now - msg->header.stamp).toSec());
@@ -236,6 +237,7 @@ ros::Time MonitorNode::ClockNow() {
     input_->OnTimeWentBackwards(now.toSec());
     // No input stamp until input of the new timeline is accepted.
     newest_input_stamp_ = ros::Time();
+    trigger_stamp_ = ros::Time();
   }
   return now;
 }
@@ -323,7 +325,7 @@ void MonitorNode::RunCycle(std::chrono::steady_clock::time_point start) {
     policy_.OnCycleReport(cycle, refusal, primitives_, *input_, now.toSec());
   }
   policy_.EndCycle(now.toSec());
-  report_.header.stamp = newest_input_stamp_;
+  report_.header.stamp = trigger_stamp_;
   report_.cycle = cycles_;
   report_.input_status = ToInputStatusMsg(policy_.status());
   TakeStopDecision(was_stop);

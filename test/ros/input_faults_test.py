@@ -52,7 +52,7 @@ class InputFaultsTest(unittest.TestCase):
         """Clears (unless given the clear report), then publishes message_fn() on the left
         topic until a report with `status` arrives; asserts the stop (its reason `reason`, or
         starting with `reason_prefix`, if given) and the refusal count, then that good input
-        clears again."""
+        clears again. Returns the refusal's report."""
         c = self.client
         clear = clear or c.go_clear()
         self.assertIsNotNone(clear, 'no clear report on home input')
@@ -69,6 +69,7 @@ class InputFaultsTest(unittest.TestCase):
         self.assertTrue(c.wait_stop(True), '~stop never went true')
         self.assertIsNotNone(c.go_clear(), 'good input did not clear the stop')
         self.assertTrue(c.wait_stop(False), '~stop never went back to false')
+        return report
 
     def test_01_incomplete_model_requests_stop(self):
         c = self.client
@@ -137,11 +138,14 @@ class InputFaultsTest(unittest.TestCase):
         report = c.publish_until(lambda: c.publishers[0].publish(left_only(HOME, stamp=later)),
                                  lambda r: r.header.stamp == later and not r.stop)
         self.assertIsNotNone(report)
-        self.refused_with(MonitorReport.INPUT_STAMP_BACKWARDS,
-                          lambda: left_only(HOME, stamp=later - rospy.Duration(0.05)),
-                          clear=report,
-                          reason="input refused: stamp_backwards (joint 'left_joint1' 0.050 s "
-                                 "before its last accepted stamp)")
+        refused = self.refused_with(
+            MonitorReport.INPUT_STAMP_BACKWARDS,
+            lambda: left_only(HOME, stamp=later - rospy.Duration(0.05)), clear=report,
+            reason="input refused: stamp_backwards (joint 'left_joint1' 0.050 s before its last "
+                   "accepted stamp)")
+        # The report of a refused message carries that message's stamp (a Techman user's
+        # carried the last accepted one's).
+        self.assertEqual(refused.header.stamp, later - rospy.Duration(0.05))
 
     def test_08_old_stamp_refused(self):
         self.refused_with(MonitorReport.INPUT_STALE,

@@ -169,7 +169,8 @@ class MonitorNode {
   sensor_msgs::JointState joint_state_out_;
   MergeStatus pending_refusal_ = MergeStatus::kAccepted;  ///< first refusal since last cycle
   std::string pending_why_;  ///< what in its message was refused (JointMerger::DescribeRefusal)
-  ros::Time newest_input_stamp_;
+  ros::Time newest_input_stamp_;  ///< of the newest accepted message (the merged joint states)
+  ros::Time trigger_stamp_;       ///< of the newest message, accepted or not (the report's)
   bool has_pending_input_ = false;
   bool published_stop_ = true;
   ros::WallTime last_visualisation_;
