@@ -472,14 +472,27 @@ bool MonitorNode::OnCheck(CheckJointState::Request& req, CheckJointState::Respon
   res.report.reinsert_fallbacks = static_cast<std::uint32_t>(report.counters.reinsert_fallbacks);
   FillReportWarnings(report, &res.report);
   res.success = report.input == InputStatus::kOk;
-  // The request's names that are no model joints, said (merged, they were ignored).
+  // The request's names that are no model joints, said and counted as the live report counts
+  // them (merged, they were ignored), and how many model joints the request left to their live
+  // positions (a request whose arm joints lack their prefix checks the live arms).
   std::string ignored;
+  std::size_t given = 0;
   for (const std::string& name : req.joint_state.name) {
-    if (input_->IsModelJoint(name)) continue;
+    if (input_->IsModelJoint(name)) {
+      ++given;
+      continue;
+    }
+    const bool is_mimic = input_->IsMimicJoint(name);
+    res.report.unknown_joints += is_mimic ? 0 : 1;
     const bool is_fixed = workcell_->kinematics.IsFixedJoint(name);
     ignored += (ignored.empty() ? "; ignored, no joints of the model: '" : ", '") + name + "'" +
-               (input_->IsMimicJoint(name) ? " (a mimic joint)" : "") +
+               (is_mimic ? " (a mimic joint)" : "") +
                (is_fixed ? " (a fixed joint of the URDF)" : "");
+  }
+  if (!ignored.empty() && given < workcell_->joint_names.size()) {
+    ignored += "; " + std::to_string(workcell_->joint_names.size() - given) + " of the model's " +
+               std::to_string(workcell_->joint_names.size()) +
+               " joints at their live positions, not in the request";
   }
   res.message = res.success ? std::to_string(report.warnings.size()) + " warning(s)" + ignored
                             : std::string("joint state refused: ") +

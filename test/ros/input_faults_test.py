@@ -309,12 +309,24 @@ class InputFaultsTest(unittest.TestCase):
         self.assertTrue(extra.success, extra.message)
         self.assertEqual(extra.message,
                          "0 warning(s); ignored, no joints of the model: 'bogus_joint'")
+        self.assertEqual(extra.report.unknown_joints, 1)
         # A fixed joint of the URDF a driver publishes is marked so (a Sawyer's torso_t0).
         fixed = check(joint_state(LEFT_JOINTS + RIGHT_JOINTS + ['left_tool_joint', 'bogus'],
                                   HOME + HOME + [0.0, 0.0]))
         self.assertEqual(fixed.message,
                          "0 warning(s); ignored, no joints of the model: 'left_tool_joint' "
                          "(a fixed joint of the URDF), 'bogus'")
+        self.assertEqual(fixed.report.unknown_joints, 2)
+        # A request whose left arm joints lack their prefix (a MOVO user's): counted, and the
+        # model joints it left to their live positions said.
+        bare = check(joint_state([name[len('left_'):] for name in LEFT_JOINTS] + RIGHT_JOINTS,
+                                 HOME + HOME))
+        self.assertEqual(bare.report.unknown_joints, 7)
+        self.assertTrue(bare.message.startswith("0 warning(s); ignored, no joints of the model: "
+                                                "'joint1', "), bare.message)
+        self.assertTrue(bare.message.endswith(
+            "; 7 of the model's 14 joints at their live positions, not in the request"),
+            bare.message)
         # The live model still gives a clear report on home input.
         report = c.publish_until(lambda: c.publish_pose(HOME, HOME), lambda r: True)
         self.assertEqual(report.warnings, [])
