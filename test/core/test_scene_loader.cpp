@@ -178,6 +178,33 @@ TEST(SceneLoader, ThirdPartyCylinderArmLoads) {
   EXPECT_FALSE(Compatible(w, "base_link", "forearm"));
 }
 
+// A joint with velocity 0 (a MOVO and a Techman user's URDFs: accepted without a word) or a
+// continuous joint without <limit> is named in a start-up notice, with what it means and the
+// remedy; the scene file's joint_limits: velocity silences it.
+TEST(SceneLoader, JointsWithoutAVelocityLimitAreNoticed) {
+  auto has_notice = [](const Workcell& w, const std::string& part) {
+    for (const std::string& notice : w.notices) {
+      if (notice.find(part) != std::string::npos) return true;
+    }
+    return false;
+  };
+  EXPECT_FALSE(has_notice(LoadWorkcell(kArmUrdf, kData + "three_link_scene.yaml"),
+                          "without a velocity limit"));
+  const std::string urdf = WriteEditedArmUrdf("no_velocity.urdf", "<limit velocity=\"2.0\" "
+                                              "effort=\"10\"/>", "");
+  const std::string scene = WriteTempFile("no_velocity.yaml", kWorldLine);
+  const Workcell w = LoadWorkcell(urdf, scene);
+  EXPECT_TRUE(has_notice(w, urdf + ": joint 'spin' without a velocity limit (velocity 0, or no "
+                              "<limit>): the start-up check"))
+      << ::testing::PrintToString(w.notices);
+  EXPECT_TRUE(has_notice(w, "joint_limits: {<joint>: {velocity: v}}"));
+  const Workcell given = LoadWorkcell(
+      urdf, WriteTempFile("velocity_given.yaml",
+                          kWorldLine + "joint_limits: {spin: {velocity: 2.0}}\n"));
+  EXPECT_FALSE(has_notice(given, "without a velocity limit")) << ::testing::PrintToString(
+      given.notices);
+}
+
 TEST(SceneLoader, MovingLinksOutsideEveryArmKeepTheDefaultTolerance) {
   const Workcell w = LoadWorkcell(kArmUrdf, WriteTempFile("no_arms.yaml", kWorldLine),
                                   /*default_arm_tolerance_m=*/0.04);
