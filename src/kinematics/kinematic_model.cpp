@@ -118,6 +118,26 @@ std::vector<std::string> KinematicModel::MimicJointNames() const {
   return names;
 }
 
+std::vector<int> KinematicModel::TurningLinks() const {
+  std::vector<int> links;
+  for (int link = 1; link < link_count(); ++link) {
+    const JointSpec& joint = joints_[link];
+    if (joint.q_index < 0 || joint.type != JointType::kContinuous ||
+        std::isfinite(joint.lower) || std::isfinite(joint.upper)) {
+      continue;
+    }
+    bool is_one_pose = true;
+    for (int other = 1; other < link_count(); ++other) {
+      const JointSpec& mimic = joints_[other];
+      if (mimic.mimic_q_index != joint.q_index) continue;
+      is_one_pose &= mimic.type != JointType::kPrismatic &&
+                     mimic.mimic_multiplier == std::round(mimic.mimic_multiplier);
+    }
+    if (is_one_pose) links.push_back(link);
+  }
+  return links;
+}
+
 bool KinematicModel::IsFixedJoint(const std::string& joint_name) const {
   const int link = FindJointChildLink(joint_name);
   return link > 0 && joints_[link].type == JointType::kFixed;

@@ -14,33 +14,6 @@
 #include "arm_collision_monitor/scene/workcell_reach.h"
 
 namespace arm_collision_monitor {
-namespace {
-
-// The links below continuous joints without limits whose positions a whole turn apart are one
-// pose of the model: none of the mimic joints that follow the joint slides (a prismatic one) or
-// turns by other than whole turns (a multiplier not a whole number).
-std::vector<int> TurningLinks(const KinematicModel& model) {
-  std::vector<int> links;
-  for (int link = 1; link < model.link_count(); ++link) {
-    const JointSpec& joint = model.joint(link);
-    if (joint.q_index < 0 || joint.type != JointType::kContinuous ||
-        std::isfinite(joint.lower) || std::isfinite(joint.upper)) {
-      continue;
-    }
-    bool is_one_pose = true;
-    for (int other = 1; other < model.link_count(); ++other) {
-      const JointSpec& mimic = model.joint(other);
-      if (mimic.mimic_q_index != joint.q_index) continue;
-      is_one_pose &= mimic.type != JointType::kPrismatic &&
-                     mimic.mimic_multiplier == std::round(mimic.mimic_multiplier);
-    }
-    if (is_one_pose) links.push_back(link);
-  }
-  return links;
-}
-
-}  // namespace
-
 MonitorModel::MonitorModel(std::shared_ptr<const Workcell> wc, const MonitorOptions& opts)
     : workcell(WithLiveSlots(std::move(wc), opts.live_objects)), options(opts) {
   if (!workcell) throw LoadError("monitor: no workcell given");
@@ -165,7 +138,7 @@ void MonitorModel::BuildStartPose() {
     if (std::isfinite(joint.lower)) q_lower[joint.q_index] = joint.lower - kJointLimitMargin;
     if (std::isfinite(joint.upper)) q_upper[joint.q_index] = joint.upper + kJointLimitMargin;
   }
-  turning_links = TurningLinks(*kinematics);
+  turning_links = kinematics->TurningLinks();
   // Each joint at 0, or at its limit nearer 0 (finite: so are the limits).
   q_start = Eigen::VectorXd::Zero(kinematics->q_size());
   for (int i = 0; i < q_start.size(); ++i) {

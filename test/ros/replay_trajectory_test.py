@@ -20,6 +20,7 @@ trajectory controller (control_msgs/FollowJointTrajectoryActionGoal, written raw
 replays as its recording too, and one cut short is such an error."""
 import io
 import json
+import math
 import os
 import shutil
 import struct
@@ -522,6 +523,53 @@ class ReplayTrajectoryTest(unittest.TestCase):
         self.assertEqual(result.returncode, 1)
         self.assertIn("trajectory point gives 7 model joints: 'right_joint1', 'right_joint2'",
                       result.stderr)
+
+    def test_a_moveit_display_is_unwound_as_moveit_executes_it(self):
+        # left_joint1 made continuous (no limits): MoveIt's display of a plan may give it
+        # wrapped, 3.1 then 3.1 + 0.083 - 2 pi, which MoveIt unwinds before it executes the plan
+        # (the short way). A plan of the right arm has a point between the two: there the left
+        # arm is where its controller has it, on the short way, not halfway round the long way
+        # (3.1 rad from its start in 0.05 s: an 'input jumped' stop, twice).
+        package = rospkg.RosPack().get_path(PKG)
+        with open(os.path.join(package, 'urdf', 'workcell.urdf')) as f:
+            urdf = f.read()
+        for old, new in (('<joint name="left_joint1" type="revolute">',
+                          '<joint name="left_joint1" type="continuous">'),
+                         ('<limit lower="-2.967060" upper="2.967060" velocity="1.0"',
+                          '<limit velocity="1.0"')):
+            self.assertIn(old, urdf)
+            urdf = urdf.replace(old, new, 1)
+        urdf_path = os.path.join(self.directory, 'continuous_joint1.urdf')
+        with open(urdf_path, 'w') as f:
+            f.write(urdf)
+        start = rospy.Time(100)
+        wrapped = 3.1 + 0.083 - 2.0 * math.pi
+        left = JointTrajectory(joint_names=LEFT_JOINTS)
+        for t, q1 in ((0.0, 3.1), (0.1, wrapped)):
+            left.points.append(JointTrajectoryPoint(positions=[q1, 1.0, 0, 0, 0, 0, 0],
+                                                    time_from_start=rospy.Duration(t)))
+        start_state = JointState(name=LEFT_JOINTS + RIGHT_JOINTS,
+                                 position=[3.1, 1.0] + [0.0] * 12)
+        right = JointTrajectory(joint_names=RIGHT_JOINTS)
+        right.header.stamp = start
+        for t in (0.05, 0.1):
+            right.points.append(JointTrajectoryPoint(positions=[0.0] * 7,
+                                                     time_from_start=rospy.Duration(t)))
+        path = os.path.join(self.directory, 'display_wrapped.bag')
+        topic = '/move_group/display_planned_path'
+        header = {'topic': topic, 'type': 'moveit_msgs/DisplayTrajectory', 'md5sum': '*',
+                  'message_definition': display_definition(True)}
+        with rosbag.Bag(path, 'w') as bag:
+            bag.write(topic, ('moveit_msgs/DisplayTrajectory',
+                              display_bytes([left], start_state, True), '*', RawType), start,
+                      raw=True, connection_header=header)
+            bag.write('/right/plan', right, start)
+        result = rosrun('replay', '--json', '--urdf', urdf_path, '--scene',
+                        os.path.join(package, 'config', 'scene.yaml'), path)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        report = json.loads(result.stdout)
+        self.assertEqual([round(c['time_s'], 9) for c in report['per_cycle']], [0.0, 0.05, 0.1])
+        self.assertEqual(report['jumped_cycles'], 0)
 
     def test_an_unreadable_display_names_the_message_and_field(self):
         start_state = JointState(name=LEFT_JOINTS + RIGHT_JOINTS, position=self.samples[0][1])

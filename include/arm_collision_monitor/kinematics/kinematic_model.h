@@ -67,6 +67,12 @@ class KinematicModel {
   /// True iff the URDF has a fixed joint named `joint_name` (a driver may publish one: a
   /// Sawyer's torso_t0).
   bool IsFixedJoint(const std::string& joint_name) const;
+  /// The links below continuous joints without limits (none set by SetPositionLimits either)
+  /// whose positions a whole turn apart are one pose of the model: none of the mimic joints
+  /// that follow the joint slides (a prismatic one) or turns by other than whole turns (a
+  /// multiplier not a whole number). A driver may report such a joint wrapped, and MoveIt
+  /// unwinds a plan's before executing it.
+  std::vector<int> TurningLinks() const;
   /// The link whose parent joint is named `joint_name`, -1 if unknown.
   int FindJointChildLink(const std::string& joint_name) const;
   /// True iff link `link` can move relative to the root (an actuated or mimic joint lies

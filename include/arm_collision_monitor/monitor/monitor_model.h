@@ -68,9 +68,7 @@ struct MonitorModel {
   /// Joint limits by q index, kJointLimitMargin included; always finite (a joint without limits:
   /// the lowest and largest finite doubles), so that they alone refuse NaN and infinities.
   Eigen::VectorXd q_lower, q_upper;
-  /// The links below continuous joints without limits (none given in the scene file either)
-  /// whose positions a turn apart are one pose (no mimic joint follows by other than whole
-  /// turns): a driver may report them wrapped (Monitor::Update).
+  /// KinematicModel::TurningLinks: joints a driver may report wrapped (Monitor::Update).
   std::vector<int> turning_links;
 
   std::vector<std::vector<PrimitiveId>> link_prims;     ///< per link: every variant's primitives

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <set>
 #include <string>
 #include <unordered_set>
@@ -18,6 +19,7 @@
 #include <sensor_msgs/JointState.h>
 #include <trajectory_msgs/JointTrajectory.h>
 
+#include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/core/load_error.h"
 #include "arm_collision_monitor/ros/conversions.h"
 #include "arm_collision_monitor/ros/display_trajectory.h"
@@ -418,16 +420,48 @@ void PrefixNames(const JointPrefixes& prefixes, const std::string& topic,
   for (std::string& name : *names) name.insert(0, it->second);
 }
 
-// The plans of the bag at `path` on `topics`, in bag order, their joint names prefixed.
+// MoveIt unwinds a plan before it executes it (plan_execution.cpp): each point's position of a
+// joint of `turning` (KinematicModel::TurningLinks' joints) whole turns from where the point
+// before it has the joint (the first point: `last`, where the display's start state or its
+// trajectory before had it), so that the robot turns it the short way; a display of the plan
+// may carry them wrapped into [-pi, pi]. `last` gets the plan's last positions.
+void UnwindAsMoveItExecutes(const std::set<std::string>& turning,
+                            std::map<std::string, double>* last,
+                            trajectory_msgs::JointTrajectory* plan) {
+  constexpr double kTurn = 2.0 * kPi;
+  for (std::size_t j = 0; j < plan->joint_names.size(); ++j) {
+    const std::string& name = plan->joint_names[j];
+    if (turning.count(name) == 0) continue;
+    const auto before = last->find(name);
+    double previous = before != last->end() ? before->second : std::nan("");
+    for (trajectory_msgs::JointTrajectoryPoint& point : plan->points) {
+      if (j >= point.positions.size() || !std::isfinite(point.positions[j])) continue;
+      if (std::isfinite(previous)) {
+        point.positions[j] += kTurn * std::round((previous - point.positions[j]) / kTurn);
+      }
+      previous = point.positions[j];
+    }
+    if (std::isfinite(previous)) (*last)[name] = previous;
+  }
+}
+
+// The plans of the bag at `path` on `topics`, in bag order, their joint names prefixed; those
+// of MoveIt's displays unwound as MoveIt executes them (`model`'s turning joints).
 PlanSources ReadPlans(const std::string& path, const rosbag::Bag& bag,
                       const std::vector<std::string>& topics, const JointPrefixes& prefixes,
-                      Plans* plans) {
+                      const KinematicModel& model, Plans* plans) {
+  std::set<std::string> turning;
+  for (const int link : model.TurningLinks()) turning.insert(model.joint(link).name);
   PlanSources sources;
   rosbag::View view(bag, rosbag::TypeQuery(kPlanTypes));
   std::string topic;  // of the message read
+  // A display's joints where its start state or its last trajectory has them (null: no
+  // display, nothing unwound).
+  std::map<std::string, double>* displayed_at = nullptr;
   auto add = [&](trajectory_msgs::JointTrajectory plan, const ros::Time& start,
                  const std::string& where) {
     PrefixNames(prefixes, topic, &plan.joint_names);
+    if (displayed_at != nullptr) UnwindAsMoveItExecutes(turning, displayed_at, &plan);
     sources.joints.insert(plan.joint_names.begin(), plan.joint_names.end());
     ++sources.trajectories;
     sources.empty_trajectories += plan.points.empty() ? 1 : 0;
@@ -450,11 +484,17 @@ PlanSources ReadPlans(const std::string& path, const rosbag::Bag& bag,
       PrefixNames(prefixes, topic, &state.name);
       if (!state.name.empty()) plans->AddState(state, start, where);
       sources.joints.insert(state.name.begin(), state.name.end());
+      std::map<std::string, double> at;
+      for (std::size_t j = 0; j < state.name.size() && j < state.position.size(); ++j) {
+        at[state.name[j]] = state.position[j];
+      }
+      displayed_at = &at;
       for (std::size_t k = 0; k < displayed.trajectories.size(); ++k) {
         const trajectory_msgs::JointTrajectory& plan = displayed.trajectories[k];
         start = add(plan, plan.header.stamp.isZero() ? start : plan.header.stamp,
                     where + ", trajectory " + std::to_string(k));
       }
+      displayed_at = nullptr;
     } else {
       // An action goal's trajectory: header.stamp 0 is when the goal arrived.
       const std::string type = m.getDataType();
@@ -521,7 +561,8 @@ Input ReadBag(const std::string& path, const std::vector<std::string>& topics,
   CheckTopics(path, &all, prefixed_topics, "--joint-prefix");
   Input result;
   Plans plans(&result);
-  const PlanSources sources = ReadPlans(path, bag, topics, joint_prefixes, &plans);
+  const PlanSources sources =
+      ReadPlans(path, bag, topics, joint_prefixes, workcell.kinematics, &plans);
   const auto planned = plans.InTimeOrder();
   Cycles cycles(path, workcell, &result);
   // Each sample at `stamp` (of plan `joints`, null for a recorded state, the bag's `message`)
