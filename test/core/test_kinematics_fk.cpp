@@ -499,6 +499,12 @@ TEST(KinematicsFk, JointTypesLimitsAndMimicAreRead) {
   EXPECT_FALSE(model.IsFixedJoint("slide"));
   EXPECT_FALSE(model.IsFixedJoint("finger_mimic"));
   EXPECT_FALSE(model.IsFixedJoint("no_such_joint"));
+  // The continuous wrist without limits is the one joint whose positions a turn apart are one
+  // pose; with soft limits it is none.
+  EXPECT_EQ(model.TurningLinks(), std::vector<int>{model.FindJointChildLink("spin")});
+  KinematicModel limited = model;
+  ASSERT_TRUE(limited.SetPositionLimits("spin", -4.0, 4.0));
+  EXPECT_TRUE(limited.TurningLinks().empty());
   EXPECT_NEAR(model.joint(model.FindJointChildLink("shoulder")).axis_J.norm(), 1.0, 1e-15);
   // Every parent precedes its children.
   for (int link = 1; link < model.link_count(); ++link) EXPECT_LT(model.parent_link(link), link);
