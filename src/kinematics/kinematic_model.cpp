@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <unordered_set>
 
 #include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/kinematics/sin_cos.h"
@@ -468,11 +469,30 @@ LoadError UnreachedLinks(const urdf::ModelInterface& urdf_model, const Kinematic
                     QuotedNames(unreached) + ")";
   if (link) {
     const urdf::JointConstSharedPtr joint = link->parent_joint;
-    why += ": their joints form a loop, each link's <parent link> below it (joint '" +
-           joint->name + "' has parent '" + joint->parent_link_name + "' and child '" +
-           joint->child_link_name + "'); is a <parent link> mistyped?";
+    why += joint->parent_link_name == joint->child_link_name
+               ? ": joint '" + joint->name + "' names '" + joint->child_link_name +
+                     "' as both its parent and its child"
+               : ": their joints form a loop, each link's <parent link> below it (joint '" +
+                     joint->name + "' has parent '" + joint->parent_link_name + "' and child '" +
+                     joint->child_link_name + "')";
+    why += "; is a <parent link> mistyped?";
   }
   return LoadError(why);
+}
+
+// The refusal of a URDF in which the walk from the root reaches link `name` twice: it is the
+// child of two joints (a loop below the root, or a copied joint).
+LoadError LinkReachedTwice(const urdf::ModelInterface& urdf_model, const std::string& name,
+                           const std::string& urdf_path) {
+  std::string joints;
+  for (const auto& [joint_name, joint] : urdf_model.joints_) {
+    if (joint->child_link_name != name) continue;
+    joints += (joints.empty() ? "'" : ", '") + joint_name + "' (parent '" +
+              joint->parent_link_name + "')";
+  }
+  return LoadError(urdf_path + ": link '" + name + "' is the child of more than one joint: " +
+                   joints + "; a link has one parent joint (is a <parent link> or a <child "
+                   "link> mistyped, or a joint copied?)");
 }
 
 }  // namespace
@@ -488,9 +508,13 @@ KinematicModel KinematicModel::FromUrdf(const urdf::ModelInterface& urdf_model,
   std::vector<PendingLink> stack{{root, -1}};
   // Actuated joints get q indices in the order we meet them; mimic joints are resolved after.
   std::vector<std::pair<int, urdf::JointMimicSharedPtr>> mimics;
+  std::unordered_set<std::string> visited;
   while (!stack.empty()) {
     const PendingLink current = stack.back();
     stack.pop_back();
+    if (!visited.insert(current.link->name).second) {
+      throw LinkReachedTwice(urdf_model, current.link->name, urdf_path);
+    }
     const int index = model.link_count();
     model.link_names_.push_back(current.link->name);
     model.parent_link_.push_back(current.parent);

@@ -13,6 +13,7 @@
 #include <new>
 #include <random>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "arm_collision_monitor/core/constants.h"
@@ -551,6 +552,37 @@ TEST(KinematicsFk, LinksInALoopOfJointsAreRejected) {
     EXPECT_TRUE(message.find("joint 'j2' has parent 'b' and child 'a'") != std::string::npos ||
                 message.find("joint 'j3' has parent 'a' and child 'b'") != std::string::npos)
         << message;
+  }
+}
+
+// A link the walk from the root reaches twice -- the child of two joints: a copied joint, or a
+// loop below the root (urdfdom accepts both) -- is refused naming the link and both joints (the
+// walk went round the loop until memory ran out; a copied joint crashed the loop check).
+TEST(KinematicsFk, ALinkReachedTwiceIsRejected) {
+  const std::string revolute = " type='revolute'><axis xyz='0 0 1'/><limit lower='-1' upper='1' "
+                               "velocity='1' effort='1'/>";
+  for (const auto& [name, joints, parts] :
+       {std::tuple{"copied_joint",
+                   "<joint name='j1'" + revolute + "<parent link='base'/><child link='a'/></joint>"
+                   "<joint name='j2'" + revolute + "<parent link='base'/><child link='a'/></joint>"
+                   "<joint name='j3'" + revolute + "<parent link='a'/><child link='b'/></joint>",
+                   std::string("link 'a' is the child of more than one joint: 'j1' (parent "
+                               "'base'), 'j2' (parent 'base')")},
+        std::tuple{"loop_below_root",
+                   "<joint name='j1'" + revolute + "<parent link='base'/><child link='a'/></joint>"
+                   "<joint name='j2'" + revolute + "<parent link='a'/><child link='b'/></joint>"
+                   "<joint name='j3'" + revolute + "<parent link='b'/><child link='a'/></joint>",
+                   std::string("link 'a' is the child of more than one joint: 'j1' (parent "
+                               "'base'), 'j3' (parent 'b')")}}) {
+    const std::string path = ::testing::TempDir() + name + ".urdf";
+    std::ofstream(path) << "<robot name='r'><link name='base'/><link name='a'/><link name='b'/>"
+                        << joints << "</robot>\n";
+    try {
+      KinematicModel::FromUrdfFile(path);
+      ADD_FAILURE() << "expected LoadError for " << name;
+    } catch (const LoadError& e) {
+      EXPECT_NE(std::string(e.what()).find(path + ": " + parts), std::string::npos) << e.what();
+    }
   }
 }
 
