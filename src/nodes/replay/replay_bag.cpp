@@ -251,9 +251,8 @@ class Plans {
 
 // Samples merged into cycles: consecutive samples with the same stamp form one cycle, if the
 // merger accepts one of them (a refused message makes no cycle, as a refused planned point: the
-// node asks a stop instead of checking). The stamp checks compare each sample with its own stamp
-// as "now": offline, time is the bag's. The timeout only bounds stamps going backwards, which is
-// still refused.
+// node asks a stop instead of checking). Offline, time is the bag's: a sample is its own "now"
+// (never stale), but for a recorded message whose stamp leaps ahead of the recording (Add).
 class Cycles {
  public:
   /// `path`: the bag's, which names a refused message.
@@ -266,15 +265,25 @@ class Cycles {
     input_.SetMimicJoints(workcell.kinematics.MimicJointNames());
   }
 
-  /// `sample`, of the bag's `message` (null: a planned point's, named when read), stamped
-  /// `stamp`. A recorded message is refused as the node refuses it when its stamp is further
-  /// ahead of the time the bag recorded it than the input timeout (future_stamp): a stamp far
-  /// ahead would freeze its joints, each later sample of them going backwards.
+  /// `sample`, of the bag's `message` (null: a planned point's, named when read), at `stamp`
+  /// (an unstamped message's, its sample's stamp_s 0: the time the bag recorded it, unordered
+  /// as the node takes it). A recorded message whose stamp leaps further ahead than the
+  /// recorder's time did, since its topic's last accepted message, by more than the input
+  /// timeout is refused as the node refuses a stamp ahead of its clock (future_stamp):
+  /// accepted, it would freeze its joints, each later sample of them going backwards. Stamps a
+  /// constant time off the recorder's (a robot's own clock) are read as they are.
   void Add(const NamedPositions& sample, const ros::Time& stamp,
            const rosbag::MessageInstance* message) {
-    // Not stale against the recorder's time: a bag's stamps may be a robot's own clock, behind.
-    const double now_s =
-        message != nullptr ? std::min(stamp, message->getTime()).toSec() : stamp.toSec();
+    double now_s = stamp.toSec();
+    TopicTimes* topic = nullptr;
+    if (message != nullptr && sample.stamp_s != 0.0) {
+      topic = &topic_times_[message->getTopic()];
+      if (topic->has_accepted) {
+        const double lead_s =
+            (stamp - topic->stamp).toSec() - (message->getTime() - topic->recorded).toSec();
+        now_s -= std::max(lead_s, 0.0);
+      }
+    }
     if (JointMerger::GivesNoPositions(sample)) {  // nothing to merge, and no cycle of its own
       ++result_->position_less;
       return;
@@ -291,6 +300,7 @@ class Cycles {
     }
     if (status == MergeStatus::kAccepted) {
       is_group_accepted_ = true;
+      if (topic != nullptr) *topic = TopicTimes{true, stamp, message->getTime()};
       return;
     }
     ++result_->refused[MergeStatusName(status)];
@@ -364,7 +374,14 @@ class Cycles {
     result_->joint_time_s.push_back(joint_time_s);
   }
 
+  // A topic's last accepted stamped message: its stamp and when the bag recorded it.
+  struct TopicTimes {
+    bool has_accepted = false;
+    ros::Time stamp, recorded;
+  };
+
   JointMerger input_;
+  std::map<std::string, TopicTimes> topic_times_;
   const std::string path_;
   const std::vector<std::string>& joint_names_;
   Input* result_;
@@ -594,9 +611,7 @@ Input ReadBag(const std::string& path, const std::vector<std::string>& topics,
     // An unstamped message (0) was sampled when the bag recorded it, as the node takes it.
     const ros::Time stamp = msg->header.stamp.isZero() ? m.getTime() : msg->header.stamp;
     add_planned_before(&stamp);
-    NamedPositions sample = ToNamedPositions(*msg);
-    sample.stamp_s = stamp.toSec();
-    add(sample, stamp, nullptr, &m);
+    add(ToNamedPositions(*msg), stamp, nullptr, &m);
   }
   add_planned_before(nullptr);
   cycles.Finish(path, PlanHint(sources));
