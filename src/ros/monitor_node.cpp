@@ -205,9 +205,9 @@ void MonitorNode::OnJointState(const sensor_msgs::JointState::ConstPtr& msg, std
   const MergeStatus status = input_->Merge(input, now.toSec());
   // Nothing to merge: no cycle (the merger counts it; DiagnoseInput reports the count).
   if (status == MergeStatus::kNoPositions) return;
-  trigger_stamp_ = msg->header.stamp.isZero() ? now : msg->header.stamp;
+  const ros::Time stamp = msg->header.stamp.isZero() ? now : msg->header.stamp;
   if (status == MergeStatus::kAccepted) {
-    newest_input_stamp_ = trigger_stamp_;
+    newest_input_stamp_ = stamp;
     // How late messages arrive (transport and the subscriber's queue): a node falling behind
     // fast input shows here first.
     if (!msg->header.stamp.isZero()) input_ages_s_.Add((now - msg->header.stamp).toSec());
@@ -217,6 +217,7 @@ void MonitorNode::OnJointState(const sensor_msgs::JointState::ConstPtr& msg, std
     if (pending_refusal_ == MergeStatus::kAccepted) {
       pending_refusal_ = status;
       pending_why_ = why;
+      pending_stamp_ = stamp;
     }
     LogRefusal(input_->refused_with(status) == 1, MergeStatusName(status), why,
                &merger_refusal_logged_);
@@ -237,7 +238,6 @@ ros::Time MonitorNode::ClockNow() {
     input_->OnTimeWentBackwards(now.toSec());
     // No input stamp until input of the new timeline is accepted.
     newest_input_stamp_ = ros::Time();
-    trigger_stamp_ = ros::Time();
   }
   return now;
 }
@@ -325,7 +325,9 @@ void MonitorNode::RunCycle(std::chrono::steady_clock::time_point start) {
     policy_.OnCycleReport(cycle, refusal, primitives_, *input_, now.toSec());
   }
   policy_.EndCycle(now.toSec());
-  report_.header.stamp = trigger_stamp_;
+  // The refused message's stamp with its refusal (the first since the last cycle, which the
+  // report gives), else the newest accepted one's.
+  report_.header.stamp = pending != MergeStatus::kAccepted ? pending_stamp_ : newest_input_stamp_;
   report_.cycle = cycles_;
   report_.input_status = ToInputStatusMsg(policy_.status());
   TakeStopDecision(was_stop);
@@ -438,12 +440,38 @@ void MonitorNode::FillReportWarnings(const CycleReport& report, MonitorReport* m
   }
 }
 
+std::string MonitorNode::CheckedNamesText(const std::vector<std::string>& names,
+                                          std::uint32_t* unknown) const {
+  std::string ignored;
+  std::size_t given = 0;
+  for (const std::string& name : names) {
+    if (input_->IsModelJoint(name)) {
+      ++given;
+      continue;
+    }
+    const bool is_mimic = input_->IsMimicJoint(name);
+    *unknown += is_mimic ? 0 : 1;
+    const bool is_fixed = workcell_->kinematics.IsFixedJoint(name);
+    ignored += (ignored.empty() ? "; ignored, no joints of the model: '" : ", '") + name + "'" +
+               (is_mimic ? " (a mimic joint)" : "") +
+               (is_fixed ? " (a fixed joint of the URDF)" : "");
+  }
+  const std::size_t joints = workcell_->joint_names.size();
+  if (!ignored.empty() && given < joints) {
+    ignored += "; " + std::to_string(joints - given) + " of the model's " +
+               std::to_string(joints) +
+               " joints at their live positions (or defaults), not in the request";
+  }
+  return ignored;
+}
+
 bool MonitorNode::OnCheck(CheckJointState::Request& req, CheckJointState::Response& res) {
   Eigen::VectorXd q;
   const NamedPositions input = ToNamedPositions(req.joint_state);
   const MergeStatus status = input_->MergeIntoCopy(input, &q);
   res.report.header.frame_id = fixed_frame_;
   res.report.header.stamp = req.joint_state.header.stamp;
+  const std::string ignored = CheckedNamesText(req.joint_state.name, &res.report.unknown_joints);
   if (status != MergeStatus::kAccepted) {
     res.success = false;
     res.report.input_status = ToInputStatusMsg(ToSafetyStatus(status));
@@ -472,28 +500,6 @@ bool MonitorNode::OnCheck(CheckJointState::Request& req, CheckJointState::Respon
   res.report.reinsert_fallbacks = static_cast<std::uint32_t>(report.counters.reinsert_fallbacks);
   FillReportWarnings(report, &res.report);
   res.success = report.input == InputStatus::kOk;
-  // The request's names that are no model joints, said and counted as the live report counts
-  // them (merged, they were ignored), and how many model joints the request left to their live
-  // positions (a request whose arm joints lack their prefix checks the live arms).
-  std::string ignored;
-  std::size_t given = 0;
-  for (const std::string& name : req.joint_state.name) {
-    if (input_->IsModelJoint(name)) {
-      ++given;
-      continue;
-    }
-    const bool is_mimic = input_->IsMimicJoint(name);
-    res.report.unknown_joints += is_mimic ? 0 : 1;
-    const bool is_fixed = workcell_->kinematics.IsFixedJoint(name);
-    ignored += (ignored.empty() ? "; ignored, no joints of the model: '" : ", '") + name + "'" +
-               (is_mimic ? " (a mimic joint)" : "") +
-               (is_fixed ? " (a fixed joint of the URDF)" : "");
-  }
-  if (!ignored.empty() && given < workcell_->joint_names.size()) {
-    ignored += "; " + std::to_string(workcell_->joint_names.size() - given) + " of the model's " +
-               std::to_string(workcell_->joint_names.size()) +
-               " joints at their live positions, not in the request";
-  }
   res.message = res.success ? std::to_string(report.warnings.size()) + " warning(s)" + ignored
                             : std::string("joint state refused: ") +
                                   SafetyStatusName(input_status) + " (" +

@@ -318,23 +318,26 @@ std::vector<std::string> SampledConfigurationWarnings(const Workcell& w) {
   return warnings;
 }
 
-// The start-up notice of the actuated joints without a velocity limit (velocity 0, or a
-// continuous joint without <limit>), which the monitor can only take as of unknown speed; ""
-// when every joint has one.
+// The start-up notice of the actuated joints that can move but have no velocity limit (velocity
+// 0, or a continuous joint without <limit>), which the monitor can only take as of unknown
+// speed; "" when every such joint has one.
 std::string NoVelocityLimitNotice(const Workcell& w) {
   std::vector<std::string> names;
+  bool is_any_continuous = false;
   for (int link = 1; link < w.kinematics.link_count(); ++link) {
     const JointSpec& joint = w.kinematics.joint(link);
-    if (joint.q_index >= 0 && !(joint.max_velocity > 0.0)) names.push_back(joint.name);
+    if (joint.q_index < 0 || joint.max_velocity > 0.0 || joint.lower == joint.upper) continue;
+    names.push_back(joint.name);
+    is_any_continuous |= joint.type == JointType::kContinuous;
   }
   if (names.empty()) return "";
   return w.urdf_path + ": " + (names.size() == 1 ? "joint " : "joints ") + QuotedNames(names) +
          " without a velocity limit (velocity 0, or no <limit>): the start-up check of the "
          "tolerances does not count " + (names.size() == 1 ? "its" : "their") +
          " motion, a step beyond max_step_m that moves " + (names.size() == 1 ? "it" : "one") +
-         " is an 'input jumped' stop whatever its time, and a wrapped reading of a continuous "
-         "joint is not unwound; the scene file's joint_limits: {<joint>: {velocity: v}} gives a "
-         "joint its top speed";
+         " is an 'input jumped' stop whatever its time" +
+         (is_any_continuous ? ", and a wrapped reading of a continuous joint is not unwound" : "") +
+         "; the scene file's joint_limits: {<joint>: {velocity: v}} gives a joint its top speed";
 }
 
 // The start-up notice of a derived world cube, in the form world: takes; a large one names the

@@ -325,8 +325,12 @@ class InputFaultsTest(unittest.TestCase):
         self.assertTrue(bare.message.startswith("0 warning(s); ignored, no joints of the model: "
                                                 "'joint1', "), bare.message)
         self.assertTrue(bare.message.endswith(
-            "; 7 of the model's 14 joints at their live positions, not in the request"),
-            bare.message)
+            "; 7 of the model's 14 joints at their live positions (or defaults), not in the "
+            "request"), bare.message)
+        # Counted on a refusal too: no name of the request a model joint.
+        none = check(joint_state([name[len('left_'):] for name in LEFT_JOINTS], HOME))
+        self.assertFalse(none.success)
+        self.assertEqual(none.report.unknown_joints, 7)
         # The live model still gives a clear report on home input.
         report = c.publish_until(lambda: c.publish_pose(HOME, HOME), lambda r: True)
         self.assertEqual(report.warnings, [])

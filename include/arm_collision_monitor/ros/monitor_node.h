@@ -102,6 +102,12 @@ class MonitorNode {
   void PublishVisualisation();
   void FillReportWarnings(const CycleReport& report, MonitorReport* msg) const;
 
+  // ~check's text of the request's `names` that are no model joints ("" for none: merged, they
+  // are ignored), with how many model joints the request leaves at their live positions (a
+  // request whose arm joints lack their prefix checks the live arms); each but a mimic joint's
+  // counted in `unknown`, as the live report counts them.
+  std::string CheckedNamesText(const std::vector<std::string>& names,
+                               std::uint32_t* unknown) const;
   bool OnCheck(CheckJointState::Request& req, CheckJointState::Response& res);
   bool OnAttach(AttachObject::Request& req, AttachObject::Response& res);
   bool OnDetach(DetachObject::Request& req, DetachObject::Response& res);
@@ -169,8 +175,8 @@ class MonitorNode {
   sensor_msgs::JointState joint_state_out_;
   MergeStatus pending_refusal_ = MergeStatus::kAccepted;  ///< first refusal since last cycle
   std::string pending_why_;  ///< what in its message was refused (JointMerger::DescribeRefusal)
-  ros::Time newest_input_stamp_;  ///< of the newest accepted message (the merged joint states)
-  ros::Time trigger_stamp_;       ///< of the newest message, accepted or not (the report's)
+  ros::Time pending_stamp_;  ///< that message's stamp (the report's, with its refusal)
+  ros::Time newest_input_stamp_;  ///< of the newest accepted message
   bool has_pending_input_ = false;
   bool published_stop_ = true;
   ros::WallTime last_visualisation_;
