@@ -107,6 +107,7 @@ bool Monitor::Impl::Unwind(const Eigen::Ref<const Eigen::VectorXd>& q) {
   if (q.size() != q_good.size()) return false;  // refused as it is
   constexpr double kTurn = 2.0 * kPi;
   bool has_turns = false;
+  is_turn_ambiguous = false;
   for (const int link : model.turning_links) {
     const JointSpec& joint = model.kinematics->joint(link);
     const int i = joint.q_index;
@@ -116,8 +117,10 @@ bool Monitor::Impl::Unwind(const Eigen::Ref<const Eigen::VectorXd>& q) {
     const double move = (q[i] + turns) - q_good[i];
     if (has_good && std::abs(move) > 0.5 * kTurn && std::isfinite(move)) {
       const double wrap = kTurn * std::round(move / kTurn);
-      if (!IsWithinVelocityLimit(joint, std::abs(move)) &&
-          IsWithinVelocityLimit(joint, std::abs(move - wrap))) {
+      if (IsWithinVelocityLimit(joint, std::abs(move - wrap))) {
+        // Either way round within the bound (after a pause of over half a turn at the top
+        // speed): the short way, and a stop, as nothing tells which.
+        is_turn_ambiguous |= IsWithinVelocityLimit(joint, std::abs(move));
         turns -= wrap;
       }
     }
@@ -165,8 +168,9 @@ void Monitor::Impl::RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q) {
     MotionBounds& step = StepMotion();
     step.SetJointMotion(q, swept.q_start);
     work.step_m = step.ComputeLargestBound_m();
-    work.is_jumped =
-        !(work.step_m <= model.options.max_step_m) && !IsWithinVelocityLimits(q);
+    work.is_jumped = (!(work.step_m <= model.options.max_step_m) &&
+                      !IsWithinVelocityLimits(q)) ||
+                     is_turn_ambiguous;
   }
   DateGood();  // q is accepted: q_good below
   if (IsProvablyClear(q, work.step_m)) {

@@ -102,6 +102,7 @@ struct Monitor::Impl {
   // others): turns_good those of q_good, turns_next the cycle's (Unwind); q_unwound the
   // cycle's q with them. Preallocated.
   Eigen::VectorXd turns_good, turns_next, q_unwound;
+  bool is_turn_ambiguous = false;  // Unwind took a short way that the long way could have been
   // When q_good was sampled (Update's times, s): one time for every joint, or, when
   // is_joint_time_good, each joint's own in joint_time_good_s (preallocated).
   double time_good_s = std::numeric_limits<double>::quiet_NaN();
@@ -170,12 +171,13 @@ struct Monitor::Impl {
   bool IsWithinVelocityLimits(const Eigen::Ref<const Eigen::VectorXd>& q) const;
   // The readings of a continuous joint without limits (MonitorModel::turning_links) in
   // q_good's turns: turns_next is turns_good but where a reading's move from the last
-  // accepted one is more than half a turn, beyond the joint's velocity bound over the time
-  // since (IsWithinVelocityLimit), and the move the other way round is within it -- the
-  // driver reported the angle wrapped (into [-pi, pi]: Kinova's kortex driver), and the joint
-  // took the short way: whole turns are added there. Any other move stays as given (a
-  // trajectory controller turns the joint along a plan's points as they are; without a
-  // velocity limit or sample times nothing tells a wrap). True when some joint has turns: q
+  // accepted one is more than half a turn and the move the other way round is within the
+  // joint's velocity bound over the time since (IsWithinVelocityLimit) -- the driver reported
+  // the angle wrapped (into [-pi, pi]: Kinova's kortex driver), and the joint took the short
+  // way: whole turns are added there. Where the move as given is within the bound too (after
+  // a pause), is_turn_ambiguous: the cycle is an 'input jumped' stop. Any other move stays as
+  // given (a trajectory controller turns the joint along a plan's points as they are; without
+  // a velocity limit or sample times nothing tells a wrap). True when some joint has turns: q
   // with them is then in q_unwound.
   bool Unwind(const Eigen::Ref<const Eigen::VectorXd>& q);
   // True when, without kinematics, every moving primitive's joint-space motion bound since

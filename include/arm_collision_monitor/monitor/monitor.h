@@ -133,9 +133,10 @@ class Monitor {
   /// InputStatus), counted, and fails safe. `time_s`: when `q` was sampled (s, any epoch; NaN
   /// when unknown), which tells a sparse path's large step from a jump (input_jumped), and a
   /// wrapped reading of a continuous joint without limits (MonitorModel::turning_links): one
-  /// that moves more than half a turn, beyond the joint's velocity bound over the time since,
-  /// where the move the other way round is within it, gets whole turns added (one pose), so
-  /// that the step takes the short way; the idle test and the swept path then see q so
+  /// that moves more than half a turn where the move the other way round is within the joint's
+  /// velocity bound over the time since gets whole turns added (one pose), so that the step
+  /// takes the short way (an input_jumped stop where the move as given was within the bound
+  /// too: nothing tells which way it turned); the idle test and the swept path then see q so
   /// unwound. Without a velocity limit or a time, q is taken as given.
   const CycleReport& Update(const Eigen::Ref<const Eigen::VectorXd>& q,
                             double time_s = std::numeric_limits<double>::quiet_NaN());
