@@ -318,6 +318,29 @@ std::vector<std::string> SampledConfigurationWarnings(const Workcell& w) {
   return warnings;
 }
 
+// Refuses a prismatic joint that slides further than kMaxWorldEdge_m within its limits (URDF
+// limits of +/-1e9 m spelling "none"): the lever arms of the joints above it would take its whole
+// travel in (every step checked pair by pair down to its samples: seconds a cycle), and so
+// would a derived world cube.
+void CheckPrismaticTravel(const KinematicModel& model, const std::string& urdf_path) {
+  for (int link = 1; link < model.link_count(); ++link) {
+    const JointSpec& joint = model.joint(link);
+    const double travel_m = PrismaticTravel_m(joint);
+    if (travel_m <= kMaxWorldEdge_m) continue;
+    char text[160];
+    std::snprintf(text, sizeof(text), "%.6g m within its limits [%.6g, %.6g]", travel_m,
+                  joint.lower, joint.upper);
+    throw LoadError(urdf_path + ": prismatic joint '" + joint.name + "' slides up to " + text +
+                    ", over the " + std::to_string(static_cast<long long>(kMaxWorldEdge_m)) +
+                    " m a workcell may span (the motion bounds of the joints above it would " +
+                    "take that travel in whole); give it its real limits" +
+                    (joint.mimic_q_index >= 0
+                         ? " (a mimic joint: its <limit> in the URDF)"
+                         : " (the scene file's joint_limits: {" + joint.name +
+                               ": {lower: l, upper: u}} narrows them)"));
+  }
+}
+
 // The start-up notice of the actuated joints that can move but have no velocity limit (velocity
 // 0, or a continuous joint without <limit>), which the monitor can only take as of unknown
 // speed; "" when every such joint has one.
@@ -399,6 +422,7 @@ Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_pat
   w.solid_options = SolidShapeOptions{shape_options.cylinder_model, shape_options.mesh_fit};
   scene_sections::ReadJointLimits(scene["joint_limits"], Where{scene_path, "joint_limits"},
                                   &w.kinematics);
+  CheckPrismaticTravel(w.kinematics, urdf_path);
   w.joint_defaults = scene_sections::ReadJointDefaults(
       scene["joint_defaults"], Where{scene_path, "joint_defaults"}, w.kinematics);
   // Without world:, every object fits until the cube is derived from the finished workcell.

@@ -29,39 +29,65 @@ double MaxAttachableDiameter_m(const Workcell& w) {
   return diameter_m;
 }
 
-// The refusal of a derived world cube of edge `edge_m` over kMaxWorldEdge_m: the link that
-// reaches farthest and the prismatic joint above it that slides farthest (the usual cause:
-// URDF limits of +/-1e9 m for a joint that has none).
-LoadError TooLargeWorld(const Workcell& w, const WorkcellReach& reach, double edge_m) {
+// The refusal of a derived world cube of edge `edge_m` over kMaxWorldEdge_m. Where the arms'
+// reach (`reach_W`, the reach spheres' box) alone fits, the primitive fixed in the world (an
+// object, a link fixed to the root) farthest from it is named; else the link that reaches
+// farthest and the prismatic joints above it.
+LoadError TooLargeWorld(const Workcell& w, const WorkcellReach& reach, const Aabb& reach_W,
+                        double edge_m) {
   const KinematicModel& model = w.kinematics;
+  char text[256];
+  std::snprintf(text, sizeof(text), "%.6g m wide, over the %.0f m", edge_m, kMaxWorldEdge_m);
+  const std::string why = w.scene_path + ": world: missing, and the cube derived from the " +
+                          "arms' reach and the objects is " + text +
+                          " a world may span (the monitor's distance bounds keep 1e-9 of the "
+                          "edge in hand against rounding)";
+  const bool has_reach = (reach_W.min_W.array() <= reach_W.max_W.array()).all();
+  if (!has_reach || (reach_W.max_W - reach_W.min_W).maxCoeff() < 0.5 * kMaxWorldEdge_m) {
+    const Eigen::Vector3d centre_W =
+        has_reach ? Eigen::Vector3d(0.5 * (reach_W.min_W + reach_W.max_W))
+                  : Eigen::Vector3d::Zero();
+    std::vector<Eigen::Isometry3d> X_WL(model.link_count(), Eigen::Isometry3d::Identity());
+    model.ComputeLinkPoses(Eigen::VectorXd::Zero(model.q_size()), &X_WL);
+    double farthest_m = -1.0;
+    PrimitiveId farthest = 0;
+    for (PrimitiveId id = 0; id < w.primitives.size(); ++id) {
+      const PrimitiveSpec& p = w.primitives[id];
+      if (p.link_index >= 0 && reach.spheres[p.link_index].radius_m >= 0.0) continue;
+      const Shape shape_W =
+          p.link_index >= 0 ? TransformShape(X_WL[p.link_index], p.shape_L) : p.shape_L;
+      const double distance_m = MaxDistanceFromPoint_m(shape_W, centre_W);
+      if (distance_m > farthest_m) {
+        farthest_m = distance_m;
+        farthest = id;
+      }
+    }
+    std::snprintf(text, sizeof(text), "%.6g", farthest_m);
+    return LoadError(why + ": '" + w.primitives[farthest].name + "' reaches " + text +
+                     " m from the middle of the arms' reach (a unit or origin error in its "
+                     "object or link?): the objects and the links fixed to the root must fit in "
+                     "one world cube with the arms");
+  }
   int farthest = 0;
   for (int link = 1; link < model.link_count(); ++link) {
     if (reach.spheres[link].radius_m > reach.spheres[farthest].radius_m) farthest = link;
   }
-  int slider = -1;
+  std::string sliders;
   for (int link = farthest; link > 0; link = model.parent_link(link)) {
     const double travel_m = PrismaticTravel_m(model.joint(link));
-    if (travel_m > 0.0 && (slider < 0 || travel_m > PrismaticTravel_m(model.joint(slider)))) {
-      slider = link;
-    }
+    if (!(travel_m > 0.0)) continue;
+    std::snprintf(text, sizeof(text), "%.6g", travel_m);
+    sliders += (sliders.empty() ? "" : ", ") + std::string("'") + model.joint(link).name +
+               "' " + text + " m";
   }
-  char text[256];
-  std::snprintf(text, sizeof(text), "%.6g m wide, over the %.0f m", edge_m, kMaxWorldEdge_m);
-  std::string why = w.scene_path + ": world: missing, and the cube derived from the arms' " +
-                    "reach and the objects is " + text +
-                    " a world may span (the monitor's distance bounds keep 1e-9 of the edge in "
-                    "hand against rounding)";
-  if (reach.spheres[farthest].radius_m >= 0.0) {
-    std::snprintf(text, sizeof(text), "%.6g", reach.spheres[farthest].radius_m);
-    why += ": link '" + model.link_name(farthest) + "' reaches " + text + " m";
-    if (slider > 0) {
-      std::snprintf(text, sizeof(text), "%.6g", PrismaticTravel_m(model.joint(slider)));
-      why += ", below prismatic joint '" + model.joint(slider).name + "' of " + w.urdf_path +
-             ", which slides " + text + " m within its limits";
-    }
-  }
-  return LoadError(why + "; give the joint its real limits (joint_limits: in the scene file "
-                         "narrows them) or world: {center_m: [x, y, z], edge_m: e}");
+  std::snprintf(text, sizeof(text), "%.6g", reach.spheres[farthest].radius_m);
+  return LoadError(why + ": link '" + model.link_name(farthest) + "' reaches " + text +
+                   " m from the first moving joint above it" +
+                   (sliders.empty() ? std::string()
+                                    : ", below prismatic joints of " + w.urdf_path +
+                                          " that slide up to " + sliders) +
+                   "; give world: {center_m: [x, y, z], edge_m: e}, or the joints their real "
+                   "limits (joint_limits: in the scene file)");
 }
 
 }  // namespace
@@ -140,15 +166,9 @@ Aabb DeriveWorldCube(const Workcell& w) {
   Aabb all{Eigen::Vector3d::Constant(kInf), Eigen::Vector3d::Constant(-kInf)};
   for (std::size_t link = 0; link < reach.spheres.size(); ++link) {
     const Capsule& sphere = reach.spheres[link];
-    if (sphere.radius_m < 0.0) continue;
-    if (!std::isfinite(sphere.radius_m)) {
-      throw LoadError(w.scene_path + ": world: missing and link '" +
-                      w.kinematics.link_name(static_cast<int>(link)) +
-                      "' has an unbounded reach (a prismatic joint without limits above it); "
-                      "expected world: {center_m: [x, y, z], edge_m: e}");
-    }
-    all.Enclose(sphere.ComputeAabb());
+    if (sphere.radius_m >= 0.0) all.Enclose(sphere.ComputeAabb());
   }
+  const Aabb reach_W = all;
   for (const PrimitiveSpec& p : w.primitives) {
     if (p.link_index >= 0 && reach.spheres[p.link_index].radius_m >= 0.0) continue;  // above
     // Objects at their start poses (shape_L is in W), links that never move at their poses.
@@ -157,7 +177,7 @@ Aabb DeriveWorldCube(const Workcell& w) {
   }
   all = all.Inflated(max_tolerance_m);
   const double edge_m = (all.max_W - all.min_W).maxCoeff() + 2.0 * kDerivedWorldMargin_m;
-  if (edge_m > kMaxWorldEdge_m) throw TooLargeWorld(w, reach, edge_m);
+  if (!(edge_m <= kMaxWorldEdge_m)) throw TooLargeWorld(w, reach, reach_W, edge_m);
   return Aabb::Cube(0.5 * (all.min_W + all.max_W), edge_m);
 }
 

@@ -161,10 +161,12 @@ TEST(SceneWorldCube, ExplicitWorldWins) {
       {"'table'", "not inside the world cube"});
 }
 
-// A world cube over kMaxWorldEdge_m would make the monitor's rounding margin metres long: a
-// prismatic joint with URDF limits of +/-1e9 m (a MOVO user's "no limits") is refused, naming
-// the link, the joint and the URDF, when the cube is derived; joint_limits: narrowing it in the
-// scene file loads; a world: of such an edge is refused naming edge_m.
+// A world cube over kMaxWorldEdge_m would make the monitor's rounding margin metres long. A
+// prismatic joint sliding further than that within its limits (+/-1e9 m: a MOVO user's "no
+// limits") is refused whatever the world, naming the joint, the URDF and joint_limits: (with an
+// explicit world its lever arms made cycles take seconds); joint_limits: narrowing it loads. A
+// derived cube over the edge for an object far off names the object; a world: of such an edge
+// is refused naming edge_m, one of just that edge loads.
 TEST(SceneWorldCube, WorldOverTheLargestEdgeIsRefused) {
   const std::string urdf = std::regex_replace(
       ReadText(kData + "three_link_arm.urdf"),
@@ -172,25 +174,48 @@ TEST(SceneWorldCube, WorldOverTheLargestEdgeIsRefused) {
       "<limit lower=\"-1e9\" upper=\"1e9\" velocity=\"0.1\"");
   const std::string huge = WriteTempFile("huge_slide.urdf", urdf);
   ASSERT_NE(urdf, ReadText(kData + "three_link_arm.urdf"));
-  const std::string scene =
-      WithoutWorld("huge_slide_no_world.yaml", kData + "three_link_scene.yaml");
-  ExpectLoadError([&] { LoadWorkcell(huge, scene); },
-                  {scene, "world: missing", "over the 10000 m", "link 'finger_a' reaches 1e+09",
-                   "prismatic joint 'slide' of " + huge, "slides 1e+09 m", "joint_limits:",
-                   "world: {center_m"});
+  const std::string stated = kData + "three_link_scene.yaml";
+  const std::string derived = WithoutWorld("huge_slide_no_world.yaml", stated);
+  for (const std::string& scene : {stated, derived}) {
+    ExpectLoadError([&] { LoadWorkcell(huge, scene); },
+                    {huge + ": prismatic joint 'slide' slides up to 1e+09 m within its limits "
+                            "[-1e+09, 1e+09], over the 10000 m",
+                     "joint_limits: {slide: {lower: l, upper: u}}"});
+  }
   const std::string narrowed = WriteTempFile(
       "huge_slide_narrowed.yaml",
-      ReadText(scene) + "joint_limits: {slide: {lower: 0.0, upper: 0.2}}\n");
+      ReadText(derived) + "joint_limits: {slide: {lower: 0.0, upper: 0.2}}\n");
   const Workcell w = LoadWorkcell(huge, narrowed);
   EXPECT_LT((w.world_W.max_W - w.world_W.min_W).x(), kLargeDerivedWorldEdge_m);
+  std::string far = ReadText(derived);
+  const std::string objects = "\nobjects:\n";
+  ASSERT_NE(far.find(objects), std::string::npos);
+  far.replace(far.find(objects), objects.size(),
+              objects + "  - {name: far_marker, size_m: [1, 1, 1], pose: {xyz_m: [2e4, 0, 0]}}\n");
+  const std::string far_scene = WriteTempFile("far_marker.yaml", far);
+  ExpectLoadError([&] { LoadWorkcell(kData + "three_link_arm.urdf", far_scene); },
+                  {far_scene + ": world: missing", "over the 10000 m",
+                   "'far_marker' reaches 200", "from the middle of the arms' reach"});
+  // A slide of 9 km within the limit, whose reach makes the derived cube 18 km: named.
+  const std::string long_slide = WriteTempFile(
+      "long_slide.urdf",
+      std::regex_replace(ReadText(kData + "three_link_arm.urdf"),
+                         std::regex("<limit lower=\"0\" upper=\"0.2\" velocity=\"0.1\""),
+                         "<limit lower=\"-9000\" upper=\"9000\" velocity=\"0.1\""));
+  ExpectLoadError([&] { LoadWorkcell(long_slide, derived); },
+                  {derived + ": world: missing", "link 'finger_a' reaches 900",
+                   "below prismatic joints of " + long_slide + " that slide up to 'slide' 9000 m",
+                   "give world: {center_m"});
+  auto with_edge = [&](const std::string& name, const std::string& edge) {
+    return WriteTempFile(name, std::regex_replace(ReadText(stated), std::regex("edge_m: 4.0"),
+                                                  "edge_m: " + edge));
+  };
   ExpectLoadError(
-      [&] {
-        LoadWorkcell(kData + "three_link_arm.urdf",
-                     WriteTempFile("huge_world.yaml",
-                                   std::regex_replace(ReadText(kData + "three_link_scene.yaml"),
-                                                      std::regex("edge_m: 4.0"), "edge_m: 2e4")));
-      },
+      [&] { LoadWorkcell(kData + "three_link_arm.urdf", with_edge("huge_world.yaml", "2e4")); },
       {"huge_world.yaml", "world.edge_m", "expected at most 10000 m", "got 2e4"});
+  EXPECT_EQ(LoadWorkcell(kData + "three_link_arm.urdf", with_edge("edge_world.yaml", "1e4"))
+                .world_W.max_W.x(),
+            5e3);
 }
 
 TEST(SceneWorldCube, ReachSpheresOnlyForLinksBelowAMovingJoint) {
