@@ -8,11 +8,14 @@
 // 1996); else the interval is bisected until a sample warns or the interval's relative motion
 // is at most twice the resolution, where a sample within threshold + resolution exists (and
 // up to kSweptRefineLevels levels further while its refinement samples last, to certify it).
+// The step itself comes first: a continuous joint's wrapped reading unwound (Unwind) and the
+// jump test (IsWithinVelocityLimits).
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
 
+#include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/core/load_error.h"
 #include "arm_collision_monitor/geometry/distance.h"
 #include "monitor_impl.h"
@@ -31,6 +34,58 @@ double BoxGap_m(const Aabb& a, const Aabb& b) {
 }
 
 }  // namespace
+
+// --- the step: wrapped readings unwound, the jump test ------------------------------------
+
+bool Monitor::Impl::Unwind(const Eigen::Ref<const Eigen::VectorXd>& q) {
+  if (q.size() != q_good.size()) return false;  // refused as it is
+  constexpr double kTurn = 2.0 * kPi;
+  bool has_turns = false;
+  is_turn_ambiguous = false;
+  for (const int link : model.turning_links) {
+    const JointSpec& joint = model.kinematics->joint(link);
+    const int i = joint.q_index;
+    double turns = turns_good[i];
+    // The move in q_good's turns: 0 for the same reading (an idle cycle stays idle). NaN and
+    // infinities stay, for CheckInput to refuse; so does the first cycle's (no q_good yet).
+    const double move = (q[i] + turns) - q_good[i];
+    if (has_good && std::abs(move) > 0.5 * kTurn && std::isfinite(move)) {
+      const double wrap = kTurn * std::round(move / kTurn);
+      if (IsWithinVelocityLimit(joint, std::abs(move - wrap))) {
+        // Either way round within the bound (after a pause of over half a turn at the top
+        // speed): the short way, and a stop, as nothing tells which.
+        is_turn_ambiguous |= IsWithinVelocityLimit(joint, std::abs(move));
+        turns -= wrap;
+      }
+    }
+    turns_next[i] = turns;
+    has_turns |= turns != 0.0;
+  }
+  if (has_turns) q_unwound = q + turns_next;
+  return has_turns;
+}
+
+bool Monitor::Impl::IsWithinVelocityLimit(const JointSpec& joint, double move) const {
+  const int i = joint.q_index;
+  const double elapsed_s = (joint_time_s != nullptr ? joint_time_s[i] : time_s) -
+                           (is_joint_time_good ? joint_time_good_s[i] : time_good_s);
+  return !(move > 0.0) ||
+         (elapsed_s > 0.0 && move <= kJumpVelocityFactor * joint.max_velocity * elapsed_s);
+}
+
+bool Monitor::Impl::IsWithinVelocityLimits(const Eigen::Ref<const Eigen::VectorXd>& q) const {
+  const KinematicModel& kinematics = *model.kinematics;
+  for (int link = 1; link < kinematics.link_count(); ++link) {
+    const JointSpec& joint = kinematics.joint(link);
+    if (joint.q_index < 0) continue;
+    if (!IsWithinVelocityLimit(joint, std::abs(q[joint.q_index] - q_good[joint.q_index]))) {
+      return false;
+    }
+  }
+  return true;
+}
+
+// --- the swept check ----------------------------------------------------------------------
 
 void Monitor::Impl::InitSwept() {
   const std::uint32_t n = model.primitive_count;

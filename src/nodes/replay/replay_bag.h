@@ -15,9 +15,10 @@ namespace arm_collision_monitor {
 namespace replay {
 
 // The cycles of the bag at `path` for `workcell`'s joints. The recorded states (JointState) are
-// taken in bag order, as the node receives them; the planned points (each trajectory point a sample
-// at its start plus time_from_start, a DisplayTrajectory's start state one at the bag's time) in
-// time order, merged with the states by stamp. A plan supersedes, for its joints, the points of
+// taken in bag order, stamped as the node takes them (Cycles::Add); the planned points (each
+// trajectory point a sample at its start plus time_from_start, a DisplayTrajectory's start
+// state one at the bag's time, its continuous joints unwound as MoveIt executes it) in time
+// order, merged with the states by stamp. A plan supersedes, for its joints, the points of
 // earlier plans after its start, as a trajectory controller replaces a trajectory. Consecutive
 // samples with equal stamps form one cycle; at each sample's stamp the other plans under way give
 // their joints interpolated between their points. `topics`: the topics read (empty: all); without

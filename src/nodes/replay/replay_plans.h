@@ -1,0 +1,224 @@
+// replay's planned samples (replay_bag.cpp reads them from a bag): the points of each plan of
+// its joints, superseded by later plans as a trajectory controller replaces its trajectory, and
+// what a plan under way gives between its points.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <ros/time.h>
+#include <sensor_msgs/JointState.h>
+#include <trajectory_msgs/JointTrajectory.h>
+
+#include "arm_collision_monitor/core/load_error.h"
+#include "arm_collision_monitor/safety/joint_merger.h"
+#include "replay_output.h"
+
+namespace arm_collision_monitor {
+namespace replay {
+
+// The stamp of `point` of a trajectory that starts at `start`, or false when it is out of
+// ros::Time's range (ros::Time's own arithmetic would throw).
+inline bool PointStamp(const ros::Time& start,
+                       const trajectory_msgs::JointTrajectoryPoint& point, ros::Time* stamp) {
+  const std::int64_t ns =
+      static_cast<std::int64_t>(start.toNSec()) + point.time_from_start.toNSec();
+  constexpr std::int64_t kLastNs =
+      std::int64_t{std::numeric_limits<std::uint32_t>::max()} * 1000000000 + 999999999;
+  if (ns < 0 || ns > kLastNs) return false;
+  stamp->fromNSec(static_cast<std::uint64_t>(ns));
+  return true;
+}
+
+// Names the refusal of a sample stamped `stamp_s` as the first if none earlier was:
+// "stamped <t> s: " and what `describe` gives (made only then).
+template <typename Describe>
+void NoteRefusal(double stamp_s, Describe describe, Input* input) {
+  if (!(stamp_s < input->first_refused_stamp_s)) return;
+  input->first_refused_stamp_s = stamp_s;
+  input->first_refused_message = "stamped " + std::to_string(stamp_s) + " s: " + describe();
+}
+
+// A bag's planned samples: per plan, its points of its joints. A later plan supersedes, for
+// its joints, the earlier plans' points after its start (a trajectory controller's
+// replacement); their other joints stay.
+class Plans {
+ public:
+  struct Point {
+    ros::Time stamp;
+    std::uint64_t order;            // read order, which decides between equal stamps
+    std::vector<double> positions;  // one per name of its Joints
+  };
+  struct Joints {
+    std::vector<std::string> names;
+    std::vector<Point> points;
+    ros::Time last;  // no point is later
+  };
+
+  /// `counts`: its messages (points read) and refused and superseded points are counted.
+  explicit Plans(Input* counts) : counts_(counts) {}
+
+  /// A trajectory starting at `start`; `where` names its message for a LoadError and a refused
+  /// point. A point of the wrong size or out of ros::Time's range is refused and counted; one
+  /// whose time_from_start does not increase past the last point taken, or with a position not
+  /// finite, is a LoadError: a trajectory controller refuses such a plan. Returns its last
+  /// point's stamp (`start` without one).
+  ros::Time AddTrajectory(const trajectory_msgs::JointTrajectory& plan, const ros::Time& start,
+                          const std::string& where) {
+    Supersede(plan.joint_names, start);
+    Joints joints{plan.joint_names, {}, start};
+    ros::Time end = start;
+    for (std::size_t k = 0; k < plan.points.size(); ++k) {
+      const trajectory_msgs::JointTrajectoryPoint& point = plan.points[k];
+      ros::Time stamp;
+      const std::string point_where = where + ", point " + std::to_string(k);
+      if (!IsReadable(joints.names, point.positions,
+                      start.toSec() + point.time_from_start.toSec(), point_where) ||
+          !IsInRange(start, point, &stamp, point_where)) {
+        continue;
+      }
+      if (!joints.points.empty() && !(stamp > end)) {
+        throw LoadError(point_where + ": time_from_start " +
+                        std::to_string(point.time_from_start.toSec()) + " s does not increase "
+                        "past the point before it (" + std::to_string((end - start).toSec()) +
+                        " s)");
+      }
+      for (std::size_t j = 0; j < point.positions.size(); ++j) {
+        if (!std::isfinite(point.positions[j])) {
+          throw LoadError(point_where + ": joint '" + joints.names[j] + "' at " +
+                          std::to_string(point.positions[j]));
+        }
+      }
+      joints.points.push_back({stamp, next_order_++, point.positions});
+      joints.last = stamp;
+      end = stamp;
+    }
+    if (!joints.points.empty()) plans_.push_back(std::move(joints));
+    return end;
+  }
+
+  /// A planned state (a DisplayTrajectory's start state) at `stamp`, of the message `where`: it
+  /// supersedes nothing.
+  void AddState(const sensor_msgs::JointState& state, const ros::Time& stamp,
+                const std::string& where) {
+    if (!IsReadable(state.name, state.position, stamp.toSec(), where + ", start state")) return;
+    plans_.push_back({state.name, {{stamp, next_order_++, state.position}}, stamp});
+  }
+
+  /// For each plan under way at `stamp` (a point before or at it and one after it), but
+  /// `except`: its joints where its controller has them then, `f(NamedPositions)`, linear
+  /// between its two points. So the cycles of plans of several arms (or of a plan beside
+  /// recorded states) move every arm at once, on the straight joint-space path between
+  /// consecutive cycles that the swept check takes, where holding the other arms at their last
+  /// points checked a staircase.
+  template <typename F>
+  void ForEachUnderWayAt(const ros::Time& stamp, const Joints* except, F&& f) {
+    for (const Joints& joints : plans_) {
+      const std::vector<Point>& points = joints.points;
+      if (&joints == except || points.size() < 2 || !(points.front().stamp < stamp) ||
+          !(stamp < points.back().stamp)) {
+        continue;
+      }
+      const auto after = std::upper_bound(
+          points.begin(), points.end(), stamp,
+          [](const ros::Time& t, const Point& point) { return t < point.stamp; });
+      const Point& p0 = *(after - 1);
+      const Point& p1 = *after;
+      const double s = (stamp - p0.stamp).toSec() / (p1.stamp - p0.stamp).toSec();
+      under_way_.resize(p0.positions.size());
+      for (std::size_t j = 0; j < under_way_.size(); ++j) {
+        under_way_[j] = p0.positions[j] + s * (p1.positions[j] - p0.positions[j]);
+      }
+      f(NamedPositions{joints.names, under_way_, stamp.toSec()});
+    }
+  }
+
+  /// Every point with its joints, by stamp, then in read order.
+  std::vector<std::pair<const Joints*, const Point*>> InTimeOrder() const {
+    std::vector<std::pair<const Joints*, const Point*>> all;
+    for (const Joints& joints : plans_) {
+      for (const Point& point : joints.points) all.emplace_back(&joints, &point);
+    }
+    std::sort(all.begin(), all.end(), [](const auto& x, const auto& y) {
+      return x.second->stamp < y.second->stamp ||
+             (x.second->stamp == y.second->stamp && x.second->order < y.second->order);
+    });
+    return all;
+  }
+
+ private:
+  // Counts a refused sample, stamped `stamp_s`, of `where` (its message and point), with its
+  // `reason` (NoteRefusal).
+  void Refuse(const char* status, double stamp_s, const std::string& where,
+              const std::string& reason) {
+    ++counts_->refused[status];
+    NoteRefusal(stamp_s, [&] { return where + ": " + status + " (" + reason + ")"; }, counts_);
+  }
+
+  // Whether a sample's positions match its names (one read message, refused if not; one
+  // without positions is counted apart, JointMerger::GivesNoPositions).
+  bool IsReadable(const std::vector<std::string>& names, const std::vector<double>& positions,
+                  double stamp_s, const std::string& where) {
+    ++counts_->messages;
+    if (positions.size() == names.size()) return true;
+    if (JointMerger::GivesNoPositions(NamedPositions{names, positions})) {
+      ++counts_->position_less;
+      return false;
+    }
+    Refuse(MergeStatusName(MergeStatus::kWrongSize), stamp_s, where,
+           std::to_string(positions.size()) + " positions for " + std::to_string(names.size()) +
+               " joint names");
+    return false;
+  }
+
+  bool IsInRange(const ros::Time& start, const trajectory_msgs::JointTrajectoryPoint& point,
+                 ros::Time* stamp, const std::string& where) {
+    if (PointStamp(start, point, stamp)) return true;
+    Refuse("time_out_of_range", start.toSec() + point.time_from_start.toSec(), where,
+           "time_from_start " + std::to_string(point.time_from_start.toSec()) +
+               " s from a start at " + std::to_string(start.toSec()) + " s");
+    return false;
+  }
+
+  // The earlier plans' points after `start` lose the joints `names`; a point left without
+  // joints goes.
+  void Supersede(const std::vector<std::string>& names, const ros::Time& start) {
+    const std::size_t count = plans_.size();  // the parts split off below are already cut
+    for (std::size_t k = 0; k < count; ++k) {
+      if (!(plans_[k].last > start)) continue;
+      std::vector<std::size_t> kept;  // the indices of the names that stay
+      const std::vector<std::string>& old_names = plans_[k].names;
+      for (std::size_t j = 0; j < old_names.size(); ++j) {
+        if (std::find(names.begin(), names.end(), old_names[j]) == names.end()) kept.push_back(j);
+      }
+      if (kept.size() == old_names.size()) continue;
+      std::vector<Point>& points = plans_[k].points;
+      const auto after = std::stable_partition(points.begin(), points.end(),
+                                               [&](const Point& p) { return !(p.stamp > start); });
+      counts_->superseded_points += static_cast<std::uint64_t>(points.end() - after);
+      Joints rest{{}, {}, plans_[k].last};
+      for (const std::size_t j : kept) rest.names.push_back(old_names[j]);
+      for (auto point = after; !kept.empty() && point != points.end(); ++point) {
+        Point part{point->stamp, point->order, {}};
+        for (const std::size_t j : kept) part.positions.push_back(point->positions[j]);
+        rest.points.push_back(std::move(part));
+      }
+      points.erase(after, points.end());
+      plans_[k].last = start;
+      if (!rest.points.empty()) plans_.push_back(std::move(rest));
+    }
+  }
+
+  std::vector<Joints> plans_;
+  std::uint64_t next_order_ = 0;
+  Input* counts_;
+  std::vector<double> under_way_;  // ForEachUnderWayAt's positions
+};
+
+}  // namespace replay
+}  // namespace arm_collision_monitor
