@@ -450,7 +450,7 @@ class ReplayConfigTest(unittest.TestCase):
 
     def test_stamps_are_taken_as_the_node_takes_them(self):
         # Five messages 0.05 s apart: the second stamped 100 s further ahead of the time the
-        # bag recorded it than the first (refused future_stamp, as the node refuses a stamp
+        # bag recorded it than the others (refused future_stamp, as the node refuses a stamp
         # ahead of its clock; accepted, it made each later message go backwards: a Techman
         # user's bag froze an arm for 4 s), the fourth unstamped (0: sampled when recorded, as
         # the node takes it; it was refused, stamp_backwards).
@@ -474,22 +474,27 @@ class ReplayConfigTest(unittest.TestCase):
             '100.050000: future_stamp' % path), report['first_refused_message'])
         self.assertEqual([round(c['time_s'], 9) for c in report['per_cycle']],
                          [0.0, 0.1, 0.15, 0.2])
-        # Stamps of a robot's clock, 2 s ahead of the recorder's, are read as they are; so is an
-        # unstamped message among stamps 0.1 s ahead (unordered, as the node takes it).
-        for ahead_s, unstamped in ((2.0, None), (0.1, 3)):
+        # Stamps of a robot's clock, 2 s ahead of the recorder's, are read as they are, but for
+        # one 100 s ahead of the others, first in the bag (a reviewer's: taken as the reference,
+        # it froze the arm); so is an unstamped message among stamps 0.1 s ahead (unordered, as
+        # the node takes it).
+        for ahead_s, unstamped, far, refused in ((2.0, None, 0, {'future_stamp': 1}),
+                                                 (0.1, 3, None, {})):
             with rosbag.Bag(path, 'w') as bag:
                 for k in range(5):
                     recorded_at = rospy.Time(100) + rospy.Duration(0.05 * k)
                     msg = JointState(name=LEFT_JOINTS + RIGHT_JOINTS, position=[0.01 * k] * 14)
                     msg.header.stamp = recorded_at + rospy.Duration(ahead_s)
+                    if k == far:
+                        msg.header.stamp += rospy.Duration(100)
                     if k == unstamped:
                         msg.header.stamp = rospy.Time(0)
                     bag.write('/joint_states', msg, recorded_at)
             result = rosrun('replay', '--json', '--scene', self.bundled_scene, path)
             self.assertEqual(result.returncode, 0, result.stderr)
             report = json.loads(result.stdout)
-            self.assertEqual(report['refused_messages'], {}, ahead_s)
-            self.assertEqual(len(report['per_cycle']), 5, ahead_s)
+            self.assertEqual(report['refused_messages'], refused, ahead_s)
+            self.assertEqual(len(report['per_cycle']), 5 - len(refused), ahead_s)
 
     def test_between_samples_lines_past_the_first_20_are_counted(self):
         # The swing of test_between_samples_lines_say_what_they_are, there and back four times:

@@ -70,22 +70,17 @@ class Cycles {
 
   /// `sample`, of the bag's `message` (null: a planned point's, named when read), at `stamp`
   /// (an unstamped message's, its sample's stamp_s 0: the time the bag recorded it, unordered
-  /// as the node takes it). A recorded message whose stamp leaps further ahead than the
-  /// recorder's time did, since its topic's last accepted message, by more than the input
-  /// timeout is refused as the node refuses a stamp ahead of its clock (future_stamp):
-  /// accepted, it would freeze its joints, each later sample of them going backwards. Stamps a
-  /// constant time off the recorder's (a robot's own clock) are read as they are.
+  /// as the node takes it). A recorded message stamped further ahead of the time the bag
+  /// recorded it than `offset_s` (the usual offset of its source's stamps, StampOffsets) by
+  /// more than the input timeout is refused as the node refuses a stamp ahead of its clock
+  /// (future_stamp): accepted, it would freeze its joints, each later sample of them going
+  /// backwards. Stamps a constant time off the recorder's (a robot's own clock) are read as
+  /// they are.
   void Add(const NamedPositions& sample, const ros::Time& stamp,
-           const rosbag::MessageInstance* message) {
+           const rosbag::MessageInstance* message, double offset_s = 0.0) {
     double now_s = stamp.toSec();
-    TopicTimes* topic = nullptr;
     if (message != nullptr && sample.stamp_s != 0.0) {
-      topic = &topic_times_[message->getTopic()];
-      if (topic->has_accepted) {
-        const double lead_s =
-            (stamp - topic->stamp).toSec() - (message->getTime() - topic->recorded).toSec();
-        now_s -= std::max(lead_s, 0.0);
-      }
+      now_s -= std::max((stamp - message->getTime()).toSec() - offset_s, 0.0);
     }
     if (JointMerger::GivesNoPositions(sample)) {  // nothing to merge, and no cycle of its own
       ++result_->position_less;
@@ -103,7 +98,6 @@ class Cycles {
     }
     if (status == MergeStatus::kAccepted) {
       is_group_accepted_ = true;
-      if (topic != nullptr) *topic = TopicTimes{true, stamp, message->getTime()};
       return;
     }
     ++result_->refused[MergeStatusName(status)];
@@ -177,14 +171,7 @@ class Cycles {
     result_->joint_time_s.push_back(joint_time_s);
   }
 
-  // A topic's last accepted stamped message: its stamp and when the bag recorded it.
-  struct TopicTimes {
-    bool has_accepted = false;
-    ros::Time stamp, recorded;
-  };
-
   JointMerger input_;
-  std::map<std::string, TopicTimes> topic_times_;
   const std::string path_;
   const std::vector<std::string>& joint_names_;
   Input* result_;
@@ -361,6 +348,34 @@ void CheckNotPlanned(const std::string& path, const rosbag::MessageInstance& m,
   }
 }
 
+// The source of a recorded message: its topic and the joint names it gives (two drivers may
+// share a topic), for StampOffsets.
+std::string SourceOf(const rosbag::MessageInstance& m, const sensor_msgs::JointState& msg) {
+  std::string source = m.getTopic();
+  for (const std::string& name : msg.name) source += "\n" + name;
+  return source;
+}
+
+// Per source (SourceOf) of the stamped JointState messages on `topics` (all when empty): the
+// median of their stamps' offsets from the times the bag recorded them (s). A robot's clock
+// off the recorder's gives its constant offset; a few messages stamped far off do not move it.
+std::map<std::string, double> StampOffsets(const rosbag::Bag& bag,
+                                           const std::vector<std::string>& topics) {
+  std::map<std::string, std::vector<double>> offsets;
+  for (const rosbag::MessageInstance& m : rosbag::View(bag, rosbag::TypeQuery(kJointStateType))) {
+    const auto msg = m.instantiate<sensor_msgs::JointState>();
+    if (msg == nullptr || !IsRead(m, topics) || msg->header.stamp.isZero()) continue;
+    offsets[SourceOf(m, *msg)].push_back((msg->header.stamp - m.getTime()).toSec());
+  }
+  std::map<std::string, double> medians;
+  for (auto& [source, values] : offsets) {
+    const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+    std::nth_element(values.begin(), middle, values.end());
+    medians[source] = *middle;
+  }
+  return medians;
+}
+
 }  // namespace
 
 Input ReadBag(const std::string& path, const std::vector<std::string>& topics,
@@ -388,8 +403,9 @@ Input ReadBag(const std::string& path, const std::vector<std::string>& topics,
   // Each sample at `stamp` (of plan `joints`, null for a recorded state, the bag's `message`)
   // with the other plans under way then.
   auto add = [&](const NamedPositions& sample, const ros::Time& stamp,
-                 const Plans::Joints* joints, const rosbag::MessageInstance* message) {
-    cycles.Add(sample, stamp, message);
+                 const Plans::Joints* joints, const rosbag::MessageInstance* message,
+                 double offset_s) {
+    cycles.Add(sample, stamp, message, offset_s);
     plans.ForEachUnderWayAt(stamp, joints, [&](const NamedPositions& under_way) {
       cycles.Add(under_way, stamp, nullptr);
     });
@@ -402,19 +418,22 @@ Input ReadBag(const std::string& path, const std::vector<std::string>& topics,
          ++next) {
       const auto& [joints, point] = planned[next];
       add(NamedPositions{joints->names, point->positions, point->stamp.toSec()}, point->stamp,
-          joints, nullptr);
+          joints, nullptr, 0.0);
     }
   };
+  const std::map<std::string, double> offsets = StampOffsets(bag, topics);
   for (const rosbag::MessageInstance& m : rosbag::View(bag, rosbag::TypeQuery(kJointStateType))) {
     const auto msg = m.instantiate<sensor_msgs::JointState>();
     if (msg == nullptr || !IsRead(m, topics)) continue;
+    const auto offset = offsets.find(SourceOf(m, *msg));
     PrefixNames(joint_prefixes, m.getTopic(), &msg->name);
     if (topics.empty()) CheckNotPlanned(path, m, *msg, sources);
     ++result.messages;
     // An unstamped message (0) was sampled when the bag recorded it, as the node takes it.
     const ros::Time stamp = msg->header.stamp.isZero() ? m.getTime() : msg->header.stamp;
     add_planned_before(&stamp);
-    add(ToNamedPositions(*msg), stamp, nullptr, &m);
+    add(ToNamedPositions(*msg), stamp, nullptr, &m,
+        offset != offsets.end() ? offset->second : 0.0);
   }
   add_planned_before(nullptr);
   cycles.Finish(path, PlanHint(sources));
