@@ -16,11 +16,6 @@
 
 namespace arm_collision_monitor {
 
-double PrismaticTravel_m(const JointSpec& joint) {
-  if (joint.type != JointType::kPrismatic) return 0.0;
-  return std::max(std::abs(joint.lower), std::abs(joint.upper));
-}
-
 namespace {
 
 bool IsFinitePose(const Eigen::Isometry3d& X) { return X.matrix().allFinite(); }
@@ -137,6 +132,20 @@ std::vector<int> KinematicModel::TurningLinks() const {
     if (is_one_pose) links.push_back(link);
   }
   return links;
+}
+
+double KinematicModel::Travel_m(const JointSpec& joint) const {
+  if (joint.type != JointType::kPrismatic) return 0.0;
+  const double own_m = std::max(std::abs(joint.lower), std::abs(joint.upper));
+  if (joint.mimic_q_index < 0) return own_m;
+  for (int link = 1; link < link_count(); ++link) {
+    const JointSpec& target = joints_[link];
+    if (target.q_index != joint.mimic_q_index) continue;
+    const double target_m = std::max(std::abs(target.lower), std::abs(target.upper));
+    return std::max(own_m, std::abs(joint.mimic_multiplier) * target_m +
+                               std::abs(joint.mimic_offset));
+  }
+  return own_m;
 }
 
 bool KinematicModel::IsFixedJoint(const std::string& joint_name) const {

@@ -167,7 +167,7 @@ void MotionBounds::SetCarrier(PrimitiveId id, int link, bool is_moving, const Sh
         if (child_axis.dot(axis) < 0.0) child_axis = -child_axis;
         const double below_m =
             std::min(reach_m, across_m + 2.0 * (axis - child_axis).norm() * reach_m);
-        from_axis_m = child->X_PJ.translation().cross(axis).norm() + PrismaticTravel_m(*child) +
+        from_axis_m = child->X_PJ.translation().cross(axis).norm() + model_->Travel_m(*child) +
                       below_m;
       }
     }
@@ -178,7 +178,7 @@ void MotionBounds::SetCarrier(PrimitiveId id, int link, bool is_moving, const Sh
       const double lever_m = joint.type == JointType::kPrismatic ? 1.0 : from_axis_m;
       out[lever_count_[id]++] = Lever{q_index, scale * lever_m};
     }
-    if (child != nullptr) reach_m += child->X_PJ.translation().norm() + PrismaticTravel_m(*child);
+    if (child != nullptr) reach_m += child->X_PJ.translation().norm() + model_->Travel_m(*child);
     across_m = from_axis_m;
     child = &joint;
   }

@@ -323,9 +323,17 @@ std::vector<std::string> SampledConfigurationWarnings(const Workcell& w) {
 // travel in (every step checked pair by pair down to its samples: seconds a cycle), and so
 // would a derived world cube.
 void CheckPrismaticTravel(const KinematicModel& model, const std::string& urdf_path) {
+  // The actuated joints first: a mimic joint slides as far as the joint it mimics puts it.
+  std::vector<int> links;
   for (int link = 1; link < model.link_count(); ++link) {
+    if (model.joint(link).mimic_q_index < 0) links.push_back(link);
+  }
+  for (int link = 1; link < model.link_count(); ++link) {
+    if (model.joint(link).mimic_q_index >= 0) links.push_back(link);
+  }
+  for (const int link : links) {
     const JointSpec& joint = model.joint(link);
-    const double travel_m = PrismaticTravel_m(joint);
+    const double travel_m = model.Travel_m(joint);
     if (travel_m <= kMaxWorldEdge_m) continue;
     char text[160];
     std::snprintf(text, sizeof(text), "%.6g m within its limits [%.6g, %.6g]", travel_m,
@@ -335,7 +343,8 @@ void CheckPrismaticTravel(const KinematicModel& model, const std::string& urdf_p
                     " m a workcell may span (the motion bounds of the joints above it would " +
                     "take that travel in whole); give it its real limits" +
                     (joint.mimic_q_index >= 0
-                         ? " (a mimic joint: its <limit> in the URDF)"
+                         ? " (a mimic joint: its <limit> in the URDF, and the range of the joint "
+                           "it mimics, times its multiplier, plus its offset)"
                          : " (the scene file's joint_limits: {" + joint.name +
                                ": {lower: l, upper: u}} narrows them)"));
   }

@@ -74,7 +74,7 @@ LoadError TooLargeWorld(const Workcell& w, const WorkcellReach& reach, const Aab
   }
   std::string sliders;
   for (int link = farthest; link > 0; link = model.parent_link(link)) {
-    const double travel_m = PrismaticTravel_m(model.joint(link));
+    const double travel_m = model.Travel_m(model.joint(link));
     if (!(travel_m > 0.0)) continue;
     std::snprintf(text, sizeof(text), "%.6g", travel_m);
     sliders += (sliders.empty() ? "" : ", ") + std::string("'") + model.joint(link).name +
@@ -106,7 +106,7 @@ WorkcellReach ComputeWorkcellReach(const Workcell& w) {
   for (int link = 1; link < link_count; ++link) {
     const int parent = model.parent_link(link);
     const JointSpec& joint = model.joint(link);
-    const double travel_m = PrismaticTravel_m(joint);
+    const double travel_m = model.Travel_m(joint);
     if (is_below_joint[parent]) {
       is_below_joint[link] = 1;
       centre_W[link] = centre_W[parent];

@@ -102,6 +102,17 @@ TEST(SceneWorldCube, ThreeLinkArmWithoutWorldEnclosesEveryConfiguration) {
   ExpectCube(w.world_W);
   EXPECT_TRUE(HasNotice(w, "world: not given; derived")) << ::testing::PrintToString(w.notices);
   ExpectEnclosedInAllConfigurations(w);
+  // A mimic joint slides as far as the joint it mimics puts it, past its own <limit> (three
+  // times the slide here, 0.6 m against its limit's 0.2 m): the reach takes that in.
+  const std::string urdf = std::regex_replace(ReadText(kData + "three_link_arm.urdf"),
+                                              std::regex("multiplier=\"-1\""),
+                                              "multiplier=\"-3\"");
+  ASSERT_NE(urdf, ReadText(kData + "three_link_arm.urdf"));
+  const Workcell far = LoadWorkcell(WriteTempFile("mimic_times_3.urdf", urdf), scene);
+  EXPECT_DOUBLE_EQ(far.kinematics.Travel_m(
+                far.kinematics.joint(far.kinematics.FindJointChildLink("finger_mimic"))),
+            0.6);
+  ExpectEnclosedInAllConfigurations(far);
 }
 
 TEST(SceneWorldCube, BundledSceneWithoutWorldContainsTheStatedCubesContents) {
@@ -203,9 +214,9 @@ TEST(SceneWorldCube, WorldOverTheLargestEdgeIsRefused) {
                          std::regex("<limit lower=\"0\" upper=\"0.2\" velocity=\"0.1\""),
                          "<limit lower=\"-9000\" upper=\"9000\" velocity=\"0.1\""));
   ExpectLoadError([&] { LoadWorkcell(long_slide, derived); },
-                  {derived + ": world: missing", "link 'finger_a' reaches 900",
-                   "below prismatic joints of " + long_slide + " that slide up to 'slide' 9000 m",
-                   "give world: {center_m"});
+                  {derived + ": world: missing", "link 'finger_", "' reaches 900",
+                   "below prismatic joints of " + long_slide + " that slide up to '",
+                   "' 9000 m", "give world: {center_m"});
   auto with_edge = [&](const std::string& name, const std::string& edge) {
     return WriteTempFile(name, std::regex_replace(ReadText(stated), std::regex("edge_m: 4.0"),
                                                   "edge_m: " + edge));
