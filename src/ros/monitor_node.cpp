@@ -478,7 +478,7 @@ bool MonitorNode::OnCheck(CheckJointState::Request& req, CheckJointState::Respon
     res.report.stop = true;
     const std::string why = input_->DescribeRefusal(input, status, ros::Time::now().toSec());
     res.message = std::string("joint state refused: ") + MergeStatusName(status) +
-                  (why.empty() ? "" : " (" + why + ")");
+                  (why.empty() ? "" : " (" + why + ")") + ignored;
     res.report.stop_reason = res.message;
     return true;
   }
@@ -488,7 +488,7 @@ bool MonitorNode::OnCheck(CheckJointState::Request& req, CheckJointState::Respon
     res.report.input_status = ToInputStatusMsg(SafetyStatus::kIncomplete);
     res.report.stop = true;
     res.message = "no position for " + ModelJointsText(missing) +
-                  ": never received, and not in the request";
+                  ": never received, and not in the request" + ignored;
     res.report.stop_reason = res.message;
     return true;
   }

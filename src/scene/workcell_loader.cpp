@@ -355,12 +355,13 @@ void CheckPrismaticTravel(const KinematicModel& model, const std::string& urdf_p
 // speed; "" when every such joint has one.
 std::string NoVelocityLimitNotice(const Workcell& w) {
   std::vector<std::string> names;
-  bool is_any_continuous = false;
+  bool is_any_turning = false;
+  const std::vector<int> turning = w.kinematics.TurningLinks();
   for (int link = 1; link < w.kinematics.link_count(); ++link) {
     const JointSpec& joint = w.kinematics.joint(link);
     if (joint.q_index < 0 || joint.max_velocity > 0.0 || joint.lower == joint.upper) continue;
     names.push_back(joint.name);
-    is_any_continuous |= joint.type == JointType::kContinuous;
+    is_any_turning |= std::find(turning.begin(), turning.end(), link) != turning.end();
   }
   if (names.empty()) return "";
   return w.urdf_path + ": " + (names.size() == 1 ? "joint " : "joints ") + QuotedNames(names) +
@@ -368,7 +369,7 @@ std::string NoVelocityLimitNotice(const Workcell& w) {
          "tolerances does not count " + (names.size() == 1 ? "its" : "their") +
          " motion, a step beyond max_step_m that moves " + (names.size() == 1 ? "it" : "one") +
          " is an 'input jumped' stop whatever its time" +
-         (is_any_continuous ? ", and a wrapped reading of a continuous joint is not unwound" : "") +
+         (is_any_turning ? ", and a wrapped reading of a continuous joint is not unwound" : "") +
          "; the scene file's joint_limits: {<joint>: {velocity: v}} gives a joint its top speed";
 }
 

@@ -78,14 +78,14 @@ LoadError TooLargeWorld(const Workcell& w, const WorkcellReach& reach, const Aab
     if (!(travel_m > 0.0)) continue;
     std::snprintf(text, sizeof(text), "%.6g", travel_m);
     sliders += (sliders.empty() ? "" : ", ") + std::string("'") + model.joint(link).name +
-               "' " + text + " m";
+               "' (up to " + text + " m)";
   }
   std::snprintf(text, sizeof(text), "%.6g", reach.spheres[farthest].radius_m);
   return LoadError(why + ": link '" + model.link_name(farthest) + "' reaches " + text +
                    " m from the first moving joint above it" +
                    (sliders.empty() ? std::string()
-                                    : ", below prismatic joints of " + w.urdf_path +
-                                          " that slide up to " + sliders) +
+                                    : ", prismatic joints of " + w.urdf_path +
+                                          " above it: " + sliders) +
                    "; give world: {center_m: [x, y, z], edge_m: e}, or the joints their real "
                    "limits (joint_limits: in the scene file)");
 }

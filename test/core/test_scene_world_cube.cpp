@@ -215,8 +215,8 @@ TEST(SceneWorldCube, WorldOverTheLargestEdgeIsRefused) {
                          "<limit lower=\"-9000\" upper=\"9000\" velocity=\"0.1\""));
   ExpectLoadError([&] { LoadWorkcell(long_slide, derived); },
                   {derived + ": world: missing", "link 'finger_", "' reaches 900",
-                   "below prismatic joints of " + long_slide + " that slide up to '",
-                   "' 9000 m", "give world: {center_m"});
+                   "prismatic joints of " + long_slide + " above it: '", "' (up to 9000 m)",
+                   "give world: {center_m"});
   auto with_edge = [&](const std::string& name, const std::string& edge) {
     return WriteTempFile(name, std::regex_replace(ReadText(stated), std::regex("edge_m: 4.0"),
                                                   "edge_m: " + edge));

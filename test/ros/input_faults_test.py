@@ -331,6 +331,7 @@ class InputFaultsTest(unittest.TestCase):
         none = check(joint_state([name[len('left_'):] for name in LEFT_JOINTS], HOME))
         self.assertFalse(none.success)
         self.assertEqual(none.report.unknown_joints, 7)
+        self.assertIn("; ignored, no joints of the model: 'joint1', ", none.message)
         # The live model still gives a clear report on home input.
         report = c.publish_until(lambda: c.publish_pose(HOME, HOME), lambda r: True)
         self.assertEqual(report.warnings, [])
