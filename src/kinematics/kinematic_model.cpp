@@ -136,16 +136,20 @@ std::vector<int> KinematicModel::TurningLinks() const {
 
 double KinematicModel::Travel_m(const JointSpec& joint) const {
   if (joint.type != JointType::kPrismatic) return 0.0;
-  const double own_m = std::max(std::abs(joint.lower), std::abs(joint.upper));
-  if (joint.mimic_q_index < 0) return own_m;
+  // Every position the monitor accepts: the limits widened by their margin (CheckInput).
+  if (joint.mimic_q_index < 0) {
+    return std::max(std::abs(joint.lower), std::abs(joint.upper)) + kJointLimitMargin;
+  }
+  const double m = joint.mimic_multiplier;
+  if (m == 0.0) return std::abs(joint.mimic_offset);
   for (int link = 1; link < link_count(); ++link) {
     const JointSpec& target = joints_[link];
     if (target.q_index != joint.mimic_q_index) continue;
-    const double target_m = std::max(std::abs(target.lower), std::abs(target.upper));
-    return std::max(own_m, std::abs(joint.mimic_multiplier) * target_m +
-                               std::abs(joint.mimic_offset));
+    // Linear in the target's position: farthest at an end of its accepted range.
+    return std::max(std::abs(m * (target.lower - kJointLimitMargin) + joint.mimic_offset),
+                    std::abs(m * (target.upper + kJointLimitMargin) + joint.mimic_offset));
   }
-  return own_m;
+  return std::numeric_limits<double>::infinity();
 }
 
 bool KinematicModel::IsFixedJoint(const std::string& joint_name) const {

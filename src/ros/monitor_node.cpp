@@ -441,12 +441,11 @@ void MonitorNode::FillReportWarnings(const CycleReport& report, MonitorReport* m
 }
 
 std::string MonitorNode::CheckedNamesText(const std::vector<std::string>& names,
-                                          std::uint32_t* unknown) const {
+                                          std::uint32_t* unknown, std::size_t* given) const {
   std::string ignored;
-  std::size_t given = 0;
   for (const std::string& name : names) {
     if (input_->IsModelJoint(name)) {
-      ++given;
+      ++*given;
       continue;
     }
     const bool is_mimic = input_->IsMimicJoint(name);
@@ -455,12 +454,6 @@ std::string MonitorNode::CheckedNamesText(const std::vector<std::string>& names,
     ignored += (ignored.empty() ? "; ignored, no joints of the model: '" : ", '") + name + "'" +
                (is_mimic ? " (a mimic joint)" : "") +
                (is_fixed ? " (a fixed joint of the URDF)" : "");
-  }
-  const std::size_t joints = workcell_->joint_names.size();
-  if (!ignored.empty() && given < joints) {
-    ignored += "; " + std::to_string(joints - given) + " of the model's " +
-               std::to_string(joints) +
-               " joints at their live positions (or defaults), not in the request";
   }
   return ignored;
 }
@@ -471,7 +464,9 @@ bool MonitorNode::OnCheck(CheckJointState::Request& req, CheckJointState::Respon
   const MergeStatus status = input_->MergeIntoCopy(input, &q);
   res.report.header.frame_id = fixed_frame_;
   res.report.header.stamp = req.joint_state.header.stamp;
-  const std::string ignored = CheckedNamesText(req.joint_state.name, &res.report.unknown_joints);
+  std::size_t given = 0;  // the request's names of model joints
+  const std::string ignored =
+      CheckedNamesText(req.joint_state.name, &res.report.unknown_joints, &given);
   if (status != MergeStatus::kAccepted) {
     res.success = false;
     res.report.input_status = ToInputStatusMsg(ToSafetyStatus(status));
@@ -500,7 +495,16 @@ bool MonitorNode::OnCheck(CheckJointState::Request& req, CheckJointState::Respon
   res.report.reinsert_fallbacks = static_cast<std::uint32_t>(report.counters.reinsert_fallbacks);
   FillReportWarnings(report, &res.report);
   res.success = report.input == InputStatus::kOk;
-  res.message = res.success ? std::to_string(report.warnings.size()) + " warning(s)" + ignored
+  // A request with names of no model joint may have missed the model's: those it left out were
+  // checked where the live state has them.
+  const std::size_t joints = workcell_->joint_names.size();
+  const std::string left_out =
+      ignored.empty() || given == joints
+          ? std::string()
+          : "; " + std::to_string(joints - given) + " of the model's " + std::to_string(joints) +
+                " joints not in the request, checked at their live positions (or defaults)";
+  res.message = res.success ? std::to_string(report.warnings.size()) + " warning(s)" + ignored +
+                                  left_out
                             : std::string("joint state refused: ") +
                                   SafetyStatusName(input_status) + " (" +
                                   monitor_->DescribeRefusal(q) + ")";

@@ -335,18 +335,25 @@ void CheckPrismaticTravel(const KinematicModel& model, const std::string& urdf_p
     const JointSpec& joint = model.joint(link);
     const double travel_m = model.Travel_m(joint);
     if (travel_m <= kMaxWorldEdge_m) continue;
-    char text[160];
-    std::snprintf(text, sizeof(text), "%.6g m within its limits [%.6g, %.6g]", travel_m,
-                  joint.lower, joint.upper);
-    throw LoadError(urdf_path + ": prismatic joint '" + joint.name + "' slides up to " + text +
-                    ", over the " + std::to_string(static_cast<long long>(kMaxWorldEdge_m)) +
-                    " m a workcell may span (the motion bounds of the joints above it would " +
-                    "take that travel in whole); give it its real limits" +
-                    (joint.mimic_q_index >= 0
-                         ? " (a mimic joint: its <limit> in the URDF, and the range of the joint "
-                           "it mimics, times its multiplier, plus its offset)"
-                         : " (the scene file's joint_limits: {" + joint.name +
-                               ": {lower: l, upper: u}} narrows them)"));
+    // A mimic joint slides as the joint it mimics puts it: that joint's limits are the cure.
+    const JointSpec* limited = &joint;
+    char text[200];
+    std::snprintf(text, sizeof(text), "%.6g m", travel_m);
+    std::string how = std::string(" slides up to ") + text;
+    for (int other = 1; other < model.link_count() && joint.mimic_q_index >= 0; ++other) {
+      if (model.joint(other).q_index != joint.mimic_q_index) continue;
+      limited = &model.joint(other);
+      std::snprintf(text, sizeof(text), " (multiplier %.6g, offset %.6g)",
+                    joint.mimic_multiplier, joint.mimic_offset);
+      how = " mimics '" + limited->name + "'" + text + how + " with it";
+    }
+    std::snprintf(text, sizeof(text), "; '%s' is limited to [%.6g, %.6g]",
+                  limited->name.c_str(), limited->lower, limited->upper);
+    throw LoadError(urdf_path + ": prismatic joint '" + joint.name + "'" + how + ", over the " +
+                    std::to_string(static_cast<long long>(kMaxWorldEdge_m)) +
+                    " m a workcell may span (the motion bounds of the joints above it would "
+                    "take that travel in whole)" + text + ": give it its real limits (the scene "
+                    "file's joint_limits: {" + limited->name + ": {lower: l, upper: u}})");
   }
 }
 

@@ -74,11 +74,18 @@ LoadError TooLargeWorld(const Workcell& w, const WorkcellReach& reach, const Aab
   }
   std::string sliders;
   for (int link = farthest; link > 0; link = model.parent_link(link)) {
-    const double travel_m = model.Travel_m(model.joint(link));
+    const JointSpec& joint = model.joint(link);
+    const double travel_m = model.Travel_m(joint);
     if (!(travel_m > 0.0)) continue;
+    std::string mimicked;  // a mimic joint's travel is the joint it mimics' to narrow
+    for (int other = 1; other < model.link_count() && joint.mimic_q_index >= 0; ++other) {
+      if (model.joint(other).q_index == joint.mimic_q_index) {
+        mimicked = "mimics '" + model.joint(other).name + "', ";
+      }
+    }
     std::snprintf(text, sizeof(text), "%.6g", travel_m);
-    sliders += (sliders.empty() ? "" : ", ") + std::string("'") + model.joint(link).name +
-               "' (up to " + text + " m)";
+    sliders += (sliders.empty() ? "" : ", ") + std::string("'") + joint.name + "' (" + mimicked +
+               "up to " + text + " m)";
   }
   std::snprintf(text, sizeof(text), "%.6g", reach.spheres[farthest].radius_m);
   return LoadError(why + ": link '" + model.link_name(farthest) + "' reaches " + text +

@@ -5,6 +5,8 @@
 // samples along the motion.
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <iterator>
 #include <limits>
 #include <memory>
 #include <random>
@@ -77,9 +79,13 @@ std::vector<Eigen::Vector3d> SurfacePoints(const Shape& shape, std::mt19937_64* 
   return points;
 }
 
-// Random q inside the limits (continuous joints within +-pi); the mimic joints follow.
+// Random q anywhere the monitor accepts, the limits widened by their margin (continuous joints
+// within +-pi); the mimic joints follow.
 Eigen::VectorXd RandomQ(const Workcell& wc, std::mt19937_64* rng) {
-  return test::RandomQ(test::LimitsOf(wc), rng);
+  test::JointLimits limits = test::LimitsOf(wc);
+  limits.lower.array() -= kJointLimitMargin;
+  limits.upper.array() += kJointLimitMargin;
+  return test::RandomQ(limits, rng);
 }
 
 // The differential test for one workcell: bounds against exact forward kinematics.
@@ -154,12 +160,14 @@ TEST(MonitorMotionBounds, LeversOfTheThreeLinkChain) {
   EXPECT_EQ(l[0].m_per_unit, 1.0);  // prismatic: 1 m per m, times |-1|
   EXPECT_EQ(l[1].q_index, model.joint(model.FindLink("wrist")).q_index);
   // Revolute levers: the unit ball's extent plus the chain of joint offsets (and the prismatic
-  // travel, 0.2 m) below the joint, of which the first offset counts only across the joint's
-  // axis. The finger joint's 0.05 m offset lies on the spin's axis (x), the spin's 0.35 m is
-  // across the elbow's (y), the elbow's 0.4 m lies on the shoulder's (z).
-  EXPECT_NEAR(l[1].m_per_unit, 1.0 + 0.2, 1e-12);
-  EXPECT_NEAR(l[2].m_per_unit, 1.0 + 0.05 + 0.2 + 0.35, 1e-12);
-  EXPECT_NEAR(l[3].m_per_unit, 1.0 + 0.05 + 0.2 + 0.35, 1e-12);
+  // travel, 0.2 m and the limit's margin, as far as the monitor accepts) below the joint, of
+  // which the first offset counts only across the joint's axis. The finger joint's 0.05 m
+  // offset lies on the spin's axis (x), the spin's 0.35 m is across the elbow's (y), the
+  // elbow's 0.4 m lies on the shoulder's (z).
+  const double travel_m = 0.2 + kJointLimitMargin;
+  EXPECT_NEAR(l[1].m_per_unit, 1.0 + travel_m, 1e-12);
+  EXPECT_NEAR(l[2].m_per_unit, 1.0 + 0.05 + travel_m + 0.35, 1e-12);
+  EXPECT_NEAR(l[3].m_per_unit, 1.0 + 0.05 + travel_m + 0.35, 1e-12);
   // On the joint's own link, the lever is the farthest distance from its axis: a capsule along
   // the elbow's axis (y) reaches only its radius from it.
   const Capsule along_elbow{Eigen::Vector3d::Zero(), Eigen::Vector3d(0, 0.3, 0), 0.05};
@@ -245,6 +253,16 @@ TEST(MonitorMotionBounds, BoundsHoldAgainstExactKinematics) {
   ExpectBoundsHold(*test::LoadBundledWorkcell(), &rng);
   ExpectBoundsHold(*ThreeLinkWorkcell(), &rng);
   ExpectBoundsHold(*ParallelAxesWorkcell(), &rng);
+  // A finger mimicking the slide three times over, offset 0.1 m: it slides past its own
+  // <limit>, as far as the slide's range puts it.
+  std::ifstream in(ACM_SOURCE_DIR "/test/data/three_link_arm.urdf");
+  std::string urdf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string from = "multiplier=\"-1\" offset=\"0\"";
+  ASSERT_NE(urdf.find(from), std::string::npos);
+  urdf.replace(urdf.find(from), from.size(), "multiplier=\"-3\" offset=\"0.1\"");
+  const std::string path = ::testing::TempDir() + "/mimic_times_3.urdf";
+  std::ofstream(path) << urdf;
+  ExpectBoundsHold(LoadWorkcell(path, ACM_SOURCE_DIR "/test/data/three_link_scene.yaml"), &rng);
 }
 
 // The largest bound, taken over the undominated primitives only, equals the largest over all,

@@ -103,7 +103,8 @@ TEST(SceneWorldCube, ThreeLinkArmWithoutWorldEnclosesEveryConfiguration) {
   EXPECT_TRUE(HasNotice(w, "world: not given; derived")) << ::testing::PrintToString(w.notices);
   ExpectEnclosedInAllConfigurations(w);
   // A mimic joint slides as far as the joint it mimics puts it, past its own <limit> (three
-  // times the slide here, 0.6 m against its limit's 0.2 m): the reach takes that in.
+  // times the slide here, 0.63 m at the end of its accepted range, the limit widened by its
+  // margin, against the limit's 0.2 m): the reach takes that in.
   const std::string urdf = std::regex_replace(ReadText(kData + "three_link_arm.urdf"),
                                               std::regex("multiplier=\"-1\""),
                                               "multiplier=\"-3\"");
@@ -111,7 +112,7 @@ TEST(SceneWorldCube, ThreeLinkArmWithoutWorldEnclosesEveryConfiguration) {
   const Workcell far = LoadWorkcell(WriteTempFile("mimic_times_3.urdf", urdf), scene);
   EXPECT_DOUBLE_EQ(far.kinematics.Travel_m(
                 far.kinematics.joint(far.kinematics.FindJointChildLink("finger_mimic"))),
-            0.6);
+            3.0 * (0.2 + kJointLimitMargin));
   ExpectEnclosedInAllConfigurations(far);
 }
 
@@ -189,10 +190,20 @@ TEST(SceneWorldCube, WorldOverTheLargestEdgeIsRefused) {
   const std::string derived = WithoutWorld("huge_slide_no_world.yaml", stated);
   for (const std::string& scene : {stated, derived}) {
     ExpectLoadError([&] { LoadWorkcell(huge, scene); },
-                    {huge + ": prismatic joint 'slide' slides up to 1e+09 m within its limits "
-                            "[-1e+09, 1e+09], over the 10000 m",
+                    {huge + ": prismatic joint 'slide' slides up to 1e+09 m, over the 10000 m",
+                     "'slide' is limited to [-1e+09, 1e+09]",
                      "joint_limits: {slide: {lower: l, upper: u}}"});
   }
+  // A prismatic joint mimicking the continuous wrist (no limits) slides without end: the joint
+  // it mimics is named, with the remedy.
+  const std::string spun = WriteTempFile(
+      "mimic_of_spin.urdf", std::regex_replace(ReadText(kData + "three_link_arm.urdf"),
+                                               std::regex("<mimic joint=\"slide\""),
+                                               "<mimic joint=\"spin\""));
+  ExpectLoadError([&] { LoadWorkcell(spun, stated); },
+                  {spun + ": prismatic joint 'finger_mimic' mimics 'spin' (multiplier -1, "
+                          "offset 0) slides up to inf m with it",
+                   "'spin' is limited to [-inf, inf]", "joint_limits: {spin: {lower: l"});
   const std::string narrowed = WriteTempFile(
       "huge_slide_narrowed.yaml",
       ReadText(derived) + "joint_limits: {slide: {lower: 0.0, upper: 0.2}}\n");
@@ -215,7 +226,7 @@ TEST(SceneWorldCube, WorldOverTheLargestEdgeIsRefused) {
                          "<limit lower=\"-9000\" upper=\"9000\" velocity=\"0.1\""));
   ExpectLoadError([&] { LoadWorkcell(long_slide, derived); },
                   {derived + ": world: missing", "link 'finger_", "' reaches 900",
-                   "prismatic joints of " + long_slide + " above it: '", "' (up to 9000 m)",
+                   "prismatic joints of " + long_slide + " above it: '", "up to 9000.01 m)",
                    "give world: {center_m"});
   auto with_edge = [&](const std::string& name, const std::string& edge) {
     return WriteTempFile(name, std::regex_replace(ReadText(stated), std::regex("edge_m: 4.0"),

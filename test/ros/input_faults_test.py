@@ -325,8 +325,8 @@ class InputFaultsTest(unittest.TestCase):
         self.assertTrue(bare.message.startswith("0 warning(s); ignored, no joints of the model: "
                                                 "'joint1', "), bare.message)
         self.assertTrue(bare.message.endswith(
-            "; 7 of the model's 14 joints at their live positions (or defaults), not in the "
-            "request"), bare.message)
+            "; 7 of the model's 14 joints not in the request, checked at their live positions "
+            "(or defaults)"), bare.message)
         # Counted on a refusal too: no name of the request a model joint.
         none = check(joint_state([name[len('left_'):] for name in LEFT_JOINTS], HOME))
         self.assertFalse(none.success)

@@ -475,10 +475,12 @@ class ReplayConfigTest(unittest.TestCase):
         self.assertEqual([round(c['time_s'], 9) for c in report['per_cycle']],
                          [0.0, 0.1, 0.15, 0.2])
         # Stamps of a robot's clock, 2 s ahead of the recorder's, are read as they are, but for
-        # one 100 s ahead of the others, first in the bag (a reviewer's: taken as the reference,
-        # it froze the arm); so is an unstamped message among stamps 0.1 s ahead (unordered, as
-        # the node takes it).
+        # one 100 s ahead of the others: first in the bag (a reviewer's: taken as the reference,
+        # it froze the arm), or giving the left arm's joints alone (a source of its own, it was
+        # its own reference); so is an unstamped message among stamps 0.1 s ahead (unordered,
+        # as the node takes it).
         for ahead_s, unstamped, far, refused in ((2.0, None, 0, {'future_stamp': 1}),
+                                                 (2.0, None, 6, {'future_stamp': 1}),
                                                  (0.1, 3, None, {})):
             with rosbag.Bag(path, 'w') as bag:
                 for k in range(5):
@@ -487,14 +489,18 @@ class ReplayConfigTest(unittest.TestCase):
                     msg.header.stamp = recorded_at + rospy.Duration(ahead_s)
                     if k == far:
                         msg.header.stamp += rospy.Duration(100)
+                    if far is not None and k == far - 4:
+                        left = JointState(name=LEFT_JOINTS, position=[0.0] * 7)
+                        left.header.stamp = msg.header.stamp + rospy.Duration(100)
+                        bag.write('/joint_states', left, recorded_at)
                     if k == unstamped:
                         msg.header.stamp = rospy.Time(0)
                     bag.write('/joint_states', msg, recorded_at)
             result = rosrun('replay', '--json', '--scene', self.bundled_scene, path)
             self.assertEqual(result.returncode, 0, result.stderr)
             report = json.loads(result.stdout)
-            self.assertEqual(report['refused_messages'], refused, ahead_s)
-            self.assertEqual(len(report['per_cycle']), 5 - len(refused), ahead_s)
+            self.assertEqual(report['refused_messages'], refused, (ahead_s, far))
+            self.assertEqual(len(report['per_cycle']), 5 - (far == 0), (ahead_s, far))
 
     def test_between_samples_lines_past_the_first_20_are_counted(self):
         # The swing of test_between_samples_lines_say_what_they_are, there and back four times:

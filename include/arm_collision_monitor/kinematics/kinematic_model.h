@@ -69,10 +69,11 @@ class KinematicModel {
   /// multiplier not a whole number). A driver may report such a joint wrapped, and MoveIt
   /// unwinds a plan's before executing it.
   std::vector<int> TurningLinks() const;
-  /// How far the child of `joint` (one of this model's) can slide from the joint's origin, m:
-  /// for a prismatic joint the larger magnitude of its limits (inf if unlimited), for a mimic
-  /// one the farther of that and where the joint it mimics puts it (multiplier times that
-  /// joint's range, plus the offset: its own limits do not clamp it); 0 for other joints.
+  /// How far the child of `joint` (one of this model's) can slide from the joint's origin, m,
+  /// at any position the monitor accepts (the limits widened by kJointLimitMargin): for a
+  /// prismatic joint the larger magnitude of those limits (inf if unlimited), for a mimic one
+  /// where the joint it mimics puts it at an end of that joint's range (multiplier times its
+  /// position, plus the offset; the mimic's own limits do not clamp it); 0 for other joints.
   double Travel_m(const JointSpec& joint) const;
   /// The link whose parent joint is named `joint_name`, -1 if unknown.
   int FindJointChildLink(const std::string& joint_name) const;

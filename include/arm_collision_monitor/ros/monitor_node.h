@@ -103,11 +103,10 @@ class MonitorNode {
   void FillReportWarnings(const CycleReport& report, MonitorReport* msg) const;
 
   // ~check's text of the request's `names` that are no model joints ("" for none: merged, they
-  // are ignored), with how many model joints the request leaves at their live positions (a
-  // request whose arm joints lack their prefix checks the live arms); each but a mimic joint's
-  // counted in `unknown`, as the live report counts them.
-  std::string CheckedNamesText(const std::vector<std::string>& names,
-                               std::uint32_t* unknown) const;
+  // are ignored); each but a mimic joint's counted in `unknown`, as the live report counts
+  // them, and the model joints among `names` in `given`.
+  std::string CheckedNamesText(const std::vector<std::string>& names, std::uint32_t* unknown,
+                               std::size_t* given) const;
   bool OnCheck(CheckJointState::Request& req, CheckJointState::Response& res);
   bool OnAttach(AttachObject::Request& req, AttachObject::Response& res);
   bool OnDetach(DetachObject::Request& req, DetachObject::Response& res);

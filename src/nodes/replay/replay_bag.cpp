@@ -1,5 +1,6 @@
-// replay's bag input (replay_bag.h): a first pass gathers the planned points, a second takes
-// the recorded states in bag order with the planned points merged in by stamp.
+// replay's bag input (replay_bag.h): a first pass gathers the planned points, a second the usual
+// offsets of the recorded states' stamps, a third takes the recorded states in bag order with
+// the planned points merged in by stamp.
 #include "replay_bag.h"
 
 #include <algorithm>
@@ -71,7 +72,7 @@ class Cycles {
   /// `sample`, of the bag's `message` (null: a planned point's, named when read), at `stamp`
   /// (an unstamped message's, its sample's stamp_s 0: the time the bag recorded it, unordered
   /// as the node takes it). A recorded message stamped further ahead of the time the bag
-  /// recorded it than `offset_s` (the usual offset of its source's stamps, StampOffsets) by
+  /// recorded it than `offset_s` (the usual offset of its joints' stamps, UsualOffset) by
   /// more than the input timeout is refused as the node refuses a stamp ahead of its clock
   /// (future_stamp): accepted, it would freeze its joints, each later sample of them going
   /// backwards. Stamps a constant time off the recorder's (a robot's own clock) are read as
@@ -80,7 +81,7 @@ class Cycles {
            const rosbag::MessageInstance* message, double offset_s = 0.0) {
     double now_s = stamp.toSec();
     if (message != nullptr && sample.stamp_s != 0.0) {
-      now_s -= std::max((stamp - message->getTime()).toSec() - offset_s, 0.0);
+      now_s -= std::max(stamp.toSec() - message->getTime().toSec() - offset_s, 0.0);
     }
     if (JointMerger::GivesNoPositions(sample)) {  // nothing to merge, and no cycle of its own
       ++result_->position_less;
@@ -348,32 +349,45 @@ void CheckNotPlanned(const std::string& path, const rosbag::MessageInstance& m,
   }
 }
 
-// The source of a recorded message: its topic and the joint names it gives (two drivers may
-// share a topic), for StampOffsets.
-std::string SourceOf(const rosbag::MessageInstance& m, const sensor_msgs::JointState& msg) {
-  std::string source = m.getTopic();
-  for (const std::string& name : msg.name) source += "\n" + name;
-  return source;
-}
+// Per topic and joint name: the stamp offsets (s) of the stamped JointState messages giving the
+// joint, from the times the bag recorded them, gathered by ReadOffsets.
+using JointOffsets = std::map<std::string, std::map<std::string, std::vector<double>>>;
 
-// Per source (SourceOf) of the stamped JointState messages on `topics` (all when empty): the
-// median of their stamps' offsets from the times the bag recorded them (s). A robot's clock
-// off the recorder's gives its constant offset; a few messages stamped far off do not move it.
-std::map<std::string, double> StampOffsets(const rosbag::Bag& bag,
-                                           const std::vector<std::string>& topics) {
-  std::map<std::string, std::vector<double>> offsets;
+// The stamped JointState messages' offsets on `topics` (all when empty), and the lower median of
+// each joint's (in place of its list). A robot's clock off the recorder's gives its constant
+// offset; a few messages stamped far off, or with other joints, do not move it.
+JointOffsets ReadOffsets(const rosbag::Bag& bag, const std::vector<std::string>& topics) {
+  JointOffsets offsets;
   for (const rosbag::MessageInstance& m : rosbag::View(bag, rosbag::TypeQuery(kJointStateType))) {
     const auto msg = m.instantiate<sensor_msgs::JointState>();
     if (msg == nullptr || !IsRead(m, topics) || msg->header.stamp.isZero()) continue;
-    offsets[SourceOf(m, *msg)].push_back((msg->header.stamp - m.getTime()).toSec());
+    // In doubles: a difference of ros::Time beyond 68 years throws.
+    const double offset_s = msg->header.stamp.toSec() - m.getTime().toSec();
+    std::map<std::string, std::vector<double>>& of_topic = offsets[m.getTopic()];
+    for (const std::string& name : msg->name) of_topic[name].push_back(offset_s);
   }
-  std::map<std::string, double> medians;
-  for (auto& [source, values] : offsets) {
-    const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-    std::nth_element(values.begin(), middle, values.end());
-    medians[source] = *middle;
+  for (auto& [topic, of_topic] : offsets) {
+    for (auto& [name, values] : of_topic) {
+      const auto lower = values.begin() + static_cast<std::ptrdiff_t>((values.size() - 1) / 2);
+      std::nth_element(values.begin(), lower, values.end());
+      values = {*lower};
+    }
   }
-  return medians;
+  return offsets;
+}
+
+// The usual offset of `msg`'s stamps (ReadOffsets' medians): the smallest of its joints', so
+// that a message stamped ahead of any of them is judged ahead.
+double UsualOffset(const JointOffsets& offsets, const rosbag::MessageInstance& m,
+                   const sensor_msgs::JointState& msg) {
+  double usual_s = std::numeric_limits<double>::infinity();
+  const auto of_topic = offsets.find(m.getTopic());
+  if (of_topic == offsets.end()) return 0.0;
+  for (const std::string& name : msg.name) {
+    const auto joint = of_topic->second.find(name);
+    if (joint != of_topic->second.end()) usual_s = std::min(usual_s, joint->second.front());
+  }
+  return std::isfinite(usual_s) ? usual_s : 0.0;
 }
 
 }  // namespace
@@ -421,19 +435,18 @@ Input ReadBag(const std::string& path, const std::vector<std::string>& topics,
           joints, nullptr, 0.0);
     }
   };
-  const std::map<std::string, double> offsets = StampOffsets(bag, topics);
+  const JointOffsets offsets = ReadOffsets(bag, topics);
   for (const rosbag::MessageInstance& m : rosbag::View(bag, rosbag::TypeQuery(kJointStateType))) {
     const auto msg = m.instantiate<sensor_msgs::JointState>();
     if (msg == nullptr || !IsRead(m, topics)) continue;
-    const auto offset = offsets.find(SourceOf(m, *msg));
+    const double usual_s = UsualOffset(offsets, m, *msg);
     PrefixNames(joint_prefixes, m.getTopic(), &msg->name);
     if (topics.empty()) CheckNotPlanned(path, m, *msg, sources);
     ++result.messages;
     // An unstamped message (0) was sampled when the bag recorded it, as the node takes it.
     const ros::Time stamp = msg->header.stamp.isZero() ? m.getTime() : msg->header.stamp;
     add_planned_before(&stamp);
-    add(ToNamedPositions(*msg), stamp, nullptr, &m,
-        offset != offsets.end() ? offset->second : 0.0);
+    add(ToNamedPositions(*msg), stamp, nullptr, &m, usual_s);
   }
   add_planned_before(nullptr);
   cycles.Finish(path, PlanHint(sources));
