@@ -142,14 +142,18 @@ double KinematicModel::Travel_m(const JointSpec& joint) const {
   }
   const double m = joint.mimic_multiplier;
   if (m == 0.0) return std::abs(joint.mimic_offset);
-  for (int link = 1; link < link_count(); ++link) {
-    const JointSpec& target = joints_[link];
-    if (target.q_index != joint.mimic_q_index) continue;
-    // Linear in the target's position: farthest at an end of its accepted range.
-    return std::max(std::abs(m * (target.lower - kJointLimitMargin) + joint.mimic_offset),
-                    std::abs(m * (target.upper + kJointLimitMargin) + joint.mimic_offset));
+  const JointSpec* target = MimickedJoint(joint);
+  if (target == nullptr) return std::numeric_limits<double>::infinity();
+  // Linear in the target's position: farthest at an end of its accepted range.
+  return std::max(std::abs(m * (target->lower - kJointLimitMargin) + joint.mimic_offset),
+                  std::abs(m * (target->upper + kJointLimitMargin) + joint.mimic_offset));
+}
+
+const JointSpec* KinematicModel::MimickedJoint(const JointSpec& joint) const {
+  for (int link = 1; link < link_count() && joint.mimic_q_index >= 0; ++link) {
+    if (joints_[link].q_index == joint.mimic_q_index) return &joints_[link];
   }
-  return std::numeric_limits<double>::infinity();
+  return nullptr;
 }
 
 bool KinematicModel::IsFixedJoint(const std::string& joint_name) const {

@@ -40,7 +40,6 @@ double BoxGap_m(const Aabb& a, const Aabb& b) {
 bool Monitor::Impl::Unwind(const Eigen::Ref<const Eigen::VectorXd>& q) {
   is_turn_ambiguous = false;
   if (q.size() != q_good.size()) return false;  // refused as it is
-  constexpr double kTurn = 2.0 * kPi;
   bool has_turns = false;
   for (const int link : model.turning_links) {
     const JointSpec& joint = model.kinematics->joint(link);

@@ -340,9 +340,8 @@ void CheckPrismaticTravel(const KinematicModel& model, const std::string& urdf_p
     char text[200];
     std::snprintf(text, sizeof(text), "%.6g m", travel_m);
     std::string how = std::string(" slides up to ") + text;
-    for (int other = 1; other < model.link_count() && joint.mimic_q_index >= 0; ++other) {
-      if (model.joint(other).q_index != joint.mimic_q_index) continue;
-      limited = &model.joint(other);
+    if (const JointSpec* target = model.MimickedJoint(joint)) {
+      limited = target;
       std::snprintf(text, sizeof(text), " (multiplier %.6g, offset %.6g)",
                     joint.mimic_multiplier, joint.mimic_offset);
       how = " mimics '" + limited->name + "'" + text + how + " with it";

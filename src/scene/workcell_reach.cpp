@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/core/load_error.h"
@@ -31,9 +32,10 @@ double MaxAttachableDiameter_m(const Workcell& w) {
 
 // The refusal of a derived world cube of edge `edge_m` over kMaxWorldEdge_m. Where the arms'
 // reach (`reach_W`, the reach spheres' box) alone fits, the primitive fixed in the world (an
-// object, a link fixed to the root) farthest from it is named; else the link that reaches
-// farthest and the prismatic joints above it.
-LoadError TooLargeWorld(const Workcell& w, const WorkcellReach& reach, const Aabb& reach_W,
+// object, a link fixed to the root; links at their poses `X_WL`) farthest from it is named;
+// else the link that reaches farthest and the prismatic joints above it.
+LoadError TooLargeWorld(const Workcell& w, const WorkcellReach& reach,
+                        const std::vector<Eigen::Isometry3d>& X_WL, const Aabb& reach_W,
                         double edge_m) {
   const KinematicModel& model = w.kinematics;
   char text[256];
@@ -47,8 +49,6 @@ LoadError TooLargeWorld(const Workcell& w, const WorkcellReach& reach, const Aab
     const Eigen::Vector3d centre_W =
         has_reach ? Eigen::Vector3d(0.5 * (reach_W.min_W + reach_W.max_W))
                   : Eigen::Vector3d::Zero();
-    std::vector<Eigen::Isometry3d> X_WL(model.link_count(), Eigen::Isometry3d::Identity());
-    model.ComputeLinkPoses(Eigen::VectorXd::Zero(model.q_size()), &X_WL);
     double farthest_m = -1.0;
     PrimitiveId farthest = 0;
     for (PrimitiveId id = 0; id < w.primitives.size(); ++id) {
@@ -78,10 +78,8 @@ LoadError TooLargeWorld(const Workcell& w, const WorkcellReach& reach, const Aab
     const double travel_m = model.Travel_m(joint);
     if (!(travel_m > 0.0)) continue;
     std::string mimicked;  // a mimic joint's travel is the joint it mimics' to narrow
-    for (int other = 1; other < model.link_count() && joint.mimic_q_index >= 0; ++other) {
-      if (model.joint(other).q_index == joint.mimic_q_index) {
-        mimicked = "mimics '" + model.joint(other).name + "', ";
-      }
+    if (const JointSpec* target = model.MimickedJoint(joint)) {
+      mimicked = "mimics '" + target->name + "', ";
     }
     std::snprintf(text, sizeof(text), "%.6g", travel_m);
     sliders += (sliders.empty() ? "" : ", ") + std::string("'") + joint.name + "' (" + mimicked +
@@ -184,7 +182,7 @@ Aabb DeriveWorldCube(const Workcell& w) {
   }
   all = all.Inflated(max_tolerance_m);
   const double edge_m = (all.max_W - all.min_W).maxCoeff() + 2.0 * kDerivedWorldMargin_m;
-  if (!(edge_m <= kMaxWorldEdge_m)) throw TooLargeWorld(w, reach, reach_W, edge_m);
+  if (!(edge_m <= kMaxWorldEdge_m)) throw TooLargeWorld(w, reach, X_WL, reach_W, edge_m);
   return Aabb::Cube(0.5 * (all.min_W + all.max_W), edge_m);
 }
 

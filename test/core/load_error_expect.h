@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <iterator>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "arm_collision_monitor/core/load_error.h"
@@ -16,6 +18,20 @@ inline std::string WriteTempFile(const std::string& name, const std::string& tex
   const std::string path = ::testing::TempDir() + "acm_test_" + name;
   std::ofstream(path) << text;
   return path;
+}
+
+/// Writes the file `from_path` with the first occurrence of each edit's first string replaced by
+/// its second (a failure if one is missing) as WriteTempFile(`name`); returns its path.
+inline std::string WriteEditedFile(const std::string& from_path, const std::string& name,
+                                   const std::vector<std::pair<std::string, std::string>>& edits) {
+  std::ifstream in(from_path);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (const auto& [from, to] : edits) {
+    const std::size_t at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << "'" << from << "' not in " << from_path;
+    if (at != std::string::npos) text.replace(at, from.size(), to);
+  }
+  return WriteTempFile(name, text);
 }
 
 /// Expects `load()` to throw LoadError whose message contains every one of `parts`.

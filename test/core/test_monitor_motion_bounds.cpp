@@ -5,8 +5,6 @@
 // samples along the motion.
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <iterator>
 #include <limits>
 #include <memory>
 #include <random>
@@ -19,6 +17,7 @@
 #include "arm_collision_monitor/geometry/distance.h"
 #include "arm_collision_monitor/monitor/motion_bounds.h"
 #include "arm_collision_monitor/scene/workcell.h"
+#include "load_error_expect.h"
 #include "test_monitor_util.h"
 
 namespace arm_collision_monitor {
@@ -255,13 +254,9 @@ TEST(MonitorMotionBounds, BoundsHoldAgainstExactKinematics) {
   ExpectBoundsHold(*ParallelAxesWorkcell(), &rng);
   // A finger mimicking the slide three times over, offset 0.1 m: it slides past its own
   // <limit>, as far as the slide's range puts it.
-  std::ifstream in(ACM_SOURCE_DIR "/test/data/three_link_arm.urdf");
-  std::string urdf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const std::string from = "multiplier=\"-1\" offset=\"0\"";
-  ASSERT_NE(urdf.find(from), std::string::npos);
-  urdf.replace(urdf.find(from), from.size(), "multiplier=\"-3\" offset=\"0.1\"");
-  const std::string path = ::testing::TempDir() + "/mimic_times_3.urdf";
-  std::ofstream(path) << urdf;
+  const std::string path =
+      WriteEditedFile(ACM_SOURCE_DIR "/test/data/three_link_arm.urdf", "mimic_times_3.urdf",
+                      {{"multiplier=\"-1\" offset=\"0\"", "multiplier=\"-3\" offset=\"0.1\""}});
   ExpectBoundsHold(LoadWorkcell(path, ACM_SOURCE_DIR "/test/data/three_link_scene.yaml"), &rng);
 }
 

@@ -15,6 +15,7 @@
 
 #include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/core/load_error.h"
+#include "load_error_expect.h"
 #include "test_monitor_util.h"
 
 namespace arm_collision_monitor {
@@ -782,22 +783,13 @@ std::shared_ptr<const Workcell> LoadWithContinuousJoint1(const std::string& name
                                                          const std::string& velocity,
                                                          const std::string& more_urdf,
                                                          const std::string& object_line) {
-  std::ifstream in(ACM_SOURCE_DIR "/urdf/workcell.urdf");
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string urdf = text.str();
-  for (const auto& [from, to] :
-       {std::pair<std::string, std::string>{"<joint name=\"left_joint1\" type=\"revolute\">",
-                                            "<joint name=\"left_joint1\" type=\"continuous\">"},
-        {"<limit lower=\"-2.967060\" upper=\"2.967060\" velocity=\"1.0\"",
-         "<limit velocity=\"" + velocity + "\""},
-        {"</robot>", more_urdf + "</robot>"}}) {
-    const std::size_t at = urdf.find(from);
-    EXPECT_NE(at, std::string::npos) << from;
-    if (at != std::string::npos) urdf.replace(at, from.size(), to);
-  }
-  const std::string urdf_path = ::testing::TempDir() + "/" + name + ".urdf";
-  std::ofstream(urdf_path) << urdf;
+  const std::string urdf_path = WriteEditedFile(
+      ACM_SOURCE_DIR "/urdf/workcell.urdf", name + ".urdf",
+      {{"<joint name=\"left_joint1\" type=\"revolute\">",
+        "<joint name=\"left_joint1\" type=\"continuous\">"},
+       {"<limit lower=\"-2.967060\" upper=\"2.967060\" velocity=\"1.0\"",
+        "<limit velocity=\"" + velocity + "\""},
+       {"</robot>", more_urdf + "</robot>"}});
   return test::LoadSceneEdited(urdf_path, name, [&](std::string* scene) {
     AddObjectLine(object_line, scene);
   });

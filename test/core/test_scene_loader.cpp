@@ -5,8 +5,6 @@
 
 #include <cstdlib>
 #include <filesystem>
-
-#include <fstream>
 #include <limits>
 #include <string>
 #include <utility>
@@ -29,12 +27,7 @@ const std::string kWorldLine = "world: {center_m: [0, 0, 1], edge_m: 4}\n";
 // its path.
 std::string WriteEditedArmUrdf(const std::string& name, const std::string& from,
                                const std::string& to) {
-  std::ifstream in(kArmUrdf);
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const std::size_t at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << "'" << from << "' not in " << kArmUrdf;
-  if (at != std::string::npos) text.replace(at, from.size(), to);
-  return WriteTempFile(name, text);
+  return WriteEditedFile(kArmUrdf, name, {{from, to}});
 }
 
 void ExpectSceneError(const std::string& urdf, const std::string& scene_text,

@@ -167,6 +167,8 @@ constexpr int kMostlyOverlappingSamples = kAlwaysOverlappingSamples / 2;
 
 /// pi (Eigen and <cmath> give it only as macros).
 inline constexpr double kPi = 3.14159265358979323846;
+/// One whole turn of a revolute joint, rad.
+inline constexpr double kTurn = 2.0 * kPi;
 
 /// How far (rad for revolute, m for prismatic joints) a joint position may lie outside its URDF
 /// limits before the cycle's input is refused. Typical 0.01: encoders and controllers overshoot

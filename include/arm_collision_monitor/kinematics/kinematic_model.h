@@ -75,6 +75,8 @@ class KinematicModel {
   /// where the joint it mimics puts it at an end of that joint's range (multiplier times its
   /// position, plus the offset; the mimic's own limits do not clamp it); 0 for other joints.
   double Travel_m(const JointSpec& joint) const;
+  /// The joint `joint` (one of this model's) mimics, nullptr if it mimics none.
+  const JointSpec* MimickedJoint(const JointSpec& joint) const;
   /// The link whose parent joint is named `joint_name`, -1 if unknown.
   int FindJointChildLink(const std::string& joint_name) const;
   /// True iff link `link` can move relative to the root (an actuated or mimic joint lies

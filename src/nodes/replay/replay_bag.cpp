@@ -236,7 +236,6 @@ void PrefixNames(const JointPrefixes& prefixes, const std::string& topic,
 void UnwindAsMoveItExecutes(const std::set<std::string>& turning,
                             std::map<std::string, double>* last,
                             trajectory_msgs::JointTrajectory* plan) {
-  constexpr double kTurn = 2.0 * kPi;
   for (std::size_t j = 0; j < plan->joint_names.size(); ++j) {
     const std::string& name = plan->joint_names[j];
     if (turning.count(name) == 0) continue;
