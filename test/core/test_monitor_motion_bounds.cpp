@@ -105,7 +105,13 @@ void ExpectBoundsHold(const Workcell& wc, std::mt19937_64* rng) {
   for (int motion = 0; motion < kMotions; ++motion) {
     const Eigen::VectorXd q0 = RandomQ(wc, rng);
     Eigen::VectorXd q1 = RandomQ(wc, rng);
-    if (motion % 2 == 1) q1 = q0 + unit(*rng) * 0.05 * (q1 - q0);  // small motions too
+    if (motion % 3 == 1) q1 = q0 + unit(*rng) * 0.05 * (q1 - q0);  // small motions too
+    if (motion % 3 == 2) {
+      // One joint alone: no other joint's lever arm leaves slack in the bound.
+      const int moved = static_cast<int>(unit(*rng) * model.q_size()) % model.q_size();
+      q1 = q0;
+      q1[moved] = RandomQ(wc, rng)[moved];
+    }
     bounds.SetJointMotion(q1, q0);
     for (const PrimitiveId id : moving) bounds.ComputeBound_m(id);
     model.ComputeLinkPoses(q0, &X0);
