@@ -421,6 +421,41 @@ class InputFaultsTest(unittest.TestCase):
         self.assertTrue(report.stop)
         self.assertEqual(report.input_status, MonitorReport.INPUT_OK)
 
+    def test_16b_fixed_rate_cycles(self):
+        """A node cycling at ~cycle_rate_hz (20 Hz) on one combined topic: the messages between
+        two ticks make one cycle, whose report carries the newest accepted stamp, or a refused
+        message's with its refusal."""
+        c = MonitorClient('/timed_monitor', topics=('timed_joint_states',))
+        self.assertTrue(c.wait_connected())
+        clear = c.go_clear()
+        self.assertIsNotNone(clear)
+        names = LEFT_JOINTS + RIGHT_JOINTS
+        base = rospy.Time.now()
+        stamps = [base + rospy.Duration(0, 1000 * k) for k in range(1, 11)]
+        start = c.report_count()
+        for stamp in stamps:
+            c.publishers[0].publish(joint_state(names, HOME + HOME, stamp))
+        newest = c.wait_report(start, lambda r: r.header.stamp == stamps[-1])
+        self.assertIsNotNone(newest, 'no report stamped with the newest message')
+        self.assertEqual(newest.input_status, MonitorReport.INPUT_OK)
+        # Ten messages within about a millisecond: fewer cycles than messages (one per message
+        # only if every one came in a tick of its own, half a second apart).
+        self.assertLess(newest.cycle - clear.cycle, len(stamps))
+        refused_stamp = stamps[-1] - rospy.Duration(0.05)
+        start = c.report_count()
+        c.publishers[0].publish(joint_state(names, HOME + HOME, refused_stamp))
+        refused = c.wait_report(start, lambda r: r.input_status != MonitorReport.INPUT_OK)
+        self.assertIsNotNone(refused, 'the message stamped backwards was not refused')
+        self.assertEqual(refused.input_status, MonitorReport.INPUT_STAMP_BACKWARDS)
+        self.assertEqual(refused.header.stamp, refused_stamp)
+        self.assertTrue(refused.stop)
+        later = stamps[-1] + rospy.Duration(0, 1000)
+        start = c.report_count()
+        c.publishers[0].publish(joint_state(names, HOME + HOME, later))
+        accepted = c.wait_report(start, lambda r: r.header.stamp == later)
+        self.assertIsNotNone(accepted, 'no report stamped with the accepted message after it')
+        self.assertEqual(accepted.input_status, MonitorReport.INPUT_OK)
+
     def test_17_lost_object_frame_requests_stop(self):
         """A node whose fixed frame is not connected to the camera's TF frame cannot place the
         frame-bound camera: stop, naming the object, even on good input."""
