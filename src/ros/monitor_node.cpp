@@ -249,6 +249,8 @@ void MonitorNode::OnCycleTimer(const ros::TimerEvent&) {
 }
 
 void MonitorNode::UpdateBoundObjects(const ros::Time& now) {
+  // Each object on its own: one whose frame is unavailable keeps its last pose and asks for a
+  // stop (the first such names it), the others still follow theirs.
   for (BoundObject& bound : bound_objects_) {
     std::string error;
     try {
@@ -265,7 +267,7 @@ void MonitorNode::UpdateBoundObjects(const ros::Time& now) {
                       options_.frame_timeout_s);
         ++stale_frames_;
         policy_.OnObjectPoseUnavailable(bound.object, bound.frame, text);
-        return;
+        continue;
       }
       const Eigen::Isometry3d X_WO = tf2::transformToEigen(X);
       // Most frames (a calibrated camera) do not move: skip the index update then.
@@ -280,7 +282,6 @@ void MonitorNode::UpdateBoundObjects(const ros::Time& now) {
     }
     ++tf_failures_;
     policy_.OnObjectPoseUnavailable(bound.object, bound.frame, error);
-    return;
   }
 }
 

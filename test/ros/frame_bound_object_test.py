@@ -7,7 +7,9 @@ to the TF frame camera_link. This node broadcasts that frame while it holds both
 is not among the package's dependencies). At the scene's pose the cell is clear; moved onto the
 left arm's column the camera must warn against a left-arm link, its closest point on the camera
 near the new pose; moved back, the warning must clear. Not broadcast for ~frame_timeout_s, the
-frame is stale: a stop naming the object and the frame, until it comes back."""
+frame is stale: a stop naming the object and the frame, until it comes back. A second node with
+two frame-bound objects (test/data/two_frames_scene.yaml) follows the second one's frame while
+the first one's is unavailable."""
 import math
 import sys
 import unittest
@@ -32,6 +34,11 @@ SCENE_RPY = (0.0, 0.6, 0.0)
 IN_LEFT_ARM_XYZ_M = (0.0, 0.55, 1.85)
 # The camera's half diagonal (0.06, 0.1, 0.05 m): its closest point lies within this of its frame.
 CAMERA_HALF_DIAGONAL_M = 0.127
+# The node of test/data/two_frames_scene.yaml and its second frame-bound object.
+TWO_FRAMES_NODE = '/two_frames_monitor'
+PROBE = 'probe'
+PROBE_FRAME = 'probe_link'
+PROBE_CLEAR_XYZ_M = (1.6, 1.0, 2.4)  # its scene pose, far from the arms at home
 TIMEOUT_S = 10.0
 
 
@@ -132,6 +139,50 @@ class FrameBoundObjectTest(unittest.TestCase):
         report = self.wait_clear('after moving the frame away')
         self.assertEqual(camera_warnings(report), [])
 
+    def test_second_frame_followed_while_the_first_is_unavailable(self):
+        # test/data/two_frames_scene.yaml: camera (camera_link), then probe (probe_link). Once
+        # camera_link is unavailable (not sent for ~frame_timeout_s), the stop names the camera;
+        # the probe, then moved into the left arm by its frame, must warn (the node stopped
+        # reading frames at the first unavailable one: the probe kept its last pose, clear of
+        # the arms, without a word).
+        client = MonitorClient(TWO_FRAMES_NODE)
+        self.assertTrue(client.wait_connected())
+        seen = []
+
+        def send_probe(xyz_m):
+            t = TransformStamped()
+            t.header.stamp = rospy.Time.now()
+            t.header.frame_id = 'world'
+            t.child_frame_id = PROBE_FRAME
+            t.transform.translation.x, t.transform.translation.y, t.transform.translation.z = xyz_m
+            t.transform.rotation.w = 1.0
+            self.tf_pub.publish(TFMessage(transforms=[t]))
+            client.publish_pose(HOME, HOME)
+
+        def camera_named(report):
+            return report.stop_reason.startswith(
+                "object '%s': pose from frame '%s' unavailable: " % (OBJECT, FRAME))
+
+        def probe_warns(report):
+            return any(PROBE in (w.owner_a, w.owner_b) for w in report.warnings)
+
+        def clear_probe_camera_named(report):
+            seen.append(report)
+            return camera_named(report) and not probe_warns(report)
+        report = client.publish_until(lambda: send_probe(PROBE_CLEAR_XYZ_M),
+                                      clear_probe_camera_named, TIMEOUT_S)
+        self.assertIsNotNone(report, 'no stop naming the camera\'s frame with the probe clear; '
+                             'last seen: %s' % self.describe(seen))
+
+        def probe_warned_camera_named(report):
+            seen.append(report)
+            return camera_named(report) and probe_warns(report)
+        report = client.publish_until(lambda: send_probe(IN_LEFT_ARM_XYZ_M),
+                                      probe_warned_camera_named, TIMEOUT_S)
+        self.assertIsNotNone(report, 'no probe warning with the probe moved into the left arm '
+                             'while the camera\'s frame is unavailable; last seen: %s'
+                             % self.describe(seen))
+        self.assertTrue(report.stop)
 
 if __name__ == '__main__':
     rostest.rosrun('arm_collision_monitor', 'frame_bound_object', FrameBoundObjectTest, sys.argv)
