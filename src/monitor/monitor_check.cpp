@@ -16,8 +16,11 @@ CycleReport Monitor::Check(const Eigen::Ref<const Eigen::VectorXd>& q) const {
   r.cycle = m.report.cycle + 1;
   if (m.IsIdle(q)) {  // the last report, no work
     r.input = m.report.input;
-    r.warnings = m.report.warnings;
-    // Not the live stop, which a jump into q may have raised: a check has no step.
+    // Not the last step's between-samples warnings, nor the live stop, which a jump into q may
+    // have raised: a check has no step (an idle Update is a step of zero).
+    for (const Warning& w : m.report.warnings) {
+      if (!w.between_samples) r.warnings.push_back(w);
+    }
     r.stop = r.input != InputStatus::kOk || !r.warnings.empty();
     return r;
   }

@@ -690,6 +690,14 @@ TEST(MonitorSwept, MetreJumpIsSweptOrStopped) {
   CheckStep(*wc, options, q0, q1, report, "1 m step", &tally);
   EXPECT_GT(tally.dense_contacts, 0);
   EXPECT_GT(tally.between, 0);
+  // A check of the reading just taken repeats the report but for the step's between-samples
+  // warnings: what Update gives at q1 again (a step of zero) and a check computes anew.
+  const CycleReport checked = swept.Check(q1);
+  const std::vector<Warning> at_sample = test::AtSampleWarnings(report.warnings);
+  ASSERT_LT(at_sample.size(), report.warnings.size());
+  EXPECT_EQ(checked.warnings.size(), at_sample.size());
+  for (const Warning& w : checked.warnings) EXPECT_FALSE(w.between_samples);
+  EXPECT_EQ(checked.stop, !at_sample.empty());
 
   Monitor jumped(wc, MonitorOptions{});
   ASSERT_FALSE(jumped.Update(home).stop);
