@@ -150,7 +150,8 @@ double KinematicModel::Travel_m(const JointSpec& joint) const {
 }
 
 const JointSpec* KinematicModel::MimickedJoint(const JointSpec& joint) const {
-  for (int link = 1; link < link_count() && joint.mimic_q_index >= 0; ++link) {
+  if (joint.mimic_q_index < 0) return nullptr;
+  for (int link = 1; link < link_count(); ++link) {
     if (joints_[link].q_index == joint.mimic_q_index) return &joints_[link];
   }
   return nullptr;

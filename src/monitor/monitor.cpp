@@ -409,11 +409,8 @@ void Monitor::Impl::RecordCycle(CycleKind kind, InputStatus input, const CycleWo
   report.candidate_pairs = work.candidate_pairs;
   report.narrow_phase_tests = work.narrow_phase_tests;
   report.bounded = kind == CycleKind::kBounded;
-  // An idle cycle is a step of zero: the last step's between-samples warnings go (in place).
   if (kind == CycleKind::kIdle) {
-    report.warnings.erase(std::remove_if(report.warnings.begin(), report.warnings.end(),
-                                         [](const Warning& w) { return w.between_samples; }),
-                          report.warnings.end());
+    EraseBetweenSamples(&report.warnings);
     report.stop = !report.warnings.empty();
   }
   report.step_motion_m = work.step_m;

@@ -14,14 +14,12 @@ CycleReport Monitor::Check(const Eigen::Ref<const Eigen::VectorXd>& q) const {
   const Impl& m = *impl_;
   CycleReport r;
   r.cycle = m.report.cycle + 1;
-  if (m.IsIdle(q)) {  // the last report, no work
-    r.input = m.report.input;
-    // Not the last step's between-samples warnings, nor the live stop, which a jump into q may
-    // have raised: a check has no step (an idle Update is a step of zero).
-    for (const Warning& w : m.report.warnings) {
-      if (!w.between_samples) r.warnings.push_back(w);
-    }
-    r.stop = r.input != InputStatus::kOk || !r.warnings.empty();
+  if (m.IsIdle(q)) {  // the last (accepted) report, no work
+    // A check has no step: not the last step's between-samples warnings, nor the live stop,
+    // which a jump into q may have raised.
+    r.warnings = m.report.warnings;
+    Impl::EraseBetweenSamples(&r.warnings);
+    r.stop = !r.warnings.empty();
     return r;
   }
   r.input = m.CheckInput(q);

@@ -147,6 +147,12 @@ struct Monitor::Impl {
            q.size() == q_good.size() &&
            std::memcmp(q.data(), q_good.data(), sizeof(double) * q.size()) == 0;
   }
+  // An idle cycle is a step of zero: the last step's between-samples warnings go (in place).
+  static void EraseBetweenSamples(std::vector<Warning>* warnings) {
+    warnings->erase(std::remove_if(warnings->begin(), warnings->end(),
+                                   [](const Warning& w) { return w.between_samples; }),
+                    warnings->end());
+  }
   // A good q: a bounded cycle if the bounds allow, else the kinematics and the narrow phase.
   void RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q);
   // Monitor::Update, with its sample times in time_s or joint_time_s: CycleOf q, or of

@@ -249,8 +249,11 @@ void MonitorNode::OnCycleTimer(const ros::TimerEvent&) {
 }
 
 void MonitorNode::UpdateBoundObjects(const ros::Time& now) {
-  // Each object on its own: one whose frame is unavailable keeps its last pose and asks for a
-  // stop (the first such names it), the others still follow theirs.
+  // Each object on its own: one whose frame is unavailable keeps its last pose (at first its
+  // scene pose), the others still follow theirs. The stop names the first unavailable one and
+  // the objects of the others.
+  const BoundObject* first = nullptr;
+  std::string first_error, others;
   for (BoundObject& bound : bound_objects_) {
     std::string error;
     try {
@@ -266,22 +269,33 @@ void MonitorNode::UpdateBoundObjects(const ros::Time& now) {
                       "its newest transform is %.3f s old, over ~frame_timeout_s (%.3f s)", age_s,
                       options_.frame_timeout_s);
         ++stale_frames_;
-        policy_.OnObjectPoseUnavailable(bound.object, bound.frame, text);
-        continue;
-      }
-      const Eigen::Isometry3d X_WO = tf2::transformToEigen(X);
-      // Most frames (a calibrated camera) do not move: skip the index update then.
-      if ((bound.has_pose && X_WO.matrix() == bound.X_WO.matrix()) ||
-          monitor_->SetObjectPose(bound.object, X_WO, &error)) {
-        bound.X_WO = X_WO;
-        bound.has_pose = true;
-        continue;
+        error = text;
+      } else {
+        const Eigen::Isometry3d X_WO = tf2::transformToEigen(X);
+        // Most frames (a calibrated camera) do not move: skip the index update then.
+        if ((bound.has_pose && X_WO.matrix() == bound.X_WO.matrix()) ||
+            monitor_->SetObjectPose(bound.object, X_WO, &error)) {
+          bound.X_WO = X_WO;
+          bound.has_pose = true;
+          continue;
+        }
+        ++tf_failures_;
       }
     } catch (const tf2::TransformException& e) {
       error = e.what();
+      ++tf_failures_;
     }
-    ++tf_failures_;
-    policy_.OnObjectPoseUnavailable(bound.object, bound.frame, error);
+    if (first == nullptr) {
+      first = &bound;
+      first_error = error;
+    } else {
+      others += (others.empty() ? "'" : ", '") + bound.object + "'";
+    }
+  }
+  if (first != nullptr) {
+    policy_.OnObjectPoseUnavailable(
+        first->object, first->frame,
+        others.empty() ? first_error : first_error + "; also unavailable: " + others);
   }
 }
 

@@ -20,18 +20,29 @@ inline std::string WriteTempFile(const std::string& name, const std::string& tex
   return path;
 }
 
-/// Writes the file `from_path` with the first occurrence of each edit's first string replaced by
-/// its second (a failure if one is missing) as WriteTempFile(`name`); returns its path.
-inline std::string WriteEditedFile(const std::string& from_path, const std::string& name,
-                                   const std::vector<std::pair<std::string, std::string>>& edits) {
-  std::ifstream in(from_path);
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+/// The whole text of the file `path` (a failure if it cannot be opened).
+inline std::string ReadTextFile(const std::string& path) {
+  std::ifstream in(path);
+  EXPECT_TRUE(in.is_open()) << "cannot open " << path;
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+/// `text` with the first occurrence of each edit's first string replaced by its second (a
+/// failure if one is missing).
+inline std::string EditedText(std::string text,
+                              const std::vector<std::pair<std::string, std::string>>& edits) {
   for (const auto& [from, to] : edits) {
     const std::size_t at = text.find(from);
-    EXPECT_NE(at, std::string::npos) << "'" << from << "' not in " << from_path;
+    EXPECT_NE(at, std::string::npos) << "'" << from << "' not in the text";
     if (at != std::string::npos) text.replace(at, from.size(), to);
   }
-  return WriteTempFile(name, text);
+  return text;
+}
+
+/// The file `from_path` after EditedText, written as WriteTempFile(`name`); returns its path.
+inline std::string WriteEditedFile(const std::string& from_path, const std::string& name,
+                                   const std::vector<std::pair<std::string, std::string>>& edits) {
+  return WriteTempFile(name, EditedText(ReadTextFile(from_path), edits));
 }
 
 /// Expects `load()` to throw LoadError whose message contains every one of `parts`.

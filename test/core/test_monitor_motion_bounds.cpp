@@ -108,7 +108,7 @@ void ExpectBoundsHold(const Workcell& wc, std::mt19937_64* rng) {
     if (motion % 3 == 1) q1 = q0 + unit(*rng) * 0.05 * (q1 - q0);  // small motions too
     if (motion % 3 == 2) {
       // One joint alone: no other joint's lever arm leaves slack in the bound.
-      const int moved = static_cast<int>(unit(*rng) * model.q_size()) % model.q_size();
+      const int moved = std::uniform_int_distribution<int>(0, model.q_size() - 1)(*rng);
       q1 = q0;
       q1[moved] = RandomQ(wc, rng)[moved];
     }

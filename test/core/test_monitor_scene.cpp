@@ -2,7 +2,6 @@
 // self and arm-arm collisions, grasp targets, attached objects, model switching, frame-bound
 // objects, refused inputs, speed-scaled tolerance and idle cycles. Every report is also compared
 // with the independent brute force of test_monitor_util.h.
-#include <iterator>
 #include <sstream>
 #include <string>
 
@@ -444,9 +443,8 @@ TEST(MonitorScene, AnObjectOfSeveralPrimitivesNeverWarnsAgainstItself) {
 // The scene file's soft limits hold for a continuous joint too (the three-link arm's spin).
 TEST(MonitorScene, SoftLimitsOfAContinuousJointAreChecked) {
   const std::string data = ACM_SOURCE_DIR "/test/data/";
-  std::ifstream in(data + "three_link_scene.yaml");
   const std::string scene = WriteTempFile(
-      "soft_spin.yaml", std::string(std::istreambuf_iterator<char>(in), {}) +
+      "soft_spin.yaml", ReadTextFile(data + "three_link_scene.yaml") +
                             "joint_limits: {spin: {lower: -1.0, upper: 1.5}}\n");
   const auto wc =
       std::make_shared<const Workcell>(LoadWorkcell(data + "three_link_arm.urdf", scene));

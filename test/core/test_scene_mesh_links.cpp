@@ -309,15 +309,12 @@ TEST(SceneMeshLinks, CorruptOrWrongCacheEntriesAreRefitted) {
   std::vector<fs::path> entries;
   for (const auto& entry : fs::directory_iterator(dir + "cache")) entries.push_back(entry.path());
   ASSERT_EQ(entries.size(), 1u);  // no temporary file left behind
-  std::ifstream in(entries[0]);
-  const std::string good((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string good = ReadTextFile(entries[0].string());
   const Capsule c = std::get<Capsule>(ShapesOf(fitted, "link0").at(0));
   char radius[64], smaller[64];
   std::snprintf(radius, sizeof radius, "%a", c.radius_m);
   std::snprintf(smaller, sizeof smaller, "%a", 0.9 * c.radius_m);
-  std::string shrunk = good;
-  ASSERT_NE(shrunk.find(radius), std::string::npos);
-  shrunk.replace(shrunk.find(radius), std::string(radius).size(), smaller);
+  const std::string shrunk = EditedText(good, {{radius, smaller}});
   for (const std::string& bad : {std::string("\x01\x02garbage"), good.substr(0, good.size() / 2),
                                  shrunk, good + "capsule 0 0 0 0 0 0 1\n", std::string("")}) {
     WriteBytes(entries[0].string(), bad);

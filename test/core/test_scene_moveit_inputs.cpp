@@ -7,8 +7,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <iterator>
 #include <random>
 #include <set>
 #include <string>
@@ -30,14 +28,9 @@ const std::string kPlanningScene = kMoveit + "workcell_scene.yaml";
 // Rounding allowed for a point on the surface of a solid and its enclosing shape, m.
 constexpr double kSurfaceRounding_m = 1e-12;
 
-std::string ReadText(const std::string& path) {
-  std::ifstream in(path);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
 // The bundled scene file with `extra` top-level lines appended, written to a temporary file.
 std::string BundledSceneWith(const std::string& name, const std::string& extra) {
-  return WriteTempFile(name, ReadText(kScene) + "\n" + extra);
+  return WriteTempFile(name, ReadTextFile(kScene) + "\n" + extra);
 }
 
 using PairSet = std::set<std::pair<std::string, std::string>>;
@@ -154,7 +147,7 @@ TEST(SceneMoveitInputs, SrdfDisabledPairsBecomeCompatible) {
 
 TEST(SceneMoveitInputs, SrdfPathsResolveRelativeToTheSceneAndAsFileUrls) {
   const Workcell base = LoadWorkcell(kUrdf, BundledSceneWith("srdf_abs.yaml", "srdf: " + kSrdf));
-  WriteTempFile("copy.srdf", ReadText(kSrdf));  // beside the scene files written below
+  WriteTempFile("copy.srdf", ReadTextFile(kSrdf));  // beside the scene files written below
   for (const std::string& value : {std::string("acm_test_copy.srdf"), "file://" + kSrdf}) {
     const Workcell w = LoadWorkcell(kUrdf, BundledSceneWith("srdf_rel.yaml", "srdf: " + value));
     EXPECT_EQ(CompatibleNames(w), CompatibleNames(base)) << value;
@@ -432,10 +425,9 @@ TEST(SceneMoveitInputs, TypedObjectsLoadWithTheirShapes) {
 // and a link with a radius_m override keeps its capsule, which the override widens.
 TEST(SceneMoveitInputs, UrdfCylindersFollowUrdfCylinderModel) {
   const Workcell plain = LoadWorkcell(kUrdf, kScene);
-  std::string scene = ReadText(kScene);
   const std::string links = "\nlinks:\n";
-  ASSERT_NE(scene.find(links), std::string::npos);
-  scene.replace(scene.find(links), links.size(), links + "  left_link2: {radius_m: 0.1}\n");
+  const std::string scene =
+      EditedText(ReadTextFile(kScene), {{links, links + "  left_link2: {radius_m: 0.1}\n"}});
   for (const std::string model : {"box", "tighter"}) {
     const Workcell w =
         LoadWorkcell(kUrdf, WriteTempFile("urdf_cylinders.yaml",

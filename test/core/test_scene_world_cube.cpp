@@ -6,8 +6,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <fstream>
-#include <iterator>
 #include <random>
 #include <regex>
 #include <string>
@@ -26,14 +24,9 @@ constexpr int kSamples = 2000;
 // Rounding of forward kinematics and AABBs over a few metres, m.
 constexpr double kRounding_m = 1e-9;
 
-std::string ReadText(const std::string& path) {
-  std::ifstream in(path);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
 // `scene_path`'s text without its world: line, written to a temporary file.
 std::string WithoutWorld(const std::string& name, const std::string& scene_path) {
-  const std::string text = ReadText(scene_path);
+  const std::string text = ReadTextFile(scene_path);
   const std::string without = std::regex_replace(text, std::regex("\nworld:[^\n]*"), "\n");
   EXPECT_NE(without, text) << scene_path << " has no world: line";
   return WriteTempFile(name, without);
@@ -105,10 +98,10 @@ TEST(SceneWorldCube, ThreeLinkArmWithoutWorldEnclosesEveryConfiguration) {
   // A mimic joint slides as far as the joint it mimics puts it, past its own <limit> (three
   // times the slide here, 0.63 m at the end of its accepted range, the limit widened by its
   // margin, against the limit's 0.2 m): the reach takes that in.
-  const std::string urdf = std::regex_replace(ReadText(kData + "three_link_arm.urdf"),
+  const std::string urdf = std::regex_replace(ReadTextFile(kData + "three_link_arm.urdf"),
                                               std::regex("multiplier=\"-1\""),
                                               "multiplier=\"-3\"");
-  ASSERT_NE(urdf, ReadText(kData + "three_link_arm.urdf"));
+  ASSERT_NE(urdf, ReadTextFile(kData + "three_link_arm.urdf"));
   const Workcell far = LoadWorkcell(WriteTempFile("mimic_times_3.urdf", urdf), scene);
   EXPECT_DOUBLE_EQ(far.kinematics.Travel_m(
                 far.kinematics.joint(far.kinematics.FindJointChildLink("finger_mimic"))),
@@ -145,12 +138,11 @@ TEST(SceneWorldCube, LargeDerivedWorldNamesItsFarthestPrimitive) {
   const Workcell plain = LoadWorkcell(kUrdf, WithoutWorld("plain_no_world.yaml", kScene));
   EXPECT_TRUE(HasNotice(plain, "world: not given; derived"));
   EXPECT_FALSE(HasNotice(plain, "from the origin in the home pose"));
-  std::string text = ReadText(WithoutWorld("far_no_world.yaml", kScene));
   const std::string objects = "\nobjects:\n";
-  ASSERT_NE(text.find(objects), std::string::npos);
-  text.replace(text.find(objects), objects.size(),
-               objects + "  - {name: far_crate, size_m: [1, 1, 1], pose: {xyz_m: [80, 0, 0.5]}}\n");
-  const Workcell w = LoadWorkcell(kUrdf, WriteTempFile("far.yaml", text));
+  const Workcell w = LoadWorkcell(
+      kUrdf, WriteEditedFile(WithoutWorld("far_no_world.yaml", kScene), "far.yaml",
+                             {{objects, objects + "  - {name: far_crate, size_m: [1, 1, 1], "
+                                                  "pose: {xyz_m: [80, 0, 0.5]}}\n"}}));
   EXPECT_GT((w.world_W.max_W - w.world_W.min_W).x(), kLargeDerivedWorldEdge_m);
   EXPECT_TRUE(HasNotice(w, "'far_crate' reaches 80.5"))
       << ::testing::PrintToString(w.notices);
@@ -167,7 +159,7 @@ TEST(SceneWorldCube, ExplicitWorldWins) {
       [&] {
         LoadWorkcell(kData + "three_link_arm.urdf",
                      WriteTempFile("small_world.yaml",
-                                   std::regex_replace(ReadText(kData + "three_link_scene.yaml"),
+                                   std::regex_replace(ReadTextFile(kData + "three_link_scene.yaml"),
                                                       std::regex("edge_m: 4.0"), "edge_m: 0.5")));
       },
       {"'table'", "not inside the world cube"});
@@ -181,11 +173,11 @@ TEST(SceneWorldCube, ExplicitWorldWins) {
 // is refused naming edge_m, one of just that edge loads.
 TEST(SceneWorldCube, WorldOverTheLargestEdgeIsRefused) {
   const std::string urdf = std::regex_replace(
-      ReadText(kData + "three_link_arm.urdf"),
+      ReadTextFile(kData + "three_link_arm.urdf"),
       std::regex("<limit lower=\"0\" upper=\"0.2\" velocity=\"0.1\""),
       "<limit lower=\"-1e9\" upper=\"1e9\" velocity=\"0.1\"");
   const std::string huge = WriteTempFile("huge_slide.urdf", urdf);
-  ASSERT_NE(urdf, ReadText(kData + "three_link_arm.urdf"));
+  ASSERT_NE(urdf, ReadTextFile(kData + "three_link_arm.urdf"));
   const std::string stated = kData + "three_link_scene.yaml";
   const std::string derived = WithoutWorld("huge_slide_no_world.yaml", stated);
   for (const std::string& scene : {stated, derived}) {
@@ -197,7 +189,7 @@ TEST(SceneWorldCube, WorldOverTheLargestEdgeIsRefused) {
   // A prismatic joint mimicking the continuous wrist (no limits) slides without end: the joint
   // it mimics is named, with the remedy.
   const std::string spun = WriteTempFile(
-      "mimic_of_spin.urdf", std::regex_replace(ReadText(kData + "three_link_arm.urdf"),
+      "mimic_of_spin.urdf", std::regex_replace(ReadTextFile(kData + "three_link_arm.urdf"),
                                                std::regex("<mimic joint=\"slide\""),
                                                "<mimic joint=\"spin\""));
   ExpectLoadError([&] { LoadWorkcell(spun, stated); },
@@ -206,22 +198,21 @@ TEST(SceneWorldCube, WorldOverTheLargestEdgeIsRefused) {
                    "'spin' is limited to [-inf, inf]", "joint_limits: {spin: {lower: l"});
   const std::string narrowed = WriteTempFile(
       "huge_slide_narrowed.yaml",
-      ReadText(derived) + "joint_limits: {slide: {lower: 0.0, upper: 0.2}}\n");
+      ReadTextFile(derived) + "joint_limits: {slide: {lower: 0.0, upper: 0.2}}\n");
   const Workcell w = LoadWorkcell(huge, narrowed);
   EXPECT_LT((w.world_W.max_W - w.world_W.min_W).x(), kLargeDerivedWorldEdge_m);
-  std::string far = ReadText(derived);
   const std::string objects = "\nobjects:\n";
-  ASSERT_NE(far.find(objects), std::string::npos);
-  far.replace(far.find(objects), objects.size(),
-              objects + "  - {name: far_marker, size_m: [1, 1, 1], pose: {xyz_m: [2e4, 0, 0]}}\n");
-  const std::string far_scene = WriteTempFile("far_marker.yaml", far);
+  const std::string far_scene = WriteEditedFile(
+      derived, "far_marker.yaml",
+      {{objects,
+        objects + "  - {name: far_marker, size_m: [1, 1, 1], pose: {xyz_m: [2e4, 0, 0]}}\n"}});
   ExpectLoadError([&] { LoadWorkcell(kData + "three_link_arm.urdf", far_scene); },
                   {far_scene + ": world: missing", "over the 10000 m",
                    "'far_marker' reaches 200", "from the middle of the arms' reach"});
   // A slide of 9 km within the limit, whose reach makes the derived cube 18 km: named.
   const std::string long_slide = WriteTempFile(
       "long_slide.urdf",
-      std::regex_replace(ReadText(kData + "three_link_arm.urdf"),
+      std::regex_replace(ReadTextFile(kData + "three_link_arm.urdf"),
                          std::regex("<limit lower=\"0\" upper=\"0.2\" velocity=\"0.1\""),
                          "<limit lower=\"-9000\" upper=\"9000\" velocity=\"0.1\""));
   ExpectLoadError([&] { LoadWorkcell(long_slide, derived); },
@@ -229,7 +220,7 @@ TEST(SceneWorldCube, WorldOverTheLargestEdgeIsRefused) {
                    "prismatic joints of " + long_slide + " above it: '", "up to 9000.01 m)",
                    "give world: {center_m"});
   auto with_edge = [&](const std::string& name, const std::string& edge) {
-    return WriteTempFile(name, std::regex_replace(ReadText(stated), std::regex("edge_m: 4.0"),
+    return WriteTempFile(name, std::regex_replace(ReadTextFile(stated), std::regex("edge_m: 4.0"),
                                                   "edge_m: " + edge));
   };
   ExpectLoadError(

@@ -142,11 +142,12 @@ class FrameBoundObjectTest(unittest.TestCase):
     def test_second_frame_followed_while_the_first_is_unavailable(self):
         # test/data/two_frames_scene.yaml: camera (camera_link), then probe (probe_link). Once
         # camera_link is unavailable (not sent for ~frame_timeout_s), the stop names the camera;
-        # the probe, then moved into the left arm by its frame, must warn (the node stopped
+        # the probe, then moved into the left arm by its frame, must warn (the node used to stop
         # reading frames at the first unavailable one: the probe kept its last pose, clear of
-        # the arms, without a word).
+        # the arms, without a word). With probe_link silent too, the stop names both objects.
         client = MonitorClient(TWO_FRAMES_NODE)
         self.assertTrue(client.wait_connected())
+        self.assertTrue(client.wait_stop(True), 'no ~stop from %s' % TWO_FRAMES_NODE)
         seen = []
 
         def send_probe(xyz_m):
@@ -183,6 +184,16 @@ class FrameBoundObjectTest(unittest.TestCase):
                              'while the camera\'s frame is unavailable; last seen: %s'
                              % self.describe(seen))
         self.assertTrue(report.stop)
+
+        def both_named(report):
+            seen.append(report)
+            return camera_named(report) and report.stop_reason.endswith(
+                "; also unavailable: '%s'" % PROBE)
+        report = client.publish_until(lambda: client.publish_pose(HOME, HOME), both_named,
+                                      TIMEOUT_S)
+        self.assertIsNotNone(report, 'no stop naming both objects with both frames silent; '
+                             'last seen: %s' % self.describe(seen))
+
 
 if __name__ == '__main__':
     rostest.rosrun('arm_collision_monitor', 'frame_bound_object', FrameBoundObjectTest, sys.argv)

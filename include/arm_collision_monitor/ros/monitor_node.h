@@ -85,7 +85,8 @@ class MonitorNode {
   ros::Time ClockNow();
   /// One monitor cycle on the merged input; `start` is when the triggering message was taken.
   void RunCycle(std::chrono::steady_clock::time_point start);
-  /// Moves frame-bound objects to their TF pose; tells the stop policy of the first failure.
+  /// Moves frame-bound objects to their TF poses; tells the stop policy of the objects whose
+  /// frames are unavailable (each keeps its last pose).
   void UpdateBoundObjects(const ros::Time& now);
   /// Copies the policy's decision into the report and logs a change of the stop.
   void TakeStopDecision(bool was_stop);
@@ -189,8 +190,10 @@ class MonitorNode {
   std::uint64_t outside_world_ = 0;
   double largest_step_m_ = 0.0;    ///< largest step motion bound over the run (m)
   std::uint64_t input_jumps_ = 0;  ///< cycles whose step exceeded max_step_m
+  /// Per cycle and frame-bound object: frames not looked up (or poses refused), and frames
+  /// found stale.
   std::uint64_t tf_failures_ = 0;
-  std::uint64_t stale_frames_ = 0;  ///< cycles that found a bound object's frame stale
+  std::uint64_t stale_frames_ = 0;
   std::uint64_t stale_episodes_ = 0;
   SampleWindow cycle_times_s_{kSampleWindow};  ///< the latest cycle times
   /// The latest accepted stamped messages' ages at arrival (ROS time less header.stamp).
