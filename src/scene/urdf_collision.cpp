@@ -339,4 +339,29 @@ void CheckEveryCollisionRead(const std::string& urdf_xml, const urdf::ModelInter
   }
 }
 
+std::string RelativeMeshNotice(const urdf::ModelInterface& model, const std::string& urdf_path) {
+  int count = 0;
+  std::string first;
+  const auto note = [&](const urdf::GeometrySharedPtr& geometry, const std::string& link) {
+    if (!geometry || geometry->type != urdf::Geometry::MESH) return;
+    const std::string& name = static_cast<const urdf::Mesh&>(*geometry).filename;
+    if (name.find("://") != std::string::npos || std::filesystem::path(name).is_absolute()) {
+      return;
+    }
+    if (count++ == 0) first = "'" + name + "' of link '" + link + "'";
+  };
+  for (const auto& [name, link] : model.links_) {
+    for (const urdf::VisualSharedPtr& visual : link->visual_array) note(visual->geometry, name);
+    if (link->visual_array.empty() && link->visual) note(link->visual->geometry, name);
+    for (const urdf::CollisionSharedPtr& c : link->collision_array) note(c->geometry, name);
+    if (link->collision_array.empty() && link->collision) note(link->collision->geometry, name);
+  }
+  if (count == 0) return "";
+  return urdf_path + ": " + std::to_string(count) + " mesh" + (count == 1 ? "" : "es") +
+         " named by a path relative to the URDF's folder (" + first + (count == 1 ? "" : ", ...") +
+         "): the monitor reads " + (count == 1 ? "it" : "them") + ", but rviz's RobotModel and " +
+         "MoveIt, which read robot_description, do not; write package://<package>/<path> (or " +
+         "file:///<absolute path>) to see the robot in rviz";
+}
+
 }  // namespace arm_collision_monitor

@@ -487,6 +487,8 @@ Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_pat
   w.joint_names = w.kinematics.ActuatedJointNames();
   const std::string no_velocity_limit = NoVelocityLimitNotice(w);
   if (!no_velocity_limit.empty()) w.notices.push_back(no_velocity_limit);
+  const std::string relative_meshes = RelativeMeshNotice(*urdf_model, urdf_path);
+  if (!relative_meshes.empty()) w.notices.push_back(relative_meshes);
   w.compatible = ComputeCompatibility(w, compatible_pairs);
   const std::vector<std::string> sampled = SampledConfigurationWarnings(w);
   w.warnings.insert(w.warnings.end(), sampled.begin(), sampled.end());

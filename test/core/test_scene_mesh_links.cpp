@@ -110,6 +110,16 @@ bool SameShape(const Shape& a, const Shape& b) {
   return ba.X_WB.matrix() == bb.X_WB.matrix() && ba.half_extents_m == bb.half_extents_m;
 }
 
+// The workcell's notices but the one on meshes named by paths relative to the URDF's folder,
+// as these tests name them.
+std::vector<std::string> FitNotices(const Workcell& w) {
+  std::vector<std::string> notices;
+  for (const std::string& notice : w.notices) {
+    if (notice.find("named by a path relative") == std::string::npos) notices.push_back(notice);
+  }
+  return notices;
+}
+
 const std::string kOrigin = "<origin xyz=\"0.1 -0.2 0.3\" rpy=\"0.3 0.2 0.1\"/>";
 const Eigen::Isometry3d kX_LC =
     PoseFromXyzRpy(Eigen::Vector3d(0.1, -0.2, 0.3), Eigen::Vector3d(0.3, 0.2, 0.1));
@@ -135,7 +145,36 @@ TEST(SceneMeshLinks, EveryFormatLoadsEnclosedAndAlike) {
     ASSERT_EQ(ShapesOf(w, link).size(), 1u) << names[k];
     EXPECT_TRUE(SameShape(ShapesOf(w, link)[0], ShapesOf(w, "link0")[0])) << names[k];
   }
-  EXPECT_EQ(w.notices.size(), names.size());
+  EXPECT_EQ(FitNotices(w).size(), names.size());
+  // rviz's RobotModel cannot read relative mesh paths: a notice counts them.
+  ASSERT_EQ(w.notices.size(), names.size() + 1);
+  for (const std::string& part :
+       std::vector<std::string>{files.urdf + ": 4 meshes named by a path relative to the URDF's "
+                                             "folder ('l_binary.stl' of link 'link0', ...)",
+                                "rviz's RobotModel", "package://"}) {
+    EXPECT_NE(w.notices.back().find(part), std::string::npos) << part << w.notices.back();
+  }
+}
+
+// Absolute paths and URLs give no such notice; a relative <visual> mesh counts too.
+TEST(SceneMeshLinks, RelativeMeshPathsAreNoticedForRviz) {
+  const std::string dir = FreshDir("relative_paths");
+  WriteBytes(dir + "box.stl", BinaryStl(BoxMesh(Eigen::Vector3d(0.2, 0.1, 0.1))));
+  const auto relative_notices = [](const Workcell& w) {
+    return w.notices.size() - FitNotices(w).size();
+  };
+  const Files absolute = WriteRobot(
+      dir, {MeshCollision(dir + "box.stl"), MeshCollision("file://" + dir + "box.stl")});
+  EXPECT_EQ(relative_notices(LoadWorkcell(absolute.urdf, absolute.scene, CacheIn(dir))), 0u);
+  const Files visual = WriteRobot(
+      dir, {"<visual><geometry><mesh filename=\"box.stl\"/></geometry></visual>" +
+            MeshCollision(dir + "box.stl")});
+  const Workcell w = LoadWorkcell(visual.urdf, visual.scene, CacheIn(dir));
+  ASSERT_EQ(relative_notices(w), 1u);
+  EXPECT_NE(w.notices.back().find("1 mesh named by a path relative to the URDF's folder "
+                                  "('box.stl' of link 'link0'): the monitor reads it"),
+            std::string::npos)
+      << w.notices.back();
 }
 
 TEST(SceneMeshLinks, ScaleAndOriginAreHonoured) {
@@ -183,7 +222,7 @@ TEST(SceneMeshLinks, MeshFitKindsEncloseTheNonConvexShape) {
     } else if (kind == "tighter") {
       // Whichever it keeps, the report names it and the kind.
       ASSERT_EQ(shapes.size(), 1u);
-      ASSERT_EQ(w.notices.size(), 1u);
+      ASSERT_EQ(FitNotices(w).size(), 1u);
       const std::string fitted = std::holds_alternative<Box>(shapes[0]) ? "1 box" : "1 capsule";
       EXPECT_NE(w.notices[0].find("mesh fit: " + fitted + " (tighter) ("), std::string::npos)
           << w.notices[0];
@@ -191,7 +230,7 @@ TEST(SceneMeshLinks, MeshFitKindsEncloseTheNonConvexShape) {
     } else {
       ASSERT_EQ(shapes.size(), 3u);
       for (int k = 0; k < 3; ++k) EXPECT_GE(w.FindPrimitive("link0/" + std::to_string(k)), 0);
-      ASSERT_EQ(w.notices.size(), 1u);
+      ASSERT_EQ(FitNotices(w).size(), 1u);
       EXPECT_NE(w.notices[0].find("3 capsules (capsules:3)"), std::string::npos) << w.notices[0];
       // A chain's volume is the sum of its capsules', which the report says.
       EXPECT_NE(w.notices[0].find(" (the capsules' volumes summed: overlaps count twice)"),
@@ -205,7 +244,7 @@ TEST(SceneMeshLinks, MeshFitKindsEncloseTheNonConvexShape) {
   const Files files = WriteRobot(dir, {MeshCollision("ball.obj", kOrigin)}, "mesh_fit: capsules:3");
   const Workcell w = LoadWorkcell(files.urdf, files.scene, CacheIn(dir));
   EXPECT_EQ(ShapesOf(w, "link0").size(), 1u);
-  ASSERT_EQ(w.notices.size(), 1u);
+  ASSERT_EQ(FitNotices(w).size(), 1u);
   EXPECT_NE(w.notices[0].find("mesh fit: 1 capsule (capsules:3: no chain is smaller) (radius "),
             std::string::npos)
       << w.notices[0];
@@ -219,7 +258,7 @@ TEST(SceneMeshLinks, ReportHasOneLinePerMeshWithTheExcessVolume) {
   WriteBytes(dir + "open.obj", Obj(open_box));
   const Files files = WriteRobot(dir, {MeshCollision("closed.stl"), MeshCollision("open.obj")});
   const Workcell w = LoadWorkcell(files.urdf, files.scene, CacheIn(dir));
-  ASSERT_EQ(w.notices.size(), 2u);
+  ASSERT_EQ(FitNotices(w).size(), 2u);
   for (const std::string& part :
        std::vector<std::string>{files.urdf, "link 'link0'", "closed.stl", "mesh fit: 1 capsule",
                                 "fitted/mesh volume "}) {
@@ -337,7 +376,7 @@ TEST(SceneMeshLinks, UnwritableCacheIsANotice) {
   options.mesh_fit_cache_dir = dir + "a_file/cache";  // below a regular file: never creatable
   const Workcell w = LoadWorkcell(files.urdf, files.scene, options);
   EXPECT_EQ(w.mesh_fits.computed, 1);
-  ASSERT_EQ(w.notices.size(), 2u);
+  ASSERT_EQ(FitNotices(w).size(), 2u);
   EXPECT_NE(w.notices[1].find("mesh fit cache " + dir + "a_file/cache not written"),
             std::string::npos)
       << w.notices[1];
