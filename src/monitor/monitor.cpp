@@ -517,12 +517,22 @@ std::string Monitor::DescribeRefusal(const Eigen::Ref<const Eigen::VectorXd>& q)
     return std::to_string(q.size()) + " positions for the model's " + std::to_string(n) +
            " joints";
   }
+  // Update unwinds a turning joint's reading by the turns it keeps (Impl::Unwind): the last
+  // Update's, for its q.
+  const bool is_unwound = impl_->turns_next.size() == n && !model.turning_links.empty();
   for (Eigen::Index i = 0; i < n; ++i) {
-    if (q[i] >= model.q_lower[i] && q[i] <= model.q_upper[i]) continue;
+    const bool is_unlimited = model.q_upper[i] == kMaxUnlimitedPosition_rad;
+    const double turns = is_unwound && is_unlimited ? impl_->turns_next[i] : 0.0;
+    const double x = q[i] + turns;
+    if (x >= model.q_lower[i] && x <= model.q_upper[i]) continue;
     std::ostringstream text;
     text << "joint '" << model.workcell->joint_names[static_cast<std::size_t>(i)] << "' at "
          << q[i];
-    if (std::isfinite(q[i])) {
+    if (turns != 0.0) text << " (" << x << " with the whole turns unwound so far)";
+    if (std::isfinite(x) && is_unlimited) {
+      text << ", beyond the +/-" << kMaxUnlimitedPosition_rad
+           << " rad a joint without limits may take (a corrupt reading)";
+    } else if (std::isfinite(x)) {
       text << ", outside its limits [" << model.q_lower[i] + kJointLimitMargin << ", "
            << model.q_upper[i] - kJointLimitMargin << "] by more than their margin "
            << kJointLimitMargin;

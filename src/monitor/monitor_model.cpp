@@ -128,10 +128,10 @@ void MonitorModel::BuildPrimitives() {
 
 void MonitorModel::BuildStartPose() {
   // Without a limit (a continuous joint, unless the scene file's joint_limits give it soft
-  // ones): the largest finite doubles, so that the limits alone also refuse NaN and infinities
-  // (CheckInput).
-  q_lower = Eigen::VectorXd::Constant(kinematics->q_size(), std::numeric_limits<double>::lowest());
-  q_upper = Eigen::VectorXd::Constant(kinematics->q_size(), std::numeric_limits<double>::max());
+  // ones): +/-kMaxUnlimitedPosition_rad, so that the limits alone also refuse NaN, infinities
+  // and absurd readings (CheckInput).
+  q_lower = Eigen::VectorXd::Constant(kinematics->q_size(), -kMaxUnlimitedPosition_rad);
+  q_upper = Eigen::VectorXd::Constant(kinematics->q_size(), kMaxUnlimitedPosition_rad);
   for (int link = 1; link < kinematics->link_count(); ++link) {
     const JointSpec& joint = kinematics->joint(link);
     if (joint.q_index < 0) continue;

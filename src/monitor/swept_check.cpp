@@ -45,10 +45,13 @@ bool Monitor::Impl::Unwind(const Eigen::Ref<const Eigen::VectorXd>& q) {
     const JointSpec& joint = model.kinematics->joint(link);
     const int i = joint.q_index;
     double turns = turns_good[i];
-    // The move in q_good's turns: 0 for the same reading (an idle cycle stays idle). NaN and
-    // infinities stay, for CheckInput to refuse; so does the first cycle's (no q_good yet).
+    // The move in q_good's turns: 0 for the same reading (an idle cycle stays idle). A reading
+    // outside the limits (NaN, infinities, beyond kMaxUnlimitedPosition_rad: a turn count
+    // taken from it would carry over to every later reading) stays, for CheckInput to refuse;
+    // so does the first cycle's (no q_good yet).
     const double move = (q[i] + turns) - q_good[i];
-    if (has_good && std::abs(move) > 0.5 * kTurn && std::isfinite(move)) {
+    const bool is_within = q[i] >= model.q_lower[i] && q[i] <= model.q_upper[i];
+    if (has_good && is_within && std::abs(move) > 0.5 * kTurn) {
       const double wrap = kTurn * std::round(move / kTurn);
       if (IsWithinVelocityLimit(joint, std::abs(move - wrap))) {
         // Either way round within the bound (after a pause of over half a turn at the top

@@ -356,6 +356,34 @@ void CheckPrismaticTravel(const KinematicModel& model, const std::string& urdf_p
   }
 }
 
+// Refuses a revolute or continuous mimic joint whose position, over the positions the monitor
+// accepts of the joint it mimics (its limits widened by kJointLimitMargin, or
+// +/-kMaxUnlimitedPosition_rad), can pass kMaxMimicPosition: an absurd multiplier or offset
+// (1e308) whose poses lose all precision, then overflow to NaN and warn of nothing.
+void CheckMimicRange(const KinematicModel& model, const std::string& urdf_path) {
+  for (int link = 1; link < model.link_count(); ++link) {
+    const JointSpec& joint = model.joint(link);
+    const JointSpec* target = model.MimickedJoint(joint);
+    if (target == nullptr || joint.type == JointType::kPrismatic) continue;  // Travel_m's
+    const double lower = std::isfinite(target->lower) ? target->lower - kJointLimitMargin
+                                                      : -kMaxUnlimitedPosition_rad;
+    const double upper = std::isfinite(target->upper) ? target->upper + kJointLimitMargin
+                                                      : kMaxUnlimitedPosition_rad;
+    const double m = joint.mimic_multiplier;
+    const double reach = std::max(std::abs(m * lower + joint.mimic_offset),
+                                  std::abs(m * upper + joint.mimic_offset));
+    if (reach <= kMaxMimicPosition) continue;
+    char text[400];
+    std::snprintf(text, sizeof(text),
+                  " (multiplier %.6g, offset %.6g) reaches %.6g rad over the positions of '%s' "
+                  "the monitor accepts ([%.6g, %.6g]), over the %.6g rad a mimic joint may take",
+                  m, joint.mimic_offset, reach, target->name.c_str(), lower, upper,
+                  kMaxMimicPosition);
+    throw LoadError(urdf_path + ": mimic joint '" + joint.name + "'" + text +
+                    ": its poses would lose all precision, then overflow; check its <mimic>");
+  }
+}
+
 // The start-up notice of the actuated joints that can move but have no velocity limit (velocity
 // 0, or a continuous joint without <limit>), which the monitor can only take as of unknown
 // speed; "" when every such joint has one.
@@ -439,6 +467,7 @@ Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_pat
   scene_sections::ReadJointLimits(scene["joint_limits"], Where{scene_path, "joint_limits"},
                                   &w.kinematics);
   CheckPrismaticTravel(w.kinematics, urdf_path);
+  CheckMimicRange(w.kinematics, urdf_path);
   w.joint_defaults = scene_sections::ReadJointDefaults(
       scene["joint_defaults"], Where{scene_path, "joint_defaults"}, w.kinematics);
   // Without world:, every object fits until the cube is derived from the finished workcell.

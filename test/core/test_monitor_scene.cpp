@@ -391,9 +391,19 @@ TEST(MonitorScene, EveryJointValueIsCheckedInEveryPosition) {
         EXPECT_EQ(status_with(bad), InputStatus::kNonFinite) << what << " = " << bad;
       }
       if (joint.type == JointType::kContinuous) {
+        // Any number of turns up to kMaxUnlimitedPosition_rad; beyond, a corrupt reading.
         ++continuous;
-        EXPECT_EQ(status_with(1e300), InputStatus::kOk) << what;
-        EXPECT_EQ(status_with(-std::numeric_limits<double>::max()), InputStatus::kOk) << what;
+        EXPECT_EQ(status_with(kMaxUnlimitedPosition_rad), InputStatus::kOk) << what;
+        EXPECT_EQ(status_with(-kMaxUnlimitedPosition_rad), InputStatus::kOk) << what;
+        for (const double absurd : {1e300, -std::numeric_limits<double>::max()}) {
+          EXPECT_EQ(status_with(absurd), InputStatus::kOutOfLimits) << what;
+          Eigen::VectorXd q = good;
+          q[joint.q_index] = absurd;
+          EXPECT_NE(monitor.DescribeRefusal(q).find(
+                        "beyond the +/-1e+09 rad a joint without limits may take"),
+                    std::string::npos)
+              << monitor.DescribeRefusal(q);
+        }
         continue;
       }
       EXPECT_EQ(status_with(joint.upper + 2.0 * kJointLimitMargin), InputStatus::kOutOfLimits)

@@ -952,25 +952,60 @@ TEST_F(WrappedReadings, WithoutAVelocityLimitOrTimesAreTakenAsGiven) {
   }
 }
 
+/// URDF text of a link on left_link1 whose joint mimics left_joint1 by `multiplier`.
+std::string SpinnerMimic(const std::string& multiplier) {
+  return "  <link name=\"left_spinner\"/>\n"
+         "  <joint name=\"left_spinner_joint\" type=\"revolute\">\n"
+         "    <parent link=\"left_link1\"/><child link=\"left_spinner\"/>\n"
+         "    <axis xyz=\"0 0 1\"/>\n"
+         "    <limit lower=\"-100\" upper=\"100\" velocity=\"1.0\" effort=\"1\"/>\n"
+         "    <mimic joint=\"left_joint1\" multiplier=\"" +
+         multiplier + "\"/>\n  </joint>\n";
+}
+
 // A mimic joint that follows the continuous joint by half its angle would not come back to its
 // pose after a whole turn of its leader: the leader's readings are then never unwound (the
 // 2 pi step across the wrap is swept as given); by twice the angle it would, and they are.
 TEST_F(WrappedReadings, NotUnwoundWhereAMimicJointFollowsByOtherThanWholeTurns) {
   for (const auto& [multiplier, is_unwound] : {std::pair{"0.5", false}, std::pair{"2", true}}) {
-    const std::string mimic =
-        std::string("  <link name=\"left_spinner\"/>\n"
-                    "  <joint name=\"left_spinner_joint\" type=\"revolute\">\n"
-                    "    <parent link=\"left_link1\"/><child link=\"left_spinner\"/>\n"
-                    "    <axis xyz=\"0 0 1\"/>\n"
-                    "    <limit lower=\"-100\" upper=\"100\" velocity=\"1.0\" effort=\"1\"/>\n"
-                    "    <mimic joint=\"left_joint1\" multiplier=\"") +
-        multiplier + "\"/>\n  </joint>\n";
     const auto wc = Load(std::string("continuous_joint1_mimic_") + (is_unwound ? "2" : "half"),
-                         "1.0", mimic);
+                         "1.0", SpinnerMimic(multiplier));
     Monitor monitor(wc, Unlimited());
     const Crossing crossing = CrossPi(*wc, &monitor);
     EXPECT_EQ(crossing.largest_step_m < 0.01, is_unwound) << "multiplier " << multiplier;
     EXPECT_EQ(crossing.warns, !is_unwound) << "multiplier " << multiplier;
+    ExpectValid(monitor);
+  }
+}
+
+// A reading beyond kMaxUnlimitedPosition_rad (a corrupt message: 1e308 is finite) is refused,
+// named, and takes no turns: the reading a whole turn off the last good one is unwound to it
+// after them, and warns of the block again. (A red team's 1e308 then 1.7e308 were accepted: the
+// turns kept from them, or with a x2 mimic the NaN poses of 2e308 rad, left every later cycle
+// clear.)
+TEST_F(WrappedReadings, AbsurdReadingsAreRefusedAndTakeNoTurns) {
+  for (const std::string& more_urdf : {std::string(), SpinnerMimic("2")}) {
+    const auto wc = Load(more_urdf.empty() ? "continuous_joint1_absurd"
+                                           : "continuous_joint1_absurd_mimic",
+                         "1.0", more_urdf);
+    Monitor monitor(wc, MonitorOptions{});
+    ASSERT_TRUE(WarnsWith(*wc, monitor.Update(Pose(*wc, 0.0), 0.0).warnings, "block"));
+    double t_s = 0.0;
+    for (const double absurd : {1e308, 1.7e308, -1e308, 2e9}) {
+      const Eigen::VectorXd q = Pose(*wc, absurd);
+      const CycleReport& refused = monitor.Update(q, t_s += 0.05);
+      EXPECT_EQ(refused.input, InputStatus::kOutOfLimits) << absurd;
+      EXPECT_TRUE(refused.stop);
+      const std::string why = monitor.DescribeRefusal(q);
+      EXPECT_NE(why.find("joint 'left_joint1' at "), std::string::npos) << why;
+      EXPECT_NE(why.find(", beyond the +/-1e+09 rad a joint without limits may take"),
+                std::string::npos)
+          << why;
+    }
+    const CycleReport& back = monitor.Update(Pose(*wc, kTurn), t_s += 0.05);
+    EXPECT_EQ(back.input, InputStatus::kOk);
+    EXPECT_LT(back.step_motion_m, 1e-9);
+    EXPECT_TRUE(WarnsWith(*wc, back.warnings, "block"));
     ExpectValid(monitor);
   }
 }

@@ -231,6 +231,35 @@ TEST(SceneWorldCube, WorldOverTheLargestEdgeIsRefused) {
             5e3);
 }
 
+// A revolute mimic joint whose position over the accepted positions of the joint it mimics
+// passes kMaxMimicPosition (an absurd multiplier: its poses lose all precision, then overflow
+// to NaN, which warned of nothing) is refused, naming it; a x2 mimic of the continuous wrist
+// (up to 2e9 rad) loads.
+TEST(SceneWorldCube, MimicJointsOfAbsurdRangeAreRefused) {
+  const std::string scene = kData + "three_link_scene.yaml";
+  const auto revolute_mimic = [](const std::string& name, const std::string& mimic) {
+    return WriteEditedFile(kData + "three_link_arm.urdf", name,
+                           {{"<joint name=\"finger_mimic\" type=\"prismatic\">",
+                             "<joint name=\"finger_mimic\" type=\"revolute\">"},
+                            {"<mimic joint=\"slide\" multiplier=\"-1\" offset=\"0\"/>", mimic}});
+  };
+  const std::string absurd =
+      revolute_mimic("mimic_1e308.urdf", "<mimic joint=\"slide\" multiplier=\"1e308\"/>");
+  ExpectLoadError([&] { LoadWorkcell(absurd, scene); },
+                  {absurd + ": mimic joint 'finger_mimic' (multiplier 1e+308, offset 0) reaches "
+                            "2.1e+307 rad over the positions of 'slide' the monitor accepts "
+                            "([-0.01, 0.21]), over the 1e+12 rad a mimic joint may take"});
+  const std::string twice =
+      revolute_mimic("mimic_spin_x2.urdf", "<mimic joint=\"spin\" multiplier=\"2\"/>");
+  EXPECT_EQ(LoadWorkcell(twice, scene).kinematics.MimicJointNames(),
+            std::vector<std::string>{"finger_mimic"});
+  const std::string geared = revolute_mimic(
+      "mimic_spin_x2000.urdf", "<mimic joint=\"spin\" multiplier=\"2000\" offset=\"1\"/>");
+  ExpectLoadError([&] { LoadWorkcell(geared, scene); },
+                  {"mimic joint 'finger_mimic' (multiplier 2000, offset 1) reaches 2e+12 rad "
+                   "over the positions of 'spin' the monitor accepts ([-1e+09, 1e+09])"});
+}
+
 TEST(SceneWorldCube, ReachSpheresOnlyForLinksBelowAMovingJoint) {
   const Workcell w = LoadWorkcell(kData + "three_link_arm.urdf", kData + "three_link_scene.yaml");
   const WorkcellReach reach = ComputeWorkcellReach(w);

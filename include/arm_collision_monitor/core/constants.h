@@ -175,6 +175,18 @@ inline constexpr double kTurn = 2.0 * kPi;
 /// limits by a few milliradians; a larger excursion means a corrupt or mis-ordered message.
 inline constexpr double kJointLimitMargin = 0.01;
 
+/// The largest magnitude a position of a joint without limits (a continuous joint) may take,
+/// rad: beyond it the input is refused as corrupt (a bit flip can make 1e308 of a reading). 1e9
+/// rad keeps a pose's rounding under 0.2 um a metre of lever, and takes a joint unwound at one
+/// turn a second five years to reach.
+inline constexpr double kMaxUnlimitedPosition_rad = 1e9;
+
+/// The largest magnitude a mimic joint's position may reach over the positions the monitor
+/// accepts of the joint it mimics (rad, or m for a prismatic mimic, whose travel is also held to
+/// kMaxWorldEdge_m): a thousand times kMaxUnlimitedPosition_rad. A larger one (an absurd
+/// multiplier or offset) is refused at start-up: its poses lose all precision, then overflow.
+inline constexpr double kMaxMimicPosition = 1e3 * kMaxUnlimitedPosition_rad;
+
 /// A step beyond max_step_m is no jump when the time since the last accepted sample shows every
 /// joint moved at most this many times its velocity limit allows (a planned path sampled
 /// sparsely, a slow publisher): twice, so that stamps jittering by up to half the step's time

@@ -66,7 +66,7 @@ struct MonitorModel {
   double world_edge_m = 0.0;      ///< the world box's longest edge
   double speed_tol_gain_s = 0.0;  ///< reaction + stopping time when speed-scaled, else 0
   /// Joint limits by q index, kJointLimitMargin included; always finite (a joint without limits:
-  /// the lowest and largest finite doubles), so that they alone refuse NaN and infinities.
+  /// +/-kMaxUnlimitedPosition_rad), so that they alone refuse NaN, infinities and absurd values.
   Eigen::VectorXd q_lower, q_upper;
   /// KinematicModel::TurningLinks: joints a driver may report wrapped (Monitor::Update).
   std::vector<int> turning_links;
