@@ -492,12 +492,11 @@ void Monitor::Impl::BuildBroadPhase() {
   const std::uint32_t n = model.primitive_count;
   in_broad_phase.assign(n, 0);
   broad_phase = MakeBroadPhase(model.options.broad_phase);
-  cache = PairCache(n, model.options.index_slack_m, model.world_edge_m);
+  cache = PairCache(n, model.max_tested_pairs, model.options.index_slack_m, model.world_edge_m);
   for (PrimitiveId id = 0; id < n; ++id) {
     if (ShouldBeInBroadPhase(id)) AddToBroadPhase(id);
   }
-  const std::size_t max_pairs = static_cast<std::size_t>(n) * (n > 0 ? n - 1 : 0) / 2;
-  report.warnings.reserve(max_pairs);
+  report.warnings.reserve(model.max_tested_pairs);
   report.stop = true;  // nothing is known before the first good input
   total = BroadPhaseCounters{};
   broad_phase->ResetCounters();

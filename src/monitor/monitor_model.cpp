@@ -117,13 +117,24 @@ void MonitorModel::BuildPrimitives() {
     objects[o].X_OW_start = spec.X_WO_start.inverse(Eigen::Isometry);
     objects[o].is_attachable = spec.is_attachable;
     objects[o].is_frame_bound = !spec.frame.empty();
-    for (PrimitiveId id = 0; id < n; ++id) {
-      if (object_of[id] == static_cast<int>(o)) objects[o].prims.push_back(id);
-    }
-    // Resting objects are static (never tested against other statics) until held; only the
-    // frame-bound ones move on their own.
-    for (const PrimitiveId id : objects[o].prims) is_moving_start[id] = objects[o].is_frame_bound;
   }
+  // Resting objects are static (never tested against other statics) until held; only the
+  // frame-bound ones move on their own.
+  for (PrimitiveId id = 0; id < n; ++id) {
+    if (object_of[id] < 0) continue;
+    Object& object = objects[object_of[id]];
+    object.prims.push_back(id);
+    is_moving_start[id] = object.is_frame_bound;
+  }
+  // Two primitives that never move (links fixed to the root, objects no gripper may hold) are
+  // never tested: the per-cycle buffers are reserved for the other pairs (all pairs would take
+  // gigabytes for 20,000 resting boxes).
+  std::size_t may_move = 0;
+  for (PrimitiveId id = 0; id < n; ++id) {
+    const int o = object_of[id];
+    may_move += is_moving_start[id] || is_live(id) || (o >= 0 && objects[o].is_attachable);
+  }
+  max_tested_pairs = may_move * (may_move > 0 ? may_move - 1 : 0) / 2 + may_move * (n - may_move);
 }
 
 void MonitorModel::BuildStartPose() {

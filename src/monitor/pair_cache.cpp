@@ -8,10 +8,10 @@
 
 namespace arm_collision_monitor {
 
-PairCache::PairCache(std::uint32_t primitive_count, double slack_m, double world_edge_m)
+PairCache::PairCache(std::uint32_t primitive_count, std::size_t max_pairs, double slack_m,
+                     double world_edge_m)
     : slack_m_(slack_m), world_edge_m_(world_edge_m) {
   const std::size_t n = primitive_count;
-  const std::size_t max_pairs = n * (n > 0 ? n - 1 : 0) / 2;
   indexed_W_.resize(n);
   disp_m_.assign(n, 0.0);
   indexed_f_.resize(n);

@@ -105,7 +105,7 @@ void Monitor::Impl::InitSwept() {
   swept.grown_by_id_W.Reserve(n);
   swept.leaver_words.assign((n + 63) / 64, 0);
   swept.q_kinematics = model.q_start;
-  swept.pairs.reserve(static_cast<std::size_t>(n) * (n > 0 ? n - 1 : 0) / 2);
+  swept.pairs.reserve(model.max_tested_pairs);
   swept.start_box_W.assign(n, Aabb{});
   swept.start_box_step.assign(n, 0);
   CheckStepTolerance();

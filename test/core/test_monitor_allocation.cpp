@@ -5,6 +5,7 @@
 #include <new>
 
 #include "allocation_counter.h"
+#include "arm_collision_monitor/monitor/monitor_model.h"
 #include "test_monitor_util.h"
 
 
@@ -112,6 +113,45 @@ TEST_P(MonitorAllocation, SceneChangesDoNotAllocate) {
   EXPECT_EQ(allocations, 0u) << BroadPhaseMethodName(GetParam());
   std::string validate_error;
   EXPECT_TRUE(monitor.Validate(&validate_error)) << validate_error;
+}
+
+// The per-cycle pair buffers are reserved for the pairs with a primitive that may move (a link
+// below a moving joint, an attachable or frame-bound object, a live slot): two resting ones are
+// never tested. 2,000 more resting boxes add 2,000 pairs per such primitive, not 2 million (all
+// pairs of 20,000 boxes took 5 GB at start-up).
+TEST(MonitorModelReservation, PairBuffersCountPairsWithAPrimitiveThatMayMove) {
+  const auto expected_pairs = [](const MonitorModel& model) {
+    const Workcell& w = *model.workcell;
+    std::size_t may_move = 0;
+    for (PrimitiveId id = 0; id < model.primitive_count; ++id) {
+      const PrimitiveSpec& p = w.primitives[id];
+      const ObjectSpec* o = p.object_index >= 0 ? &w.objects[p.object_index] : nullptr;
+      may_move += (p.link_index >= 0 && !p.is_static) || model.is_live(id) ||
+                  (o != nullptr && (o->is_attachable || !o->frame.empty()));
+    }
+    const std::size_t n = model.primitive_count;
+    return may_move * (may_move - 1) / 2 + may_move * (n - may_move);
+  };
+  const MonitorModel bundled(test::LoadBundledWorkcell(), MonitorOptions{});
+  EXPECT_EQ(bundled.max_tested_pairs, expected_pairs(bundled));
+  std::string boxes;
+  for (int k = 0; k < 2000; ++k) {
+    boxes += "  - {name: crate" + std::to_string(k) + ", size_m: [0.01, 0.01, 0.01], pose: " +
+             "{xyz_m: [" + std::to_string(-2.9 + 0.02 * (k % 40)) + ", " +
+             std::to_string(-1.5 + 0.05 * (k / 40)) + ", 0.02]}}\n";
+  }
+  const MonitorModel crowded(test::LoadBundledSceneEdited("crates", [&](std::string* scene) {
+                               const std::string objects = "\nobjects:\n";
+                               scene->insert(scene->find(objects) + objects.size(), boxes);
+                             }),
+                             MonitorOptions{});
+  EXPECT_EQ(crowded.max_tested_pairs, expected_pairs(crowded));
+  const std::size_t may_move = (crowded.max_tested_pairs - bundled.max_tested_pairs) / 2000;
+  EXPECT_EQ(crowded.max_tested_pairs, bundled.max_tested_pairs + 2000 * may_move);
+  // About 150 may move here (the arms, the grip variants, two boxes, the camera, 128 live slots).
+  EXPECT_LT(may_move, 200u);
+  EXPECT_LT(crowded.max_tested_pairs, std::size_t{crowded.primitive_count} *
+                                          (crowded.primitive_count - 1) / 2 / 5);
 }
 
 INSTANTIATE_TEST_SUITE_P(AllBroadPhases, MonitorAllocation,

@@ -296,6 +296,38 @@ TEST(MonitorMotionBounds, LargestBoundOverUndominatedEqualsLargestOverAll) {
   }
 }
 
+// Past MotionBounds::kMaxDominanceSearch primitives with levers none is left out, and the
+// largest bound is still the largest of all (and just below, with the search).
+TEST(MonitorMotionBounds, LargestBoundOfManyPrimitivesIsTheLargestOfAll) {
+  const auto wc = test::LoadBundledWorkcell();
+  const KinematicModel& model = wc->kinematics;
+  const test::JointLimits limits = test::LimitsOf(*wc);
+  std::mt19937_64 rng(test::PrintSeed(kSeed + 11));
+  std::uniform_real_distribution<double> offset(-0.2, 0.2);
+  std::vector<int> moving_links;
+  for (int link = 1; link < model.link_count(); ++link) {
+    if (model.is_moving(link)) moving_links.push_back(link);
+  }
+  for (const std::size_t count :
+       {MotionBounds::kMaxDominanceSearch, MotionBounds::kMaxDominanceSearch + 44}) {
+    MotionBounds bounds(model, static_cast<std::uint32_t>(count));
+    for (PrimitiveId id = 0; id < count; ++id) {
+      const Eigen::Vector3d p(offset(rng), offset(rng), offset(rng));
+      bounds.SetCarrier(id, moving_links[id % moving_links.size()], true,
+                        Capsule{p, p + Eigen::Vector3d(0.0, 0.0, 0.1), 0.02});
+    }
+    for (int k = 0; k < 50; ++k) {
+      bounds.SetJointMotion(test::RandomQ(limits, &rng), test::RandomQ(limits, &rng));
+      const double largest_m = bounds.ComputeLargestBound_m();
+      double expected_m = 0.0;
+      for (PrimitiveId id = 0; id < count; ++id) {
+        expected_m = std::max(expected_m, bounds.ComputeBound_m(id));
+      }
+      ASSERT_EQ(largest_m, expected_m) << count << " primitives, motion " << k;
+    }
+  }
+}
+
 // A NaN joint motion makes the largest bound NaN whichever primitive it reaches, before or
 // after the others in the undominated set: the first arm's joint (its primitives come first)
 // and the last joint.

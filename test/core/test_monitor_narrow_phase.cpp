@@ -48,7 +48,7 @@ struct PairScene {
     options.reserve_primitives = static_cast<std::uint32_t>(shapes_W.size());
     broad_phase = MakeBroadPhase(options);
     const auto n = static_cast<std::uint32_t>(shapes_W.size());
-    cache = PairCache(n, 0.0, 2.0 * kWorldEdge_m);
+    cache = PairCache(n, std::size_t{n} * (n - 1) / 2, 0.0, 2.0 * kWorldEdge_m);
     for (PrimitiveId id = 0; id < n; ++id) {
       const bool is_moving = id % 2 == 0;
       broad_phase->Add(id, ComputeAabb(shapes_W[id]), tol_m[id] + kIndexGrowth_m,

@@ -86,7 +86,7 @@ struct RandomScene {
     options.min_cell_size_m = 0.03 + slack_m;
     options.reserve_primitives = n;
     broad_phase = MakeBroadPhase(options);
-    cache = PairCache(n, slack_m, kWorldEdge_m);
+    cache = PairCache(n, std::size_t{n} * (n - 1) / 2, slack_m, kWorldEdge_m);
     for (std::uint32_t id = 0; id < n; ++id) Add(id);
   }
   double IndexTolerance(PrimitiveId id) const {
@@ -193,7 +193,7 @@ void ExpectMatchesBruteForce(const RandomScene& scene,
 }
 
 TEST(MonitorPairCache, SlackRuleAndReindexList) {
-  PairCache cache(2, 0.1, kWorldEdge_m);
+  PairCache cache(2, 1, 0.1, kWorldEdge_m);
   const Capsule c0 = CapsuleAt(Eigen::Vector3d(1, 1, 1), Eigen::Vector3d(1.2, 1, 1), 0.05);
   cache.SetIndexed(0, c0);
   EXPECT_TRUE(cache.is_stale());
@@ -218,7 +218,7 @@ TEST(MonitorPairCache, SlackRuleAndReindexList) {
 }
 
 TEST(MonitorPairCache, SkipTestMarginAndNaN) {
-  PairCache cache(1, 0.0, kWorldEdge_m);
+  PairCache cache(1, 0, 0.0, kWorldEdge_m);
   const double margin_m = cache.BoundMargin_m(0.5);
   EXPECT_GT(margin_m, 0.0);
   EXPECT_TRUE(cache.IsClear(0.5, 0.1, 0.4 - 2.0 * margin_m));

@@ -64,6 +64,8 @@ struct MonitorModel {
   PrimitiveId first_live_primitive = 0;  ///< slots: first_live_primitive .. primitive_count - 1
   int first_live_object = 0;             ///< their objects: first_live_object .. (one per slot)
   double world_edge_m = 0.0;      ///< the world box's longest edge
+  /// The pairs a cycle may test: all but those of two primitives that never move.
+  std::size_t max_tested_pairs = 0;
   double speed_tol_gain_s = 0.0;  ///< reaction + stopping time when speed-scaled, else 0
   /// Joint limits by q index, kJointLimitMargin included; always finite (a joint without limits:
   /// +/-kMaxUnlimitedPosition_rad), so that they alone refuse NaN, infinities and absurd values.

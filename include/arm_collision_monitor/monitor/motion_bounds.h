@@ -110,6 +110,9 @@ class MotionBounds {
   /// (independent chains of additions, in each primitive's lever order: bit for bit its
   /// ComputeBound_m), leaving the lever sums of PairBound_m as they were.
   double ComputeLargestBound_m();
+  /// The most primitives with levers among which the undominated ones are searched; with more,
+  /// all are kept.
+  static constexpr std::size_t kMaxDominanceSearch = 256;
   /// The bound ComputeBound_m(id) returned last (m).
   double bound_m(PrimitiveId id) const { return LeverSums(id)[lever_count_[id]]; }
   /// After ComputeBound_m of both (of those with levers): how far a and b can have moved

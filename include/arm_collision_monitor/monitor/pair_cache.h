@@ -51,9 +51,11 @@ struct KeptPair {
 class PairCache {
  public:
   PairCache() = default;
-  /// `slack_m`: MonitorOptions::index_slack_m; `world_edge_m`: the longest edge of the world box,
-  /// the length scale of the rounding margin (BoundMargin_m).
-  PairCache(std::uint32_t primitive_count, double slack_m, double world_edge_m);
+  /// `max_pairs`: the most pairs the broad phase can report at once (MonitorModel::
+  /// max_tested_pairs); `slack_m`: MonitorOptions::index_slack_m; `world_edge_m`: the longest
+  /// edge of the world box, the length scale of the rounding margin (BoundMargin_m).
+  PairCache(std::uint32_t primitive_count, std::size_t max_pairs, double slack_m,
+            double world_edge_m);
 
   // --- the index slack, per primitive ----------------------------------------------------
   /// Primitive `id` was (re-)added to the index at `shape_W`: its indexed copy; the pair set is
