@@ -323,10 +323,26 @@ void CheckEveryCollisionRead(const std::string& urdf_xml, const urdf::ModelInter
     if (link == nullptr) continue;
     // A Drake <capsule> is read as three elements (ParseUrdfFile: the capsule idiom).
     std::size_t written = 0;
+    int index = 0;
     for (const tinyxml2::XMLElement* c = xml->FirstChildElement("collision"); c != nullptr;
-         c = c->NextSiblingElement("collision")) {
+         c = c->NextSiblingElement("collision"), ++index) {
       const tinyxml2::XMLElement* geometry = c->FirstChildElement("geometry");
       written += geometry != nullptr && geometry->FirstChildElement("capsule") != nullptr ? 3 : 1;
+      // urdfdom reads the first shape of a <geometry> and drops the others without a word.
+      int shapes = 0;
+      for (const tinyxml2::XMLElement* shape = geometry != nullptr
+                                                   ? geometry->FirstChildElement()
+                                                   : nullptr;
+           shape != nullptr; shape = shape->NextSiblingElement()) {
+        ++shapes;
+      }
+      if (shapes > 1) {
+        throw LoadError(urdf_path + ": link '" + link->name + "' <collision> " +
+                        std::to_string(index) + ": <geometry> holds " + std::to_string(shapes) +
+                        " shapes; urdfdom reads only the first (<" +
+                        geometry->FirstChildElement()->Name() +
+                        ">): give each shape a <collision> of its own");
+      }
     }
     const std::size_t read =
         link->collision_array.empty() ? (link->collision ? 1 : 0) : link->collision_array.size();

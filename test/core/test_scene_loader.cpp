@@ -332,6 +332,10 @@ TEST(SceneLoader, BadCollisionGeometryNamesTheElement) {
        "<capsule>: <capsule radius, length> must be finite numbers >= 0"},
       {"<origin xyz=\"0 0\"/><geometry><capsule radius=\"0.1\" length=\"1\"/></geometry>",
        "<capsule>: <origin>:"},
+      // urdfdom keeps the first shape of a <geometry> only (a red team's sphere went unseen).
+      {"<geometry><cylinder radius=\"0.1\" length=\"1\"/><sphere radius=\"0.5\"/></geometry>",
+       "<geometry> holds 2 shapes; urdfdom reads only the first (<cylinder>): give each shape a "
+       "<collision> of its own"},
   };
   for (std::size_t k = 0; k < cases.size(); ++k) {
     const std::string urdf = WriteTempFile(
