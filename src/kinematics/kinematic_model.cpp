@@ -149,6 +149,13 @@ double KinematicModel::Travel_m(const JointSpec& joint) const {
                   std::abs(m * (target->upper + kJointLimitMargin) + joint.mimic_offset));
 }
 
+std::pair<double, double> KinematicModel::AcceptedRange(const JointSpec& joint) {
+  return {std::isfinite(joint.lower) ? joint.lower - kJointLimitMargin
+                                     : -kMaxUnlimitedPosition_rad,
+          std::isfinite(joint.upper) ? joint.upper + kJointLimitMargin
+                                     : kMaxUnlimitedPosition_rad};
+}
+
 const JointSpec* KinematicModel::MimickedJoint(const JointSpec& joint) const {
   if (joint.mimic_q_index < 0) return nullptr;
   for (int link = 1; link < link_count(); ++link) {

@@ -516,27 +516,29 @@ std::string Monitor::DescribeRefusal(const Eigen::Ref<const Eigen::VectorXd>& q)
     return std::to_string(q.size()) + " positions for the model's " + std::to_string(n) +
            " joints";
   }
-  // Update unwinds a turning joint's reading by the turns it keeps (Impl::Unwind): the last
-  // Update's, for its q.
-  const bool is_unwound = impl_->turns_next.size() == n && !model.turning_links.empty();
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const bool is_unlimited = model.q_upper[i] == kMaxUnlimitedPosition_rad;
-    const double turns = is_unwound && is_unlimited ? impl_->turns_next[i] : 0.0;
-    const double x = q[i] + turns;
-    if (x >= model.q_lower[i] && x <= model.q_upper[i]) continue;
-    std::ostringstream text;
-    text << "joint '" << model.workcell->joint_names[static_cast<std::size_t>(i)] << "' at "
-         << q[i];
-    if (turns != 0.0) text << " (" << x << " with the whole turns unwound so far)";
-    if (std::isfinite(x) && is_unlimited) {
-      text << ", beyond the +/-" << kMaxUnlimitedPosition_rad
-           << " rad a joint without limits may take (a corrupt reading)";
-    } else if (std::isfinite(x)) {
-      text << ", outside its limits [" << model.q_lower[i] + kJointLimitMargin << ", "
-           << model.q_upper[i] - kJointLimitMargin << "] by more than their margin "
-           << kJointLimitMargin;
+  // The reading as given (what Check refuses), then as Update unwound it by the whole turns it
+  // keeps for a turning joint (Impl::Unwind: the last Update's, for its q).
+  const bool has_turns = impl_->turns_next.size() == n && !model.turning_links.empty();
+  for (const bool is_unwound : {false, true}) {
+    for (Eigen::Index i = 0; i < n && (!is_unwound || has_turns); ++i) {
+      const double turns = is_unwound ? impl_->turns_next[i] : 0.0;
+      const double x = q[i] + turns;
+      if (x >= model.q_lower[i] && x <= model.q_upper[i]) continue;
+      std::ostringstream text;
+      text << "joint '" << model.workcell->joint_names[static_cast<std::size_t>(i)] << "' at "
+           << q[i];
+      if (turns != 0.0) text << " (" << x << " with the whole turns unwound so far)";
+      const double bound = x > model.q_upper[i] ? model.q_upper[i] : -model.q_lower[i];
+      if (std::isfinite(x) && bound == kMaxUnlimitedPosition_rad) {
+        text << ", beyond the +/-" << kMaxUnlimitedPosition_rad
+             << " rad a joint without limits may take (a corrupt reading)";
+      } else if (std::isfinite(x)) {
+        text << ", outside its limits [" << model.q_lower[i] + kJointLimitMargin << ", "
+             << model.q_upper[i] - kJointLimitMargin << "] by more than their margin "
+             << kJointLimitMargin;
+      }
+      return text.str();
     }
-    return text.str();
   }
   return "";
 }

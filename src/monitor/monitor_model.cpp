@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
 #include <utility>
 
 #include "arm_collision_monitor/broadphase/broad_phase_util.h"
@@ -141,13 +142,12 @@ void MonitorModel::BuildStartPose() {
   // Without a limit (a continuous joint, unless the scene file's joint_limits give it soft
   // ones): +/-kMaxUnlimitedPosition_rad, so that the limits alone also refuse NaN, infinities
   // and absurd readings (CheckInput).
-  q_lower = Eigen::VectorXd::Constant(kinematics->q_size(), -kMaxUnlimitedPosition_rad);
-  q_upper = Eigen::VectorXd::Constant(kinematics->q_size(), kMaxUnlimitedPosition_rad);
+  q_lower.resize(kinematics->q_size());
+  q_upper.resize(kinematics->q_size());
   for (int link = 1; link < kinematics->link_count(); ++link) {
     const JointSpec& joint = kinematics->joint(link);
     if (joint.q_index < 0) continue;
-    if (std::isfinite(joint.lower)) q_lower[joint.q_index] = joint.lower - kJointLimitMargin;
-    if (std::isfinite(joint.upper)) q_upper[joint.q_index] = joint.upper + kJointLimitMargin;
+    std::tie(q_lower[joint.q_index], q_upper[joint.q_index]) = KinematicModel::AcceptedRange(joint);
   }
   turning_links = kinematics->TurningLinks();
   // Each joint at 0, or at its limit nearer 0 (finite: so are the limits).

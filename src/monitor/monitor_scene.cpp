@@ -287,6 +287,11 @@ bool Monitor::SetObjectPose(const std::string& object, const Eigen::Isometry3d& 
   }
   // shape_L is the object at X_WO_start; the cycle moves it in the index.
   const Eigen::Isometry3d X_WW = X_WO * m.model.objects[o].X_OW_start;
+  // A finite pose far enough out (1e308 m) overflows here: its shapes would warn of nothing.
+  if (!X_WW.matrix().allFinite()) {
+    SetError(error, "SetObjectPose: pose of object '" + object + "' out of range");
+    return false;
+  }
   for (const PrimitiveId id : m.model.objects[o].prims) {
     m.shape_W[id] = TransformShape(X_WW, m.model.workcell->primitives[id].shape_L);
     m.moved[id] = 1;

@@ -51,7 +51,8 @@ MotionBounds::MotionBounds(const KinematicModel& model, std::uint32_t primitive_
     is_ancestor[0] = 1;
     std::uint8_t* const shared = &shared_levers_[static_cast<std::size_t>(a) * link_count_];
     for (int b = 0; b < link_count_; ++b) {
-      shared[b] = is_ancestor[b] ? static_cast<std::uint8_t>(link_depth_[b])
+      // Saturated at 255 (a chain that deep): fewer levers left out, a larger pair bound.
+      shared[b] = is_ancestor[b] ? static_cast<std::uint8_t>(std::min(link_depth_[b], 255))
                                  : shared[model.parent_link(b)];
     }
   }

@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <filesystem>
+#include <utility>
 
+#include "arm_collision_monitor/core/constants.h"
 #include "urdf_collision.h"
 
 namespace arm_collision_monitor {
@@ -334,6 +337,13 @@ void ReadActuatedJointMap(const YAML::Node& node, const Where& where, const Kine
   }
 }
 
+// A joint's URDF limits, a side without one at kMaxUnlimitedPosition_rad (the monitor refuses
+// a position beyond it).
+std::pair<double, double> PositionRange(const JointSpec& joint) {
+  return {std::isfinite(joint.lower) ? joint.lower : -kMaxUnlimitedPosition_rad,
+          std::isfinite(joint.upper) ? joint.upper : kMaxUnlimitedPosition_rad};
+}
+
 }  // namespace
 
 void ReadJointLimits(const YAML::Node& node, const Where& where, KinematicModel* model) {
@@ -346,9 +356,13 @@ void ReadJointLimits(const YAML::Node& node, const Where& where, KinematicModel*
     double upper = joint.upper;
     yaml_fields::ReadIfPresent(value, "lower", item, yaml_fields::ReadFiniteDouble, &lower);
     yaml_fields::ReadIfPresent(value, "upper", item, yaml_fields::ReadFiniteDouble, &upper);
-    if (!(joint.lower <= lower && lower <= upper && upper <= joint.upper)) {
-      item.Fail(value, "expected URDF lower (" + std::to_string(joint.lower) +
-                           ") <= lower <= upper <= URDF upper (" + std::to_string(joint.upper) +
+    // A side not given keeps the URDF's (none for a continuous joint).
+    const auto [urdf_lower, urdf_upper] = PositionRange(joint);
+    const auto is_within = [&](double x) { return urdf_lower <= x && x <= urdf_upper; };
+    if (!((lower == joint.lower || is_within(lower)) && lower <= upper &&
+          (upper == joint.upper || is_within(upper)))) {
+      item.Fail(value, "expected URDF lower (" + std::to_string(urdf_lower) +
+                           ") <= lower <= upper <= URDF upper (" + std::to_string(urdf_upper) +
                            ")");
     }
     model->SetPositionLimits(joint_name, lower, upper);
@@ -372,10 +386,10 @@ std::vector<std::pair<int, double>> ReadJointDefaults(const YAML::Node& node, co
   ReadActuatedJointMap(node, where, model, [&](const YAML::Node& value, const Where& item,
                                                const std::string&, const JointSpec& joint) {
     const double position = yaml_fields::ReadFiniteDouble(value, item);
-    if (!(joint.lower <= position && position <= joint.upper)) {
-      item.Fail(value, "expected a position within the joint's limits [" +
-                           std::to_string(joint.lower) + ", " + std::to_string(joint.upper) +
-                           "]");
+    const auto [lower, upper] = PositionRange(joint);
+    if (!(lower <= position && position <= upper)) {
+      item.Fail(value, "expected a position within the joint's limits [" + std::to_string(lower) +
+                           ", " + std::to_string(upper) + "]");
     }
     defaults.emplace_back(joint.q_index, position);
   });

@@ -328,20 +328,26 @@ void CheckEveryCollisionRead(const std::string& urdf_xml, const urdf::ModelInter
          c = c->NextSiblingElement("collision"), ++index) {
       const tinyxml2::XMLElement* geometry = c->FirstChildElement("geometry");
       written += geometry != nullptr && geometry->FirstChildElement("capsule") != nullptr ? 3 : 1;
-      // urdfdom reads the first shape of a <geometry> and drops the others without a word.
-      int shapes = 0;
-      for (const tinyxml2::XMLElement* shape = geometry != nullptr
-                                                   ? geometry->FirstChildElement()
-                                                   : nullptr;
+      // urdfdom reads the first <geometry> of a <collision> and the first shape in it, and
+      // drops any other without a word.
+      int geometries = 0, shapes = 0;
+      for (const tinyxml2::XMLElement* g = geometry; g != nullptr;
+           g = g->NextSiblingElement("geometry")) {
+        ++geometries;
+      }
+      for (const tinyxml2::XMLElement* shape =
+               geometry != nullptr ? geometry->FirstChildElement() : nullptr;
            shape != nullptr; shape = shape->NextSiblingElement()) {
         ++shapes;
       }
-      if (shapes > 1) {
-        throw LoadError(urdf_path + ": link '" + link->name + "' <collision> " +
-                        std::to_string(index) + ": <geometry> holds " + std::to_string(shapes) +
-                        " shapes; urdfdom reads only the first (<" +
-                        geometry->FirstChildElement()->Name() +
-                        ">): give each shape a <collision> of its own");
+      if (geometries > 1 || shapes > 1) {
+        throw LoadError(urdf_path + ": link '" + link->name + "': its <collision> element " +
+                        std::to_string(index) + " in the file holds " +
+                        (geometries > 1 ? std::to_string(geometries) + " <geometry> elements"
+                                        : "a <geometry> of " + std::to_string(shapes) +
+                                              " shapes") +
+                        "; urdfdom reads only the first: give each shape a <collision> of its "
+                        "own");
       }
     }
     const std::size_t read =
@@ -375,8 +381,8 @@ std::string RelativeMeshNotice(const urdf::ModelInterface& model, const std::str
   if (count == 0) return "";
   return urdf_path + ": " + std::to_string(count) + " mesh" + (count == 1 ? "" : "es") +
          " named by a path relative to the URDF's folder (" + first + (count == 1 ? "" : ", ...") +
-         "): the monitor reads " + (count == 1 ? "it" : "them") + ", but rviz's RobotModel and " +
-         "MoveIt, which read robot_description, do not; write package://<package>/<path> (or " +
+         "): the monitor finds collision meshes there, but rviz's RobotModel and MoveIt, which " +
+         "read robot_description, do not; write package://<package>/<path> (or " +
          "file:///<absolute path>) to see the robot in rviz";
 }
 

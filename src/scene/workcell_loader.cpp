@@ -365,10 +365,7 @@ void CheckMimicRange(const KinematicModel& model, const std::string& urdf_path) 
     const JointSpec& joint = model.joint(link);
     const JointSpec* target = model.MimickedJoint(joint);
     if (target == nullptr || joint.type == JointType::kPrismatic) continue;  // Travel_m's
-    const double lower = std::isfinite(target->lower) ? target->lower - kJointLimitMargin
-                                                      : -kMaxUnlimitedPosition_rad;
-    const double upper = std::isfinite(target->upper) ? target->upper + kJointLimitMargin
-                                                      : kMaxUnlimitedPosition_rad;
+    const auto [lower, upper] = KinematicModel::AcceptedRange(*target);
     const double m = joint.mimic_multiplier;
     const double reach = std::max(std::abs(m * lower + joint.mimic_offset),
                                   std::abs(m * upper + joint.mimic_offset));

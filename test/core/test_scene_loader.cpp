@@ -334,8 +334,12 @@ TEST(SceneLoader, BadCollisionGeometryNamesTheElement) {
        "<capsule>: <origin>:"},
       // urdfdom keeps the first shape of a <geometry> only (a red team's sphere went unseen).
       {"<geometry><cylinder radius=\"0.1\" length=\"1\"/><sphere radius=\"0.5\"/></geometry>",
-       "<geometry> holds 2 shapes; urdfdom reads only the first (<cylinder>): give each shape a "
-       "<collision> of its own"},
+       "link 'base': its <collision> element 1 in the file holds a <geometry> of 2 shapes; "
+       "urdfdom reads only the first: give each shape a <collision> of its own"},
+      {"<geometry><cylinder radius=\"0.1\" length=\"1\"/></geometry>"
+       "<geometry><sphere radius=\"0.5\"/></geometry>",
+       "link 'base': its <collision> element 1 in the file holds 2 <geometry> elements; urdfdom "
+       "reads only the first"},
   };
   for (std::size_t k = 0; k < cases.size(); ++k) {
     const std::string urdf = WriteTempFile(
@@ -343,8 +347,12 @@ TEST(SceneLoader, BadCollisionGeometryNamesTheElement) {
         "<?xml version=\"1.0\"?>\n<robot name=\"r\">\n  <link name=\"base\">\n"
         "    <collision><geometry><sphere radius=\"0.1\"/></geometry></collision>\n"
         "    <collision>" + cases[k].first + "</collision>\n  </link>\n</robot>\n");
+    // urdfdom's elements are numbered where ReadCollisionElement refuses one, the file's where
+    // urdfdom drops shapes.
+    const bool is_dropped = cases[k].second.rfind("link 'base': ", 0) == 0;
     ExpectLoadError([&] { LoadWorkcell(urdf, scene); },
-                    {urdf, "link 'base' <collision> 1", cases[k].second});
+                    {urdf, is_dropped ? cases[k].second : "link 'base' <collision> 1",
+                     cases[k].second});
   }
 }
 
@@ -597,6 +605,10 @@ TEST(SceneLoader, JointLimitOverrides) {
                    {"joint_limits.elbow", "URDF upper"});
   ExpectSceneError(kArmUrdf, kWorldLine + "joint_limits: {knee: {upper: 1.0}}\n",
                    {"joint_limits.knee", "unknown joint"});
+  // The continuous wrist's soft limits lie within kMaxUnlimitedPosition_rad (beyond it, no
+  // position would be accepted).
+  ExpectSceneError(kArmUrdf, kWorldLine + "joint_limits: {spin: {lower: 2e9}}\n",
+                   {"joint_limits.spin", "<= URDF upper (1000000000.0"});
   // A velocity limit below the URDF's (its motor's, say) replaces it; above it, or not positive,
   // is an error naming the key.
   const Workcell slow = LoadWorkcell(
@@ -639,6 +651,9 @@ TEST(SceneLoader, JointDefaults) {
       {"joint_defaults: {tool_joint: 0}\n", {"joint_defaults.tool_joint", "unknown joint"}},
       {"joint_defaults: {elbow: open}\n", {"joint_defaults.elbow"}},
       {"joint_defaults: {elbow: .nan}\n", {"joint_defaults.elbow"}},
+      // The continuous wrist: within kMaxUnlimitedPosition_rad (beyond, every cycle is refused).
+      {"joint_defaults: {spin: 2e9}\n",
+       {"joint_defaults.spin", "within the joint's limits [-1000000000.0"}},
   };
   for (const auto& [scene, parts] : bad) ExpectSceneError(kArmUrdf, kWorldLine + scene, parts);
   ExpectSceneError(kArmUrdf, kWorldLine + "joint_defaults: [elbow, 0]\n", {"joint_defaults"});

@@ -172,7 +172,8 @@ TEST(SceneMeshLinks, RelativeMeshPathsAreNoticedForRviz) {
   const Workcell w = LoadWorkcell(visual.urdf, visual.scene, CacheIn(dir));
   ASSERT_EQ(relative_notices(w), 1u);
   EXPECT_NE(w.notices.back().find("1 mesh named by a path relative to the URDF's folder "
-                                  "('box.stl' of link 'link0'): the monitor reads it"),
+                                  "('box.stl' of link 'link0'): the monitor finds collision "
+                                  "meshes there"),
             std::string::npos)
       << w.notices.back();
 }

@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "arm_collision_monitor/core/constants.h"
@@ -75,6 +76,9 @@ class KinematicModel {
   /// where the joint it mimics puts it at an end of that joint's range (multiplier times its
   /// position, plus the offset; the mimic's own limits do not clamp it); 0 for other joints.
   double Travel_m(const JointSpec& joint) const;
+  /// The positions the monitor accepts of actuated joint `joint`: its limits widened by
+  /// kJointLimitMargin, a side without a limit at kMaxUnlimitedPosition_rad.
+  static std::pair<double, double> AcceptedRange(const JointSpec& joint);
   /// The joint `joint` (one of this model's) mimics, nullptr if it mimics none.
   const JointSpec* MimickedJoint(const JointSpec& joint) const;
   /// The link whose parent joint is named `joint_name`, -1 if unknown.

@@ -149,9 +149,9 @@ class Monitor {
   const CycleReport& report() const;
   /// Why Update(q) refuses `q`, for a person: its size against the model's, or the first joint
   /// that is not finite or outside its limits, with its position and the limits (margin
-  /// included; a joint without limits: beyond kMaxUnlimitedPosition_rad, counting the whole
-  /// turns the last Update unwound); "" when q is acceptable. Call it right after Update(q).
-  /// Allocates: for reports of refused cycles, not the cycle.
+  /// included; a joint without limits: beyond kMaxUnlimitedPosition_rad), as given, else with
+  /// the whole turns the last Update unwound (call it right after Update(q) for those); "" when
+  /// q is acceptable. Allocates: for reports of refused cycles, not the cycle.
   std::string DescribeRefusal(const Eigen::Ref<const Eigen::VectorXd>& q) const;
 
   /// Generate-and-test for planners: the report `q` would give, computed on a copy; the live
