@@ -357,12 +357,12 @@ void ReadJointLimits(const YAML::Node& node, const Where& where, KinematicModel*
     yaml_fields::ReadIfPresent(value, "lower", item, yaml_fields::ReadFiniteDouble, &lower);
     yaml_fields::ReadIfPresent(value, "upper", item, yaml_fields::ReadFiniteDouble, &upper);
     // A side not given keeps the URDF's (none for a continuous joint).
-    const auto [urdf_lower, urdf_upper] = PositionRange(joint);
-    const auto is_within = [&](double x) { return urdf_lower <= x && x <= urdf_upper; };
+    const std::pair<double, double> urdf = PositionRange(joint);
+    const auto is_within = [&](double x) { return urdf.first <= x && x <= urdf.second; };
     if (!((lower == joint.lower || is_within(lower)) && lower <= upper &&
           (upper == joint.upper || is_within(upper)))) {
-      item.Fail(value, "expected URDF lower (" + std::to_string(urdf_lower) +
-                           ") <= lower <= upper <= URDF upper (" + std::to_string(urdf_upper) +
+      item.Fail(value, "expected URDF lower (" + std::to_string(urdf.first) +
+                           ") <= lower <= upper <= URDF upper (" + std::to_string(urdf.second) +
                            ")");
     }
     model->SetPositionLimits(joint_name, lower, upper);
