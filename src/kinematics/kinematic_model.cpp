@@ -149,11 +149,15 @@ double KinematicModel::Travel_m(const JointSpec& joint) const {
                   std::abs(m * (target->upper + kJointLimitMargin) + joint.mimic_offset));
 }
 
+std::pair<double, double> KinematicModel::PositionRange(const JointSpec& joint) {
+  return {std::isfinite(joint.lower) ? joint.lower : -kMaxUnlimitedPosition_rad,
+          std::isfinite(joint.upper) ? joint.upper : kMaxUnlimitedPosition_rad};
+}
+
 std::pair<double, double> KinematicModel::AcceptedRange(const JointSpec& joint) {
-  return {std::isfinite(joint.lower) ? joint.lower - kJointLimitMargin
-                                     : -kMaxUnlimitedPosition_rad,
-          std::isfinite(joint.upper) ? joint.upper + kJointLimitMargin
-                                     : kMaxUnlimitedPosition_rad};
+  const auto [lower, upper] = PositionRange(joint);
+  return {std::isfinite(joint.lower) ? lower - kJointLimitMargin : lower,
+          std::isfinite(joint.upper) ? upper + kJointLimitMargin : upper};
 }
 
 const JointSpec* KinematicModel::MimickedJoint(const JointSpec& joint) const {

@@ -2,11 +2,9 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cmath>
 #include <filesystem>
 #include <utility>
 
-#include "arm_collision_monitor/core/constants.h"
 #include "urdf_collision.h"
 
 namespace arm_collision_monitor {
@@ -337,13 +335,6 @@ void ReadActuatedJointMap(const YAML::Node& node, const Where& where, const Kine
   }
 }
 
-// A joint's URDF limits, a side without one at kMaxUnlimitedPosition_rad (the monitor refuses
-// a position beyond it).
-std::pair<double, double> PositionRange(const JointSpec& joint) {
-  return {std::isfinite(joint.lower) ? joint.lower : -kMaxUnlimitedPosition_rad,
-          std::isfinite(joint.upper) ? joint.upper : kMaxUnlimitedPosition_rad};
-}
-
 }  // namespace
 
 void ReadJointLimits(const YAML::Node& node, const Where& where, KinematicModel* model) {
@@ -357,7 +348,7 @@ void ReadJointLimits(const YAML::Node& node, const Where& where, KinematicModel*
     yaml_fields::ReadIfPresent(value, "lower", item, yaml_fields::ReadFiniteDouble, &lower);
     yaml_fields::ReadIfPresent(value, "upper", item, yaml_fields::ReadFiniteDouble, &upper);
     // A side not given keeps the URDF's (none for a continuous joint).
-    const std::pair<double, double> urdf = PositionRange(joint);
+    const std::pair<double, double> urdf = KinematicModel::PositionRange(joint);
     const auto is_within = [&](double x) { return urdf.first <= x && x <= urdf.second; };
     if (!((lower == joint.lower || is_within(lower)) && lower <= upper &&
           (upper == joint.upper || is_within(upper)))) {
@@ -386,7 +377,7 @@ std::vector<std::pair<int, double>> ReadJointDefaults(const YAML::Node& node, co
   ReadActuatedJointMap(node, where, model, [&](const YAML::Node& value, const Where& item,
                                                const std::string&, const JointSpec& joint) {
     const double position = yaml_fields::ReadFiniteDouble(value, item);
-    const auto [lower, upper] = PositionRange(joint);
+    const auto [lower, upper] = KinematicModel::PositionRange(joint);
     if (!(lower <= position && position <= upper)) {
       item.Fail(value, "expected a position within the joint's limits [" + std::to_string(lower) +
                            ", " + std::to_string(upper) + "]");

@@ -76,8 +76,11 @@ class KinematicModel {
   /// where the joint it mimics puts it at an end of that joint's range (multiplier times its
   /// position, plus the offset; the mimic's own limits do not clamp it); 0 for other joints.
   double Travel_m(const JointSpec& joint) const;
-  /// The positions the monitor accepts of actuated joint `joint`: its limits widened by
-  /// kJointLimitMargin, a side without a limit at kMaxUnlimitedPosition_rad.
+  /// The limits of actuated joint `joint`, a side without one at kMaxUnlimitedPosition_rad (the
+  /// monitor refuses a position beyond it).
+  static std::pair<double, double> PositionRange(const JointSpec& joint);
+  /// The positions the monitor accepts of actuated joint `joint`: PositionRange, its limits
+  /// widened by kJointLimitMargin.
   static std::pair<double, double> AcceptedRange(const JointSpec& joint);
   /// The joint `joint` (one of this model's) mimics, nullptr if it mimics none.
   const JointSpec* MimickedJoint(const JointSpec& joint) const;
