@@ -134,19 +134,19 @@ std::vector<int> KinematicModel::TurningLinks() const {
   return links;
 }
 
+double KinematicModel::PositionBound(const JointSpec& joint) const {
+  const bool is_mimic = joint.mimic_q_index >= 0;
+  const JointSpec* leader = is_mimic ? MimickedJoint(joint) : &joint;
+  if (leader == nullptr) return std::numeric_limits<double>::infinity();
+  // Linear in the leader's position, which is finite: farthest at an end of its range.
+  const auto [lower, upper] = AcceptedRange(*leader);
+  const double m = is_mimic ? joint.mimic_multiplier : 1.0;
+  const double offset = is_mimic ? joint.mimic_offset : 0.0;
+  return std::max(std::abs(m * lower + offset), std::abs(m * upper + offset));
+}
+
 double KinematicModel::Travel_m(const JointSpec& joint) const {
-  if (joint.type != JointType::kPrismatic) return 0.0;
-  // Every position the monitor accepts: the limits widened by their margin (CheckInput).
-  if (joint.mimic_q_index < 0) {
-    return std::max(std::abs(joint.lower), std::abs(joint.upper)) + kJointLimitMargin;
-  }
-  const double m = joint.mimic_multiplier;
-  if (m == 0.0) return std::abs(joint.mimic_offset);
-  const JointSpec* target = MimickedJoint(joint);
-  if (target == nullptr) return std::numeric_limits<double>::infinity();
-  // Linear in the target's position: farthest at an end of its accepted range.
-  return std::max(std::abs(m * (target->lower - kJointLimitMargin) + joint.mimic_offset),
-                  std::abs(m * (target->upper + kJointLimitMargin) + joint.mimic_offset));
+  return joint.type == JointType::kPrismatic ? PositionBound(joint) : 0.0;
 }
 
 std::pair<double, double> KinematicModel::PositionRange(const JointSpec& joint) {

@@ -365,11 +365,10 @@ void CheckMimicRange(const KinematicModel& model, const std::string& urdf_path) 
     const JointSpec& joint = model.joint(link);
     const JointSpec* target = model.MimickedJoint(joint);
     if (target == nullptr || joint.type == JointType::kPrismatic) continue;  // Travel_m's
+    const double reach = model.PositionBound(joint);
+    if (reach <= kMaxMimicPosition) continue;
     const auto [lower, upper] = KinematicModel::AcceptedRange(*target);
     const double m = joint.mimic_multiplier;
-    const double reach = std::max(std::abs(m * lower + joint.mimic_offset),
-                                  std::abs(m * upper + joint.mimic_offset));
-    if (reach <= kMaxMimicPosition) continue;
     char text[400];
     std::snprintf(text, sizeof(text),
                   " (multiplier %.6g, offset %.6g) reaches %.6g rad over the positions of '%s' "

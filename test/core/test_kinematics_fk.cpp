@@ -496,6 +496,13 @@ TEST(KinematicsFk, JointTypesLimitsAndMimicAreRead) {
   EXPECT_EQ(finger.mimic_q_index, slide.q_index);
   EXPECT_EQ(finger.mimic_multiplier, -1.0);
   EXPECT_EQ(model.MimicJointNames(), std::vector<std::string>{"finger_mimic"});
+  // The largest position at an accepted one: a limit and its margin; the mimic at -1 times the
+  // slide's; the continuous wrist at the bound of a joint without limits.
+  EXPECT_DOUBLE_EQ(model.PositionBound(slide), 0.2 + kJointLimitMargin);
+  EXPECT_DOUBLE_EQ(model.PositionBound(finger), 0.2 + kJointLimitMargin);
+  EXPECT_DOUBLE_EQ(model.Travel_m(finger), 0.2 + kJointLimitMargin);
+  EXPECT_EQ(model.PositionBound(spin), kMaxUnlimitedPosition_rad);
+  EXPECT_EQ(model.Travel_m(spin), 0.0);
   EXPECT_TRUE(model.IsFixedJoint("tool_joint"));
   EXPECT_FALSE(model.IsFixedJoint("slide"));
   EXPECT_FALSE(model.IsFixedJoint("finger_mimic"));

@@ -186,15 +186,16 @@ TEST(SceneWorldCube, WorldOverTheLargestEdgeIsRefused) {
                      "'slide' is limited to [-1e+09, 1e+09]",
                      "joint_limits: {slide: {lower: l, upper: u}}"});
   }
-  // A prismatic joint mimicking the continuous wrist (no limits) slides without end: the joint
-  // it mimics is named, with the remedy.
+  // A prismatic joint mimicking the continuous wrist (no limits) slides as far as the wrist's
+  // accepted positions take it, +/-kMaxUnlimitedPosition_rad: the joint it mimics is named, with
+  // the remedy.
   const std::string spun = WriteTempFile(
       "mimic_of_spin.urdf", std::regex_replace(ReadTextFile(kData + "three_link_arm.urdf"),
                                                std::regex("<mimic joint=\"slide\""),
                                                "<mimic joint=\"spin\""));
   ExpectLoadError([&] { LoadWorkcell(spun, stated); },
                   {spun + ": prismatic joint 'finger_mimic' mimics 'spin' (multiplier -1, "
-                          "offset 0) slides up to inf m with it",
+                          "offset 0) slides up to 1e+09 m with it",
                    "'spin' is limited to [-inf, inf]", "joint_limits: {spin: {lower: l"});
   const std::string narrowed = WriteTempFile(
       "huge_slide_narrowed.yaml",

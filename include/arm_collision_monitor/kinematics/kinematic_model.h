@@ -70,11 +70,14 @@ class KinematicModel {
   /// multiplier not a whole number). A driver may report such a joint wrapped, and MoveIt
   /// unwinds a plan's before executing it.
   std::vector<int> TurningLinks() const;
-  /// How far the child of `joint` (one of this model's) can slide from the joint's origin, m,
-  /// at any position the monitor accepts (the limits widened by kJointLimitMargin): for a
-  /// prismatic joint the larger magnitude of those limits (inf if unlimited), for a mimic one
-  /// where the joint it mimics puts it at an end of that joint's range (multiplier times its
-  /// position, plus the offset; the mimic's own limits do not clamp it); 0 for other joints.
+  /// The largest magnitude of the position of `joint` (one of this model's, actuated or mimic;
+  /// rad or m) at any position the monitor accepts (AcceptedRange): for an actuated joint an
+  /// end of its own range, for a mimic one where the joint it mimics puts it at an end of that
+  /// joint's range (multiplier times its position, plus the offset; the mimic's own limits do
+  /// not clamp it); inf for a mimic whose leader is not in the model.
+  double PositionBound(const JointSpec& joint) const;
+  /// How far the child of `joint` can slide from the joint's origin, m: PositionBound for a
+  /// prismatic joint, 0 for other joints.
   double Travel_m(const JointSpec& joint) const;
   /// The limits of actuated joint `joint`, a side without one at kMaxUnlimitedPosition_rad (the
   /// monitor refuses a position beyond it).
