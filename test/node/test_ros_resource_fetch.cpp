@@ -98,17 +98,21 @@ TEST(RosResourceFetch, ThreeLinkArmWithPackageMeshLoadsWithoutOverride) {
 
 TEST(RosResourceFetch, UnknownPackageIsALoadError) {
   AddThisPackageToRosPackagePath();
+  ::testing::internal::CaptureStderr();
   try {
     FetchRosResource("package://no_such_package_acm/meshes/a.stl");
     ADD_FAILURE() << "expected a LoadError";
   } catch (const LoadError& e) {
     // What to do (a Sawyer user read only "Package [...] does not exist").
-    EXPECT_NE(std::string(e.what()).find("(ROS knows no package 'no_such_package_acm': source "
+    EXPECT_NE(std::string(e.what()).find("ROS knows no package 'no_such_package_acm' (source "
                                          "the setup.bash of the workspace that holds it, or add "
                                          "the directory above it to ROS_PACKAGE_PATH)"),
               std::string::npos)
         << e.what();
   }
+  // The load error alone: not rospack's own lines before it (an Aubo user's typo got both).
+  const std::string printed = ::testing::internal::GetCapturedStderr();
+  EXPECT_EQ(printed.find("rospack"), std::string::npos) << printed;
   // A file missing from a package ROS knows (its name saying "does not exist"): no such advice.
   try {
     FetchRosResource("package://arm_collision_monitor/does not exist.stl");
