@@ -44,13 +44,14 @@ bool Monitor::Impl::Unwind(const Eigen::Ref<const Eigen::VectorXd>& q) {
   for (const int link : model.turning_links) {
     const JointSpec& joint = model.kinematics->joint(link);
     const int i = joint.q_index;
-    double turns = turns_good[i];
-    // The move in q_good's turns: 0 for the same reading (an idle cycle stays idle). A reading
-    // outside the limits (NaN, infinities, beyond kMaxUnlimitedPosition_rad: a turn count
-    // taken from it would carry over to every later reading) stays, for CheckInput to refuse;
-    // so does the first cycle's (no q_good yet).
-    const double move = (q[i] + turns) - q_good[i];
+    // A reading outside the limits (NaN, infinities, beyond kMaxUnlimitedPosition_rad) is taken
+    // as given, without the kept turns either, for CheckInput to refuse as ~check does: the
+    // turns could shift it back within, and a turn count taken from it would carry over to
+    // every later reading. The first cycle's reading takes none (no q_good yet).
     const bool is_within = q[i] >= model.q_lower[i] && q[i] <= model.q_upper[i];
+    double turns = is_within ? turns_good[i] : 0.0;
+    // The move in q_good's turns: 0 for the same reading (an idle cycle stays idle).
+    const double move = (q[i] + turns) - q_good[i];
     if (has_good && is_within && std::abs(move) > 0.5 * kTurn) {
       const double wrap = kTurn * std::round(move / kTurn);
       if (IsWithinVelocityLimit(joint, std::abs(move - wrap))) {
@@ -511,6 +512,11 @@ void Monitor::Impl::SweepPair(PrimitiveId a, PrimitiveId b, double pair_motion_m
     }
     if (is_within_resolution) --refinements_left;
     if (!std::isnan(resolved_s) && samples_left-- == 0) break;
+    // The step's tests spent (a step of absurd length): the interval is not certified.
+    if (work->swept_tests >= kMaxSweptTests) {
+      if (std::isnan(resolved_s)) resolved_s = iv.d0_m <= iv.d1_m ? iv.s0 : iv.s1;
+      break;
+    }
     const double mid = 0.5 * (iv.s0 + iv.s1);
     const std::vector<Eigen::Isometry3d>& X_WL_mid = StepPoses(mid, q);
     const double mid_m = ShapeDistance(ShapeAt(a, X_WL_mid), ShapeAt(b, X_WL_mid)).distance_m;

@@ -164,15 +164,15 @@ void FormatWarningsReason(const std::vector<Warning>& warnings,
       warnings.begin(), warnings.end(), [](const Warning& x, const Warning& y) {
         return x.distance_m - x.threshold_m < y.distance_m - y.threshold_m;
       });
-  // A pair found between samples says where; one found only within swept_resolution_m of its
-  // threshold (no sample inside it) says so.
+  // A pair found between samples says where; one not certified clear there (no sample inside
+  // its threshold) says so.
   char where[128] = "";
   if (w.between_samples) {
     std::snprintf(where, sizeof(where), " between samples, at %.3f of the step%s",
                   w.step_fraction,
                   w.distance_m < w.threshold_m
                       ? ""
-                      : " (within swept_resolution_m of its threshold: not certified clear)");
+                      : " (above its threshold there: not certified clear)");
   }
   std::snprintf(text, size, "%zu warning(s), the deepest %s - %s at %.4f m (threshold %.4f m)%s",
                 warnings.size(), primitives[w.a].name.c_str(), primitives[w.b].name.c_str(),

@@ -1010,6 +1010,55 @@ TEST_F(WrappedReadings, AbsurdReadingsAreRefusedAndTakeNoTurns) {
   }
 }
 
+// With turns kept (a wrap crossed), a reading just beyond the bound is refused all the same,
+// as ~check refuses it, and names the joint: the kept turns do not shift it back within. (A
+// review found -1e9 - 1 rad accepted after one wrap, +2 pi kept; it then carried 1.6e8 turns to
+// the true readings after it.)
+TEST_F(WrappedReadings, AReadingBeyondTheBoundIsRefusedWithTurnsKept) {
+  const auto wc = Load("continuous_joint1_beyond_turns");
+  Monitor monitor(wc, MonitorOptions{});
+  const Crossing crossing = CrossPi(*wc, &monitor);
+  ASSERT_LT(crossing.largest_step_m, 0.01);  // unwound: a turn is kept
+  const Eigen::VectorXd q = Pose(*wc, -kMaxUnlimitedPosition_rad - 1.0);
+  EXPECT_EQ(monitor.Check(q).input, InputStatus::kOutOfLimits);
+  const CycleReport& refused = monitor.Update(q, 0.05);
+  EXPECT_EQ(refused.input, InputStatus::kOutOfLimits);
+  EXPECT_TRUE(refused.stop);
+  const std::string why = monitor.DescribeRefusal(q);
+  EXPECT_NE(why.find("joint 'left_joint1' at -1e+09"), std::string::npos) << why;
+  // The turn is still kept: the next reading of the crossing is unwound, no step, no warning.
+  const CycleReport& next = monitor.Update(Pose(*wc, Wrapped(3.152)), 0.06);
+  EXPECT_EQ(next.input, InputStatus::kOk);
+  EXPECT_LT(next.step_motion_m, 0.01);
+  EXPECT_FALSE(WarnsWith(*wc, next.warnings, "block"));
+  ExpectValid(monitor);
+}
+
+// A continuous joint's reading 1e6 rad from the last (within the +/-1e9 rad accepted; a corrupt
+// driver), 1 ms later: the step is swept within the test budget, and what it leaves is warned
+// as not certified clear, with a stop. (A review's: this cycle took 27 s, 1e9 rad hours, with
+// the node's thread held; the bisection's depth was bounded, its sample count not.)
+TEST_F(WrappedReadings, AStepOfAbsurdLengthIsSweptWithinTheTestBudget) {
+  const auto wc = Load("continuous_joint1_absurd_step");
+  Monitor monitor(wc, MonitorOptions{});
+  monitor.Update(Pose(*wc, 0.0), 0.0);
+  const CycleReport& far = monitor.Update(Pose(*wc, 1e6), 0.001);
+  EXPECT_EQ(far.input, InputStatus::kOk);
+  EXPECT_GT(far.step_motion_m, 1e4);
+  EXPECT_GE(far.swept_distance_tests, kMaxSweptTests);
+  // Past the budget, two tests a pair at most (its distances at the step's ends).
+  const std::size_t pairs = wc->primitives.size() * wc->primitives.size();
+  EXPECT_LE(far.swept_distance_tests, kMaxSweptTests + 2 * pairs);
+  EXPECT_TRUE(far.stop);
+  const auto uncertified = std::count_if(far.warnings.begin(), far.warnings.end(),
+                                         [](const Warning& w) {
+                                           return w.between_samples &&
+                                                  !IsWarningDistance(w.distance_m, w.threshold_m);
+                                         });
+  EXPECT_GT(uncertified, 0);
+  ExpectValid(monitor);
+}
+
 // A long step far from everything at both ends: each pair's distances at the two ends, less its
 // motion bound, leave twice the threshold, so no pair is bisected, though for many pairs the
 // motion bound exceeds the distance at the end (a test of the end alone would bisect them).

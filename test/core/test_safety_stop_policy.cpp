@@ -216,7 +216,7 @@ TEST_F(StopPolicyTest, WarningReasonOfAPairBetweenSamplesSaysWhere) {
   Cycle(2.125, report);
   EXPECT_EQ(policy_.reason(),
             "1 warning(s), the deepest left_link3 - right_link4 at 0.0614 m (threshold 0.0610 m) "
-            "between samples, at 0.500 of the step (within swept_resolution_m of its threshold: "
+            "between samples, at 0.500 of the step (above its threshold there: "
             "not certified clear)");
 }
 

@@ -269,6 +269,15 @@ inline constexpr double kLowerBoundMarginPerMetre = 1e-9;
 /// rather than bisected forever.
 inline constexpr int kMaxSweptBisections = 40;
 
+/// Swept check: the distance tests one step may take over all its pairs (dimensionless; one
+/// kinematics and one distance each, about 1 us). Past them, each interval a pair has left to
+/// bisect warns as not certified clear, at its nearer end. The bisection's samples grow with
+/// the step's motion over the distance to certify: a continuous joint's reading of 1e6 rad
+/// after 0 (a corrupt driver) took 27 s to sweep, 1e9 rad hours, while the cycle held the node's
+/// thread. The most measured on real steps: 2,752 (test_monitor_swept's random fast
+/// trajectories), 1,340 (a red team's whole-range steps of 784 random robots).
+inline constexpr std::uint32_t kMaxSweptTests = 1u << 16;
+
 /// Swept check: once a pair's bisection has resolved an interval (a sample within threshold +
 /// resolution: the pair warns), the further samples (dimensionless; one kinematics and one
 /// distance each) it may take looking for a sample within the threshold, which it then reports

@@ -192,7 +192,7 @@ constexpr BetweenKindText kBetweenKinds[] = {
     {"strictly_between", ""},
     {"step_starts_within", " (the step starts within: the previous sample's warning)"},
     {"within_resolution",
-     " (above the threshold here; not certified clear to swept_resolution_m near it)"}};
+     " (above the threshold here; not certified clear near it)"}};
 
 const char* KindName(const Warning& w) { return kBetweenKinds[static_cast<int>(KindOf(w))].name; }
 
