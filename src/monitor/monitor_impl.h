@@ -23,6 +23,10 @@
 
 namespace arm_collision_monitor {
 
+/// Finite, its rotation orthonormal and proper (kLiveObjectRotationTolerance): a pose an object
+/// may be moved to (AddObject, MoveObject, SetObjectPose).
+bool IsRigidPose(const Eigen::Isometry3d& X);
+
 struct Monitor::Impl {
   const MonitorModel model;
 

@@ -11,15 +11,15 @@
 #include "monitor_impl.h"
 
 namespace arm_collision_monitor {
-namespace {
 
-// Finite, rotation orthonormal and proper (kLiveObjectRotationTolerance).
 bool IsRigidPose(const Eigen::Isometry3d& X) {
   if (!X.matrix().allFinite()) return false;
   const Eigen::Matrix3d R = X.linear();
   const double error = (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
   return error <= kLiveObjectRotationTolerance && R.determinant() > 0.0;
 }
+
+namespace {
 
 // Why `shape` cannot be a primitive, or nullptr: sizes as Workcell::Validate wants them.
 const char* ShapeFault(const Shape& shape) {

@@ -281,13 +281,15 @@ bool Monitor::SetObjectPose(const std::string& object, const Eigen::Isometry3d& 
                         m.model.kinematics->link_name(m.holder[o]) + "'");
     return false;
   }
-  if (!X_WO.matrix().allFinite()) {
-    SetError(error, "SetObjectPose: non-finite pose for object '" + object + "'");
+  // A rotation that is not one (a quaternion off unit norm) would stretch or shrink the shapes.
+  if (!IsRigidPose(X_WO)) {
+    SetError(error, "SetObjectPose: pose of object '" + object +
+                        "' not finite or its rotation not orthonormal");
     return false;
   }
   // shape_L is the object at X_WO_start; the cycle moves it in the index.
   const Eigen::Isometry3d X_WW = X_WO * m.model.objects[o].X_OW_start;
-  // A finite pose far enough out (1e308 m) overflows here: its shapes would warn of nothing.
+  // A finite pose near the largest double overflows here with a start pose far out.
   if (!X_WW.matrix().allFinite()) {
     SetError(error, "SetObjectPose: pose of object '" + object + "' out of range");
     return false;

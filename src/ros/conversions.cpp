@@ -1,6 +1,7 @@
 #include "arm_collision_monitor/ros/conversions.h"
 
 #include "arm_collision_monitor/MonitorReport.h"
+#include "arm_collision_monitor/scene/unit_quaternion.h"
 
 namespace arm_collision_monitor {
 
@@ -12,6 +13,19 @@ std::uint8_t WarningSeverity(double distance_m, double threshold_m) {
     return CollisionWarning::SEVERITY_CRITICAL;
   }
   return CollisionWarning::SEVERITY_WARNING;
+}
+
+std::string ToRigidTransform(const geometry_msgs::Transform& transform, Eigen::Isometry3d* X) {
+  const geometry_msgs::Vector3& t = transform.translation;
+  const Eigen::Vector3d p(t.x, t.y, t.z);
+  if (!p.allFinite()) return "translation not finite";
+  const geometry_msgs::Quaternion& r = transform.rotation;
+  Eigen::Quaterniond R;
+  const std::string why = ToUnitQuaternion(Eigen::Vector4d(r.x, r.y, r.z, r.w), &R);
+  if (!why.empty()) return "rotation: " + why;
+  X->linear() = R.toRotationMatrix();
+  X->translation() = p;
+  return "";
 }
 
 void ToWarningMsg(const std::vector<PrimitiveSpec>& primitives, const Warning& in,

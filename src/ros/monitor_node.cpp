@@ -6,7 +6,6 @@
 #include <boost/make_shared.hpp>
 
 #include <std_msgs/Bool.h>
-#include <tf2_eigen/tf2_eigen.h>
 #include <visualization_msgs/MarkerArray.h>
 
 #include "arm_collision_monitor/core/load_error.h"
@@ -271,10 +270,12 @@ void MonitorNode::UpdateBoundObjects(const ros::Time& now) {
         ++stale_frames_;
         error = text;
       } else {
-        const Eigen::Isometry3d X_WO = tf2::transformToEigen(X);
+        // Its quaternion normalised (TF keeps one off unit norm by up to 0.5 %).
+        Eigen::Isometry3d X_WO = Eigen::Isometry3d::Identity();
+        error = ToRigidTransform(X.transform, &X_WO);
         // Most frames (a calibrated camera) do not move: skip the index update then.
-        if ((bound.has_pose && X_WO.matrix() == bound.X_WO.matrix()) ||
-            monitor_->SetObjectPose(bound.object, X_WO, &error)) {
+        if (error.empty() && ((bound.has_pose && X_WO.matrix() == bound.X_WO.matrix()) ||
+                              monitor_->SetObjectPose(bound.object, X_WO, &error))) {
           bound.X_WO = X_WO;
           bound.has_pose = true;
           continue;

@@ -2,8 +2,8 @@
 // translated to Monitor::AddObject, MoveObject and RemoveObject. Solids and meshes become
 // primitives here (MakeSolidShapes_O, which may fit a mesh), in the service call, never in the
 // cycle.
-#include <tf2_eigen/tf2_eigen.h>
 
+#include "arm_collision_monitor/ros/conversions.h"
 #include "arm_collision_monitor/ros/monitor_node.h"
 #include "arm_collision_monitor/scene/unit_quaternion.h"
 #include "arm_collision_monitor/scene/solid_spec.h"
@@ -35,8 +35,13 @@ bool MonitorNode::ResolvePose(const geometry_msgs::Pose& pose, const std::string
     return false;
   }
   try {
-    const Eigen::Isometry3d X_WF = tf2::transformToEigen(
-        tf_buffer_.lookupTransform(fixed_frame_, frame, ros::Time(0)));
+    Eigen::Isometry3d X_WF = Eigen::Isometry3d::Identity();
+    const std::string bad = ToRigidTransform(
+        tf_buffer_.lookupTransform(fixed_frame_, frame, ros::Time(0)).transform, &X_WF);
+    if (!bad.empty()) {
+      *error = "transform from '" + frame + "' to '" + fixed_frame_ + "': " + bad;
+      return false;
+    }
     *X_WO = X_WF * X_FO;
     return true;
   } catch (const tf2::TransformException& e) {

@@ -2,6 +2,7 @@
 // self and arm-arm collisions, grasp targets, attached objects, model switching, frame-bound
 // objects, refused inputs, speed-scaled tolerance and idle cycles. Every report is also compared
 // with the independent brute force of test_monitor_util.h.
+#include <limits>
 #include <sstream>
 #include <string>
 
@@ -337,6 +338,17 @@ TEST(MonitorScene, FrameBoundObjectFollowsItsPose) {
   X_WO.translation() << -2.9, 0.0, 1.5;
   ASSERT_TRUE(monitor.SetObjectPose("camera", X_WO, &error)) << error;
   EXPECT_TRUE(monitor.is_active(wall));
+  ExpectValid(monitor);
+  // A rotation that is not one (scaled by 1.004, as a quaternion off unit norm that TF keeps
+  // makes it) or a pose not finite is refused: the shapes would be stretched, or lost.
+  Eigen::Isometry3d stretched = X_WO;
+  stretched.linear() *= 1.004;
+  EXPECT_FALSE(monitor.SetObjectPose("camera", stretched, &error));
+  EXPECT_NE(error.find("'camera' not finite or its rotation not orthonormal"), std::string::npos)
+      << error;
+  Eigen::Isometry3d lost = X_WO;
+  lost.translation().x() = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(monitor.SetObjectPose("camera", lost, &error));
   ExpectValid(monitor);
   EXPECT_FALSE(monitor.SetObjectPose("front_table_top", X_WO, &error));  // static
   EXPECT_FALSE(monitor.SetObjectPose("no_such_object", X_WO, &error));

@@ -64,15 +64,17 @@ class FrameBoundObjectTest(unittest.TestCase):
         cls.tf_pub = rospy.Publisher('/tf', TFMessage, queue_size=100)
         assert cls.client.wait_connected(), 'the monitor never subscribed to its input topics'
 
-    def send(self, xyz_m, rpy):
-        """One camera_link transform and one home pose of both arms (the input that makes the
-        monitor cycle and read the frame)."""
+    def send(self, xyz_m, rpy, norm=1.0):
+        """One camera_link transform (its quaternion of norm `norm`) and one home pose of both
+        arms (the input that makes the monitor cycle and read the frame)."""
         t = TransformStamped()
         t.header.stamp = rospy.Time.now()
         t.header.frame_id = 'world'
         t.child_frame_id = FRAME
         t.transform.translation.x, t.transform.translation.y, t.transform.translation.z = xyz_m
         t.transform.rotation = quaternion_from_rpy(*rpy)
+        for axis in ('x', 'y', 'z', 'w'):
+            setattr(t.transform.rotation, axis, norm * getattr(t.transform.rotation, axis))
         self.tf_pub.publish(TFMessage(transforms=[t]))
         self.client.publish_pose(HOME, HOME)
 
@@ -138,6 +140,23 @@ class FrameBoundObjectTest(unittest.TestCase):
                                  'frame\'s new pose' % (on_camera,))
         report = self.wait_clear('after moving the frame away')
         self.assertEqual(camera_warnings(report), [])
+
+    def test_camera_quaternion_off_unit_norm_is_normalised(self):
+        # tf2 keeps a quaternion whose squared norm is within 0.01 of 1; its matrix as it is
+        # would stretch the camera by 0.4 % (the monitor refuses such a pose, and stops): the
+        # node normalises it, and the camera at its scene pose stays clear, cycle after cycle.
+        self.wait_clear('before')
+        start = self.client.report_count()
+        report = self.client.publish_until(
+            lambda: self.send(SCENE_XYZ_M, SCENE_RPY, norm=1.004),
+            lambda r: len(self.client.reports_since(start)) >= 40, TIMEOUT_S)
+        self.assertIsNotNone(report, 'fewer than 40 reports with camera_link\'s quaternion of '
+                             'norm 1.004')
+        # The first few cycles may still read the last unit-norm transform.
+        late = self.client.reports_since(start)[20:]
+        stopped = [r for r in late if r.stop or r.input_status != MonitorReport.INPUT_OK]
+        self.assertFalse(stopped, 'with camera_link\'s quaternion of norm 1.004: %s'
+                         % self.describe(stopped))
 
     def test_second_frame_followed_while_the_first_is_unavailable(self):
         # test/data/two_frames_scene.yaml: camera (camera_link), then probe (probe_link). Once

@@ -2,7 +2,10 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 
+#include <Eigen/Geometry>
+#include <geometry_msgs/Transform.h>
 #include <sensor_msgs/JointState.h>
 
 #include "arm_collision_monitor/CollisionWarning.h"
@@ -23,6 +26,12 @@ std::uint8_t WarningSeverity(double distance_m, double threshold_m);
 
 /// MonitorReport::INPUT_* for a safety status (equal values).
 std::uint8_t ToInputStatusMsg(SafetyStatus status);
+
+/// A TF transform as a rigid pose into `X`: its quaternion normalised (tf2 keeps one whose
+/// squared norm is within 0.01 of 1, whose matrix would stretch or shrink the shapes it places
+/// by up to 1 %). Returns "", else what is wrong (a quaternion of zero or far from unit norm, a
+/// non-finite value), leaving `X` alone.
+std::string ToRigidTransform(const geometry_msgs::Transform& transform, Eigen::Isometry3d* X);
 
 /// The merger's view of `msg` (borrows its arrays: valid while `msg` lives); the stamp in
 /// seconds, 0 when unset.
