@@ -371,7 +371,7 @@ void CheckMimicRange(const KinematicModel& model, const std::string& urdf_path) 
     const double m = joint.mimic_multiplier;
     char text[400];
     std::snprintf(text, sizeof(text),
-                  " (multiplier %.6g, offset %.6g) reaches %.6g rad over the positions of '%s' "
+                  " (multiplier %.6g, offset %.6g) reaches %.10g rad over the positions of '%s' "
                   "the monitor accepts ([%.6g, %.6g]), over the %.6g rad a mimic joint may take",
                   m, joint.mimic_offset, reach, target->name.c_str(), lower, upper,
                   kMaxMimicPosition);

@@ -234,8 +234,7 @@ TEST(SceneWorldCube, WorldOverTheLargestEdgeIsRefused) {
 
 // A revolute mimic joint whose position over the accepted positions of the joint it mimics
 // passes kMaxMimicPosition (an absurd multiplier: its poses lose all precision, then overflow
-// to NaN, which warned of nothing) is refused, naming it; a x2 mimic of the continuous wrist
-// (up to 2e9 rad) loads.
+// to NaN, which warned of nothing) is refused, naming it.
 TEST(SceneWorldCube, MimicJointsOfAbsurdRangeAreRefused) {
   const std::string scene = kData + "three_link_scene.yaml";
   const auto revolute_mimic = [](const std::string& name, const std::string& mimic) {
@@ -249,11 +248,17 @@ TEST(SceneWorldCube, MimicJointsOfAbsurdRangeAreRefused) {
   ExpectLoadError([&] { LoadWorkcell(absurd, scene); },
                   {absurd + ": mimic joint 'finger_mimic' (multiplier 1e+308, offset 0) reaches "
                             "2.1e+307 rad over the positions of 'slide' the monitor accepts "
-                            "([-0.01, 0.21]), over the 1e+10 rad a mimic joint may take"});
-  const std::string twice =
-      revolute_mimic("mimic_spin_x2.urdf", "<mimic joint=\"spin\" multiplier=\"2\"/>");
-  EXPECT_EQ(LoadWorkcell(twice, scene).kinematics.MimicJointNames(),
+                            "([-0.01, 0.21]), over the 1.6e+10 rad a mimic joint may take"});
+  // A x10 mimic of the continuous wrist with an offset (up to 1e10 + 0.5 rad) loads; a x20 one
+  // does not.
+  const std::string tenfold = revolute_mimic(
+      "mimic_spin_x10.urdf", "<mimic joint=\"spin\" multiplier=\"10\" offset=\"0.5\"/>");
+  EXPECT_EQ(LoadWorkcell(tenfold, scene).kinematics.MimicJointNames(),
             std::vector<std::string>{"finger_mimic"});
+  const std::string twentyfold =
+      revolute_mimic("mimic_spin_x20.urdf", "<mimic joint=\"spin\" multiplier=\"20\"/>");
+  ExpectLoadError([&] { LoadWorkcell(twentyfold, scene); },
+                  {"mimic joint 'finger_mimic' (multiplier 20, offset 0) reaches 2e+10 rad"});
   const std::string geared = revolute_mimic(
       "mimic_spin_x2000.urdf", "<mimic joint=\"spin\" multiplier=\"2000\" offset=\"1\"/>");
   ExpectLoadError([&] { LoadWorkcell(geared, scene); },

@@ -183,12 +183,13 @@ inline constexpr double kMaxUnlimitedPosition_rad = 1e9;
 
 /// The largest magnitude a revolute or continuous mimic joint's position may reach over the
 /// positions the monitor accepts of the joint it mimics, rad (a prismatic mimic's travel is held
-/// to kMaxWorldEdge_m): ten times kMaxUnlimitedPosition_rad, so that a x2 or x10 mimic of a
-/// continuous joint loads. A larger one (an absurd multiplier or offset: 1e308 overflowed to
-/// NaN poses) is refused at start-up. The rounding of the mimic's computed angle, one unit in
-/// its last place, is what the motion bounds may miss: 2e-6 rad at 1e10 rad (2 um a metre of
-/// lever), 1e-9 rad below 4e6 rad.
-inline constexpr double kMaxMimicPosition = 10.0 * kMaxUnlimitedPosition_rad;
+/// to kMaxWorldEdge_m): 16 times kMaxUnlimitedPosition_rad, so that a x10 mimic of a continuous
+/// joint loads with its offset (at exactly ten times, an offset of 0.5 rad was refused). A larger
+/// one (an absurd multiplier or offset: 1e308 overflowed to NaN poses) is refused at start-up.
+/// The rounding of the mimic's computed angle, one unit in its last place, is what the motion
+/// bounds may miss: 2e-6 rad from 8.6e9 rad up to the bound (2 um a metre of lever), 1e-9 rad
+/// below 4e6 rad.
+inline constexpr double kMaxMimicPosition = 16.0 * kMaxUnlimitedPosition_rad;
 
 /// A step beyond max_step_m is no jump when the time since the last accepted sample shows every
 /// joint moved at most this many times its velocity limit allows (a planned path sampled
