@@ -63,7 +63,7 @@ void RewriteDrakeCapsules(const std::string& urdf_path, tinyxml2::XMLElement* li
         geometry == nullptr ? nullptr : geometry->FirstChildElement("capsule");
     if (capsule == nullptr) continue;
     const std::string where = urdf_path + ": link '" + (link_name ? link_name : "") +
-                              "' <collision> " + std::to_string(index) + " <capsule>";
+                              "' <collision> " + std::to_string(index) + " (from 0) <capsule>";
     const double radius_m = NonNegativeAttribute(*capsule, "radius", where);
     const double length_m = NonNegativeAttribute(*capsule, "length", where);
     urdf::Pose origin;

@@ -528,14 +528,18 @@ std::string Monitor::DescribeRefusal(const Eigen::Ref<const Eigen::VectorXd>& q)
       text << "joint '" << model.workcell->joint_names[static_cast<std::size_t>(i)] << "' at "
            << q[i];
       if (turns != 0.0) text << " (" << x << " with the whole turns unwound so far)";
-      const double bound = x > model.q_upper[i] ? model.q_upper[i] : -model.q_lower[i];
-      if (std::isfinite(x) && bound == kMaxUnlimitedPosition_rad) {
-        text << ", beyond the +/-" << kMaxUnlimitedPosition_rad
-             << " rad a joint without limits may take (a corrupt reading)";
+      // A side without a limit is accepted up to kMaxUnlimitedPosition_rad (no margin).
+      const bool is_lower_free = model.q_lower[i] == -kMaxUnlimitedPosition_rad;
+      const bool is_upper_free = model.q_upper[i] == kMaxUnlimitedPosition_rad;
+      if (std::isfinite(x) && (x > model.q_upper[i] ? is_upper_free : is_lower_free)) {
+        text << ", beyond the +/-" << kMaxUnlimitedPosition_rad << " rad a joint may take on a "
+             << "side without a limit (a corrupt reading)";
       } else if (std::isfinite(x)) {
-        text << ", outside its limits [" << model.q_lower[i] + kJointLimitMargin << ", "
-             << model.q_upper[i] - kJointLimitMargin << "] by more than their margin "
-             << kJointLimitMargin;
+        text << ", outside its limits [";
+        if (is_lower_free) text << "none"; else text << model.q_lower[i] + kJointLimitMargin;
+        text << ", ";
+        if (is_upper_free) text << "none"; else text << model.q_upper[i] - kJointLimitMargin;
+        text << "] by more than their margin " << kJointLimitMargin;
       }
       return text.str();
     }

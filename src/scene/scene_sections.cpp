@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <utility>
 
@@ -316,6 +318,18 @@ Aabb ReadWorld(const YAML::Node& node, const Where& where) {
 
 namespace {
 
+// A side of a joint's position range (KinematicModel::PositionRange) for a message: its limit,
+// or for a side without one (`limit` infinite) the bound the monitor accepts there.
+std::string LimitText(double limit, double accepted) {
+  char text[48];
+  if (std::isfinite(limit)) {
+    std::snprintf(text, sizeof(text), "%.10g", accepted);
+  } else {
+    std::snprintf(text, sizeof(text), "none: %g", accepted);
+  }
+  return text;
+}
+
 // The entries of a map keyed by actuated joint names (joint_limits:, joint_defaults:): `read`
 // gets each value, its place and the joint's name and spec; any other key fails.
 template <typename Read>
@@ -352,9 +366,9 @@ void ReadJointLimits(const YAML::Node& node, const Where& where, KinematicModel*
     const auto is_within = [&](double x) { return urdf.first <= x && x <= urdf.second; };
     if (!((lower == joint.lower || is_within(lower)) && lower <= upper &&
           (upper == joint.upper || is_within(upper)))) {
-      item.Fail(value, "expected URDF lower (" + std::to_string(urdf.first) +
-                           ") <= lower <= upper <= URDF upper (" + std::to_string(urdf.second) +
-                           ")");
+      item.Fail(value, "expected URDF lower (" + LimitText(joint.lower, urdf.first) +
+                           ") <= lower <= upper <= URDF upper (" +
+                           LimitText(joint.upper, urdf.second) + ")");
     }
     model->SetPositionLimits(joint_name, lower, upper);
     // The joint's real top speed, where the URDF's is the motor's (a Unitree G1's 37 rad/s):
@@ -379,8 +393,9 @@ std::vector<std::pair<int, double>> ReadJointDefaults(const YAML::Node& node, co
     const double position = yaml_fields::ReadFiniteDouble(value, item);
     const auto [lower, upper] = KinematicModel::PositionRange(joint);
     if (!(lower <= position && position <= upper)) {
-      item.Fail(value, "expected a position within the joint's limits [" + std::to_string(lower) +
-                           ", " + std::to_string(upper) + "]");
+      item.Fail(value, "expected a position within the joint's limits [" +
+                           LimitText(joint.lower, lower) + ", " + LimitText(joint.upper, upper) +
+                           "]");
     }
     defaults.emplace_back(joint.q_index, position);
   });

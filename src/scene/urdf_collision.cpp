@@ -129,7 +129,7 @@ UrdfLinkGeometry ReadUrdfLinkGeometry(const urdf::Link& link, const std::string&
   std::vector<CollisionElement> elements;
   for (std::size_t i = 0; i < collisions.size(); ++i) {
     const std::string where =
-        urdf_path + ": link '" + link.name + "' <collision> " + std::to_string(i);
+        urdf_path + ": link '" + link.name + "' <collision> " + std::to_string(i) + " (from 0)";
     elements.push_back(ReadCollisionElement(*collisions[i], i, where));
   }
 
@@ -342,7 +342,7 @@ void CheckEveryCollisionRead(const std::string& urdf_xml, const urdf::ModelInter
       }
       if (geometries > 1 || shapes > 1) {
         throw LoadError(urdf_path + ": link '" + link->name + "': its <collision> element " +
-                        std::to_string(index) + " in the file holds " +
+                        std::to_string(index) + " (from 0) in the file holds " +
                         (geometries > 1 ? std::to_string(geometries) + " <geometry> elements"
                                         : "a <geometry> of " + std::to_string(shapes) +
                                               " shapes") +

@@ -56,9 +56,9 @@ void CheckEveryCollisionRead(const std::string& urdf_xml, const urdf::ModelInter
                              const std::string& urdf_path);
 
 /// A start-up notice for the <visual> and <collision> meshes of `model` named by a path relative
-/// to the URDF's folder (neither absolute nor a URL): the monitor reads them, rviz's RobotModel
-/// and MoveIt, which read robot_description, do not. Counts them and names the first; "" when
-/// there is none.
+/// to the URDF's folder (neither absolute nor a URL): the monitor reads such collision meshes
+/// (it never reads visual ones), rviz's RobotModel and MoveIt, which read robot_description,
+/// find neither. Counts them and names the first; "" when there is none.
 std::string RelativeMeshNotice(const urdf::ModelInterface& model, const std::string& urdf_path);
 
 }  // namespace arm_collision_monitor

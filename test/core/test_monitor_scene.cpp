@@ -412,7 +412,7 @@ TEST(MonitorScene, EveryJointValueIsCheckedInEveryPosition) {
           Eigen::VectorXd q = good;
           q[joint.q_index] = absurd;
           EXPECT_NE(monitor.DescribeRefusal(q).find(
-                        "beyond the +/-1e+09 rad a joint without limits may take"),
+                        "beyond the +/-1e+09 rad a joint may take on a side without a limit"),
                     std::string::npos)
               << monitor.DescribeRefusal(q);
         }
@@ -425,6 +425,30 @@ TEST(MonitorScene, EveryJointValueIsCheckedInEveryPosition) {
       EXPECT_EQ(status_with(joint.upper + 0.5 * kJointLimitMargin), InputStatus::kOk) << what;
     }
     EXPECT_EQ(continuous, wc == workcells[0] ? 0 : 1);
+  }
+}
+
+// A continuous joint with a soft lower limit only: a refusal below it names the limit and no
+// upper one; one beyond +/-1e9 above it names the side without a limit.
+TEST(MonitorScene, RefusalNamesTheSideWithoutALimit) {
+  const std::string data = ACM_SOURCE_DIR "/test/data/";
+  const std::string scene =
+      WriteTempFile("spin_lower.yaml", ReadTextFile(data + "three_link_scene.yaml") +
+                                           "\njoint_limits: {spin: {lower: -4.0}}\n");
+  const auto wc =
+      std::make_shared<const Workcell>(LoadWorkcell(data + "three_link_arm.urdf", scene));
+  const Monitor monitor(wc, MonitorOptions{});
+  const int spin = wc->kinematics.joint(wc->kinematics.FindJointChildLink("spin")).q_index;
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(wc->kinematics.q_size());
+  ASSERT_EQ(monitor.Check(q).input, InputStatus::kOk);
+  const std::vector<std::pair<double, std::string>> cases = {
+      {-5.0, "joint 'spin' at -5, outside its limits [-4, none] by more than their margin 0.01"},
+      {2e9, "joint 'spin' at 2e+09, beyond the +/-1e+09 rad a joint may take on a side without a "
+            "limit (a corrupt reading)"}};
+  for (const auto& [position, why] : cases) {
+    q[spin] = position;
+    EXPECT_EQ(monitor.Check(q).input, InputStatus::kOutOfLimits) << position;
+    EXPECT_EQ(monitor.DescribeRefusal(q), why);
   }
 }
 

@@ -334,12 +334,12 @@ TEST(SceneLoader, BadCollisionGeometryNamesTheElement) {
        "<capsule>: <origin>:"},
       // urdfdom keeps the first shape of a <geometry> only (a red team's sphere went unseen).
       {"<geometry><cylinder radius=\"0.1\" length=\"1\"/><sphere radius=\"0.5\"/></geometry>",
-       "link 'base': its <collision> element 1 in the file holds a <geometry> of 2 shapes; "
-       "urdfdom reads only the first: give each shape a <collision> of its own"},
+       "link 'base': its <collision> element 1 (from 0) in the file holds a <geometry> of 2 "
+       "shapes; urdfdom reads only the first: give each shape a <collision> of its own"},
       {"<geometry><cylinder radius=\"0.1\" length=\"1\"/></geometry>"
        "<geometry><sphere radius=\"0.5\"/></geometry>",
-       "link 'base': its <collision> element 1 in the file holds 2 <geometry> elements; urdfdom "
-       "reads only the first"},
+       "link 'base': its <collision> element 1 (from 0) in the file holds 2 <geometry> elements; "
+       "urdfdom reads only the first"},
   };
   for (std::size_t k = 0; k < cases.size(); ++k) {
     const std::string urdf = WriteTempFile(
@@ -351,7 +351,7 @@ TEST(SceneLoader, BadCollisionGeometryNamesTheElement) {
     // urdfdom drops shapes.
     const bool is_dropped = cases[k].second.rfind("link 'base': ", 0) == 0;
     ExpectLoadError([&] { LoadWorkcell(urdf, scene); },
-                    {urdf, is_dropped ? cases[k].second : "link 'base' <collision> 1",
+                    {urdf, is_dropped ? cases[k].second : "link 'base' <collision> 1 (from 0)",
                      cases[k].second});
   }
 }
@@ -608,7 +608,10 @@ TEST(SceneLoader, JointLimitOverrides) {
   // The continuous wrist's soft limits lie within kMaxUnlimitedPosition_rad (beyond it, no
   // position would be accepted).
   ExpectSceneError(kArmUrdf, kWorldLine + "joint_limits: {spin: {lower: 2e9}}\n",
-                   {"joint_limits.spin", "<= URDF upper (1000000000.0"});
+                   {"joint_limits.spin", "expected URDF lower (none: -1e+09) <= lower <= upper "
+                                         "<= URDF upper (none: 1e+09)"});
+  ExpectSceneError(kArmUrdf, kWorldLine + "joint_limits: {elbow: {upper: 3.0}}\n",
+                   {"expected URDF lower (-2) <= lower <= upper <= URDF upper (2)"});
   // A velocity limit below the URDF's (its motor's, say) replaces it; above it, or not positive,
   // is an error naming the key.
   const Workcell slow = LoadWorkcell(
@@ -653,7 +656,7 @@ TEST(SceneLoader, JointDefaults) {
       {"joint_defaults: {elbow: .nan}\n", {"joint_defaults.elbow"}},
       // The continuous wrist: within kMaxUnlimitedPosition_rad (beyond, every cycle is refused).
       {"joint_defaults: {spin: 2e9}\n",
-       {"joint_defaults.spin", "within the joint's limits [-1000000000.0"}},
+       {"joint_defaults.spin", "within the joint's limits [none: -1e+09, none: 1e+09]"}},
   };
   for (const auto& [scene, parts] : bad) ExpectSceneError(kArmUrdf, kWorldLine + scene, parts);
   ExpectSceneError(kArmUrdf, kWorldLine + "joint_defaults: [elbow, 0]\n", {"joint_defaults"});
