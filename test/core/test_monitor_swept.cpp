@@ -1026,6 +1026,13 @@ TEST_F(WrappedReadings, AReadingBeyondTheBoundIsRefusedWithTurnsKept) {
   EXPECT_TRUE(refused.stop);
   const std::string why = monitor.DescribeRefusal(q);
   EXPECT_NE(why.find("joint 'left_joint1' at -1e+09"), std::string::npos) << why;
+  // A reading within the bound that the kept turn takes beyond it is refused, named unwound.
+  const Eigen::VectorXd edge = Pose(*wc, kMaxUnlimitedPosition_rad - 1.0);
+  EXPECT_EQ(monitor.Update(edge, 0.055).input, InputStatus::kOutOfLimits);
+  const std::string unwound = monitor.DescribeRefusal(edge);
+  EXPECT_NE(unwound.find("with the whole turns unwound so far), beyond the +/-1e+09 rad"),
+            std::string::npos)
+      << unwound;
   // The turn is still kept: the next reading of the crossing is unwound, no step, no warning.
   const CycleReport& next = monitor.Update(Pose(*wc, Wrapped(3.152)), 0.06);
   EXPECT_EQ(next.input, InputStatus::kOk);
