@@ -441,7 +441,9 @@ Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_pat
   return LoadWorkcell(urdf_path, scene_path, options);
 }
 
-Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_path,
+namespace {
+
+Workcell ReadWorkcell(const std::string& urdf_path, const std::string& scene_path,
                       const WorkcellLoadOptions& options) {
   using scene_sections::Where;
   const double default_arm_tolerance_m = options.default_arm_tolerance_m;
@@ -518,6 +520,19 @@ Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_pat
   const std::vector<std::string> sampled = SampledConfigurationWarnings(w);
   w.warnings.insert(w.warnings.end(), sampled.begin(), sampled.end());
   return w;
+}
+
+}  // namespace
+
+Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_path,
+                      const WorkcellLoadOptions& options) {
+  // Every read of a YAML node checks its kind first; yaml-cpp's own exception (a node used as
+  // another kind) is a load error all the same, never a crash.
+  try {
+    return ReadWorkcell(urdf_path, scene_path, options);
+  } catch (const YAML::Exception& e) {
+    throw LoadError(scene_path + ": cannot read it: " + e.what());
+  }
 }
 
 }  // namespace arm_collision_monitor

@@ -46,12 +46,16 @@ YAML::Node LoadMapText(const std::string& text, const std::string& path) {
   return root;
 }
 
+// A key a map does not have is an invalid node, whose kind yaml-cpp throws for (InvalidNode, which
+// escaped as a crash): IsDefined first.
 void RequireMap(const YAML::Node& node, const Where& where) {
-  if (!node.IsMap()) where.Fail(node, "expected a map ({key: value, ...})");
+  if (!node.IsDefined() || !node.IsMap()) where.Fail(node, "expected a map ({key: value, ...})");
 }
 
 void RequireSequence(const YAML::Node& node, const Where& where) {
-  if (!node.IsSequence()) where.Fail(node, "expected a list ([...] or '- ' items)");
+  if (!node.IsDefined() || !node.IsSequence()) {
+    where.Fail(node, "expected a list ([...] or '- ' items)");
+  }
 }
 
 void RequireUniqueKeys(const YAML::Node& map, const Where& where) {

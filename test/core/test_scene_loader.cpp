@@ -867,6 +867,10 @@ TEST(SceneLoader, UnknownNamesAreRejected) {
                        "variants: [{link: left_hand, name: grasp, capsules: "
                        "[{name: palm, p0_m: [0,0,0], p1_m: [0,0,1], radius_m: 0.1}]}]\n",
                    {"variants[0]", "unknown link 'left_hand'"});
+  // A variant without capsules: yaml-cpp throws for the kind of the missing key's node, which
+  // crashed the loader (a fuzzer's); the key is named.
+  ExpectSceneError(kUrdf, kWorldLine + "variants: [{link: left_link7, name: grasp}]\n",
+                   {"variants[0] 'left_link7/grasp'.capsules", "expected a list"});
   ExpectSceneError(kUrdf, kWorldLine + "objetcs: []\n", {"unknown key 'objetcs'"});
   ExpectSceneError(
       kUrdf, kWorldLine + "links:\n  left_link3: {radius_m: 0.1}\n  left_link3: {ignore: true}\n",
