@@ -513,7 +513,7 @@ void Monitor::Impl::SweepPair(PrimitiveId a, PrimitiveId b, double pair_motion_m
     if (is_within_resolution) --refinements_left;
     if (!std::isnan(resolved_s) && samples_left-- == 0) break;
     // The step's tests spent (a step of absurd length): the interval is not certified.
-    if (work->swept_tests >= kMaxSweptTests) {
+    if (work->swept_tests >= kMaxSweptTests + kSweptTestsPerPair * work->swept_pairs) {
       if (std::isnan(resolved_s)) resolved_s = iv.d0_m <= iv.d1_m ? iv.s0 : iv.s1;
       break;
     }

@@ -1,7 +1,8 @@
 #include "arm_collision_monitor/ros/conversions.h"
 
+#include <cmath>
+
 #include "arm_collision_monitor/MonitorReport.h"
-#include "arm_collision_monitor/scene/unit_quaternion.h"
 
 namespace arm_collision_monitor {
 
@@ -20,10 +21,11 @@ std::string ToRigidTransform(const geometry_msgs::Transform& transform, Eigen::I
   const Eigen::Vector3d p(t.x, t.y, t.z);
   if (!p.allFinite()) return "translation not finite";
   const geometry_msgs::Quaternion& r = transform.rotation;
-  Eigen::Quaterniond R;
-  const std::string why = ToUnitQuaternion(Eigen::Vector4d(r.x, r.y, r.z, r.w), &R);
-  if (!why.empty()) return "rotation: " + why;
-  X->linear() = R.toRotationMatrix();
+  const Eigen::Quaterniond R(r.w, r.x, r.y, r.z);
+  // tf2 checks each transform it is sent, not the products along a chain, whose norms multiply.
+  const double norm = R.norm();
+  if (!std::isfinite(norm) || norm == 0.0) return "rotation: quaternion zero or not finite";
+  X->linear() = R.normalized().toRotationMatrix();
   X->translation() = p;
   return "";
 }

@@ -372,7 +372,7 @@ void CheckMimicRange(const KinematicModel& model, const std::string& urdf_path) 
     char text[400];
     std::snprintf(text, sizeof(text),
                   " (multiplier %.6g, offset %.6g) reaches %.10g rad over the positions of '%s' "
-                  "the monitor accepts ([%.6g, %.6g]), over the %.6g rad a mimic joint may take",
+                  "the monitor accepts ([%.6g, %.6g]), over the %.10g rad a mimic joint may take",
                   m, joint.mimic_offset, reach, target->name.c_str(), lower, upper,
                   kMaxMimicPosition);
     throw LoadError(urdf_path + ": mimic joint '" + joint.name + "'" + text +

@@ -37,16 +37,26 @@ TEST(RosConversions, TfQuaternionOffUnitNormIsNormalised) {
   EXPECT_EQ(X.translation(), Eigen::Vector3d(1.0, -2.0, 0.5));
 }
 
+// A chain of three static frames each of norm 1.0049, which tf2 accepts one by one, composes
+// to a quaternion of norm 1.0148 (a review's): normalised as well, not refused (refused, the
+// object it places would be unavailable, a stop, until a restart).
+TEST(RosConversions, TfChainOfQuaternionsOffUnitNormIsNormalised) {
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  const double s = std::pow(1.0049, 3);
+  ASSERT_EQ(ToRigidTransform(MakeTransform(s * 0.5, s * 0.5, s * 0.5, s * 0.5), &X), "");
+  EXPECT_NEAR((X.linear().transpose() * X.linear() - Eigen::Matrix3d::Identity()).norm(), 0.0,
+              1e-15);
+  EXPECT_NEAR((X.linear() * Eigen::Vector3d::UnitX() - Eigen::Vector3d::UnitY()).norm(), 0.0,
+              1e-15);
+}
+
 TEST(RosConversions, BadTfTransformIsNamedAndLeavesThePose) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const Eigen::Isometry3d before = Eigen::Isometry3d(Eigen::Translation3d(3.0, 4.0, 5.0));
-  for (const auto& [transform, why] :
-       {std::pair{MakeTransform(0.0, 0.0, 0.0, 0.0), std::string("rotation: a zero quaternion")},
-        std::pair{MakeTransform(0.0, 0.0, 0.0, 2.0), std::string("rotation: quaternion norm 2")},
-        std::pair{MakeTransform(nan, 0.0, 0.0, 1.0), std::string("rotation: quaternion norm")}}) {
+  for (const geometry_msgs::Transform& transform :
+       {MakeTransform(0.0, 0.0, 0.0, 0.0), MakeTransform(nan, 0.0, 0.0, 1.0)}) {
     Eigen::Isometry3d X = before;
-    const std::string error = ToRigidTransform(transform, &X);
-    EXPECT_EQ(error.rfind(why, 0), 0u) << error;
+    EXPECT_EQ(ToRigidTransform(transform, &X), "rotation: quaternion zero or not finite");
     EXPECT_EQ(X.matrix(), before.matrix());
   }
   geometry_msgs::Transform far = MakeTransform(0.0, 0.0, 0.0, 1.0);

@@ -28,9 +28,9 @@ std::uint8_t WarningSeverity(double distance_m, double threshold_m);
 std::uint8_t ToInputStatusMsg(SafetyStatus status);
 
 /// A TF transform as a rigid pose into `X`: its quaternion normalised (tf2 keeps one whose
-/// squared norm is within 0.01 of 1, whose matrix would stretch or shrink the shapes it places
-/// by up to 1 %). Returns "", else what is wrong (a quaternion of zero or far from unit norm, a
-/// non-finite value), leaving `X` alone.
+/// squared norm is within 0.01 of 1, and multiplies them along a chain of frames; as it is, its
+/// matrix would stretch or shrink the shapes it places). Returns "", else what is wrong (a zero
+/// or non-finite quaternion, a non-finite translation), leaving `X` alone.
 std::string ToRigidTransform(const geometry_msgs::Transform& transform, Eigen::Isometry3d* X);
 
 /// The merger's view of `msg` (borrows its arrays: valid while `msg` lives); the stamp in
