@@ -1,13 +1,13 @@
-// The ROS programs' ResourceFetcher: resource_retriever resolves package:// (through the ROS
-// package index, ROS_PACKAGE_PATH) and file:// URLs and plain paths.
+// The ROS programs' ResourceFetcher: package:// URLs through the ROS package index (rospack,
+// ROS_PACKAGE_PATH), other URLs through resource_retriever, plain paths as files.
 #pragma once
 
 #include <string>
 
 namespace arm_collision_monitor {
 
-/// The bytes of `url` (package://pkg/path, file:///path, an absolute path) read by
-/// resource_retriever; throws LoadError with resource_retriever's reason when it cannot.
+/// The bytes of `url` (package://pkg/path, file:///path, an absolute path); throws LoadError
+/// with the reason when it cannot (a package ROS does not know, with what to do).
 std::string FetchRosResource(const std::string& url);
 
 }  // namespace arm_collision_monitor
