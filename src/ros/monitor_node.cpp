@@ -1,6 +1,7 @@
 #include "arm_collision_monitor/ros/monitor_node.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include <boost/make_shared.hpp>
@@ -254,19 +255,30 @@ void MonitorNode::UpdateBoundObjects(const ros::Time& now) {
   const BoundObject* first = nullptr;
   std::string first_error, others;
   for (BoundObject& bound : bound_objects_) {
+    // A held object follows its holder link, not its frame (SetObjectPose refuses it): the
+    // frame is read again, and the object put at its pose, once it is let go.
+    if (!monitor_->HolderOf(bound.object).empty()) {
+      bound.has_pose = false;
+      continue;
+    }
     std::string error;
     try {
       const geometry_msgs::TransformStamped X =
           tf_buffer_.lookupTransform(fixed_frame_, bound.frame, ros::Time(0));
       // A broadcast frame (a static chain comes stamped 0) not sent for frame_timeout_s is
-      // stale: the object may have moved since (a tracker or a conveyor's driver stopped).
-      const double age_s = (now - X.header.stamp).toSec();
+      // stale: the object may have moved since (a tracker or a conveyor's driver stopped). One
+      // stamped further ahead of the node's clock cannot be dated, as JointState input. In
+      // seconds: ros::Time's difference throws past 2^31 s (a stamp from a broken clock).
+      const double age_s = now.toSec() - X.header.stamp.toSec();
       if (options_.frame_timeout_s > 0.0 && !X.header.stamp.isZero() &&
-          age_s > options_.frame_timeout_s) {
-        char text[128];
+          std::abs(age_s) > options_.frame_timeout_s) {
+        char text[160];
         std::snprintf(text, sizeof(text),
-                      "its newest transform is %.3f s old, over ~frame_timeout_s (%.3f s)", age_s,
-                      options_.frame_timeout_s);
+                      age_s > 0.0
+                          ? "its newest transform is %.3f s old, over ~frame_timeout_s (%.3f s)"
+                          : "its newest transform is stamped %.3f s ahead of the node's clock, "
+                            "over ~frame_timeout_s (%.3f s)",
+                      std::abs(age_s), options_.frame_timeout_s);
         ++stale_frames_;
         error = text;
       } else {

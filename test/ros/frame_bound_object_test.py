@@ -20,6 +20,7 @@ from geometry_msgs.msg import Quaternion, TransformStamped
 from tf2_msgs.msg import TFMessage
 
 from arm_collision_monitor.msg import MonitorReport
+from arm_collision_monitor.srv import AttachObject, DetachObject
 
 from acm_test_util import HOME, MonitorClient, describe_warnings
 
@@ -64,11 +65,11 @@ class FrameBoundObjectTest(unittest.TestCase):
         cls.tf_pub = rospy.Publisher('/tf', TFMessage, queue_size=100)
         assert cls.client.wait_connected(), 'the monitor never subscribed to its input topics'
 
-    def send(self, xyz_m, rpy, norm=1.0):
-        """One camera_link transform (its quaternion of norm `norm`) and one home pose of both
-        arms (the input that makes the monitor cycle and read the frame)."""
+    def send(self, xyz_m, rpy, norm=1.0, stamp=None):
+        """One camera_link transform (its quaternion of norm `norm`, stamped `stamp` or now) and
+        one home pose of both arms (the input that makes the monitor cycle and read the frame)."""
         t = TransformStamped()
-        t.header.stamp = rospy.Time.now()
+        t.header.stamp = rospy.Time.now() if stamp is None else stamp
         t.header.frame_id = 'world'
         t.child_frame_id = FRAME
         t.transform.translation.x, t.transform.translation.y, t.transform.translation.z = xyz_m
@@ -158,6 +159,68 @@ class FrameBoundObjectTest(unittest.TestCase):
         self.assertFalse(stopped, 'with camera_link\'s quaternion of norm 1.004: %s'
                          % self.describe(stopped))
 
+    def test_held_probe_follows_its_holder_not_its_frame(self):
+        # A held frame-bound object follows its holder; its frame, still broadcast and moving,
+        # made every cycle a stop ('held by link', SetObjectPose refusing it) until it was let
+        # go. The probe is lowered onto the left arm (home: straight up) until ~attach takes it
+        # (within 0.1 m of left_link7's geometry, clear of every threshold); then its frame
+        # moves 1 mm a message for 40 reports: none may stop. Let go, it follows its frame.
+        client = MonitorClient(TWO_FRAMES_NODE)
+        self.assertTrue(client.wait_connected())
+        attach = rospy.ServiceProxy(TWO_FRAMES_NODE + '/attach', AttachObject)
+        detach = rospy.ServiceProxy(TWO_FRAMES_NODE + '/detach', DetachObject)
+
+        def send_both(probe_xyz_m):
+            stamp = rospy.Time.now()
+            frames = []
+            for frame, xyz_m, rpy in ((FRAME, SCENE_XYZ_M, SCENE_RPY),
+                                      (PROBE_FRAME, probe_xyz_m, (0.0, 0.0, 0.0))):
+                t = TransformStamped()
+                t.header.stamp = stamp
+                t.header.frame_id = 'world'
+                t.child_frame_id = frame
+                (t.transform.translation.x, t.transform.translation.y,
+                 t.transform.translation.z) = xyz_m
+                t.transform.rotation = quaternion_from_rpy(*rpy)
+                frames.append(t)
+            self.tf_pub.publish(TFMessage(transforms=frames))
+            client.publish_pose(HOME, HOME)
+
+        def clear(report):
+            return (report.input_status == MonitorReport.INPUT_OK and not report.warnings and
+                    not report.stop)
+        self.assertIsNotNone(client.publish_until(lambda: send_both(PROBE_CLEAR_XYZ_M), clear,
+                                                  TIMEOUT_S), 'no clear report before')
+        x, y = IN_LEFT_ARM_XYZ_M[0], IN_LEFT_ARM_XYZ_M[1]
+        held_at = None
+        for step in range(150):
+            xyz_m = (x, y, 3.5 - 0.01 * step)
+            start = client.report_count()
+            self.assertIsNotNone(client.publish_until(
+                lambda: send_both(xyz_m), lambda r: len(client.reports_since(start)) >= 3,
+                TIMEOUT_S), 'no reports with the probe at %s' % (xyz_m,))
+            if attach(PROBE, 'left_link7').success:
+                held_at = xyz_m
+                break
+        self.assertIsNotNone(held_at, 'the probe lowered onto the left arm was never attachable')
+        start = client.report_count()
+        moved = [0]
+
+        def send_moved():
+            moved[0] += 1
+            send_both((held_at[0] + 0.001 * (moved[0] % 2), held_at[1], held_at[2]))
+        self.assertIsNotNone(client.publish_until(
+            send_moved, lambda r: len(client.reports_since(start)) >= 40, TIMEOUT_S),
+            'fewer than 40 reports with the held probe\'s frame moving')
+        stopped = [r for r in client.reports_since(start)[5:] if r.stop]
+        self.assertFalse(stopped, 'the held probe at %s, its frame moving: %s'
+                         % (held_at, self.describe(stopped)))
+        res = detach(PROBE)
+        self.assertTrue(res.success, res.message)
+        self.assertIsNotNone(client.publish_until(lambda: send_both(PROBE_CLEAR_XYZ_M), clear,
+                                                  TIMEOUT_S),
+                             'no clear report with the probe let go and its frame moved away')
+
     def test_second_frame_followed_while_the_first_is_unavailable(self):
         # test/data/two_frames_scene.yaml: camera (camera_link), then probe (probe_link). Once
         # camera_link is unavailable (not sent for ~frame_timeout_s), the stop names the camera;
@@ -212,6 +275,34 @@ class FrameBoundObjectTest(unittest.TestCase):
                                       TIMEOUT_S)
         self.assertIsNotNone(report, 'no stop naming both objects with both frames silent; '
                              'last seen: %s' % self.describe(seen))
+
+    def test_transform_stamped_far_ahead_stops_and_the_node_lives_on(self):
+        # A transform stamped 2^32 s - 296 s (a broken clock; 136 years ahead) made the node's
+        # age computation throw (ros::Time's difference past 2^31 s): the node died with its
+        # last ~stop False. It is a frame that cannot be dated (as JointState input stamped
+        # ahead): a stop naming the object, report after report. Runs last (alphabetical): tf2
+        # then ignores camera_link's transforms stamped now, older than that one by far.
+        self.wait_clear('before')
+        seen = []
+
+        def ahead(report):
+            seen.append(report)
+            return report.stop and report.stop_reason.startswith(
+                "object '%s': pose from frame '%s' unavailable: its newest transform is stamped "
+                % (OBJECT, FRAME)) and "s ahead of the node's clock, over ~frame_timeout_s" in \
+                report.stop_reason
+        far_ahead = rospy.Time(4294967000)
+        report = self.client.publish_until(
+            lambda: self.send(SCENE_XYZ_M, SCENE_RPY, stamp=far_ahead), ahead, TIMEOUT_S)
+        self.assertIsNotNone(report, 'no stop naming camera_link stamped far ahead; last seen: %s'
+                             % self.describe(seen))
+        start = self.client.report_count()
+        report = self.client.publish_until(
+            lambda: self.send(SCENE_XYZ_M, SCENE_RPY, stamp=far_ahead),
+            lambda r: len(self.client.reports_since(start)) >= 20, TIMEOUT_S)
+        self.assertIsNotNone(report, 'the node stopped reporting after camera_link came stamped '
+                             'far ahead')
+        self.assertTrue(all(r.stop for r in self.client.reports_since(start)))
 
 
 if __name__ == '__main__':

@@ -49,8 +49,8 @@ struct NodeOptions {
   int queue_size = 100;            ///< ~queue_size per input topic (1 kHz input: ~0.1 s)
   double cycle_rate_hz = 0.0;      ///< ~cycle_rate_hz: 0 = one cycle per message
   double input_timeout_s = 0.25;   ///< ~input_timeout_s: staleness bound (5 cycles at 20 Hz)
-  /// ~frame_timeout_s: a frame-bound object's TF frame whose newest transform is older is stale
-  /// (a static frame never is); 0 = never
+  /// ~frame_timeout_s: a frame-bound object's TF frame whose newest transform is older, or
+  /// stamped further ahead of the node's clock, is stale (a static frame never is); 0 = never
   double frame_timeout_s = 0.5;
   double stop_hold_s = 0.25;       ///< ~stop_hold_s: minimum duration of a requested stop
   double stop_period_s = 0.1;      ///< ~stop_period_s: ~stop is re-published this often
