@@ -224,7 +224,10 @@ void MonitorNode::OnJointState(const sensor_msgs::JointState::ConstPtr& msg, std
   }
   report_.unknown_joints = input_->last_unknown_joints();
   has_pending_input_ = true;
-  if (options_.cycle_rate_hz <= 0.0) {
+  // At a fixed rate, a later message could overwrite a reading the Monitor refuses (outside the
+  // limits, which the merger passes) before the timer's cycle: its cycle runs at once instead.
+  if (options_.cycle_rate_hz <= 0.0 ||
+      (status == MergeStatus::kAccepted && !monitor_->DescribeRefusal(input_->q()).empty())) {
     RunCycle(start);
   }
 }

@@ -460,6 +460,21 @@ class InputFaultsTest(unittest.TestCase):
         accepted = c.wait_report(start, lambda r: r.header.stamp == later)
         self.assertIsNotNone(accepted, 'no report stamped with the accepted message after it')
         self.assertEqual(accepted.input_status, MonitorReport.INPUT_OK)
+        # A reading outside the joint limits (the merger passes it, the Monitor refuses it),
+        # then good ones within the same tick: the bad reading was overwritten before the
+        # timer's cycle, and lost. Its cycle runs at once: refused, a stop.
+        bad = list(HOME)
+        bad[1] = 5.0  # left_joint2, limits +-2.094 rad
+        bad_stamp = rospy.Time.now()
+        start = c.report_count()
+        c.publishers[0].publish(joint_state(names, bad + HOME, bad_stamp))
+        for k in range(1, 4):
+            c.publishers[0].publish(joint_state(names, HOME + HOME,
+                                                bad_stamp + rospy.Duration(0, 1000 * k)))
+        refused = c.wait_report(start, lambda r: r.header.stamp == bad_stamp)
+        self.assertIsNotNone(refused, 'no report on the reading outside the joint limits')
+        self.assertEqual(refused.input_status, MonitorReport.INPUT_OUT_OF_LIMITS)
+        self.assertTrue(refused.stop)
 
     def test_17_lost_object_frame_requests_stop(self):
         """A node whose fixed frame is not connected to the camera's TF frame cannot place the

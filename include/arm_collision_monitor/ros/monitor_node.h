@@ -47,7 +47,9 @@ struct NodeOptions {
   /// arms that publish the same names, one topic each); empty: none.
   std::vector<std::string> input_joint_prefixes;
   int queue_size = 100;            ///< ~queue_size per input topic (1 kHz input: ~0.1 s)
-  double cycle_rate_hz = 0.0;      ///< ~cycle_rate_hz: 0 = one cycle per message
+  /// ~cycle_rate_hz: 0 = one cycle per message; else cycles at this rate on the newest input,
+  /// and at once on a message whose reading the Monitor refuses (outside the joint limits)
+  double cycle_rate_hz = 0.0;
   double input_timeout_s = 0.25;   ///< ~input_timeout_s: staleness bound (5 cycles at 20 Hz)
   /// ~frame_timeout_s: a frame-bound object's TF frame whose newest transform is older, or
   /// stamped further ahead of the node's clock, is stale (a static frame never is); 0 = never
