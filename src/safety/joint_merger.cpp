@@ -151,10 +151,14 @@ std::string JointMerger::DescribeRefusal(const NamedPositions& input, MergeStatu
         return std::to_string(names.size()) + " names but " +
                std::to_string(input.positions.size()) + " positions";
       }
-      for (std::size_t k = 0; k < names.size(); ++k) {
-        if (std::find(names.begin(), names.begin() + k, names[k]) != names.begin() + k) {
-          return "joint '" + names[k] + "' named twice";
-        }
+      // The model joint named twice (a name the model does not know may repeat); one pass, as
+      // BuildLayout: a search back over the names before each was quadratic in their count.
+      std::vector<bool> seen(joint_names_.size(), false);
+      for (const std::string& name : names) {
+        const auto it = index_of_name_.find(name);
+        if (it == index_of_name_.end()) continue;
+        if (seen[it->second]) return "joint '" + name + "' named twice";
+        seen[it->second] = true;
       }
       return "";
     }

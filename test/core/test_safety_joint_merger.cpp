@@ -70,6 +70,9 @@ TEST(JointMerger, RefusalsLeaveQUntouchedAndAreCounted) {
   const std::vector<Case> cases = {
       {{"a1", "a2"}, {1.0}, 10.1, MergeStatus::kWrongSize, "2 names but 1 positions"},
       {{"a1", "a1"}, {1.0, 1.0}, 10.1, MergeStatus::kWrongSize, "joint 'a1' named twice"},
+      // An unknown name may repeat: the refusal is for the model joint named twice.
+      {{"x", "x", "a2", "a2"}, {1.0, 1.0, 1.0, 1.0}, 10.1, MergeStatus::kWrongSize,
+       "joint 'a2' named twice"},
       {{"x", "a1", "a2"}, {nan, 1.0, nan}, 10.1, MergeStatus::kNonFinite, "joint 'a2' at nan"},
       {{"a1"}, {-inf}, 10.1, MergeStatus::kNonFinite, "joint 'a1' at -inf"},
       {{"x", "y"}, {1.0, 2.0}, 10.1, MergeStatus::kNoKnownJoints,
@@ -96,7 +99,7 @@ TEST(JointMerger, RefusalsLeaveQUntouchedAndAreCounted) {
     EXPECT_EQ(merger.q(), q_before) << MergeStatusName(c.expected);
     EXPECT_EQ(merger.refused(), ++refused);
   }
-  EXPECT_EQ(merger.refused_with(MergeStatus::kWrongSize), 2u);
+  EXPECT_EQ(merger.refused_with(MergeStatus::kWrongSize), 3u);
   EXPECT_EQ(merger.refused_with(MergeStatus::kNonFinite), 2u);
   EXPECT_EQ(merger.refused_with(MergeStatus::kNoKnownJoints), 2u);
   EXPECT_EQ(merger.refused_with(MergeStatus::kStale), 1u);
