@@ -354,6 +354,39 @@ TEST(MonitorScene, FrameBoundObjectFollowsItsPose) {
   EXPECT_FALSE(monitor.SetObjectPose("no_such_object", X_WO, &error));
 }
 
+// Validate between a scene change and the next good cycle, a refused one between (red team):
+// the kept pairs' bounds are of the scene before, and were checked against the camera moved
+// 0.21 m closer to the arm (a false alarm); the next good cycle re-plans them and warns.
+TEST(MonitorScene, ValidHoldsWhileASceneChangeWaitsForTheNextCycle) {
+  const auto wc = LoadBundledWorkcell();
+  MonitorOptions options;
+  options.index_slack_m = 0.1;
+  Monitor monitor(wc, options);
+  const Eigen::VectorXd home = MakeQ(*wc, {});
+  monitor.Update(home);
+  // Beside the left arm's column (x 0, y 0.55 at home): 0.25 m off, a kept candidate pair.
+  Eigen::Isometry3d X_WO = Eigen::Isometry3d::Identity();
+  X_WO.translation() << 0.36, 0.55, 1.5;
+  std::string error;
+  ASSERT_TRUE(monitor.SetObjectPose("camera", X_WO, &error)) << error;
+  EXPECT_TRUE(monitor.Update(home).warnings.empty());
+  ASSERT_GT(monitor.report().candidate_pairs, 0u);
+  ExpectValid(monitor);
+  X_WO.translation().x() = 0.15;  // about 0.02 m from the arm: within its 0.0305 m
+  ASSERT_TRUE(monitor.SetObjectPose("camera", X_WO, &error)) << error;
+  ExpectValid(monitor);
+  Eigen::VectorXd bad = home;
+  bad[0] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_TRUE(monitor.Update(bad).stop);
+  ExpectValid(monitor);
+  const CycleReport& report = monitor.Update(home);
+  const PrimitiveId camera = Prim(*wc, "camera");
+  EXPECT_TRUE(std::any_of(report.warnings.begin(), report.warnings.end(), [&](const Warning& w) {
+    return w.a == camera || w.b == camera;
+  }));
+  ExpectValid(monitor);
+}
+
 // Each joint's value, in every position of q (CheckInput takes two at a time, an odd last one
 // alone): NaN and infinities refused as not finite; a limited joint's value past its limit and
 // margin refused as out of limits, one within its margin taken; a continuous joint takes any
