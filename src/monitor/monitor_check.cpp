@@ -63,11 +63,8 @@ bool Monitor::Validate(std::string* error) const {
   std::string why;
   if (msg.tellp() == 0 && !m.motion.Validate(&why)) msg << "motion bounds: " << why;
   if (msg.tellp() == 0) m.ValidateLiveObjects(&msg);
-  // The kept pairs' bounds and a bounded cycle's proof are of the scene as the last cycle left
-  // it: a scene change since (SetObjectPose, MoveObject, ...; refused cycles keep it pending)
-  // is followed by the next cycle, which re-plans them.
-  if (msg.tellp() == 0 && !m.scene_changed) m.ValidateSlack(&msg);
-  if (msg.tellp() == 0 && m.kinematics_behind && !m.scene_changed) m.ValidateBoundedCycle(&msg);
+  if (msg.tellp() == 0) m.ValidateSlack(&msg);
+  if (msg.tellp() == 0 && m.kinematics_behind) m.ValidateBoundedCycle(&msg);
   const auto& w = m.report.warnings;
   for (std::size_t i = 0; i < w.size() && msg.tellp() == 0; ++i) {
     if (w[i].a >= w[i].b || (i > 0 && !(w[i - 1].a < w[i].a ||
@@ -183,8 +180,10 @@ void Monitor::Impl::ValidateSlack(std::ostringstream* msg) const {
       }
     }
   }
-  // shape_W is at q_kinematics (also after bounded cycles).
-  if (!cache.ValidatePairs(expected, shape_W, &why)) *msg << why;
+  // shape_W is at q_kinematics (also after bounded cycles), but for the primitives moved since
+  // (SetObjectPose, MoveObject; refused cycles keep them pending): their pairs' bounds are of
+  // the scene before, which the next cycle re-plans.
+  if (!cache.ValidatePairs(expected, shape_W, moved, &why)) *msg << why;
 }
 
 void Monitor::Impl::ValidateBoundedCycle(std::ostringstream* msg) const {
@@ -210,9 +209,13 @@ void Monitor::Impl::ValidateBoundedCycle(std::ostringstream* msg) const {
       return;
     }
   }
+  // Kept pairs of the index before a scene change (stale: rebuilt in the next cycle), or with a
+  // primitive a scene change moved since (as ValidateSlack), are for the next cycle to re-plan.
+  if (cache.is_stale()) return;
   for (const KeptPair& kept : cache.pairs()) {
     const PrimitiveId a = kept.pair.a;
     const PrimitiveId b = kept.pair.b;
+    if (moved[a] || moved[b]) continue;
     const double then_m = ShapeDistance(shape_W[a], shape_W[b]).distance_m;
     const double now_m = ShapeDistance(now[a], now[b]).distance_m;
     const double motion_m = bounds.PairBound_m(a, b);

@@ -171,6 +171,11 @@ std::string Monitor::HolderOf(const std::string& object) const {
   return o < 0 || m.holder[o] < 0 ? "" : m.model.kinematics->link_name(m.holder[o]);
 }
 
+bool Monitor::IsHeld(const std::string& object) const {
+  const int o = impl_->FindObject(object);
+  return o >= 0 && impl_->holder[o] >= 0;
+}
+
 bool Monitor::Detach(const std::string& object, std::string* error) {
   Impl& m = *impl_;
   m.SyncKinematics();  // the object stays where it is let go: at the last good q

@@ -138,7 +138,8 @@ bool PairCache::ValidatePrimitive(PrimitiveId id, const Shape& shape_W, std::str
 }
 
 bool PairCache::ValidatePairs(const std::vector<CandidatePair>& expected,
-                              const std::vector<Shape>& shapes_W, std::string* why) const {
+                              const std::vector<Shape>& shapes_W,
+                              const std::vector<std::uint8_t>& moved, std::string* why) const {
   if (is_stale_) return true;  // a scene change since the last cycle: rebuilt in the next one
   std::ostringstream msg;
   // TestPairs writes its batches by index, sized for the most pairs the index can report.
@@ -167,6 +168,7 @@ bool PairCache::ValidatePairs(const std::vector<CandidatePair>& expected,
           << " m exceeds the indexed shapes' distance " << d_m << " m";
       break;
     }
+    if (moved[a] || moved[b]) continue;
     const double now_m = ShapeDistance(shapes_W[a], shapes_W[b]).distance_m;
     if (kept.kinematics_bound_m > now_m + BoundMargin_m(now_m)) {
       msg << "pair (" << a << "," << b << ") bound " << kept.kinematics_bound_m

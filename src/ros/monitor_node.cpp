@@ -227,7 +227,8 @@ void MonitorNode::OnJointState(const sensor_msgs::JointState::ConstPtr& msg, std
   // At a fixed rate, a later message could overwrite a reading the Monitor refuses (outside the
   // limits, which the merger passes) before the timer's cycle: its cycle runs at once instead.
   if (options_.cycle_rate_hz <= 0.0 ||
-      (status == MergeStatus::kAccepted && !monitor_->DescribeRefusal(input_->q()).empty())) {
+      (status == MergeStatus::kAccepted && input_->is_complete() &&
+       !monitor_->DescribeRefusal(input_->q()).empty())) {
     RunCycle(start);
   }
 }
@@ -259,11 +260,9 @@ void MonitorNode::UpdateBoundObjects(const ros::Time& now) {
   std::string first_error, others;
   for (BoundObject& bound : bound_objects_) {
     // A held object follows its holder link, not its frame (SetObjectPose refuses it): the
-    // frame is read again, and the object put at its pose, once it is let go.
-    if (!monitor_->HolderOf(bound.object).empty()) {
-      bound.has_pose = false;
-      continue;
-    }
+    // frame's pose is only noted, and neither it nor its absence stops. Let go, the object
+    // stays where it was let go until its frame moves (a static frame never does).
+    const bool is_held = monitor_->IsHeld(bound.object);
     std::string error;
     try {
       const geometry_msgs::TransformStamped X =
@@ -289,10 +288,12 @@ void MonitorNode::UpdateBoundObjects(const ros::Time& now) {
         Eigen::Isometry3d X_WO = Eigen::Isometry3d::Identity();
         error = ToRigidTransform(X.transform, &X_WO);
         // Most frames (a calibrated camera) do not move: skip the index update then.
-        if (error.empty() && ((bound.has_pose && X_WO.matrix() == bound.X_WO.matrix()) ||
-                              monitor_->SetObjectPose(bound.object, X_WO, &error))) {
+        if (error.empty() &&
+            (is_held || (bound.has_pose && X_WO.matrix() == bound.X_WO.matrix()) ||
+             monitor_->SetObjectPose(bound.object, X_WO, &error))) {
           bound.X_WO = X_WO;
           bound.has_pose = true;
+          bound.is_available = true;
           continue;
         }
         ++tf_failures_;
@@ -301,6 +302,8 @@ void MonitorNode::UpdateBoundObjects(const ros::Time& now) {
       error = e.what();
       ++tf_failures_;
     }
+    bound.is_available = false;
+    if (is_held) continue;
     if (first == nullptr) {
       first = &bound;
       first_error = error;
@@ -552,6 +555,16 @@ bool MonitorNode::OnCheck(CheckJointState::Request& req, CheckJointState::Respon
 }
 
 bool MonitorNode::OnAttach(AttachObject::Request& req, AttachObject::Response& res) {
+  // A frame-bound object whose frame is unavailable is not where its last pose says: held, it
+  // would no longer stop the cell for it.
+  for (const BoundObject& bound : bound_objects_) {
+    if (bound.object == req.object && !bound.is_available && !monitor_->IsHeld(req.object)) {
+      res.success = false;
+      res.message = "object '" + req.object + "': its frame '" + bound.frame +
+                    "' is unavailable (see the stop's reason): attach it once the frame is back";
+      return true;
+    }
+  }
   const std::string previous = monitor_->HolderOf(req.object);
   res.success = monitor_->Attach(req.object, req.link, &res.message);
   if (res.success) {

@@ -181,7 +181,9 @@ void ExpectMatchesBruteForce(const RandomScene& scene,
     EXPECT_LE(kept.kinematics_bound_m, now_m + cache.BoundMargin_m(now_m)) << where;
   }
   std::string why;
-  EXPECT_TRUE(cache.ValidatePairs(expected, scene.shapes_W, &why)) << where << ": " << why;
+  const std::vector<std::uint8_t> none_moved(scene.shapes_W.size(), 0);
+  EXPECT_TRUE(cache.ValidatePairs(expected, scene.shapes_W, none_moved, &why))
+      << where << ": " << why;
   // The skip test loses nothing: the close pairs are those of an all-pairs narrow phase.
   const auto all_close = AllPairs(scene, [&](PrimitiveId a, PrimitiveId b) {
     const double d_m = ShapeDistance(scene.shapes_W[a], scene.shapes_W[b]).distance_m;

@@ -385,6 +385,31 @@ TEST(MonitorScene, ValidHoldsWhileASceneChangeWaitsForTheNextCycle) {
     return w.a == camera || w.b == camera;
   }));
   ExpectValid(monitor);
+  // After a run of bounded cycles, a live ball moved into the left elbow: the bounded cycle's
+  // proof is of the scene before ('pair at 0 m'), what the next cycle re-plans and warns of.
+  X_WO.translation() << 1.6, 0.0, 2.4;  // the camera back out of the way
+  ASSERT_TRUE(monitor.SetObjectPose("camera", X_WO, &error)) << error;
+  Eigen::VectorXd q = home;
+  q[1] = 0.3;
+  monitor.Update(q);
+  std::vector<Eigen::Isometry3d> X_WL(wc->kinematics.link_count());
+  wc->kinematics.ComputeLinkPoses(q, &X_WL);
+  const Eigen::Vector3d elbow = X_WL[wc->kinematics.FindLink("left_link4")].translation();
+  Eigen::Isometry3d X_ball = Eigen::Isometry3d::Identity();
+  X_ball.translation() = elbow + Eigen::Vector3d(0.0, 0.2, 0.0);  // near: a kept pair
+  const std::vector<Shape> ball = {Capsule{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), 0.05}};
+  ASSERT_TRUE(monitor.AddObject("ball", ball, X_ball, 0.0, false, &error)) << error;
+  std::uint32_t bounded = 0;
+  for (int i = 0; i < 20; ++i) {
+    q[1] += 1e-6;
+    bounded += monitor.Update(q).bounded;
+  }
+  ASSERT_GT(bounded, 0u);
+  X_ball.translation() = elbow;
+  ASSERT_TRUE(monitor.MoveObject("ball", X_ball, &error)) << error;
+  ExpectValid(monitor);
+  EXPECT_FALSE(monitor.Update(q).warnings.empty());
+  ExpectValid(monitor);
 }
 
 // Each joint's value, in every position of q (CheckInput takes two at a time, an odd last one

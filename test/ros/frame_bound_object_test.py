@@ -92,6 +92,16 @@ class FrameBoundObjectTest(unittest.TestCase):
                              'last seen: %s' % (what, self.describe(seen)))
         return report
 
+    def wait_camera_unavailable(self, publish, detail, seen):
+        """Publishes until a report's stop names camera_link's newest transform as unavailable,
+        its reason containing `detail`; the reports seen so far go to `seen`."""
+        def unavailable(report):
+            seen.append(report)
+            return report.stop and report.stop_reason.startswith(
+                "object '%s': pose from frame '%s' unavailable: its newest transform is "
+                % (OBJECT, FRAME)) and detail in report.stop_reason
+        return self.client.publish_until(publish, unavailable, TIMEOUT_S)
+
     @staticmethod
     def describe(seen):
         if not seen:
@@ -106,14 +116,8 @@ class FrameBoundObjectTest(unittest.TestCase):
         # the object, its frame and the transform's age; the frame back, the stop clears.
         self.wait_clear('before')
         seen = []
-
-        def stale(report):
-            seen.append(report)
-            return report.stop and report.stop_reason.startswith(
-                "object '%s': pose from frame '%s' unavailable: its newest transform is "
-                % (OBJECT, FRAME))
-        report = self.client.publish_until(lambda: self.client.publish_pose(HOME, HOME), stale,
-                                           TIMEOUT_S)
+        report = self.wait_camera_unavailable(lambda: self.client.publish_pose(HOME, HOME),
+                                              's old, over', seen)
         self.assertIsNotNone(report, 'no stale-frame stop with camera_link silent; last seen: %s'
                              % self.describe(seen))
         self.assertIn('s old, over ~frame_timeout_s (0.500 s)', report.stop_reason)
@@ -162,9 +166,11 @@ class FrameBoundObjectTest(unittest.TestCase):
     def test_held_probe_follows_its_holder_not_its_frame(self):
         # A held frame-bound object follows its holder; its frame, still broadcast and moving,
         # made every cycle a stop ('held by link', SetObjectPose refusing it) until it was let
-        # go. The probe is lowered onto the left arm (home: straight up) until ~attach takes it
+        # go. Its frame silent (stale), ~attach is refused: held, it would silence that stop.
+        # The probe is lowered onto the left arm (home: straight up) until ~attach takes it
         # (within 0.1 m of left_link7's geometry, clear of every threshold); then its frame
-        # moves 1 mm a message for 40 reports: none may stop. Let go, it follows its frame.
+        # moves 1 mm a message for 40 reports: none may stop (the first few may still be of
+        # cycles before the attach). Let go, it follows its frame again: into the arm, a warning.
         client = MonitorClient(TWO_FRAMES_NODE)
         self.assertTrue(client.wait_connected())
         attach = rospy.ServiceProxy(TWO_FRAMES_NODE + '/attach', AttachObject)
@@ -175,6 +181,8 @@ class FrameBoundObjectTest(unittest.TestCase):
             frames = []
             for frame, xyz_m, rpy in ((FRAME, SCENE_XYZ_M, SCENE_RPY),
                                       (PROBE_FRAME, probe_xyz_m, (0.0, 0.0, 0.0))):
+                if xyz_m is None:
+                    continue
                 t = TransformStamped()
                 t.header.stamp = stamp
                 t.header.frame_id = 'world'
@@ -191,32 +199,49 @@ class FrameBoundObjectTest(unittest.TestCase):
                     not report.stop)
         self.assertIsNotNone(client.publish_until(lambda: send_both(PROBE_CLEAR_XYZ_M), clear,
                                                   TIMEOUT_S), 'no clear report before')
+        probe_stale = client.publish_until(
+            lambda: send_both(None),
+            lambda r: r.stop and "object '%s'" % PROBE in r.stop_reason, TIMEOUT_S)
+        self.assertIsNotNone(probe_stale, 'no stop naming the probe with its frame silent')
+        res = attach(PROBE, 'left_link7')
+        self.assertFalse(res.success, 'attached with its frame unavailable')
+        self.assertIn("its frame '%s' is unavailable" % PROBE_FRAME, res.message)
         x, y = IN_LEFT_ARM_XYZ_M[0], IN_LEFT_ARM_XYZ_M[1]
         held_at = None
-        for step in range(150):
-            xyz_m = (x, y, 3.5 - 0.01 * step)
+        try:
+            for step in range(150):
+                xyz_m = (x, y, 3.5 - 0.01 * step)
+                start = client.report_count()
+                self.assertIsNotNone(client.publish_until(
+                    lambda: send_both(xyz_m), lambda r: len(client.reports_since(start)) >= 3,
+                    TIMEOUT_S), 'no reports with the probe at %s' % (xyz_m,))
+                if attach(PROBE, 'left_link7').success:
+                    held_at = xyz_m
+                    break
+            self.assertIsNotNone(held_at, 'the probe lowered onto the left arm was never '
+                                 'attachable')
             start = client.report_count()
-            self.assertIsNotNone(client.publish_until(
-                lambda: send_both(xyz_m), lambda r: len(client.reports_since(start)) >= 3,
-                TIMEOUT_S), 'no reports with the probe at %s' % (xyz_m,))
-            if attach(PROBE, 'left_link7').success:
-                held_at = xyz_m
-                break
-        self.assertIsNotNone(held_at, 'the probe lowered onto the left arm was never attachable')
-        start = client.report_count()
-        moved = [0]
+            moved = [0]
 
-        def send_moved():
-            moved[0] += 1
-            send_both((held_at[0] + 0.001 * (moved[0] % 2), held_at[1], held_at[2]))
-        self.assertIsNotNone(client.publish_until(
-            send_moved, lambda r: len(client.reports_since(start)) >= 40, TIMEOUT_S),
-            'fewer than 40 reports with the held probe\'s frame moving')
-        stopped = [r for r in client.reports_since(start)[5:] if r.stop]
-        self.assertFalse(stopped, 'the held probe at %s, its frame moving: %s'
-                         % (held_at, self.describe(stopped)))
-        res = detach(PROBE)
-        self.assertTrue(res.success, res.message)
+            def send_moved():
+                moved[0] += 1
+                send_both((held_at[0] + 0.001 * (moved[0] % 2), held_at[1], held_at[2]))
+            self.assertIsNotNone(client.publish_until(
+                send_moved, lambda r: len(client.reports_since(start)) >= 40, TIMEOUT_S),
+                'fewer than 40 reports with the held probe\'s frame moving')
+            stopped = [r for r in client.reports_since(start)[5:] if r.stop]
+            self.assertFalse(stopped, 'the held probe at %s, its frame moving: %s'
+                             % (held_at, self.describe(stopped)))
+        finally:
+            if held_at is not None:
+                res = detach(PROBE)
+                self.assertTrue(res.success, res.message)
+
+        def probe_warns(report):
+            return any(PROBE in (w.owner_a, w.owner_b) for w in report.warnings)
+        self.assertIsNotNone(client.publish_until(lambda: send_both(IN_LEFT_ARM_XYZ_M),
+                                                  probe_warns, TIMEOUT_S),
+                             'no probe warning with the probe let go and its frame in the arm')
         self.assertIsNotNone(client.publish_until(lambda: send_both(PROBE_CLEAR_XYZ_M), clear,
                                                   TIMEOUT_S),
                              'no clear report with the probe let go and its frame moved away')
@@ -284,16 +309,10 @@ class FrameBoundObjectTest(unittest.TestCase):
         # then ignores camera_link's transforms stamped now, older than that one by far.
         self.wait_clear('before')
         seen = []
-
-        def ahead(report):
-            seen.append(report)
-            return report.stop and report.stop_reason.startswith(
-                "object '%s': pose from frame '%s' unavailable: its newest transform is stamped "
-                % (OBJECT, FRAME)) and "s ahead of the node's clock, over ~frame_timeout_s" in \
-                report.stop_reason
         far_ahead = rospy.Time(4294967000)
-        report = self.client.publish_until(
-            lambda: self.send(SCENE_XYZ_M, SCENE_RPY, stamp=far_ahead), ahead, TIMEOUT_S)
+        report = self.wait_camera_unavailable(
+            lambda: self.send(SCENE_XYZ_M, SCENE_RPY, stamp=far_ahead),
+            "s ahead of the node's clock, over ~frame_timeout_s", seen)
         self.assertIsNotNone(report, 'no stop naming camera_link stamped far ahead; last seen: %s'
                              % self.describe(seen))
         start = self.client.report_count()

@@ -166,6 +166,8 @@ class Monitor {
   bool Detach(const std::string& object, std::string* error);
   /// The link holding `object`; "" when none holds it (or no such object).
   std::string HolderOf(const std::string& object) const;
+  /// Whether a link holds `object` (HolderOf without the name: the node asks every cycle).
+  bool IsHeld(const std::string& object) const;
   /// Declares (or clears) `object` a grasp target of `link`: compatible while set. A scene
   /// object only with a link its scene file lists under grasp_targets; a live object with any
   /// link (until it is removed).

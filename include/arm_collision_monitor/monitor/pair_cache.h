@@ -142,10 +142,12 @@ class PairCache {
   /// copy; and, unless stale, that the kept pairs are exactly `expected`
   /// (sorted: the pairs whose indexed boxes overlap, by brute force), that each lower bound
   /// under-estimates its indexed copies' distance and each kinematics bound the distance of
-  /// `shapes_W`. False with the first violation in `why`.
+  /// `shapes_W` (but where `moved` flags either primitive: moved since the bound was taken).
+  /// False with the first violation in `why`.
   bool ValidatePrimitive(PrimitiveId id, const Shape& shape_W, std::string* why) const;
   bool ValidatePairs(const std::vector<CandidatePair>& expected,
-                     const std::vector<Shape>& shapes_W, std::string* why) const;
+                     const std::vector<Shape>& shapes_W, const std::vector<std::uint8_t>& moved,
+                     std::string* why) const;
 
  private:
   // The pair set of Update.

@@ -147,8 +147,9 @@ class MonitorNode {
   struct BoundObject {
     std::string object;
     std::string frame;
-    Eigen::Isometry3d X_WO = Eigen::Isometry3d::Identity();
+    Eigen::Isometry3d X_WO = Eigen::Isometry3d::Identity();  // the frame's, last read
     bool has_pose = false;
+    bool is_available = false;  // the frame's pose read in the last cycle (OnAttach asks)
   };
   std::vector<BoundObject> bound_objects_;
 
