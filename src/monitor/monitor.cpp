@@ -124,6 +124,7 @@ void Monitor::Impl::RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q) {
                       !IsWithinVelocityLimits(q)) ||
                      is_turn_ambiguous;
   }
+  if (model.speed_tol_gain_s != 0.0) MarkResampledLinks();
   DateGood();  // q is accepted: q_good below
   if (IsProvablyClear(q, work.step_m)) {
     // Every kept pair is clear, and every other pair's indexed boxes are apart while both
@@ -263,7 +264,9 @@ std::uint32_t Monitor::Impl::FollowKinematics(const Eigen::Ref<const Eigen::Vect
   const std::uint32_t moved_count = ReindexMoved(is_step, reindex_at_m);
   // Fixed tolerances: tol_now already equals tol_base (Attach / Detach keep both).
   const bool is_speed_scaled = model.speed_tol_gain_s != 0.0;
-  if (is_speed_scaled) ComputeTolerances(shape_W, moved, &tol_now);
+  if (is_speed_scaled) {
+    ComputeTolerances(shape_W, moved, is_resampled_known ? &link_resampled : nullptr, &tol_now);
+  }
   // Only speed estimates read shape_prev_W (ReindexMoved cleared the moved flags without them).
   if (is_speed_scaled) {
     ForEachMayHaveMoved([&](PrimitiveId id) {
@@ -341,8 +344,22 @@ std::uint32_t Monitor::Impl::ReindexMoved(bool is_step, double reindex_at_m) {
   return moved_count;
 }
 
+void Monitor::Impl::MarkResampledLinks() {
+  is_resampled_known = joint_time_s != nullptr && is_joint_time_good;
+  if (!is_resampled_known) return;
+  const KinematicModel& kinematics = *model.kinematics;
+  // Parents first (KinematicModel's order); a time that is not the same number (NaN) is new.
+  for (int link = 1; link < kinematics.link_count(); ++link) {
+    const JointSpec& joint = kinematics.joint(link);
+    const int i = joint.q_index >= 0 ? joint.q_index : joint.mimic_q_index;
+    const bool is_new = i >= 0 && !(joint_time_s[i] == joint_time_good_s[i]);
+    link_resampled[link] = link_resampled[kinematics.parent_link(link)] | (is_new ? 1 : 0);
+  }
+}
+
 void Monitor::Impl::ComputeTolerances(const std::vector<Shape>& shapes,
                                       const std::vector<std::uint8_t>& moved_flags,
+                                      const std::vector<std::uint8_t>* resampled,
                                       std::vector<double>* tol) const {
   if (model.speed_tol_gain_s == 0.0) {
     std::copy(tol_base.begin(), tol_base.end(), tol->begin());
@@ -362,6 +379,8 @@ void Monitor::Impl::ComputeTolerances(const std::vector<Shape>& shapes,
       speed_mps = std::min(MaxPointDisplacement_m(shape_prev_W[id], shapes[id]) /
                                options.cycle_period_s,
                            options.max_speed_mps);
+    } else if (resampled != nullptr && carrier[id] >= 0 && !(*resampled)[carrier[id]]) {
+      continue;  // its joints were not sampled anew: no new speed
     }
     (*tol)[id] = tol_base[id] + speed_mps * model.speed_tol_gain_s;
   }
@@ -470,6 +489,7 @@ void Monitor::Impl::InitData() {
   X_WL = model.X_WL_start;
   X_WL_before = model.X_WL_start;
   link_changed.assign(link_count, 0);
+  link_resampled.assign(link_count, 0);  // the root's entry stays 0
   q_kinematics = model.q_start;
   for (PrimitiveId id = 0; id < n; ++id) SetCarrierBounds(id);
   PrepareBounds();

@@ -37,7 +37,7 @@ CycleReport Monitor::Check(const Eigen::Ref<const Eigen::VectorXd>& q) const {
   std::vector<std::uint8_t> moved_flags = m.moved;
   m.MoveCarried(X_WL_q, &changed, &shapes, &moved_flags);
   std::vector<double> tol(m.model.primitive_count);
-  m.ComputeTolerances(shapes, moved_flags, &tol);
+  m.ComputeTolerances(shapes, moved_flags, nullptr, &tol);  // Update(q): every joint sampled
   // Generate-and-test by brute force over every active, non-compatible, not-both-static pair.
   for (PrimitiveId a = 0; a < m.model.primitive_count; ++a) {
     if (!m.in_broad_phase[a]) continue;

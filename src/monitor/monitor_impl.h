@@ -89,6 +89,11 @@ struct Monitor::Impl {
   // current for the links of fk_links, 0 for the links that do not move.
   std::vector<std::uint8_t> link_changed;
   std::vector<int> fk_scratch;  // KinematicModel::UpdateLinkPosesOf's, fk_links.size() entries
+  // Speed-scaled tolerances with each joint's own sample times (MarkResampledLinks): per link,
+  // whether a joint between it and the root was sampled anew for this cycle. A primitive whose
+  // link was not keeps its speed (with one topic per arm, the other arm's cycle).
+  std::vector<std::uint8_t> link_resampled;
+  bool is_resampled_known = false;
   // The smallest PairGap_m over the kept pairs since the last kinematics (SweepStep or
   // IsProvablyClear, whichever comes first).
   bool is_pair_gap_known = false;
@@ -312,9 +317,15 @@ struct Monitor::Impl {
   void MoveCarried(const std::vector<Eigen::Isometry3d>& X_WL_new,
                    std::vector<std::uint8_t>* changed, std::vector<Shape>* shapes,
                    std::vector<std::uint8_t>* moved_flags) const;
+  // Before DateGood: link_resampled from this cycle's and q_good's per-joint times, when both
+  // are known (else is_resampled_known is false: every link counts as sampled anew).
+  void MarkResampledLinks();
   // This cycle's tolerance of every primitive (speed-scaled for the moving ones when enabled).
+  // A speed is the primitive's move over cycle_period_s, 0 unmoved; with `resampled` (per link)
+  // one carried by a link not sampled anew keeps its speed: its entry of `tol` is left.
   void ComputeTolerances(const std::vector<Shape>& shapes,
                          const std::vector<std::uint8_t>& moved_flags,
+                         const std::vector<std::uint8_t>* resampled,
                          std::vector<double>* tol) const;
   // Narrow phase of one pair: appends a warning when closer than the sum of the tolerances (or
   // touching); returns the distance.

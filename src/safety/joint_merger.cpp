@@ -77,8 +77,8 @@ JointMerger::Layout JointMerger::BuildLayout(const std::vector<std::string>& nam
       ++(IsMimicJoint(names[k]) ? layout.mimic_count : layout.unknown_count);
       continue;
     }
-    if (seen[it->second]) {
-      layout.has_duplicate = true;
+    if (seen[it->second] && layout.first_duplicate < 0) {
+      layout.first_duplicate = static_cast<int>(k);
     }
     seen[it->second] = true;
     layout.q_index[k] = it->second;
@@ -109,7 +109,7 @@ const JointMerger::Layout& JointMerger::FindOrAddLayout(const std::vector<std::s
 
 MergeStatus JointMerger::ValidatePositions(const Layout& layout,
                                            const NamedPositions& input) const {
-  if (input.positions.size() != input.names.size() || layout.has_duplicate) {
+  if (input.positions.size() != input.names.size() || layout.first_duplicate >= 0) {
     return MergeStatus::kWrongSize;
   }
   if (layout.unknown_count + layout.mimic_count == layout.names.size()) {
@@ -151,16 +151,9 @@ std::string JointMerger::DescribeRefusal(const NamedPositions& input, MergeStatu
         return std::to_string(names.size()) + " names but " +
                std::to_string(input.positions.size()) + " positions";
       }
-      // The model joint named twice (a name the model does not know may repeat); one pass, as
-      // BuildLayout: a search back over the names before each was quadratic in their count.
-      std::vector<bool> seen(joint_names_.size(), false);
-      for (const std::string& name : names) {
-        const auto it = index_of_name_.find(name);
-        if (it == index_of_name_.end()) continue;
-        if (seen[it->second]) return "joint '" + name + "' named twice";
-        seen[it->second] = true;
-      }
-      return "";
+      // The model joint named twice (a name the model does not know may repeat).
+      const int twice = BuildLayout(names).first_duplicate;
+      return twice < 0 ? "" : "joint '" + names[twice] + "' named twice";
     }
     case MergeStatus::kNonFinite:
       for (std::size_t k = 0; k < names.size() && k < input.positions.size(); ++k) {

@@ -273,6 +273,23 @@ std::vector<std::string> OverlapFindings(
   return report.findings();
 }
 
+// The start-up warning of a primitive whose box (with its tolerance) `box_W` in the home pose is
+// not inside the world cube; one wider than kLargeDerivedWorldEdge_m (as with a derived cube,
+// DerivedWorldNotice) is most likely a unit error, such as a mesh in millimetres without scale.
+std::string OutsideWorldWarning(const Workcell& w, const PrimitiveSpec& p, const Aabb& box_W,
+                                const std::string& files) {
+  std::string warning = files + "'" + p.name +
+                        "' with its tolerance is not inside the world cube in the home pose "
+                        "(expected world: to enclose the workcell)";
+  const double width_m = (box_W.max_W - box_W.min_W).maxCoeff();
+  if (!(width_m > kLargeDerivedWorldEdge_m)) return warning;
+  char text[64];
+  std::snprintf(text, sizeof(text), "%.6g m", width_m);
+  const std::string owner = (p.link_index >= 0 ? "link '" : "object '") + p.owner + "'";
+  return warning + "; it is " + text + " wide: a unit error in " + owner +
+         " (a mesh in millimetres without scale=\"0.001 0.001 0.001\"?)";
+}
+
 // Start-up findings from sampled configurations of every model: primitives outside the world
 // cube in the home pose, and pairs within their tolerances in the home pose and in every sampled
 // configuration (they would warn in every cycle) or in half of them at least (in most cycles).
@@ -290,11 +307,8 @@ std::vector<std::string> SampledConfigurationWarnings(const Workcell& w) {
   WorkcellShapes shapes(w, WorkcellShapes::Models::kAll);  // sample 0: the home pose
   for (PrimitiveId id = 0; id < n; ++id) {
     const PrimitiveSpec& p = w.primitives[id];
-    if (!w.world_W.Contains(ComputeAabb(shapes.shape_W(id)).Inflated(p.tolerance_m))) {
-      warnings.push_back(files + "'" + p.name +
-                         "' with its tolerance is not inside the world cube in the home pose "
-                         "(expected world: to enclose the workcell)");
-    }
+    const Aabb box_W = ComputeAabb(shapes.shape_W(id)).Inflated(p.tolerance_m);
+    if (!w.world_W.Contains(box_W)) warnings.push_back(OutsideWorldWarning(w, p, box_W, files));
   }
   // The pairs within their tolerances in the home pose, and in how many samples after it.
   auto is_within = [&](const std::pair<PrimitiveId, PrimitiveId>& pair) {
@@ -432,6 +446,18 @@ std::string DerivedWorldNotice(const Workcell& w) {
          " m from the origin in the home pose; a unit or origin error in its link or object?)";
 }
 
+// The start-up warning of a scene file without arms: every link is then the environment's, a
+// moving one with the default tolerance, and an SRDF's 'Never' pairs are all excused, between
+// what the user takes for two arms too (moveit_sections.cpp).
+std::string NoArmsWarning(const Workcell& w, double default_arm_tolerance_m) {
+  char text[64];
+  std::snprintf(text, sizeof(text), "%.6g m", default_arm_tolerance_m);
+  return w.scene_path + ": arms: not given or empty: no link belongs to an arm, so every moving "
+         "link takes the default tolerance (" + text + "), its pairs are not arm-to-arm pairs, "
+         "and an SRDF's 'Never' pairs are all excused; name each arm by its top link (arms: "
+         "[{name: left, root_link: <link>}, {name: right, root_link: <link>}])";
+}
+
 }  // namespace
 
 Workcell LoadWorkcell(const std::string& urdf_path, const std::string& scene_path,
@@ -511,6 +537,7 @@ Workcell ReadWorkcell(const std::string& urdf_path, const std::string& scene_pat
     w.world_W = DeriveWorldCube(w);
     w.notices.push_back(DerivedWorldNotice(w));
   }
+  if (w.arms.empty()) w.warnings.push_back(NoArmsWarning(w, default_arm_tolerance_m));
   w.joint_names = w.kinematics.ActuatedJointNames();
   const std::string no_velocity_limit = NoVelocityLimitNotice(w);
   if (!no_velocity_limit.empty()) w.notices.push_back(no_velocity_limit);

@@ -681,6 +681,57 @@ TEST(MonitorScene, SpeedScaledToleranceWarnsLaterWhenSlow) {
   EXPECT_LE(fast_threshold, 2 * 0.0305 + options.max_speed_mps * gain_s + 1e-12);
 }
 
+// With each joint's own sample times (one topic per arm), a primitive's speed changes only in a
+// cycle that samples its joints: the cycle of the other arm keeps it (it was taken at rest, its
+// base tolerance, every other cycle), and a new sample without a move takes it to rest. With
+// one time for every joint, every joint counts as sampled.
+TEST(MonitorScene, SpeedScaledToleranceKeepsASpeedUntilItsJointsAreSampledAgain) {
+  const auto wc = LoadBundledWorkcell();
+  MonitorOptions options;
+  options.speed_scaled_tolerance = true;
+  const PrimitiveId left = Prim(*wc, "left_link7");
+  const PrimitiveId right = Prim(*wc, "right_link7");
+  const double base_m = wc->primitives[left].tolerance_m;
+  ASSERT_EQ(wc->primitives[right].tolerance_m, base_m);
+  const int l1 = test::JointIndex(*wc, "left_joint1");
+  const int r1 = test::JointIndex(*wc, "right_joint1");
+  Monitor monitor(wc, options);
+  Eigen::VectorXd q = MakeQ(*wc, {{"left_joint2", 0.5}, {"right_joint2", 0.5}});
+  Eigen::VectorXd t_s = Eigen::VectorXd::Zero(q.size());
+  const auto set_arm_time = [&](const std::string& prefix, double time_s) {
+    for (Eigen::Index i = 0; i < q.size(); ++i) {
+      if (wc->joint_names[static_cast<std::size_t>(i)].rfind(prefix, 0) == 0) t_s[i] = time_s;
+    }
+  };
+  // The first cycle takes every moving primitive at the largest speed (none known).
+  ASSERT_EQ(monitor.Update(q, t_s).input, InputStatus::kOk);
+  EXPECT_GT(monitor.tolerance_m(right), base_m);
+  // Both arms sampled, the left one moved.
+  q[l1] += 0.02;
+  t_s.setConstant(0.05);
+  ASSERT_EQ(monitor.Update(q, t_s).input, InputStatus::kOk);
+  const double left_moving_m = monitor.tolerance_m(left);
+  EXPECT_GT(left_moving_m, base_m);
+  EXPECT_EQ(monitor.tolerance_m(right), base_m);
+  // The right arm's message: the left arm keeps its speed.
+  q[r1] += 0.03;
+  set_arm_time("right_", 0.06);
+  ASSERT_EQ(monitor.Update(q, t_s).input, InputStatus::kOk);
+  EXPECT_EQ(monitor.tolerance_m(left), left_moving_m);
+  EXPECT_GT(monitor.tolerance_m(right), left_moving_m);  // a larger move
+  // Both sampled, the left arm where it was: at rest.
+  q[r1] += 0.03;
+  t_s.setConstant(0.11);
+  ASSERT_EQ(monitor.Update(q, t_s).input, InputStatus::kOk);
+  EXPECT_EQ(monitor.tolerance_m(left), base_m);
+  EXPECT_GT(monitor.tolerance_m(right), left_moving_m);
+  // One time for every joint: the arm that did not move is at rest.
+  q[l1] += 0.02;
+  ASSERT_EQ(monitor.Update(q, 0.15).input, InputStatus::kOk);
+  EXPECT_GT(monitor.tolerance_m(left), base_m);
+  EXPECT_EQ(monitor.tolerance_m(right), base_m);
+}
+
 TEST(MonitorScene, InconsistentOptionsAreRejected) {
   const auto wc = LoadBundledWorkcell();
   MonitorOptions options;

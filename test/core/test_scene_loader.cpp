@@ -3,6 +3,7 @@
 #include <console_bridge/console.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <limits>
@@ -198,12 +199,29 @@ TEST(SceneLoader, JointsWithoutAVelocityLimitAreNoticed) {
       given.notices);
 }
 
+// ... and a scene file without arms (an empty one too, or arms: []) says so at start-up; one
+// with an arm does not.
 TEST(SceneLoader, MovingLinksOutsideEveryArmKeepTheDefaultTolerance) {
+  const auto has_no_arms_warning = [](const Workcell& w) {
+    return std::any_of(w.warnings.begin(), w.warnings.end(), [&](const std::string& warning) {
+      return warning.rfind(w.scene_path + ": arms: not given or empty", 0) == 0 &&
+             warning.find("default tolerance (0.04 m)") != std::string::npos;
+    });
+  };
   const Workcell w = LoadWorkcell(kArmUrdf, WriteTempFile("no_arms.yaml", kWorldLine),
                                   /*default_arm_tolerance_m=*/0.04);
   EXPECT_EQ(w.primitives[w.FindPrimitive("base_link")].tolerance_m, 0.0);  // fixed to the root
   EXPECT_EQ(w.primitives[w.FindPrimitive("upper_arm")].tolerance_m, 0.04);
   EXPECT_EQ(w.primitives[w.FindPrimitive("upper_arm")].group, "");
+  EXPECT_TRUE(has_no_arms_warning(w)) << ::testing::PrintToString(w.warnings);
+  for (const std::string& text : {std::string(), kWorldLine + "arms: []\n"}) {
+    const Workcell empty =
+        LoadWorkcell(kArmUrdf, WriteTempFile("empty.yaml", text), /*default_arm_tolerance_m=*/0.04);
+    EXPECT_TRUE(has_no_arms_warning(empty)) << text << ::testing::PrintToString(empty.warnings);
+  }
+  const Workcell one_arm = LoadWorkcell(kArmUrdf, kData + "three_link_scene.yaml", 0.04);
+  EXPECT_FALSE(has_no_arms_warning(one_arm));
+  EXPECT_EQ(one_arm.primitives[one_arm.FindPrimitive("upper_arm")].group, "arm");
 }
 
 // The plain loader resolves no package:// URL (the ROS programs' fetcher does: test/node).
@@ -590,8 +608,26 @@ TEST(SceneLoader, PrimitivesOutsideTheWorldInTheHomePoseAreReported) {
   for (const std::string& warning : w.warnings) {
     found |= warning.find("'upper_arm' with its tolerance is not inside the world cube") !=
              std::string::npos;
+    EXPECT_EQ(warning.find("unit error"), std::string::npos) << warning;  // 0.5 m wide
   }
   EXPECT_TRUE(found);
+}
+
+// A link in millimetres (a mesh without scale: here its cylinder, 350 m long) is outside a given
+// world cube, and the warning says why it most likely is.
+TEST(SceneLoader, ALinkWiderThanAWorkcellIsNamedAUnitError) {
+  const std::string urdf = WriteEditedArmUrdf(
+      "mm_arm.urdf", "<cylinder radius=\"0.04\" length=\"0.35\"/>",
+      "<cylinder radius=\"40\" length=\"350\"/>");
+  const Workcell w = LoadWorkcell(urdf, kData + "three_link_scene.yaml");
+  bool found = false;
+  for (const std::string& warning : w.warnings) {
+    found |= warning.find("'forearm' with its tolerance is not inside the world cube") !=
+                 std::string::npos &&
+             warning.find("unit error in link 'forearm' (a mesh in millimetres without scale") !=
+                 std::string::npos;
+  }
+  EXPECT_TRUE(found) << ::testing::PrintToString(w.warnings);
 }
 
 TEST(SceneLoader, JointLimitOverrides) {

@@ -163,7 +163,7 @@ class JointMerger {
     std::vector<int> q_index;
     std::uint32_t unknown_count = 0;  // no model joint, nor a mimic one
     std::uint32_t mimic_count = 0;
-    bool has_duplicate = false;
+    int first_duplicate = -1;  // the first entry naming a model joint named before; -1 none
   };
   const Layout& FindOrAddLayout(const std::vector<std::string>& names);
   Layout BuildLayout(const std::vector<std::string>& names) const;
