@@ -23,7 +23,8 @@ class MeshFitter {
   /// `name` (a path relative to `base_dir` unless absolute, or a URL). `where` names the
   /// element ("file: element"): it prefixes every LoadError and the report line. Throws
   /// LoadError naming `where` and the file for an unreadable or corrupt file, a scale that is
-  /// not 3 finite numbers > 0, and a mesh that CheckMesh refuses (no volume, too large, ...).
+  /// not 3 finite, non-zero numbers (a negative one mirrors), and a mesh that CheckMesh refuses
+  /// (no volume, too large, ...).
   std::vector<Shape> FitFile(const std::string& name, const std::string& base_dir,
                              const Eigen::Vector3d& scale, const std::string& where);
 

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <map>
 #include <set>
+#include <string>
+#include <tuple>
 
 #include "arm_collision_monitor/scene/resource_fetch.h"
 #include "arm_collision_monitor/scene/yaml_fields.h"
@@ -394,7 +396,20 @@ std::vector<SceneJointPose> ReadJointPoses(const YAML::Node& root, const Where& 
   return poses;
 }
 
-/// Notices for robot_state's attached objects and world.octomap's data (both ignored).
+/// How many entries of `node` (link_padding or link_scale: [{link_name, <key>}, ...]) set `key`
+/// to other than `neutral`.
+std::size_t CountChanged(const YAML::Node& node, const char* key, double neutral) {
+  std::size_t count = 0;
+  if (!node.IsDefined() || !node.IsSequence()) return count;
+  for (const YAML::Node& entry : node) {
+    const YAML::Node value = entry.IsMap() ? entry[key] : YAML::Node();
+    count += value.IsDefined() && value.IsScalar() && value.as<double>() != neutral ? 1 : 0;
+  }
+  return count;
+}
+
+/// Notices for robot_state's attached objects, world.octomap's data and MoveIt's link padding
+/// and scale (all ignored).
 void AddNotices(const YAML::Node& root, PlanningSceneFile* scene) {
   const YAML::Node attached = FindPath(root, {"robot_state", "attached_collision_objects"});
   if (attached.IsDefined() && attached.IsSequence() && attached.size() > 0) {
@@ -406,6 +421,14 @@ void AddNotices(const YAML::Node& root, PlanningSceneFile* scene) {
   if (octomap.IsDefined() && octomap.IsSequence() && octomap.size() > 0) {
     scene->notices.push_back("world.octomap: an octomap of " + std::to_string(octomap.size()) +
                              " bytes is ignored (only collision objects are read)");
+  }
+  for (const auto& [key, field, neutral] : {std::make_tuple("link_padding", "padding", 0.0),
+                                            std::make_tuple("link_scale", "scale", 1.0)}) {
+    const std::size_t changed = CountChanged(root[key], field, neutral);
+    if (changed == 0) continue;
+    scene->notices.push_back(std::string(key) + ": MoveIt's " + field + " of " +
+                             std::to_string(changed) + " links is ignored (the monitor's margins "
+                             "are its tolerances: the scene file's tolerance_m per arm or link)");
   }
 }
 

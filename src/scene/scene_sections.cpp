@@ -42,7 +42,8 @@ std::vector<std::pair<std::string, Shape>> LinkShapes(const urdf::Link& link, co
                                                       const std::string& urdf_path,
                                                       const std::string& scene_path,
                                                       CylinderModel cylinder_model,
-                                                      MeshFitter* meshes) {
+                                                      MeshFitter* meshes,
+                                                      std::vector<std::string>* warnings) {
   if (o.ignore) return {};
   if (o.p0_L && o.radius_m) return {{"0", Capsule{*o.p0_L, *o.p1_L, *o.radius_m}}};
   // The overrides change a capsule: the link's cylinders stay capsules for them.
@@ -64,8 +65,19 @@ std::vector<std::pair<std::string, Shape>> LinkShapes(const urdf::Link& link, co
       throw LoadError(scene_path + ": links." + link.name +
                       ": radius_m given but the link has no capsule (cylinder or sphere)");
     }
+    double widest_m = 0.0;
     for (auto& named : shapes) {
-      if (auto* capsule = std::get_if<Capsule>(&named.second)) capsule->radius_m = *o.radius_m;
+      auto* capsule = std::get_if<Capsule>(&named.second);
+      if (capsule == nullptr) continue;
+      widest_m = std::max(widest_m, capsule->radius_m);
+      capsule->radius_m = *o.radius_m;
+    }
+    if (widest_m > *o.radius_m) {
+      char text[160];
+      std::snprintf(text, sizeof(text), ": radius_m %.6g m is below the %.6g m of a capsule of "
+                    "the link's own geometry", *o.radius_m, widest_m);
+      warnings->push_back(scene_path + ": links." + link.name + text +
+                          " (a mesh's fit too): part of the link is left outside its model");
     }
   }
   return shapes;
@@ -481,7 +493,8 @@ std::vector<LinkOverride> ReadLinkOverrides(const YAML::Node& node, const Where&
 std::vector<PrimitiveSpec> MakeLinkPrimitives(const urdf::ModelInterface& urdf_model,
                                               const Workcell& workcell, const LinkSettings& links,
                                               CylinderModel cylinder_model, MeshFitter* meshes,
-                                              NameRegistry* names) {
+                                              NameRegistry* names,
+                                              std::vector<std::string>* warnings) {
   const KinematicModel& model = workcell.kinematics;
   for (int link = 0; link < model.link_count(); ++link) {
     names->Claim(model.link_name(link),
@@ -493,7 +506,7 @@ std::vector<PrimitiveSpec> MakeLinkPrimitives(const urdf::ModelInterface& urdf_m
     const urdf::LinkConstSharedPtr urdf_link = urdf_model.getLink(link_name);
     const auto shapes =
         LinkShapes(*urdf_link, links.overrides[link], workcell.urdf_path, workcell.scene_path,
-                   cylinder_model, meshes);
+                   cylinder_model, meshes, warnings);
     for (const auto& [suffix, shape_L] : shapes) {
       PrimitiveSpec p = NewLinkPrimitive(link, workcell, links);
       p.name = shapes.size() == 1 ? link_name : link_name + "/" + suffix;

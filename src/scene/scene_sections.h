@@ -95,11 +95,13 @@ std::vector<LinkOverride> ReadLinkOverrides(const YAML::Node& node, const Where&
 /// (ReadUrdfLinkGeometry: cylinders per `cylinder_model`, meshes fitted by `meshes`) after the
 /// links: overrides (a link with a radius_m or p0_m override takes its cylinders as capsules,
 /// which the override changes). Claims every link name, then the primitives' names. `workcell`
-/// supplies the kinematics and the arms.
+/// supplies the kinematics and the arms; `warnings` gets one line per radius_m override that
+/// narrows a capsule of the link's own geometry (a mesh's fit too).
 std::vector<PrimitiveSpec> MakeLinkPrimitives(const urdf::ModelInterface& urdf_model,
                                               const Workcell& workcell, const LinkSettings& links,
                                               CylinderModel cylinder_model, MeshFitter* meshes,
-                                              NameRegistry* names);
+                                              NameRegistry* names,
+                                              std::vector<std::string>* warnings);
 
 /// objects: appends each object and its primitives (box, sphere, cylinder per
 /// `options.cylinder_model`, capsule, or the primitives `meshes` fits to a mesh file: one

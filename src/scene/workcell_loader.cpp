@@ -276,7 +276,7 @@ std::vector<std::string> OverlapFindings(
 // The start-up warning of a primitive whose box (with its tolerance) `box_W` in the home pose is
 // not inside the world cube; one wider than kLargeDerivedWorldEdge_m (as with a derived cube,
 // DerivedWorldNotice) is most likely a unit error, such as a mesh in millimetres without scale.
-std::string OutsideWorldWarning(const Workcell& w, const PrimitiveSpec& p, const Aabb& box_W,
+std::string OutsideWorldWarning(const PrimitiveSpec& p, const Aabb& box_W,
                                 const std::string& files) {
   std::string warning = files + "'" + p.name +
                         "' with its tolerance is not inside the world cube in the home pose "
@@ -308,7 +308,7 @@ std::vector<std::string> SampledConfigurationWarnings(const Workcell& w) {
   for (PrimitiveId id = 0; id < n; ++id) {
     const PrimitiveSpec& p = w.primitives[id];
     const Aabb box_W = ComputeAabb(shapes.shape_W(id)).Inflated(p.tolerance_m);
-    if (!w.world_W.Contains(box_W)) warnings.push_back(OutsideWorldWarning(w, p, box_W, files));
+    if (!w.world_W.Contains(box_W)) warnings.push_back(OutsideWorldWarning(p, box_W, files));
   }
   // The pairs within their tolerances in the home pose, and in how many samples after it.
   auto is_within = [&](const std::pair<PrimitiveId, PrimitiveId>& pair) {
@@ -514,7 +514,7 @@ Workcell ReadWorkcell(const std::string& urdf_path, const std::string& scene_pat
   scene_sections::NameRegistry names;
   MeshFitter meshes(options.fetch, options.mesh_fit_cache_dir, shape_options.mesh_fit);
   w.primitives = scene_sections::MakeLinkPrimitives(
-      *urdf_model, w, links, shape_options.urdf_cylinder_model, &meshes, &names);
+      *urdf_model, w, links, shape_options.urdf_cylinder_model, &meshes, &names, &w.warnings);
   scene_sections::ReadObjects(scene["objects"], Where{scene_path, "objects"}, shape_options,
                               &meshes, &names, &w);
   const scene_sections::SrdfInput srdf =

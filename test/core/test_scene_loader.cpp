@@ -262,6 +262,19 @@ TEST(SceneLoader, LinkOverridesRadiusEndpointsAndTolerance) {
   const Capsule& wrist = std::get<Capsule>(w.primitives[w.FindPrimitive("wrist")].shape_L);
   EXPECT_EQ(wrist.p1_W, Eigen::Vector3d(0.1, 0, 0));
   EXPECT_EQ(wrist.radius_m, 0.045);
+  // A radius below the link's own (0.05 m) is warned of; the wider one above is not.
+  const auto narrowing = [](const Workcell& x) {
+    const std::string start = x.scene_path + ": links.upper_arm: radius_m 0.03 m is below the ";
+    return std::count_if(x.warnings.begin(), x.warnings.end(), [&](const std::string& warning) {
+      return warning.rfind(start + "0.05 m", 0) == 0;
+    });
+  };
+  EXPECT_EQ(narrowing(w), 0) << ::testing::PrintToString(w.warnings);
+  const std::string narrow_scene = kWorldLine + "links: {upper_arm: {radius_m: 0.03}}\n";
+  const Workcell narrow = LoadWorkcell(kArmUrdf, WriteTempFile("narrow.yaml", narrow_scene));
+  const PrimitiveSpec& narrow_upper = narrow.primitives[narrow.FindPrimitive("upper_arm")];
+  EXPECT_EQ(std::get<Capsule>(narrow_upper.shape_L).radius_m, 0.03);
+  EXPECT_EQ(narrowing(narrow), 1) << ::testing::PrintToString(narrow.warnings);
 }
 
 TEST(SceneLoader, CapsuleIdiomNeedsMatchingSpheres) {

@@ -223,6 +223,21 @@ TEST(PlanningSceneReader, NoticesForIgnoredGeometry) {
   ASSERT_EQ(scene.notices.size(), 2u);
   EXPECT_NE(scene.notices[0].find("1 objects attached"), std::string::npos) << scene.notices[0];
   EXPECT_NE(scene.notices[1].find("octomap of 3 bytes"), std::string::npos) << scene.notices[1];
+  // MoveIt's link padding and scale: only entries other than 0 and 1 are told of.
+  const PlanningSceneFile padded = ReadPlanningSceneFile(WriteTempFile(
+      "padded.yaml",
+      "link_padding: [{link_name: a, padding: 0.0}, {link_name: b, padding: 0.02}]\n"
+      "link_scale: [{link_name: a, scale: 1.0}, {link_name: b, scale: 1.5}, "
+      "{link_name: c, scale: 1.2}]\n"));
+  ASSERT_EQ(padded.notices.size(), 2u) << ::testing::PrintToString(padded.notices);
+  EXPECT_EQ(padded.notices[0].rfind("link_padding: MoveIt's padding of 1 links is ignored", 0), 0u)
+      << padded.notices[0];
+  EXPECT_EQ(padded.notices[1].rfind("link_scale: MoveIt's scale of 2 links is ignored", 0), 0u)
+      << padded.notices[1];
+  const PlanningSceneFile neutral = ReadPlanningSceneFile(WriteTempFile(
+      "neutral.yaml", "link_padding: [{link_name: a, padding: 0}]\n"
+                      "link_scale: [{link_name: a, scale: 1}]\n"));
+  EXPECT_TRUE(neutral.notices.empty()) << ::testing::PrintToString(neutral.notices);
 }
 
 // robot_state.multi_dof_joint_state, where MoveIt's dumps say where a floating virtual joint

@@ -3,9 +3,10 @@
 // of the solid it bounds). Pure geometry, ROS-free; nothing here throws: bad input comes back
 // as a MeshStatus with a message.
 //
-// Frames: the mesh is given in its link frame L (metres, URDF scale already applied), and the
-// fitted shapes are in L too. Capsule::p0_W / p1_W and Box::X_WB are named for the world frame
-// in primitives.h; here they hold L coordinates (the caller poses them with X_WL).
+// Frames: the mesh is given in its own frame L (metres, URDF scale already applied: the mesh
+// file's frame, which a URDF <origin> then places in the link), and the fitted shapes are in L
+// too. Capsule::p0_W / p1_W and Box::X_WB are named for the world frame in primitives.h; here
+// they hold L coordinates (the caller poses them).
 //
 // Conservative in floating point: every fitted radius and half extent is grown by
 // kMeshFitMarginRel times the mesh's scale S (the diagonal of its vertices' bounding box plus
