@@ -1,7 +1,9 @@
 // The mesh-fit cache: FitMesh's results kept on disk by content (MeshFitHash of the scaled mesh
 // and the fit options), so that a second start-up skips the fits. An entry is never trusted
 // blindly: it is used only when it parses completely and its primitives contain every vertex of
-// the mesh being loaded; otherwise the mesh is refitted and the entry rewritten.
+// the mesh being loaded; otherwise the mesh is refitted and the entry rewritten. The vertex check
+// proves one convex primitive right, but not a capsule chain's cover of the triangles between
+// its capsules: for a chain the key (which holds kMeshFitAlgorithmVersion) is the guarantee.
 #pragma once
 
 #include <cstdint>
