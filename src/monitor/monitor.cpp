@@ -87,7 +87,8 @@ const CycleReport& Monitor::Impl::Cycle(const Eigen::Ref<const Eigen::VectorXd>&
 const CycleReport& Monitor::Impl::CycleOf(const Eigen::Ref<const Eigen::VectorXd>& q) {
   // Idle cycle: same input bit for bit and an unchanged scene give the same report (the joints
   // were at q_good at these times too).
-  if (IsIdle(q)) {
+  // With speed-scaled tolerances, joints that come to rest lower theirs: not idle.
+  if (IsIdle(q) && !(model.speed_tol_gain_s != 0.0 && NoteJointMotion(q))) {
     DateGood();
     RecordCycle(CycleKind::kIdle, InputStatus::kOk, {});
     return report;
@@ -124,7 +125,7 @@ void Monitor::Impl::RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q) {
                       !IsWithinVelocityLimits(q)) ||
                      is_turn_ambiguous;
   }
-  if (model.speed_tol_gain_s != 0.0) MarkResampledLinks();
+  if (model.speed_tol_gain_s != 0.0) NoteJointMotion(q);
   DateGood();  // q is accepted: q_good below
   if (IsProvablyClear(q, work.step_m)) {
     // Every kept pair is clear, and every other pair's indexed boxes are apart while both
@@ -265,7 +266,14 @@ std::uint32_t Monitor::Impl::FollowKinematics(const Eigen::Ref<const Eigen::Vect
   // Fixed tolerances: tol_now already equals tol_base (Attach / Detach keep both).
   const bool is_speed_scaled = model.speed_tol_gain_s != 0.0;
   if (is_speed_scaled) {
-    ComputeTolerances(shape_W, moved, is_resampled_known ? &link_resampled : nullptr, &tol_now);
+    // Parents first (KinematicModel's order); the root's entry stays 1.
+    const KinematicModel& kinematics = *model.kinematics;
+    for (int link = 1; link < kinematics.link_count(); ++link) {
+      const JointSpec& joint = kinematics.joint(link);
+      const int i = joint.q_index >= 0 ? joint.q_index : joint.mimic_q_index;
+      link_at_rest[link] = link_at_rest[kinematics.parent_link(link)] & (i < 0 || !joint_moving[i]);
+    }
+    ComputeTolerances(shape_W, moved, &link_at_rest, &tol_now);
   }
   // Only speed estimates read shape_prev_W (ReindexMoved cleared the moved flags without them).
   if (is_speed_scaled) {
@@ -344,22 +352,22 @@ std::uint32_t Monitor::Impl::ReindexMoved(bool is_step, double reindex_at_m) {
   return moved_count;
 }
 
-void Monitor::Impl::MarkResampledLinks() {
-  is_resampled_known = joint_time_s != nullptr && is_joint_time_good;
-  if (!is_resampled_known) return;
-  const KinematicModel& kinematics = *model.kinematics;
-  // Parents first (KinematicModel's order); a time that is not the same number (NaN) is new.
-  for (int link = 1; link < kinematics.link_count(); ++link) {
-    const JointSpec& joint = kinematics.joint(link);
-    const int i = joint.q_index >= 0 ? joint.q_index : joint.mimic_q_index;
-    const bool is_new = i >= 0 && !(joint_time_s[i] == joint_time_good_s[i]);
-    link_resampled[link] = link_resampled[kinematics.parent_link(link)] | (is_new ? 1 : 0);
+bool Monitor::Impl::NoteJointMotion(const Eigen::Ref<const Eigen::VectorXd>& q) {
+  bool is_any_at_rest_now = false;
+  for (Eigen::Index i = 0; i < q.size(); ++i) {
+    const double t_s = joint_time_s != nullptr ? joint_time_s[i] : time_s;
+    const double good_s = is_joint_time_good ? joint_time_good_s[i] : time_good_s;
+    if (std::isfinite(t_s) && t_s == good_s) continue;  // not sampled anew: its motion stands
+    const bool is_moving_now = !has_good || !(q[i] == q_good[i]);
+    is_any_at_rest_now |= joint_moving[i] && !is_moving_now;
+    joint_moving[i] = is_moving_now ? 1 : 0;
   }
+  return is_any_at_rest_now;
 }
 
 void Monitor::Impl::ComputeTolerances(const std::vector<Shape>& shapes,
                                       const std::vector<std::uint8_t>& moved_flags,
-                                      const std::vector<std::uint8_t>* resampled,
+                                      const std::vector<std::uint8_t>* at_rest,
                                       std::vector<double>* tol) const {
   if (model.speed_tol_gain_s == 0.0) {
     std::copy(tol_base.begin(), tol_base.end(), tol->begin());
@@ -379,8 +387,8 @@ void Monitor::Impl::ComputeTolerances(const std::vector<Shape>& shapes,
       speed_mps = std::min(MaxPointDisplacement_m(shape_prev_W[id], shapes[id]) /
                                options.cycle_period_s,
                            options.max_speed_mps);
-    } else if (resampled != nullptr && carrier[id] >= 0 && !(*resampled)[carrier[id]]) {
-      continue;  // its joints were not sampled anew: no new speed
+    } else if (at_rest != nullptr && carrier[id] >= 0 && !(*at_rest)[carrier[id]]) {
+      continue;  // a joint above it moved at its newest sample: it keeps its speed
     }
     (*tol)[id] = tol_base[id] + speed_mps * model.speed_tol_gain_s;
   }
@@ -489,7 +497,8 @@ void Monitor::Impl::InitData() {
   X_WL = model.X_WL_start;
   X_WL_before = model.X_WL_start;
   link_changed.assign(link_count, 0);
-  link_resampled.assign(link_count, 0);  // the root's entry stays 0
+  link_at_rest.assign(link_count, 1);
+  joint_moving.assign(model.q_start.size(), 1);
   q_kinematics = model.q_start;
   for (PrimitiveId id = 0; id < n; ++id) SetCarrierBounds(id);
   PrepareBounds();

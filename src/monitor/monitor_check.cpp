@@ -14,7 +14,7 @@ CycleReport Monitor::Check(const Eigen::Ref<const Eigen::VectorXd>& q) const {
   const Impl& m = *impl_;
   CycleReport r;
   r.cycle = m.report.cycle + 1;
-  if (m.IsIdle(q)) {  // the last (accepted) report, no work
+  if (m.IsIdle(q) && m.IsAtRest()) {  // the last (accepted) report, no work
     // A check has no step: not the last step's between-samples warnings, nor the live stop,
     // which a jump into q may have raised.
     r.warnings = m.report.warnings;

@@ -89,11 +89,12 @@ struct Monitor::Impl {
   // current for the links of fk_links, 0 for the links that do not move.
   std::vector<std::uint8_t> link_changed;
   std::vector<int> fk_scratch;  // KinematicModel::UpdateLinkPosesOf's, fk_links.size() entries
-  // Speed-scaled tolerances with each joint's own sample times (MarkResampledLinks): per link,
-  // whether a joint between it and the root was sampled anew for this cycle. A primitive whose
-  // link was not keeps its speed (with one topic per arm, the other arm's cycle).
-  std::vector<std::uint8_t> link_resampled;
-  bool is_resampled_known = false;
+  // Speed-scaled tolerances: per joint (q index), whether its newest sample moved it
+  // (NoteJointMotion); per link, whether every joint between it and the root is at rest so
+  // (FollowKinematics). An unmoved primitive of a link not at rest keeps its speed: with one
+  // topic per arm, in the other arm's cycles, until its own joints are sampled unmoved.
+  std::vector<std::uint8_t> joint_moving;
+  std::vector<std::uint8_t> link_at_rest;
   // The smallest PairGap_m over the kept pairs since the last kinematics (SweepStep or
   // IsProvablyClear, whichever comes first).
   bool is_pair_gap_known = false;
@@ -317,15 +318,23 @@ struct Monitor::Impl {
   void MoveCarried(const std::vector<Eigen::Isometry3d>& X_WL_new,
                    std::vector<std::uint8_t>* changed, std::vector<Shape>* shapes,
                    std::vector<std::uint8_t>* moved_flags) const;
-  // Before DateGood: link_resampled from this cycle's and q_good's per-joint times, when both
-  // are known (else is_resampled_known is false: every link counts as sampled anew).
-  void MarkResampledLinks();
+  // Before DateGood, for an accepted q (idle or run): joint_moving of every joint sampled anew
+  // (its time not q_good's, or not finite: one never received, or no time given) is whether it
+  // moved from q_good; the others keep theirs. Before the first good cycle all are moving.
+  // Returns whether a joint came to rest.
+  bool NoteJointMotion(const Eigen::Ref<const Eigen::VectorXd>& q);
+  // Whether no joint moved at its newest sample (always, without speed-scaled tolerances): an
+  // idle Update(q) with one time for every joint keeps every tolerance.
+  bool IsAtRest() const {
+    return model.speed_tol_gain_s == 0.0 ||
+           std::find(joint_moving.begin(), joint_moving.end(), 1) == joint_moving.end();
+  }
   // This cycle's tolerance of every primitive (speed-scaled for the moving ones when enabled).
-  // A speed is the primitive's move over cycle_period_s, 0 unmoved; with `resampled` (per link)
-  // one carried by a link not sampled anew keeps its speed: its entry of `tol` is left.
+  // A speed is the primitive's move over cycle_period_s, 0 unmoved; with `at_rest` (per link)
+  // an unmoved one carried by a link not at rest keeps its speed: its entry of `tol` is left.
   void ComputeTolerances(const std::vector<Shape>& shapes,
                          const std::vector<std::uint8_t>& moved_flags,
-                         const std::vector<std::uint8_t>* resampled,
+                         const std::vector<std::uint8_t>* at_rest,
                          std::vector<double>* tol) const;
   // Narrow phase of one pair: appends a warning when closer than the sum of the tolerances (or
   // touching); returns the distance.

@@ -97,6 +97,10 @@ bool Monitor::Attach(const std::string& object, const std::string& link, std::st
   for (const PrimitiveId id : m.model.link_prims[with_geometry]) {
     holder_tol_m = std::max(holder_tol_m, m.tol_base[id]);
   }
+  // Speed-scaled tolerances: a holder not at rest may move it at any speed until its joints
+  // are sampled again (the object's speed is unknown until then).
+  const double speed_margin_m =
+      m.link_at_rest[l] ? 0.0 : m.model.options.max_speed_mps * m.model.speed_tol_gain_s;
   // A live object was not in the start-up reach envelope, whose hold radius it need not keep:
   // every static comes back into the check instead.
   if (m.model.LiveSlot(o) >= 0) m.MarkAllStaticsReachable();
@@ -105,7 +109,7 @@ bool Monitor::Attach(const std::string& object, const std::string& link, std::st
     m.shape_C[id] = TransformShape(X_LW, m.shape_W[id]);
     m.carrier[id] = l;
     m.tol_base[id] = std::max(m.Spec(id).tolerance_m, holder_tol_m);
-    m.tol_now[id] = m.tol_base[id];
+    m.tol_now[id] = m.tol_base[id] + speed_margin_m;
     m.Reindex(id, true);
     m.SetCarrierBounds(id);
   }

@@ -1,5 +1,6 @@
 #include "mesh_file.h"
 
+#include <assimp/MemoryIOWrapper.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
@@ -24,6 +25,21 @@ std::string ExtensionHint(const std::string& name) {
   std::transform(hint.begin(), hint.end(), hint.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return hint;
+}
+
+// assimp calls bytes read from memory "$$$___magic___$$$.<hint>" in its messages: the file
+// name of `url` instead.
+std::string NameInMessage(std::string message, const std::string& url) {
+  const std::string name = url.substr(url.find_last_of('/') + 1);
+  const std::string magic = AI_MEMORYIO_MAGIC_FILENAME;
+  for (std::size_t at = message.find(magic); at != std::string::npos;
+       at = message.find(magic, at + name.size())) {
+    std::size_t end = at + magic.size();
+    if (end < message.size() && message[end] == '.') ++end;
+    while (end < message.size() && std::isalnum(static_cast<unsigned char>(message[end]))) ++end;
+    message.replace(at, end - at, name);
+  }
+  return message;
 }
 
 Eigen::Affine3d ToEigen(const aiMatrix4x4& m) {
@@ -149,7 +165,7 @@ TriangleMesh ReadMeshFileBytes(const std::string& bytes, const std::string& name
                                       aiProcess_SortByPType | aiProcess_ValidateDataStructure,
                                   hint.c_str());
   if (scene == nullptr || scene->mRootNode == nullptr) {
-    throw LoadError(std::string("cannot read the mesh: ") + importer.GetErrorString() +
+    throw LoadError("cannot read the mesh: " + NameInMessage(importer.GetErrorString(), name) +
                     " (expected a mesh file: STL, DAE, OBJ, ...)");
   }
   TriangleMesh mesh;

@@ -646,7 +646,8 @@ TEST(MonitorScene, IdleCycleReturnsTheSameReport) {
 }
 
 // Speed-scaled tolerance: the same approach of the left forearm to the front table top, slow
-// and fast; the fast one warns earlier (farther away).
+// and fast; the fast one warns earlier (farther away). Stopped there (the same q again), it
+// is at rest: the base tolerances.
 TEST(MonitorScene, SpeedScaledToleranceWarnsLaterWhenSlow) {
   const auto wc = LoadBundledWorkcell();
   MonitorOptions options;
@@ -661,10 +662,25 @@ TEST(MonitorScene, SpeedScaledToleranceWarnsLaterWhenSlow) {
     for (int k = 0; k < 100000; ++k) {
       q[j4] = k * joint4_speed_radps * options.cycle_period_s;
       const CycleReport& report = monitor.Update(q);
-      const CycleReport idle_check = monitor.Check(q);  // same q: the same report
-      EXPECT_EQ(idle_check.warnings.size(), report.warnings.size());
       for (const Warning& w : report.warnings) {
-        if (w.b == table || w.a == table) return std::make_pair(q[j4], w.threshold_m);
+        if (w.b != table && w.a != table) continue;
+        const Warning first = w;
+        // Sampled again where it is, the forearm is at rest: base tolerances (as Check(q), a
+        // sample of every joint, says), and the table is warned only within their sum.
+        const CycleReport at_rest_check = monitor.Check(q);
+        const CycleReport& at_rest = monitor.Update(q);
+        EXPECT_EQ(at_rest.moved_primitives, 0u);
+        EXPECT_EQ(at_rest.warnings.size(), at_rest_check.warnings.size());
+        const double base_m = wc->primitives[first.a].tolerance_m +
+                              wc->primitives[first.b].tolerance_m;
+        bool is_table_warned = false;
+        for (const Warning& r : at_rest.warnings) {
+          EXPECT_EQ(r.threshold_m,
+                    wc->primitives[r.a].tolerance_m + wc->primitives[r.b].tolerance_m);
+          is_table_warned |= r.a == first.a && r.b == first.b;
+        }
+        EXPECT_EQ(is_table_warned, first.distance_m <= base_m) << first.distance_m;
+        return std::make_pair(q[j4], first.threshold_m);
       }
       if (q[j4] > M_PI / 2) break;
     }
@@ -681,10 +697,12 @@ TEST(MonitorScene, SpeedScaledToleranceWarnsLaterWhenSlow) {
   EXPECT_LE(fast_threshold, 2 * 0.0305 + options.max_speed_mps * gain_s + 1e-12);
 }
 
-// With each joint's own sample times (one topic per arm), a primitive's speed changes only in a
-// cycle that samples its joints: the cycle of the other arm keeps it (it was taken at rest, its
-// base tolerance, every other cycle), and a new sample without a move takes it to rest. With
-// one time for every joint, every joint counts as sampled.
+// With each joint's own sample times (one topic per arm), an unmoved primitive keeps its speed
+// while a joint above it moved at its newest sample: the other arm's cycles keep it (they took
+// it at rest, its base tolerance, every other cycle), and its joints sampled again unmoved take
+// it to rest, in an idle cycle too. A joint sampled apart from the others above it (a torso's)
+// takes nothing to rest by its own unmoved sample. With one time for every joint, every joint
+// counts as sampled.
 TEST(MonitorScene, SpeedScaledToleranceKeepsASpeedUntilItsJointsAreSampledAgain) {
   const auto wc = LoadBundledWorkcell();
   MonitorOptions options;
@@ -694,6 +712,7 @@ TEST(MonitorScene, SpeedScaledToleranceKeepsASpeedUntilItsJointsAreSampledAgain)
   const double base_m = wc->primitives[left].tolerance_m;
   ASSERT_EQ(wc->primitives[right].tolerance_m, base_m);
   const int l1 = test::JointIndex(*wc, "left_joint1");
+  const int l4 = test::JointIndex(*wc, "left_joint4");
   const int r1 = test::JointIndex(*wc, "right_joint1");
   Monitor monitor(wc, options);
   Eigen::VectorXd q = MakeQ(*wc, {{"left_joint2", 0.5}, {"right_joint2", 0.5}});
@@ -703,33 +722,109 @@ TEST(MonitorScene, SpeedScaledToleranceKeepsASpeedUntilItsJointsAreSampledAgain)
       if (wc->joint_names[static_cast<std::size_t>(i)].rfind(prefix, 0) == 0) t_s[i] = time_s;
     }
   };
-  // The first cycle takes every moving primitive at the largest speed (none known).
-  ASSERT_EQ(monitor.Update(q, t_s).input, InputStatus::kOk);
+  const auto update = [&](const Eigen::VectorXd& times) {
+    const CycleReport& report = monitor.Update(q, times);
+    ASSERT_EQ(report.input, InputStatus::kOk);
+  };
+  // The first cycle takes every moving primitive at the largest speed (none known); the right
+  // arm's joints never received since (stamped -inf, as the node's defaulted joints) are at rest
+  // from the next cycle.
+  update(t_s);
   EXPECT_GT(monitor.tolerance_m(right), base_m);
-  // Both arms sampled, the left one moved.
+  set_arm_time("right_", -std::numeric_limits<double>::infinity());
   q[l1] += 0.02;
-  t_s.setConstant(0.05);
-  ASSERT_EQ(monitor.Update(q, t_s).input, InputStatus::kOk);
+  set_arm_time("left_", 0.05);
+  update(t_s);
   const double left_moving_m = monitor.tolerance_m(left);
   EXPECT_GT(left_moving_m, base_m);
   EXPECT_EQ(monitor.tolerance_m(right), base_m);
   // The right arm's message: the left arm keeps its speed.
   q[r1] += 0.03;
   set_arm_time("right_", 0.06);
-  ASSERT_EQ(monitor.Update(q, t_s).input, InputStatus::kOk);
+  update(t_s);
   EXPECT_EQ(monitor.tolerance_m(left), left_moving_m);
-  EXPECT_GT(monitor.tolerance_m(right), left_moving_m);  // a larger move
-  // Both sampled, the left arm where it was: at rest.
+  const double right_moving_m = monitor.tolerance_m(right);
+  EXPECT_GT(right_moving_m, left_moving_m);  // a larger move
+  // The left arm's message where it was: an idle cycle (the same q), after which the right
+  // arm's next message takes the left arm at rest and moves the right one again.
+  set_arm_time("left_", 0.10);
+  ASSERT_TRUE(monitor.Update(q, t_s).moved_primitives == 0u);
+  EXPECT_EQ(monitor.tolerance_m(left), base_m);
   q[r1] += 0.03;
-  t_s.setConstant(0.11);
-  ASSERT_EQ(monitor.Update(q, t_s).input, InputStatus::kOk);
+  set_arm_time("right_", 0.11);
+  update(t_s);
   EXPECT_EQ(monitor.tolerance_m(left), base_m);
   EXPECT_GT(monitor.tolerance_m(right), left_moving_m);
+  // The left elbow moves in the left arm's message (the right arm, not sampled, keeps its
+  // speed); then the left shoulder alone is sampled again unmoved, with the right arm's next
+  // move: the left hand keeps its speed, the elbow's newest sample having moved it.
+  q[l4] += 0.02;
+  set_arm_time("left_", 0.15);
+  update(t_s);
+  const double left_elbow_m = monitor.tolerance_m(left);
+  EXPECT_GT(left_elbow_m, base_m);
+  EXPECT_GT(monitor.tolerance_m(right), base_m);
+  q[r1] += 0.01;
+  set_arm_time("right_", 0.16);
+  t_s[l1] = 0.16;
+  update(t_s);
+  EXPECT_EQ(monitor.tolerance_m(left), left_elbow_m);
+  EXPECT_GT(monitor.tolerance_m(right), base_m);
   // One time for every joint: the arm that did not move is at rest.
-  q[l1] += 0.02;
-  ASSERT_EQ(monitor.Update(q, 0.15).input, InputStatus::kOk);
-  EXPECT_GT(monitor.tolerance_m(left), base_m);
-  EXPECT_EQ(monitor.tolerance_m(right), base_m);
+  q[r1] += 0.02;
+  ASSERT_EQ(monitor.Update(q, 0.2).input, InputStatus::kOk);
+  EXPECT_EQ(monitor.tolerance_m(left), base_m);
+  EXPECT_GT(monitor.tolerance_m(right), base_m);
+}
+
+// Speed-scaled tolerances: an object attached to an arm whose newest sample moved it takes the
+// largest speed until the arm is sampled again (the other arm's cycle keeps it), then its own.
+TEST(MonitorScene, SpeedScaledToleranceTakesAnObjectAttachedToAMovingArmAtTheLargestSpeed) {
+  const auto wc = LoadBundledWorkcell();
+  MonitorOptions options;
+  options.speed_scaled_tolerance = true;
+  const double gain_s = options.reaction_time_s + options.stopping_time_s;
+  const PrimitiveId box = Prim(*wc, "right_box");
+  const double base_m = wc->primitives[Prim(*wc, "right_link7")].tolerance_m;
+  ASSERT_GE(base_m, wc->primitives[box].tolerance_m);  // held, it takes the gripper's
+  Monitor monitor(wc, options);
+  Eigen::VectorXd q = ArmReachDown(*wc, "right", 0.1, -1.55, 0.95);
+  Eigen::VectorXd t_s = Eigen::VectorXd::Zero(q.size());
+  const auto set_arm_time = [&](const std::string& prefix, double time_s) {
+    for (Eigen::Index i = 0; i < q.size(); ++i) {
+      if (wc->joint_names[static_cast<std::size_t>(i)].rfind(prefix, 0) == 0) t_s[i] = time_s;
+    }
+  };
+  std::string error;
+  ASSERT_EQ(monitor.Update(q, t_s).input, InputStatus::kOk);
+  // The right arm at rest: attached, the box is at rest too.
+  set_arm_time("right_", 0.05);
+  ASSERT_EQ(monitor.Update(q, t_s).input, InputStatus::kOk);
+  ASSERT_TRUE(monitor.Attach("right_box", "right_link7", &error)) << error;
+  EXPECT_EQ(monitor.tolerance_m(box), base_m);
+  ASSERT_TRUE(monitor.Detach("right_box", &error)) << error;
+  // The right wrist turns; attached then, the box takes the largest speed, kept in the left
+  // arm's cycle, until the right arm's next sample moves it (its own speed) or not (at rest).
+  q[test::JointIndex(*wc, "right_joint7")] += 0.01;
+  set_arm_time("right_", 0.10);
+  ASSERT_EQ(monitor.Update(q, t_s).input, InputStatus::kOk);
+  ASSERT_TRUE(monitor.Attach("right_box", "right_link7", &error)) << error;
+  const double largest_m = base_m + options.max_speed_mps * gain_s;
+  EXPECT_EQ(monitor.tolerance_m(box), largest_m);
+  q[test::JointIndex(*wc, "left_joint1")] += 0.01;
+  set_arm_time("left_", 0.11);
+  ASSERT_EQ(monitor.Update(q, t_s).input, InputStatus::kOk);
+  EXPECT_EQ(monitor.tolerance_m(box), largest_m);
+  q[test::JointIndex(*wc, "right_joint7")] += 0.01;
+  set_arm_time("right_", 0.15);
+  ASSERT_EQ(monitor.Update(q, t_s).input, InputStatus::kOk);
+  const double turning_m = monitor.tolerance_m(box);
+  EXPECT_GT(turning_m, base_m);
+  EXPECT_LT(turning_m, largest_m);
+  set_arm_time("right_", 0.20);
+  ASSERT_EQ(monitor.Update(q, t_s).input, InputStatus::kOk);
+  EXPECT_EQ(monitor.tolerance_m(box), base_m);
+  ExpectValid(monitor);
 }
 
 TEST(MonitorScene, InconsistentOptionsAreRejected) {
