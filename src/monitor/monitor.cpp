@@ -357,10 +357,13 @@ bool Monitor::Impl::NoteJointMotion(const Eigen::Ref<const Eigen::VectorXd>& q) 
   for (Eigen::Index i = 0; i < q.size(); ++i) {
     const double t_s = joint_time_s != nullptr ? joint_time_s[i] : time_s;
     const double good_s = is_joint_time_good ? joint_time_good_s[i] : time_good_s;
-    if (std::isfinite(t_s) && t_s == good_s) continue;  // not sampled anew: its motion stands
     const bool is_moving_now = !has_good || !(q[i] == q_good[i]);
+    // Not sampled anew (the same time and value): its motion stands.
+    joint_sampled[i] = !(std::isfinite(t_s) && t_s == good_s && !is_moving_now) ? 1 : 0;
+    if (!joint_sampled[i]) continue;
     is_any_at_rest_now |= joint_moving[i] && !is_moving_now;
     joint_moving[i] = is_moving_now ? 1 : 0;
+    joint_step[i] = has_good ? std::abs(q[i] - q_good[i]) : std::numeric_limits<double>::infinity();
   }
   return is_any_at_rest_now;
 }
@@ -384,9 +387,18 @@ void Monitor::Impl::ComputeTolerances(const std::vector<Shape>& shapes,
     } else if (!has_good) {
       speed_mps = options.max_speed_mps;
     } else if (moved_flags[id]) {
-      speed_mps = std::min(MaxPointDisplacement_m(shape_prev_W[id], shapes[id]) /
-                               options.cycle_period_s,
-                           options.max_speed_mps);
+      double step_m = MaxPointDisplacement_m(shape_prev_W[id], shapes[id]);
+      if (at_rest != nullptr && carrier[id] >= 0 && !(*at_rest)[carrier[id]]) {
+        // Moved by the joints sampled in this cycle; those above it that moved at their newest
+        // sample, not this cycle's (a torso on its own topic), move it too: their step's bound.
+        const MotionBounds::Lever* levers = motion.levers(id);
+        for (int k = 0; k < motion.lever_count(id); ++k) {
+          const int i = levers[k].q_index;
+          if (joint_moving[i] && !joint_sampled[i]) step_m += joint_step[i] * levers[k].m_per_unit;
+        }
+      }
+      speed_mps = step_m / options.cycle_period_s;
+      if (!(speed_mps <= options.max_speed_mps)) speed_mps = options.max_speed_mps;  // NaN too
     } else if (at_rest != nullptr && carrier[id] >= 0 && !(*at_rest)[carrier[id]]) {
       continue;  // a joint above it moved at its newest sample: it keeps its speed
     }
@@ -499,6 +511,8 @@ void Monitor::Impl::InitData() {
   link_changed.assign(link_count, 0);
   link_at_rest.assign(link_count, 1);
   joint_moving.assign(model.q_start.size(), 1);
+  joint_sampled.assign(model.q_start.size(), 1);
+  joint_step.assign(model.q_start.size(), std::numeric_limits<double>::infinity());
   q_kinematics = model.q_start;
   for (PrimitiveId id = 0; id < n; ++id) SetCarrierBounds(id);
   PrepareBounds();

@@ -93,7 +93,12 @@ struct Monitor::Impl {
   // (NoteJointMotion); per link, whether every joint between it and the root is at rest so
   // (FollowKinematics). An unmoved primitive of a link not at rest keeps its speed: with one
   // topic per arm, in the other arm's cycles, until its own joints are sampled unmoved.
+  // joint_sampled: whether this cycle sampled it anew; joint_step: |its move| at its newest
+  // sample (infinite before the first good cycle). A moved primitive adds the steps of the
+  // joints above it moving but not sampled in the cycle (ComputeTolerances).
   std::vector<std::uint8_t> joint_moving;
+  std::vector<std::uint8_t> joint_sampled;
+  std::vector<double> joint_step;
   std::vector<std::uint8_t> link_at_rest;
   // The smallest PairGap_m over the kept pairs since the last kinematics (SweepStep or
   // IsProvablyClear, whichever comes first).
@@ -319,8 +324,9 @@ struct Monitor::Impl {
                    std::vector<std::uint8_t>* changed, std::vector<Shape>* shapes,
                    std::vector<std::uint8_t>* moved_flags) const;
   // Before DateGood, for an accepted q (idle or run): joint_moving of every joint sampled anew
-  // (its time not q_good's, or not finite: one never received, or no time given) is whether it
-  // moved from q_good; the others keep theirs. Before the first good cycle all are moving.
+  // (its time not q_good's, or not finite: one never received, or no time given; or its value
+  // not q_good's) is whether it moved from q_good; the others keep theirs. Before the first
+  // good cycle all are moving.
   // Returns whether a joint came to rest.
   bool NoteJointMotion(const Eigen::Ref<const Eigen::VectorXd>& q);
   // Whether no joint moved at its newest sample (always, without speed-scaled tolerances): an

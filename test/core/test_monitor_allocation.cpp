@@ -1,5 +1,6 @@
 // The steady-state cycle allocates nothing: every allocation of the process is counted through
-// a replaced global operator new, over a few thousand moving cycles of both arms.
+// a replaced global operator new, over a few thousand moving cycles of both arms (speed-scaled,
+// with re-samples of some joints at rest too).
 #include <atomic>
 #include <cstdlib>
 #include <new>
@@ -29,11 +30,16 @@ TEST_P(MonitorAllocation, SteadyStateUpdateDoesNotAllocate) {
     // Warm-up: the first pass may grow pools (octree nodes, location links) once.
     for (int k = 0; k < cycles; ++k) monitor.Update(qs[k]);
     std::uint64_t moved = 0, warned = 0;
+    Eigen::VectorXd t_s = Eigen::VectorXd::Zero(qs[0].size());
     const std::uint64_t before = test::AllocationCount();
     for (int k = cycles; k < 2 * cycles; ++k) {
       const CycleReport& report = monitor.Update(qs[k]);
       moved += report.moved_primitives;
       warned += report.warnings.size();
+      if (!speed_scaled || k % 4 != 0) continue;
+      // The same q again, every other joint sampled anew (its own time): they come to rest.
+      for (Eigen::Index i = 0; i < t_s.size(); i += 2) t_s[i] = k;
+      monitor.Update(qs[k], t_s);
     }
     const std::uint64_t allocations = test::AllocationCount() - before;
     EXPECT_EQ(allocations, 0u) << BroadPhaseMethodName(GetParam())

@@ -777,6 +777,61 @@ TEST(MonitorScene, SpeedScaledToleranceKeepsASpeedUntilItsJointsAreSampledAgain)
   EXPECT_GT(monitor.tolerance_m(right), base_m);
 }
 
+// Speed-scaled tolerances with each joint's own sample times: a primitive moved by a joint
+// sampled apart (a torso's, here the left shoulder) while the joints below it move at their
+// newest sample adds their step (its speed is not the shoulder's alone); a joint whose value
+// changes under the same time (an unstamped message dated by a clock behind) is sampled anew.
+TEST(MonitorScene, SpeedScaledToleranceAddsTheStepOfJointsSampledApart) {
+  const auto wc = LoadBundledWorkcell();
+  MonitorOptions options;
+  options.speed_scaled_tolerance = true;
+  const PrimitiveId left = Prim(*wc, "left_link7");
+  const double base_m = wc->primitives[left].tolerance_m;
+  const int l1 = test::JointIndex(*wc, "left_joint1");
+  const int l4 = test::JointIndex(*wc, "left_joint4");
+  const int r1 = test::JointIndex(*wc, "right_joint1");
+  Monitor monitor(wc, options);
+  Eigen::VectorXd q = MakeQ(*wc, {{"left_joint2", 0.5}, {"right_joint2", 0.5}});
+  Eigen::VectorXd t_s = Eigen::VectorXd::Zero(q.size());
+  const auto set_arm_time = [&](const std::string& prefix, double time_s) {
+    for (Eigen::Index i = 0; i < q.size(); ++i) {
+      if (wc->joint_names[static_cast<std::size_t>(i)].rfind(prefix, 0) == 0) t_s[i] = time_s;
+    }
+  };
+  const auto update = [&]() { ASSERT_EQ(monitor.Update(q, t_s).input, InputStatus::kOk); };
+  update();
+  t_s.setConstant(0.05);  // every joint sampled where it was: at rest
+  update();
+  ASSERT_EQ(monitor.tolerance_m(left), base_m);
+  // The left arm but its shoulder: the elbow moves.
+  const double shoulder_s = t_s[l1];
+  set_arm_time("left_", 0.10);
+  t_s[l1] = shoulder_s;
+  q[l4] += 0.02;
+  update();
+  const double elbow_m = monitor.tolerance_m(left);
+  EXPECT_GT(elbow_m, base_m);
+  // The shoulder alone, a hair: the hand is moved, the elbow's step with it.
+  t_s[l1] = 0.11;
+  q[l1] += 1e-6;
+  update();
+  EXPECT_GE(monitor.tolerance_m(left), elbow_m);
+  // The whole left arm sampled unmoved (at rest), then the elbow moves under the same times:
+  // moving, the right arm's next cycle keeps its speed.
+  set_arm_time("left_", 0.15);
+  update();
+  ASSERT_EQ(monitor.tolerance_m(left), base_m);
+  q[l4] += 0.02;
+  update();
+  const double same_time_m = monitor.tolerance_m(left);
+  EXPECT_GT(same_time_m, base_m);
+  q[r1] += 0.01;
+  set_arm_time("right_", 0.20);
+  update();
+  EXPECT_EQ(monitor.tolerance_m(left), same_time_m);
+  ExpectValid(monitor);
+}
+
 // Speed-scaled tolerances: an object attached to an arm whose newest sample moved it takes the
 // largest speed until the arm is sampled again (the other arm's cycle keeps it), then its own.
 TEST(MonitorScene, SpeedScaledToleranceTakesAnObjectAttachedToAMovingArmAtTheLargestSpeed) {

@@ -29,8 +29,10 @@ struct MonitorOptions {
   double cycle_period_s = 0.05;  ///< 20 Hz
   /// Optional speed-dependent tolerance (ISO/TS 15066 protective separation distance): each
   /// moving primitive's tolerance grows by its current speed times (reaction + stopping time):
-  /// its move in the cycle over cycle_period_s; unmoved, it keeps its speed while a joint above
-  /// it moved at its newest sample (Monitor::Update's per-joint times), else it is at rest.
+  /// its move in the cycle over cycle_period_s, plus a bound of the newest steps of the joints
+  /// above it not sampled in the cycle that moved at their own (Monitor::Update's per-joint
+  /// times); unmoved, it keeps its speed while a joint above it moved at its newest sample,
+  /// else it is at rest.
   bool speed_scaled_tolerance = false;
   double reaction_time_s = 0.1;
   double stopping_time_s = 0.02;
