@@ -697,6 +697,14 @@ TEST(MonitorScene, SpeedScaledToleranceWarnsLaterWhenSlow) {
   EXPECT_LE(fast_threshold, 2 * 0.0305 + options.max_speed_mps * gain_s + 1e-12);
 }
 
+// Per-joint sample times, one topic per arm: every joint named with `prefix` sampled at time_s.
+void SetArmTime(const Workcell& wc, const std::string& prefix, double time_s,
+                Eigen::VectorXd* t_s) {
+  for (Eigen::Index i = 0; i < t_s->size(); ++i) {
+    if (wc.joint_names[static_cast<std::size_t>(i)].rfind(prefix, 0) == 0) (*t_s)[i] = time_s;
+  }
+}
+
 // With each joint's own sample times (one topic per arm), an unmoved primitive keeps its speed
 // while a joint above it moved at its newest sample: the other arm's cycles keep it (they took
 // it at rest, its base tolerance, every other cycle), and its joints sampled again unmoved take
@@ -717,11 +725,6 @@ TEST(MonitorScene, SpeedScaledToleranceKeepsASpeedUntilItsJointsAreSampledAgain)
   Monitor monitor(wc, options);
   Eigen::VectorXd q = MakeQ(*wc, {{"left_joint2", 0.5}, {"right_joint2", 0.5}});
   Eigen::VectorXd t_s = Eigen::VectorXd::Zero(q.size());
-  const auto set_arm_time = [&](const std::string& prefix, double time_s) {
-    for (Eigen::Index i = 0; i < q.size(); ++i) {
-      if (wc->joint_names[static_cast<std::size_t>(i)].rfind(prefix, 0) == 0) t_s[i] = time_s;
-    }
-  };
   const auto update = [&](const Eigen::VectorXd& times) {
     const CycleReport& report = monitor.Update(q, times);
     ASSERT_EQ(report.input, InputStatus::kOk);
@@ -731,27 +734,27 @@ TEST(MonitorScene, SpeedScaledToleranceKeepsASpeedUntilItsJointsAreSampledAgain)
   // from the next cycle.
   update(t_s);
   EXPECT_GT(monitor.tolerance_m(right), base_m);
-  set_arm_time("right_", -std::numeric_limits<double>::infinity());
+  SetArmTime(*wc, "right_", -std::numeric_limits<double>::infinity(), &t_s);
   q[l1] += 0.02;
-  set_arm_time("left_", 0.05);
+  SetArmTime(*wc, "left_", 0.05, &t_s);
   update(t_s);
   const double left_moving_m = monitor.tolerance_m(left);
   EXPECT_GT(left_moving_m, base_m);
   EXPECT_EQ(monitor.tolerance_m(right), base_m);
   // The right arm's message: the left arm keeps its speed.
   q[r1] += 0.03;
-  set_arm_time("right_", 0.06);
+  SetArmTime(*wc, "right_", 0.06, &t_s);
   update(t_s);
   EXPECT_EQ(monitor.tolerance_m(left), left_moving_m);
   const double right_moving_m = monitor.tolerance_m(right);
   EXPECT_GT(right_moving_m, left_moving_m);  // a larger move
   // The left arm's message where it was: an idle cycle (the same q), after which the right
   // arm's next message takes the left arm at rest and moves the right one again.
-  set_arm_time("left_", 0.10);
+  SetArmTime(*wc, "left_", 0.10, &t_s);
   ASSERT_TRUE(monitor.Update(q, t_s).moved_primitives == 0u);
   EXPECT_EQ(monitor.tolerance_m(left), base_m);
   q[r1] += 0.03;
-  set_arm_time("right_", 0.11);
+  SetArmTime(*wc, "right_", 0.11, &t_s);
   update(t_s);
   EXPECT_EQ(monitor.tolerance_m(left), base_m);
   EXPECT_GT(monitor.tolerance_m(right), left_moving_m);
@@ -759,13 +762,13 @@ TEST(MonitorScene, SpeedScaledToleranceKeepsASpeedUntilItsJointsAreSampledAgain)
   // speed); then the left shoulder alone is sampled again unmoved, with the right arm's next
   // move: the left hand keeps its speed, the elbow's newest sample having moved it.
   q[l4] += 0.02;
-  set_arm_time("left_", 0.15);
+  SetArmTime(*wc, "left_", 0.15, &t_s);
   update(t_s);
   const double left_elbow_m = monitor.tolerance_m(left);
   EXPECT_GT(left_elbow_m, base_m);
   EXPECT_GT(monitor.tolerance_m(right), base_m);
   q[r1] += 0.01;
-  set_arm_time("right_", 0.16);
+  SetArmTime(*wc, "right_", 0.16, &t_s);
   t_s[l1] = 0.16;
   update(t_s);
   EXPECT_EQ(monitor.tolerance_m(left), left_elbow_m);
@@ -793,11 +796,6 @@ TEST(MonitorScene, SpeedScaledToleranceAddsTheStepOfJointsSampledApart) {
   Monitor monitor(wc, options);
   Eigen::VectorXd q = MakeQ(*wc, {{"left_joint2", 0.5}, {"right_joint2", 0.5}});
   Eigen::VectorXd t_s = Eigen::VectorXd::Zero(q.size());
-  const auto set_arm_time = [&](const std::string& prefix, double time_s) {
-    for (Eigen::Index i = 0; i < q.size(); ++i) {
-      if (wc->joint_names[static_cast<std::size_t>(i)].rfind(prefix, 0) == 0) t_s[i] = time_s;
-    }
-  };
   const auto update = [&]() { ASSERT_EQ(monitor.Update(q, t_s).input, InputStatus::kOk); };
   update();
   t_s.setConstant(0.05);  // every joint sampled where it was: at rest
@@ -805,7 +803,7 @@ TEST(MonitorScene, SpeedScaledToleranceAddsTheStepOfJointsSampledApart) {
   ASSERT_EQ(monitor.tolerance_m(left), base_m);
   // The left arm but its shoulder: the elbow moves.
   const double shoulder_s = t_s[l1];
-  set_arm_time("left_", 0.10);
+  SetArmTime(*wc, "left_", 0.10, &t_s);
   t_s[l1] = shoulder_s;
   q[l4] += 0.02;
   update();
@@ -818,7 +816,7 @@ TEST(MonitorScene, SpeedScaledToleranceAddsTheStepOfJointsSampledApart) {
   EXPECT_GE(monitor.tolerance_m(left), elbow_m);
   // The whole left arm sampled unmoved (at rest), then the elbow moves under the same times:
   // moving, the right arm's next cycle keeps its speed.
-  set_arm_time("left_", 0.15);
+  SetArmTime(*wc, "left_", 0.15, &t_s);
   update();
   ASSERT_EQ(monitor.tolerance_m(left), base_m);
   q[l4] += 0.02;
@@ -826,7 +824,7 @@ TEST(MonitorScene, SpeedScaledToleranceAddsTheStepOfJointsSampledApart) {
   const double same_time_m = monitor.tolerance_m(left);
   EXPECT_GT(same_time_m, base_m);
   q[r1] += 0.01;
-  set_arm_time("right_", 0.20);
+  SetArmTime(*wc, "right_", 0.20, &t_s);
   update();
   EXPECT_EQ(monitor.tolerance_m(left), same_time_m);
   ExpectValid(monitor);
@@ -845,15 +843,10 @@ TEST(MonitorScene, SpeedScaledToleranceTakesAnObjectAttachedToAMovingArmAtTheLar
   Monitor monitor(wc, options);
   Eigen::VectorXd q = ArmReachDown(*wc, "right", 0.1, -1.55, 0.95);
   Eigen::VectorXd t_s = Eigen::VectorXd::Zero(q.size());
-  const auto set_arm_time = [&](const std::string& prefix, double time_s) {
-    for (Eigen::Index i = 0; i < q.size(); ++i) {
-      if (wc->joint_names[static_cast<std::size_t>(i)].rfind(prefix, 0) == 0) t_s[i] = time_s;
-    }
-  };
   std::string error;
   ASSERT_EQ(monitor.Update(q, t_s).input, InputStatus::kOk);
   // The right arm at rest: attached, the box is at rest too.
-  set_arm_time("right_", 0.05);
+  SetArmTime(*wc, "right_", 0.05, &t_s);
   ASSERT_EQ(monitor.Update(q, t_s).input, InputStatus::kOk);
   ASSERT_TRUE(monitor.Attach("right_box", "right_link7", &error)) << error;
   EXPECT_EQ(monitor.tolerance_m(box), base_m);
@@ -861,22 +854,22 @@ TEST(MonitorScene, SpeedScaledToleranceTakesAnObjectAttachedToAMovingArmAtTheLar
   // The right wrist turns; attached then, the box takes the largest speed, kept in the left
   // arm's cycle, until the right arm's next sample moves it (its own speed) or not (at rest).
   q[test::JointIndex(*wc, "right_joint7")] += 0.01;
-  set_arm_time("right_", 0.10);
+  SetArmTime(*wc, "right_", 0.10, &t_s);
   ASSERT_EQ(monitor.Update(q, t_s).input, InputStatus::kOk);
   ASSERT_TRUE(monitor.Attach("right_box", "right_link7", &error)) << error;
   const double largest_m = base_m + options.max_speed_mps * gain_s;
   EXPECT_EQ(monitor.tolerance_m(box), largest_m);
   q[test::JointIndex(*wc, "left_joint1")] += 0.01;
-  set_arm_time("left_", 0.11);
+  SetArmTime(*wc, "left_", 0.11, &t_s);
   ASSERT_EQ(monitor.Update(q, t_s).input, InputStatus::kOk);
   EXPECT_EQ(monitor.tolerance_m(box), largest_m);
   q[test::JointIndex(*wc, "right_joint7")] += 0.01;
-  set_arm_time("right_", 0.15);
+  SetArmTime(*wc, "right_", 0.15, &t_s);
   ASSERT_EQ(monitor.Update(q, t_s).input, InputStatus::kOk);
   const double turning_m = monitor.tolerance_m(box);
   EXPECT_GT(turning_m, base_m);
   EXPECT_LT(turning_m, largest_m);
-  set_arm_time("right_", 0.20);
+  SetArmTime(*wc, "right_", 0.20, &t_s);
   ASSERT_EQ(monitor.Update(q, t_s).input, InputStatus::kOk);
   EXPECT_EQ(monitor.tolerance_m(box), base_m);
   ExpectValid(monitor);
