@@ -269,6 +269,25 @@ class ReplayConfigTest(unittest.TestCase):
                       "each;", text)
         self.assertNotIn('no warning', text)
 
+    def test_a_step_beyond_max_step_is_a_stop_in_the_summary(self):
+        # Five rows at 20 Hz; left_joint1 turns 2.2 rad at the third and back at the fifth,
+        # far beyond its velocity limit and moving the arm more than max_step_m (1 m).
+        directory = temp_dir(self, 'acm_jump_')
+        csv_path = os.path.join(directory, 'jump.csv')
+        with open(csv_path, 'w') as f:
+            f.write(','.join(LEFT_JOINTS + RIGHT_JOINTS) + '\n')
+            for k in range(5):
+                row = [0.0] * 14
+                row[0] = -2.5 if k in (2, 3) else -0.3
+                f.write(','.join(str(x) for x in row) + '\n')
+        result = rosrun('replay', '--json', '--scene', self.bundled_scene, csv_path)
+        self.assertEqual(json.loads(result.stdout)['jumped_cycles'], 2, result.stderr)
+        text = rosrun('replay', '--scene', self.bundled_scene, csv_path).stdout
+        summary = [line for line in text.splitlines() if line.startswith('summary:')]
+        self.assertEqual(len(summary), 1, text)
+        self.assertIn('; 2 steps beyond max_step_m (input_jumped: the monitor asks a stop on '
+                      'each)', summary[0])
+
     def test_a_csv_is_read_as_the_node_reads_joint_states(self):
         # A column of no model joint (a gripper the driver publishes) is ignored and listed, as
         # is one of a joint the URDF holds fixed, marked so; a nan position is a refused cycle,

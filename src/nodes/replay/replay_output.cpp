@@ -425,13 +425,18 @@ void PrintText(const Options& options, const Workcell& wc, const Input& input,
   PrintInputLines(input, cycles, summary, wc.kinematics);
   PrintWarningRuns(wc, input, cycles);
   if (is_swept) PrintBetweenSamples(wc, input, cycles, summary);
-  // Refused cycles and messages are not checked (the monitor asks a stop instead): the summary
-  // says how many, so that a run of refused input never reads as clear.
+  // Refused cycles and messages are not checked (the monitor asks a stop instead), and a step
+  // beyond max_step_m is a stop too (checked all the same): the summary says how many, so that
+  // such input never reads as clear.
   const unsigned long long refused = summary.refused_cycles;
   std::string unchecked;
   if (refused > 0) {
     unchecked += "; " + Counted(refused, "cycle") + " refused, not checked (the monitor " +
                  "asks a stop on each; see 'input:' above)";
+  }
+  if (summary.jumped_cycles > 0) {
+    unchecked += "; " + Counted(summary.jumped_cycles, "step") +
+                 " beyond max_step_m (input_jumped: the monitor asks a stop on each)";
   }
   std::string refused_messages;
   if (summary.refused_messages > 0) {
