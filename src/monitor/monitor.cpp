@@ -265,16 +265,7 @@ std::uint32_t Monitor::Impl::FollowKinematics(const Eigen::Ref<const Eigen::Vect
   const std::uint32_t moved_count = ReindexMoved(is_step, reindex_at_m);
   // Fixed tolerances: tol_now already equals tol_base (Attach / Detach keep both).
   const bool is_speed_scaled = model.speed_tol_gain_s != 0.0;
-  if (is_speed_scaled) {
-    // Parents first (KinematicModel's order); the root's entry stays 1.
-    const KinematicModel& kinematics = *model.kinematics;
-    for (int link = 1; link < kinematics.link_count(); ++link) {
-      const JointSpec& joint = kinematics.joint(link);
-      const int i = joint.q_index >= 0 ? joint.q_index : joint.mimic_q_index;
-      link_at_rest[link] = link_at_rest[kinematics.parent_link(link)] & (i < 0 || !joint_moving[i]);
-    }
-    ComputeTolerances(shape_W, moved, &link_at_rest, &tol_now);
-  }
+  if (is_speed_scaled) ComputeTolerances(shape_W, moved, &link_at_rest, &tol_now);
   // Only speed estimates read shape_prev_W (ReindexMoved cleared the moved flags without them).
   if (is_speed_scaled) {
     ForEachMayHaveMoved([&](PrimitiveId id) {
@@ -365,6 +356,12 @@ bool Monitor::Impl::NoteJointMotion(const Eigen::Ref<const Eigen::VectorXd>& q) 
     joint_moving[i] = is_moving_now ? 1 : 0;
     joint_step[i] = has_good ? std::abs(q[i] - q_good[i]) : std::numeric_limits<double>::infinity();
   }
+  // Parents first (KinematicModel's order); the root's entry stays 1.
+  const KinematicModel& kinematics = *model.kinematics;
+  for (int link = 1; link < kinematics.link_count(); ++link) {
+    const int i = DrivingQIndex(kinematics.joint(link));
+    link_at_rest[link] = link_at_rest[kinematics.parent_link(link)] & (i < 0 || !joint_moving[i]);
+  }
   return is_any_at_rest_now;
 }
 
@@ -381,6 +378,8 @@ void Monitor::Impl::ComputeTolerances(const std::vector<Shape>& shapes,
   // conservative; before the first good cycle the speed is unknown and taken as the maximum.
   const MonitorOptions& options = model.options;
   for (PrimitiveId id = 0; id < live_end; ++id) {
+    const bool is_carrier_moving =
+        at_rest != nullptr && carrier[id] >= 0 && !(*at_rest)[carrier[id]];
     double speed_mps = 0.0;
     if (!is_moving[id]) {
       speed_mps = 0.0;
@@ -388,7 +387,7 @@ void Monitor::Impl::ComputeTolerances(const std::vector<Shape>& shapes,
       speed_mps = options.max_speed_mps;
     } else if (moved_flags[id]) {
       double step_m = MaxPointDisplacement_m(shape_prev_W[id], shapes[id]);
-      if (at_rest != nullptr && carrier[id] >= 0 && !(*at_rest)[carrier[id]]) {
+      if (is_carrier_moving) {
         // Moved by the joints sampled in this cycle; those above it that moved at their newest
         // sample, not this cycle's (a torso on its own topic), move it too: their step's bound.
         const MotionBounds::Lever* levers = motion.levers(id);
@@ -399,7 +398,7 @@ void Monitor::Impl::ComputeTolerances(const std::vector<Shape>& shapes,
       }
       speed_mps = step_m / options.cycle_period_s;
       if (!(speed_mps <= options.max_speed_mps)) speed_mps = options.max_speed_mps;  // NaN too
-    } else if (at_rest != nullptr && carrier[id] >= 0 && !(*at_rest)[carrier[id]]) {
+    } else if (is_carrier_moving) {
       continue;  // a joint above it moved at its newest sample: it keeps its speed
     }
     (*tol)[id] = tol_base[id] + speed_mps * model.speed_tol_gain_s;

@@ -89,10 +89,10 @@ struct Monitor::Impl {
   // current for the links of fk_links, 0 for the links that do not move.
   std::vector<std::uint8_t> link_changed;
   std::vector<int> fk_scratch;  // KinematicModel::UpdateLinkPosesOf's, fk_links.size() entries
-  // Speed-scaled tolerances: per joint (q index), whether its newest sample moved it
-  // (NoteJointMotion); per link, whether every joint between it and the root is at rest so
-  // (FollowKinematics). An unmoved primitive of a link not at rest keeps its speed: with one
-  // topic per arm, in the other arm's cycles, until its own joints are sampled unmoved.
+  // Speed-scaled tolerances: per joint (q index), whether its newest sample moved it; per link,
+  // whether every joint between it and the root is at rest so (both NoteJointMotion's). An
+  // unmoved primitive of a link not at rest keeps its speed: with one topic per arm, in the
+  // other arm's cycles, until its own joints are sampled unmoved.
   // joint_sampled: whether this cycle sampled it anew; joint_step: |its move| at its newest
   // sample (infinite before the first good cycle). A moved primitive adds the steps of the
   // joints above it moving but not sampled in the cycle (ComputeTolerances).
@@ -326,8 +326,8 @@ struct Monitor::Impl {
   // Before DateGood, for an accepted q (idle or run): joint_moving of every joint sampled anew
   // (its time not q_good's, or not finite: one never received, or no time given; or its value
   // not q_good's) is whether it moved from q_good; the others keep theirs. Before the first
-  // good cycle all are moving.
-  // Returns whether a joint came to rest.
+  // good cycle all are moving; then link_at_rest from them. Returns whether a joint came to
+  // rest.
   bool NoteJointMotion(const Eigen::Ref<const Eigen::VectorXd>& q);
   // Whether no joint moved at its newest sample (always, without speed-scaled tolerances): an
   // idle Update(q) with one time for every joint keeps every tolerance.
