@@ -37,6 +37,14 @@ def rotation_columns(roll, pitch, yaw):
             (cy * sp * cr + sy * sr, sy * sp * cr - cy * sr, cp * cr)]
 
 
+def write_csv(path, header, rows):
+    """A replay CSV at path: the header's names, then each row's values (str of each)."""
+    with open(path, 'w') as f:
+        f.write(','.join(header) + '\n')
+        for row in rows:
+            f.write(','.join(str(x) for x in row) + '\n')
+
+
 class ReplayConfigTest(unittest.TestCase):
 
     @classmethod
@@ -240,13 +248,9 @@ class ReplayConfigTest(unittest.TestCase):
         # Five rows at 20 Hz, the third with left_joint2 far outside its limits.
         directory = temp_dir(self, 'acm_refusal_')
         csv_path = os.path.join(directory, 'refused.csv')
-        with open(csv_path, 'w') as f:
-            f.write(','.join(LEFT_JOINTS + RIGHT_JOINTS) + '\n')
-            for k in range(5):
-                row = [0.01 * k] * 14
-                if k == 2:
-                    row[1] = 10.0
-                f.write(','.join(str(x) for x in row) + '\n')
+        rows = [[0.01 * k] * 14 for k in range(5)]
+        rows[2][1] = 10.0
+        write_csv(csv_path, LEFT_JOINTS + RIGHT_JOINTS, rows)
         result = rosrun('replay', '--json', '--scene', self.bundled_scene, csv_path)
         report = json.loads(result.stdout)
         self.assertEqual(report['refused_cycles'], 1, result.stderr)
@@ -260,10 +264,7 @@ class ReplayConfigTest(unittest.TestCase):
         self.assertIn("summary: no warning in 5 cycles; 1 cycle refused, not checked (the "
                       "monitor asks a stop on each;", text)
         # Every row refused (say, angles in degrees): no cycle was checked.
-        with open(csv_path, 'w') as f:
-            f.write(','.join(LEFT_JOINTS + RIGHT_JOINTS) + '\n')
-            for k in range(5):
-                f.write(','.join(['90'] * 14) + '\n')
+        write_csv(csv_path, LEFT_JOINTS + RIGHT_JOINTS, [[90] * 14] * 5)
         text = rosrun('replay', '--scene', self.bundled_scene, csv_path).stdout
         self.assertIn("summary: no cycle checked: all 5 refused (the monitor asks a stop on "
                       "each;", text)
@@ -274,12 +275,8 @@ class ReplayConfigTest(unittest.TestCase):
         # far beyond its velocity limit and moving the arm more than max_step_m (1 m).
         directory = temp_dir(self, 'acm_jump_')
         csv_path = os.path.join(directory, 'jump.csv')
-        with open(csv_path, 'w') as f:
-            f.write(','.join(LEFT_JOINTS + RIGHT_JOINTS) + '\n')
-            for k in range(5):
-                row = [0.0] * 14
-                row[0] = -2.5 if k in (2, 3) else -0.3
-                f.write(','.join(str(x) for x in row) + '\n')
+        write_csv(csv_path, LEFT_JOINTS + RIGHT_JOINTS,
+                  [[-2.5 if k in (2, 3) else -0.3] + [0.0] * 13 for k in range(5)])
         result = rosrun('replay', '--json', '--scene', self.bundled_scene, csv_path)
         self.assertEqual(json.loads(result.stdout)['jumped_cycles'], 2, result.stderr)
         text = rosrun('replay', '--scene', self.bundled_scene, csv_path).stdout
@@ -294,14 +291,9 @@ class ReplayConfigTest(unittest.TestCase):
         # named, not the end of the run; the peers refuse it too.
         directory = temp_dir(self, 'acm_csv_as_node_')
         csv_path = os.path.join(directory, 'driver.csv')
-        with open(csv_path, 'w') as f:
-            f.write(','.join(LEFT_JOINTS + ['gripper_x'] + RIGHT_JOINTS + ['left_tool_joint']) +
-                    '\n')
-            for k in range(5):
-                row = [str(0.01 * k)] * 15 + ['0']
-                if k == 3:
-                    row[2] = 'nan'
-                f.write(','.join(row) + '\n')
+        rows = [[0.01 * k] * 15 + [0] for k in range(5)]
+        rows[3][2] = 'nan'
+        write_csv(csv_path, LEFT_JOINTS + ['gripper_x'] + RIGHT_JOINTS + ['left_tool_joint'], rows)
         methods = ['auto']
         if 'fcl' in rosrun('replay', '--help').stdout:
             methods += ['fcl', 'bullet']
@@ -372,11 +364,9 @@ class ReplayConfigTest(unittest.TestCase):
         # Home, both arms swung into each other in one step, home again (20 Hz).
         directory = temp_dir(self, 'acm_between_')
         csv_path = os.path.join(directory, 'swing.csv')
-        with open(csv_path, 'w') as f:
-            f.write(','.join(LEFT_JOINTS + RIGHT_JOINTS) + '\n')
-            for left, right in ((HOME, HOME), (LEFT_TOWARDS_RIGHT, RIGHT_TOWARDS_LEFT),
-                                (HOME, HOME)):
-                f.write(','.join(str(x) for x in list(left) + list(right)) + '\n')
+        write_csv(csv_path, LEFT_JOINTS + RIGHT_JOINTS,
+                  [list(left) + list(right) for left, right in
+                   ((HOME, HOME), (LEFT_TOWARDS_RIGHT, RIGHT_TOWARDS_LEFT), (HOME, HOME))])
         text = rosrun('replay', '--scene', self.bundled_scene, csv_path).stdout
         lines = [line for line in text.splitlines() if 'between samples at' in line]
         # The way back starts within the zone of the pairs the swing ended in: their warnings
@@ -418,11 +408,10 @@ class ReplayConfigTest(unittest.TestCase):
         # summary's first warning is that contact (it said the run had none at the samples).
         csv_path = os.path.join(temp_dir(self, 'acm_between_first_'), 'swing.csv')
         towards = [1.5708, 0.5, 0.0, 0.0, 0.0, 0.0, 0.0]
-        with open(csv_path, 'w') as f:
-            f.write(','.join(LEFT_JOINTS + RIGHT_JOINTS) + '\n')
-            for left, right in ((HOME, HOME), ([0.6, 0.5] + [0.0] * 5, towards),
-                                ([-2.9, 0.5] + [0.0] * 5, towards)):
-                f.write(','.join(str(x) for x in list(left) + list(right)) + '\n')
+        write_csv(csv_path, LEFT_JOINTS + RIGHT_JOINTS,
+                  [list(left) + list(right) for left, right in
+                   ((HOME, HOME), ([0.6, 0.5] + [0.0] * 5, towards),
+                    ([-2.9, 0.5] + [0.0] * 5, towards))])
         text = rosrun('replay', '--scene', self.bundled_scene, csv_path).stdout
         self.assertRegex(text, r'summary: 1 of 3 cycles warn \(0 at their sample, 1 only between '
                                r'samples\); first at cycle 2 \(0\.10 s\): left_link\d -- '
@@ -432,10 +421,8 @@ class ReplayConfigTest(unittest.TestCase):
         # An iiwa user's 1 kHz bag: times rounded to the millisecond made cycles share a time.
         csv_path = os.path.join(temp_dir(self, 'acm_csv_times_'), 'times.csv')
         times = [0.0, 0.000504, 0.001, 0.001503217]
-        with open(csv_path, 'w') as f:
-            f.write(','.join(['time_s'] + LEFT_JOINTS + RIGHT_JOINTS) + '\n')
-            for k, t in enumerate(times):
-                f.write(','.join([repr(t)] + [str(0.001 * k)] * 14) + '\n')
+        write_csv(csv_path, ['time_s'] + LEFT_JOINTS + RIGHT_JOINTS,
+                  [[t] + [0.001 * k] * 14 for k, t in enumerate(times)])
         result = rosrun('replay', '--json', '--scene', self.bundled_scene, csv_path)
         self.assertEqual(result.returncode, 0, result.stderr)
         report = json.loads(result.stdout)
@@ -526,12 +513,9 @@ class ReplayConfigTest(unittest.TestCase):
         # more warnings between samples than the text prints (a Kinova Gen3 user's plan printed
         # 20 and stopped without a word); --json has them all.
         csv_path = os.path.join(temp_dir(self, 'acm_between_'), 'swings.csv')
-        with open(csv_path, 'w') as f:
-            f.write(','.join(LEFT_JOINTS + RIGHT_JOINTS) + '\n')
-            for k in range(9):
-                left, right = ((HOME, HOME) if k % 2 == 0 else
-                               (LEFT_TOWARDS_RIGHT, RIGHT_TOWARDS_LEFT))
-                f.write(','.join(str(x) for x in list(left) + list(right)) + '\n')
+        write_csv(csv_path, LEFT_JOINTS + RIGHT_JOINTS,
+                  [list(HOME) * 2 if k % 2 == 0 else
+                   list(LEFT_TOWARDS_RIGHT) + list(RIGHT_TOWARDS_LEFT) for k in range(9)])
         report = json.loads(rosrun('replay', '--json', '--scene', self.bundled_scene,
                                    csv_path).stdout)
         total = sum(len(cycle['between_samples']) for cycle in report['per_cycle'])
