@@ -389,23 +389,24 @@ void PrintJson(const Options& options, const Workcell& wc, const Input& input,
                 static_cast<unsigned long long>(summary.counters.*kCounters[i].second));
   }
   std::printf("},\n");
-  // One entry per cycle: [[a, b, distance_m], ...] at its q (empty when clear), and the swept
-  // check's [[a, b, distance_m, step_fraction, kind], ...] between the previous cycle's q and
-  // this (kind: KindName).
+  // One entry per cycle: [[a, b, distance_m, threshold_m], ...] at its q (empty when clear),
+  // and the swept check's [[a, b, distance_m, step_fraction, kind, threshold_m], ...] between
+  // the previous cycle's q and this (kind: KindName). Distances and thresholds to the bit (17
+  // digits), so that a warning a few ULP inside its threshold reads as one.
   std::printf("  \"per_cycle\": [");
   for (std::size_t k = 0; k < cycles.size(); ++k) {
     std::printf("%s\n    {\"cycle\": %zu, \"time_s\": %.9f, \"refused\": %s, \"warnings\": [",
                 k ? "," : "", k, input.time_s[k], cycles[k].refused ? "true" : "false");
     for (std::size_t i = 0; i < cycles[k].warnings.size(); ++i) {
       const Warning& w = cycles[k].warnings[i];
-      std::printf("%s[%s, %s, %.9g]", i ? ", " : "", name(w.a).c_str(), name(w.b).c_str(),
-                  w.distance_m);
+      std::printf("%s[%s, %s, %.17g, %.17g]", i ? ", " : "", name(w.a).c_str(),
+                  name(w.b).c_str(), w.distance_m, w.threshold_m);
     }
     std::printf("], \"between_samples\": [");
     for (std::size_t i = 0; i < cycles[k].between_samples.size(); ++i) {
       const Warning& w = cycles[k].between_samples[i];
-      std::printf("%s[%s, %s, %.9g, %.9g, \"%s\"]", i ? ", " : "", name(w.a).c_str(),
-                  name(w.b).c_str(), w.distance_m, w.step_fraction, KindName(w));
+      std::printf("%s[%s, %s, %.17g, %.9g, \"%s\", %.17g]", i ? ", " : "", name(w.a).c_str(),
+                  name(w.b).c_str(), w.distance_m, w.step_fraction, KindName(w), w.threshold_m);
     }
     std::printf("]}");
   }
