@@ -18,7 +18,8 @@
 // longer period only makes its per-cycle motion bounds more conservative). Every cycle of a
 // peer includes the same forward kinematics as the Monitor's (RunPeer). Besides the default,
 // "auto(<chosen>) (every cycle)" runs with index_slack_m 0, which rules out the bounded cycle
-// (decided by motion bounds without kinematics): issue 15 asks for cycles that are all full.
+// (decided by motion bounds without kinematics): issue 15 asks for cycles that are all full;
+// "... (every cycle) (swept off)" checks the samples alone, as the peers do (not a goal row).
 // Writes workloads_summary.csv; "cycles" and "moving_samples" count timed samples over every
 // pass (each task's first cycle untimed), the medians and p99s are the medians of the passes'
 // own (kWorkloadPasses), the mean and max of all the samples.
@@ -349,12 +350,18 @@ void RunWorkload(const Args& args, const Workload& w, Csv* csv, std::uint64_t* m
   });
   MonitorOptions every_cycle = DefaultOptions();
   every_cycle.index_slack_m = 0.0;
+  // Beside it the same without the swept check: what a check of the samples alone costs, as
+  // the peers' is (the goals stay on the row above).
+  MonitorOptions every_cycle_samples = SweptOffOptions();
+  every_cycle_samples.index_slack_m = 0.0;
   if (w.every_cycle_row) {
-    runs.push_back([&s, &ref, every_cycle] {
-      RunResult r = RunMonitor(s, every_cycle, &ref, "auto");
-      r.impl = "auto(" + r.chosen + ") (every cycle)";
-      return r;
-    });
+    for (const MonitorOptions& o : {every_cycle, every_cycle_samples}) {
+      runs.push_back([&s, &ref, o] {
+        RunResult r = RunMonitor(s, o, &ref, "auto");
+        r.impl = "auto(" + r.chosen + ") (every cycle)" + (o.swept_check ? "" : " (swept off)");
+        return r;
+      });
+    }
   }
   for (const char* method : {"naive", "grid", "octree"}) {
     MonitorOptions o = DefaultOptions();
@@ -381,7 +388,7 @@ void RunWorkload(const Args& args, const Workload& w, Csv* csv, std::uint64_t* m
   auto summarize = [passes](const std::vector<double>& us) {
     return SummarizePasses(us, static_cast<std::size_t>(passes));
   };
-  std::printf("  %-32s %8s %8s %8s %9s | moving %6s %8s %8s %9s | %6s %6s\n", "impl", "mean",
+  std::printf("  %-38s %8s %8s %8s %9s | moving %6s %8s %8s %9s | %6s %6s\n", "impl", "mean",
               "median", "p99", "max", "n", "median", "p99", "max", "missed", "false");
   for (const RunResult& r : results) {
     std::vector<double> moving;
@@ -392,7 +399,7 @@ void RunWorkload(const Args& args, const Workload& w, Csv* csv, std::uint64_t* m
     const TimingSummary mv = summarize(moving);
     csv->Row(w.name, r.impl, all.count, all.mean, all.median, all.p99, all.max, mv.count,
              mv.median, mv.p99, mv.max, r.missed, r.false_warnings);
-    std::printf("  %-32s %8.2f %8.2f %8.2f %9.2f | %13zu %8.2f %8.2f %9.2f | %6llu %6llu\n",
+    std::printf("  %-38s %8.2f %8.2f %8.2f %9.2f | %13zu %8.2f %8.2f %9.2f | %6llu %6llu\n",
                 r.impl.c_str(), all.mean, all.median, all.p99, all.max, mv.count, mv.median,
                 mv.p99, mv.max, static_cast<unsigned long long>(r.missed),
                 static_cast<unsigned long long>(r.false_warnings));
@@ -425,6 +432,13 @@ void RunWorkload(const Args& args, const Workload& w, Csv* csv, std::uint64_t* m
     if (w.name == "tasks_every_cycle" && bullet) {
       PrintRatio(("median" + vs).c_str(), d.median, ps.median, 0.25);
       PrintRatio(("p99" + vs).c_str(), d.p99, ps.p99, 0.3);
+      // The same row with the swept check off: the samples alone, as the peers check them.
+      if (const RunResult* off = Find(results, dflt->impl + " (swept off)")) {
+        const TimingSummary samples = summarize(off->t_us);
+        std::printf("    %-46s %6.3f / %.3f (the samples alone, not a goal)\n",
+                    ("median, p99 swept off" + vs).c_str(), samples.median / ps.median,
+                    samples.p99 / ps.p99);
+      }
     } else if (w.name == "sphere_robot") {
       PrintRatio(("mean" + vs).c_str(), d.mean, ps.mean, 0.1);
       PrintRatio(("p99" + vs).c_str(), d.p99, ps.p99, 0.2);
