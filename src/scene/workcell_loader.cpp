@@ -274,15 +274,17 @@ std::vector<std::string> OverlapFindings(
 }
 
 // The start-up warning of a primitive whose box (with its tolerance) `box_W` in the home pose is
-// not inside the world cube; one wider than kLargeDerivedWorldEdge_m (as with a derived cube,
-// DerivedWorldNotice) is most likely a unit error, such as a mesh in millimetres without scale.
-std::string OutsideWorldWarning(const PrimitiveSpec& p, const Aabb& box_W,
+// not inside the world cube `world_W`; one wider than kLargeDerivedWorldEdge_m (as with a derived
+// cube, DerivedWorldNotice) and than the cube itself, so that no placement would fit it, is most
+// likely a unit error, such as a mesh in millimetres without scale.
+std::string OutsideWorldWarning(const PrimitiveSpec& p, const Aabb& box_W, const Aabb& world_W,
                                 const std::string& files) {
   std::string warning = files + "'" + p.name +
                         "' with its tolerance is not inside the world cube in the home pose "
                         "(expected world: to enclose the workcell)";
   const double width_m = (box_W.max_W - box_W.min_W).maxCoeff();
-  if (!(width_m > kLargeDerivedWorldEdge_m)) return warning;
+  const double world_edge_m = (world_W.max_W - world_W.min_W).maxCoeff();
+  if (!(width_m > kLargeDerivedWorldEdge_m && width_m > world_edge_m)) return warning;
   char text[64];
   std::snprintf(text, sizeof(text), "%.6g m", width_m);
   const std::string owner = (p.link_index >= 0 ? "link '" : "object '") + p.owner + "'";
@@ -308,7 +310,9 @@ std::vector<std::string> SampledConfigurationWarnings(const Workcell& w) {
   for (PrimitiveId id = 0; id < n; ++id) {
     const PrimitiveSpec& p = w.primitives[id];
     const Aabb box_W = ComputeAabb(shapes.shape_W(id)).Inflated(p.tolerance_m);
-    if (!w.world_W.Contains(box_W)) warnings.push_back(OutsideWorldWarning(p, box_W, files));
+    if (!w.world_W.Contains(box_W)) {
+      warnings.push_back(OutsideWorldWarning(p, box_W, w.world_W, files));
+    }
   }
   // The pairs within their tolerances in the home pose, and in how many samples after it.
   auto is_within = [&](const std::pair<PrimitiveId, PrimitiveId>& pair) {

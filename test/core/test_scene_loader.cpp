@@ -643,6 +643,26 @@ TEST(SceneLoader, ALinkWiderThanAWorkcellIsNamedAUnitError) {
   EXPECT_TRUE(found) << ::testing::PrintToString(w.warnings);
 }
 
+// A link wider than 20 m (a gantry's rail) outside a given world cube of 100 m that could hold
+// it: misplaced, not a unit error; wider than the cube itself, it is named one.
+TEST(SceneLoader, ALinkTheWorldCouldHoldIsNotNamedAUnitError) {
+  for (const int length_m : {30, 150}) {
+    const std::string urdf = WriteEditedArmUrdf(
+        "long_arm.urdf", "<cylinder radius=\"0.04\" length=\"0.35\"/>",
+        "<cylinder radius=\"0.04\" length=\"" + std::to_string(length_m) + "\"/>");
+    const Workcell w = LoadWorkcell(
+        urdf, WriteTempFile("far_world.yaml", "world: {center_m: [60, 0, 0], edge_m: 100}\n"));
+    bool is_outside = false, is_unit_error = false;
+    for (const std::string& warning : w.warnings) {
+      is_outside |= warning.find("'forearm' with its tolerance is not inside the world cube") !=
+                    std::string::npos;
+      is_unit_error |= warning.find("unit error in link 'forearm'") != std::string::npos;
+    }
+    EXPECT_TRUE(is_outside) << length_m << ::testing::PrintToString(w.warnings);
+    EXPECT_EQ(is_unit_error, length_m > 100) << length_m << ::testing::PrintToString(w.warnings);
+  }
+}
+
 TEST(SceneLoader, JointLimitOverrides) {
   const Workcell w = LoadWorkcell(
       kArmUrdf,
