@@ -275,8 +275,8 @@ std::vector<std::string> OverlapFindings(
 
 // The start-up warning of a primitive whose box (with its tolerance) `box_W` in the home pose is
 // not inside the world cube `world_W`; one wider than kLargeDerivedWorldEdge_m (as with a derived
-// cube, DerivedWorldNotice) and than the cube itself, so that no placement would fit it, is most
-// likely a unit error, such as a mesh in millimetres without scale.
+// cube, DerivedWorldNotice) and than the cube itself, so that no shift of its home pose would
+// fit it, is most likely a unit error, such as a mesh in millimetres without scale.
 std::string OutsideWorldWarning(const PrimitiveSpec& p, const Aabb& box_W, const Aabb& world_W,
                                 const std::string& files) {
   std::string warning = files + "'" + p.name +

@@ -67,12 +67,13 @@ class TaskBagsTest(unittest.TestCase):
 
     def test_each_warning_gives_its_threshold_to_the_bit(self):
         """per_cycle's entries end with their threshold: the two primitives' tolerance_m (as
-        the JSON's primitives give them, to the bit) summed; at a sample, and between samples
-        but within the resolution, the distance given is below it (or 0)."""
+        the JSON's primitives give them, to the bit) summed. The distance given is below it (or
+        at most 0), at a sample and between samples but for kind within_resolution; and to the
+        bit, more than 9 digits (some distance differs from its 9-digit rounding)."""
         for name in ('task2', 'task3'):
             report = self.replay(name, 'naive')
             tolerance = {p['name']: p['tolerance_m'] for p in report['primitives']}
-            entries = 0
+            entries, finer_than_9_digits = 0, 0
             for cycle in report['per_cycle']:
                 found = [(w[0], w[1], w[2], w[3], None) for w in cycle['warnings']]
                 found += [(w[0], w[1], w[2], w[5], w[4]) for w in cycle['between_samples']]
@@ -81,8 +82,10 @@ class TaskBagsTest(unittest.TestCase):
                     self.assertEqual(threshold, tolerance[a] + tolerance[b], where)
                     if kind != 'within_resolution':
                         self.assertTrue(distance < threshold or distance <= 0.0, where)
+                    finer_than_9_digits += float('%.9g' % distance) != distance
                 entries += len(found)
             self.assertGreater(entries, 0, name)
+            self.assertGreater(finer_than_9_digits, 0, name)
 
     def test_every_method_reports_the_same_warnings(self):
         for name, (cycles, _) in sorted(TASKS.items()):

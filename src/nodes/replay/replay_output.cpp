@@ -353,7 +353,7 @@ void PrintJson(const Options& options, const Workcell& wc, const Input& input,
   if (summary.first >= 0) {
     const Warning& w = cycles[summary.first].warnings.front();
     std::printf("  \"first_warning\": {\"cycle\": %d, \"time_s\": %.9f, \"a\": %s, \"b\": %s, "
-                "\"distance_m\": %.9g, \"threshold_m\": %.9g},\n",
+                "\"distance_m\": %.17g, \"threshold_m\": %.17g},\n",
                 summary.first, input.time_s[summary.first], name(w.a).c_str(),
                 name(w.b).c_str(), w.distance_m, w.threshold_m);
   } else {
@@ -362,8 +362,8 @@ void PrintJson(const Options& options, const Workcell& wc, const Input& input,
   if (summary.first_between >= 0) {
     const Warning& w = cycles[summary.first_between].between_samples.front();
     std::printf("  \"first_between_samples\": {\"cycle\": %d, \"time_s\": %.9f, \"a\": %s, "
-                "\"b\": %s, \"distance_m\": %.9g, \"threshold_m\": %.9g, \"step_fraction\": "
-                "%.9g, \"kind\": \"%s\"},\n",
+                "\"b\": %s, \"distance_m\": %.17g, \"threshold_m\": %.17g, \"step_fraction\": "
+                "%.17g, \"kind\": \"%s\"},\n",
                 summary.first_between, input.time_s[summary.first_between], name(w.a).c_str(),
                 name(w.b).c_str(), w.distance_m, w.threshold_m, w.step_fraction, KindName(w));
   } else {
@@ -391,8 +391,9 @@ void PrintJson(const Options& options, const Workcell& wc, const Input& input,
   std::printf("},\n");
   // One entry per cycle: [[a, b, distance_m, threshold_m], ...] at its q (empty when clear),
   // and the swept check's [[a, b, distance_m, step_fraction, kind, threshold_m], ...] between
-  // the previous cycle's q and this (kind: KindName). Distances and thresholds to the bit (17
-  // digits), so that a warning a few ULP inside its threshold reads as one.
+  // the previous cycle's q and this (kind: KindName). Distances, thresholds and fractions to the
+  // bit (17 digits; a fraction is k / 2^n, n up to kMaxSweptBisections), as in first_warning and
+  // first_between_samples: a warning a few ULP inside its threshold reads as one.
   std::printf("  \"per_cycle\": [");
   for (std::size_t k = 0; k < cycles.size(); ++k) {
     std::printf("%s\n    {\"cycle\": %zu, \"time_s\": %.9f, \"refused\": %s, \"warnings\": [",
@@ -405,7 +406,7 @@ void PrintJson(const Options& options, const Workcell& wc, const Input& input,
     std::printf("], \"between_samples\": [");
     for (std::size_t i = 0; i < cycles[k].between_samples.size(); ++i) {
       const Warning& w = cycles[k].between_samples[i];
-      std::printf("%s[%s, %s, %.17g, %.9g, \"%s\", %.17g]", i ? ", " : "", name(w.a).c_str(),
+      std::printf("%s[%s, %s, %.17g, %.17g, \"%s\", %.17g]", i ? ", " : "", name(w.a).c_str(),
                   name(w.b).c_str(), w.distance_m, w.step_fraction, KindName(w), w.threshold_m);
     }
     std::printf("]}");

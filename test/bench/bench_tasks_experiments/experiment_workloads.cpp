@@ -253,7 +253,7 @@ struct Workload {
   std::string name;
   Scenario scenario;
   Reference ref;
-  bool every_cycle_row = false;  // also "auto(<chosen>) (every cycle)"
+  bool every_cycle_row = false;  // also "auto(<chosen>) (every cycle)" and its "(swept off)"
   bool idle_skip_rows = false;   // also "<peer> (idle skip)"
 };
 
@@ -325,9 +325,12 @@ const RunResult* Find(const std::vector<RunResult>& results, const std::string& 
   return nullptr;
 }
 
-// `num` over `den` of a timing statistic, printed with the goal's bound.
+// `num` over `den` of a timing statistic (0 for a zero `den`).
+double Ratio(double num, double den) { return den > 0.0 ? num / den : 0.0; }
+
+// Ratio(num, den), printed with the goal's bound.
 void PrintRatio(const char* what, double num, double den, double bound) {
-  const double ratio = den > 0.0 ? num / den : 0.0;
+  const double ratio = Ratio(num, den);
   std::printf("    %-46s %6.3f  (goal <= %.2f: %s)\n", what, ratio, bound,
               ratio <= bound ? "met" : "NOT met");
 }
@@ -436,8 +439,8 @@ void RunWorkload(const Args& args, const Workload& w, Csv* csv, std::uint64_t* m
       if (const RunResult* off = Find(results, dflt->impl + " (swept off)")) {
         const TimingSummary samples = summarize(off->t_us);
         std::printf("    %-46s %6.3f / %.3f (the samples alone, not a goal)\n",
-                    ("median, p99 swept off" + vs).c_str(), samples.median / ps.median,
-                    samples.p99 / ps.p99);
+                    ("median, p99 swept off" + vs).c_str(), Ratio(samples.median, ps.median),
+                    Ratio(samples.p99, ps.p99));
       }
     } else if (w.name == "sphere_robot") {
       PrintRatio(("mean" + vs).c_str(), d.mean, ps.mean, 0.1);
