@@ -197,6 +197,14 @@ class MonitorClient(object):
             lambda: self.publish_pose(HOME, HOME),
             lambda r: r.input_status == MonitorReport.INPUT_OK and not r.stop, timeout_s)
 
+    def settle(self, timeout_s=10.0):
+        """Publishes home once (never again) and waits for the reports on its messages; returns
+        the last of them, or None on timeout. Each topic is delivered in order and the node runs
+        one callback at a time, so every message published before on these topics (go_clear()'s
+        republished ones still in flight too) has then been processed and reported."""
+        reports = self.wait_stamps(self.report_count(), self.publish_pose(HOME, HOME), timeout_s)
+        return reports[-1] if reports else None
+
 
 def temp_dir(test, prefix):
     """A scratch directory of its own for `test` (a unittest.TestCase), removed when it ends."""

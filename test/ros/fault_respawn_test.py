@@ -51,6 +51,17 @@ class RespawnTest(unittest.TestCase):
     def wait_report(self, start, predicate, timeout_s=WAIT_S):
         return self.client.wait_report(start, predicate, timeout_s)
 
+    def wait_new_pid(self, old_pid, timeout_s=WAIT_S):
+        """The monitor's process id once a process other than old_pid runs it; None on
+        timeout."""
+        deadline = time.time() + timeout_s
+        while time.time() < deadline and not rospy.is_shutdown():
+            pid = self.node_pid()
+            if pid is not None and pid != old_pid:
+                return pid
+            time.sleep(0.1)
+        return None
+
     def test_killed_monitor_respawns_in_stop_and_clears(self):
         c = self.client
         for kill in range(KILLS):
@@ -59,19 +70,16 @@ class RespawnTest(unittest.TestCase):
             self.assertIsNotNone(clear, 'kill %d: no clear report before the kill' % kill)
             pid = self.node_pid()
             self.assertIsNotNone(pid, 'kill %d: the monitor has no pid' % kill)
-            start = c.report_count()
-            old_cycle = c.reports_since(start - 1)[0].cycle
             killed_at = time.time()
             os.kill(pid, signal.SIGKILL)
-            # A new process (cycle numbering starts over) reports, and ends up clear. Every report
-            # from its first received one on is the new process's (the old one was killed before
-            # it started); its cycle count may pass old_cycle before the subscription to it is
-            # up, so later reports are not filtered on cycle numbers.
-            restarted = self.wait_report(start, lambda r: r.cycle < old_cycle)
+            # A new process reports, and ends up clear. Every report received once it runs is
+            # its own: the old one was killed respawn_delay (1 s) before it started. (Told apart
+            # by its cycle numbers, starting over, it could not be: it may count past the old
+            # one's last cycle before the test's subscription to it is up.)
+            self.assertIsNotNone(self.wait_new_pid(pid), 'kill %d: no respawned monitor' % kill)
+            first_new = c.report_count()
+            restarted = self.wait_report(first_new, lambda r: True)
             self.assertIsNotNone(restarted, 'kill %d: no report from a respawned monitor' % kill)
-            self.assertNotEqual(self.node_pid(), pid)
-            first_new = start + next(
-                i for i, r in enumerate(c.reports_since(start)) if r is restarted)
             clear = self.wait_report(
                 first_new, lambda r: r.input_status == MonitorReport.INPUT_OK and not r.stop)
             self.assertIsNotNone(clear, 'kill %d: the respawned monitor never cleared' % kill)

@@ -81,13 +81,16 @@ class SimClockTest(unittest.TestCase):
     def test_02_jump_forward_goes_stale_then_clears(self):
         c = self.client
         self.assertIsNotNone(self.go_clear())
+        self.assertTrue(c.wait_stop(False, WAIT_S), '~stop did not clear before the jump')
         start = c.report_count()
-        # The clock leaps ahead and the input does not follow (yet): it is stale.
+        # The clock leaps ahead and the input does not follow (yet): it is stale. The stop and
+        # the report come on two topics, the stop first: wait for each.
         self.jump(JUMP_S)
+        stale = c.wait_report(start, lambda r: r.input_status == MonitorReport.INPUT_STALE,
+                              WAIT_S)
+        self.assertIsNotNone(stale, 'no stale report after the jump')
+        self.assertTrue(stale.stop)
         self.assertTrue(c.wait_stop(True, WAIT_S), 'no stop after the clock jumped ahead')
-        stale = [r for r in c.reports_since(start) if r.input_status == MonitorReport.INPUT_STALE]
-        self.assertGreater(len(stale), 0, 'no stale report after the jump')
-        self.assertTrue(stale[0].stop)
         # Input stamped with the new time resumes: the stop clears.
         report = self.go_clear()
         self.assertIsNotNone(report, 'fresh input after a forward jump did not clear the stop')
@@ -101,6 +104,8 @@ class SimClockTest(unittest.TestCase):
         warned = c.publish_until(lambda: self.publish(LEFT_TOWARDS_RIGHT, RIGHT_TOWARDS_LEFT),
                                  lambda r: r.stop and len(r.warnings) > 0, WAIT_S)
         self.assertIsNotNone(warned, 'crossed arms did not warn')
+        # Seen on ~stop too (its own topic): the false waited for below is then the clear's.
+        self.assertTrue(c.wait_stop(True, WAIT_S), 'no stop on the warnings')
         self.jump(-JUMP_S)
         # Good input with the new (earlier) stamps must clear the stop: the hold must not last
         # until the clock is back where it was.
@@ -128,6 +133,8 @@ class SimClockTest(unittest.TestCase):
         self.assertIn('right_joint', stale.stop_reason)
         self.assertTrue(all(r.stop for r in c.reports_since(start)
                             if r.input_status == MonitorReport.INPUT_STALE))
+        # Seen on ~stop too (its own topic): the false waited for below is then the clear's.
+        self.assertTrue(c.wait_stop(True, WAIT_S), 'no stop with the right arm stale')
         self.assertIsNotNone(self.go_clear(), 'both arms again: the stop did not clear')
         self.assertTrue(c.wait_stop(False, WAIT_S))
 
