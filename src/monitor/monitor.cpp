@@ -385,6 +385,10 @@ void Monitor::Impl::ComputeTolerances(const std::vector<Shape>& shapes,
       speed_mps = 0.0;
     } else if (!has_good) {
       speed_mps = options.max_speed_mps;
+    } else if (IsTimedFreeObject(id)) {
+      // Between its timed poses (a tracker's TF samples, sparser than the cycles), it keeps
+      // its speed over the interval of the last two: not at rest in the cycles between.
+      speed_mps = std::min(object_speed_mps[model.object_of[id]], options.max_speed_mps);
     } else if (moved_flags[id]) {
       double step_m = MaxPointDisplacement_m(shape_prev_W[id], shapes[id]);
       if (is_carrier_moving) {
@@ -487,6 +491,8 @@ void Monitor::Impl::InitData() {
   compatible = model.workcell->compatible;
   grasp.assign(static_cast<std::size_t>(link_count) * model.objects.size(), 0);
   holder.assign(model.objects.size(), -1);
+  object_sample_s.assign(model.objects.size(), std::numeric_limits<double>::quiet_NaN());
+  object_speed_mps = object_sample_s;
   active_variant.assign(link_count, 0);
   carrier = model.carrier_start;
   is_moving = model.is_moving_start;

@@ -34,6 +34,12 @@ struct Monitor::Impl {
   CompatibilityMatrix compatible;       // start-up's, plus held objects and grasp targets
   std::vector<std::uint8_t> grasp;      // link_count x object_count: is a grasp target
   std::vector<int> holder;              // per object: holding link, -1 if none
+  // Per object, for speed-scaled tolerances of a free frame-bound one posed with its sample
+  // time (SetObjectPoseAt): that time (s; NaN before the first) and its speed since the timed
+  // pose before (m/s; NaN: none, its move in the cycle gives it; inf: unknown, max_speed_mps),
+  // kept until its next timed pose.
+  std::vector<double> object_sample_s;
+  std::vector<double> object_speed_mps;
   std::vector<int> active_variant;      // per link
   std::vector<Shape> shape_C;           // per primitive: in its carrier link's frame
   std::vector<int> carrier;             // per primitive: link it moves with, -1 for none
@@ -329,6 +335,14 @@ struct Monitor::Impl {
   // good cycle all are moving; then link_at_rest from them. Returns whether a joint came to
   // rest.
   bool NoteJointMotion(const Eigen::Ref<const Eigen::VectorXd>& q);
+  // A primitive of a free object whose speed its timed poses give (object_speed_mps).
+  bool IsTimedFreeObject(PrimitiveId id) const {
+    const int o = model.object_of[id];
+    return o >= 0 && holder[o] < 0 && !std::isnan(object_speed_mps[o]);
+  }
+  // Monitor::SetObjectPose, and SetObjectPoseAt with `time_s` (NaN: untimed).
+  bool SetObjectPose(const std::string& object, const Eigen::Isometry3d& X_WO, double time_s,
+                     std::string* error);
   // Whether no joint moved at its newest sample (always, without speed-scaled tolerances): an
   // idle Update(q) with one time for every joint keeps every tolerance.
   bool IsAtRest() const {

@@ -2,6 +2,7 @@
 // moving environment objects) and the index bookkeeping they share. None allocates: every
 // structure they touch was sized at start-up.
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <sstream>
 
@@ -205,6 +206,9 @@ bool Monitor::Detach(const std::string& object, std::string* error) {
   }
   m.PrepareBounds();
   m.holder[o] = -1;
+  // Its timed poses start anew: the last one is from before it was held.
+  m.object_sample_s[o] = std::numeric_limits<double>::quiet_NaN();
+  m.object_speed_mps[o] = m.object_sample_s[o];
   m.RefreshCompatibility(l, o);
   m.scene_changed = true;
   return true;
@@ -274,20 +278,33 @@ bool Monitor::SwitchModel(const std::string& link, const std::string& variant,
 
 bool Monitor::SetObjectPose(const std::string& object, const Eigen::Isometry3d& X_WO,
                             std::string* error) {
-  Impl& m = *impl_;
+  return impl_->SetObjectPose(object, X_WO, std::numeric_limits<double>::quiet_NaN(), error);
+}
+
+bool Monitor::SetObjectPoseAt(const std::string& object, const Eigen::Isometry3d& X_WO,
+                              double time_s, std::string* error) {
+  if (!std::isfinite(time_s)) {
+    SetError(error, "SetObjectPoseAt: time of object '" + object + "' not finite");
+    return false;
+  }
+  return impl_->SetObjectPose(object, X_WO, time_s, error);
+}
+
+bool Monitor::Impl::SetObjectPose(const std::string& object, const Eigen::Isometry3d& X_WO,
+                                  double time_s, std::string* error) {
   // No sync: a free object's shape does not depend on q.
-  const int o = m.FindObject(object);
+  const int o = FindObject(object);
   if (o < 0) {
     SetError(error, "SetObjectPose: unknown object '" + object + "'");
     return false;
   }
-  if (!m.model.objects[o].is_frame_bound) {
+  if (!model.objects[o].is_frame_bound) {
     SetError(error, "SetObjectPose: object '" + object + "' is static, not frame-bound");
     return false;
   }
-  if (m.holder[o] >= 0) {
+  if (holder[o] >= 0) {
     SetError(error, "SetObjectPose: object '" + object + "' is held by link '" +
-                        m.model.kinematics->link_name(m.holder[o]) + "'");
+                        model.kinematics->link_name(holder[o]) + "'");
     return false;
   }
   // A rotation that is not one (a quaternion off unit norm) would stretch or shrink the shapes.
@@ -297,18 +314,40 @@ bool Monitor::SetObjectPose(const std::string& object, const Eigen::Isometry3d& 
     return false;
   }
   // shape_L is the object at X_WO_start; the cycle moves it in the index.
-  const Eigen::Isometry3d X_WW = X_WO * m.model.objects[o].X_OW_start;
+  const Eigen::Isometry3d X_WW = X_WO * model.objects[o].X_OW_start;
   // A finite pose near the largest double overflows here with a start pose far out.
   if (!X_WW.matrix().allFinite()) {
     SetError(error, "SetObjectPose: pose of object '" + object + "' out of range");
     return false;
   }
-  for (const PrimitiveId id : m.model.objects[o].prims) {
-    m.shape_W[id] = TransformShape(X_WW, m.model.workcell->primitives[id].shape_L);
-    m.moved[id] = 1;
-    m.MarkStaticsNearReachable(id);
+  // Where it is (a frame broadcast again unmoved, a tracker's next sample) it is not moved.
+  double step_m = 0.0;
+  for (const PrimitiveId id : model.objects[o].prims) {
+    const Shape now_W = TransformShape(X_WW, model.workcell->primitives[id].shape_L);
+    if (IsSameShape(shape_W[id], now_W)) continue;
+    step_m = std::max(step_m, MaxPointDisplacement_m(shape_W[id], now_W));
+    shape_W[id] = now_W;
+    moved[id] = 1;
+    MarkStaticsNearReachable(id);
+    scene_changed = true;
   }
-  m.scene_changed = true;
+  // Timed: its speed over the interval since its timed pose before, kept until the next; after
+  // none (or at a time not later) a move's speed is unknown: the largest. Untimed: none kept,
+  // its move in the cycle gives it. A new speed is a change of the scene: the next cycle
+  // computes the tolerances.
+  const double before_mps = object_speed_mps[o];
+  const double since_s = time_s - object_sample_s[o];
+  if (std::isnan(time_s)) {
+    object_speed_mps[o] = time_s;
+  } else if (since_s > 0.0) {
+    object_speed_mps[o] = step_m / since_s;
+  } else if (step_m > 0.0) {
+    object_speed_mps[o] = std::numeric_limits<double>::infinity();
+  }
+  object_sample_s[o] = time_s;
+  const bool is_same_speed = object_speed_mps[o] == before_mps ||
+                             (std::isnan(object_speed_mps[o]) && std::isnan(before_mps));
+  if (!is_same_speed) scene_changed = true;
   return true;
 }
 

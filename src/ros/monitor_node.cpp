@@ -287,11 +287,20 @@ void MonitorNode::UpdateBoundObjects(const ros::Time& now) {
         // Its quaternion normalised (TF keeps one off unit norm by up to 0.5 %).
         Eigen::Isometry3d X_WO = Eigen::Isometry3d::Identity();
         error = ToRigidTransform(X.transform, &X_WO);
-        // Most frames (a calibrated camera) do not move: skip the index update then.
+        // Most frames (a calibrated camera) do not move: skip the index update then. A stamped
+        // one (a tracker's) is posed with each new stamp, moved or not: with speed-scaled
+        // tolerance, its speed spans the interval between its samples, and an unmoved sample
+        // takes it to rest.
+        const bool is_stamped = !X.header.stamp.isZero();
+        const double stamp_s = X.header.stamp.toSec();
+        const bool is_same = bound.has_pose && X_WO.matrix() == bound.X_WO.matrix() &&
+                             (!is_stamped || stamp_s == bound.stamp_s);
         if (error.empty() &&
-            (is_held || (bound.has_pose && X_WO.matrix() == bound.X_WO.matrix()) ||
-             monitor_->SetObjectPose(bound.object, X_WO, &error))) {
+            (is_held || is_same ||
+             (is_stamped ? monitor_->SetObjectPoseAt(bound.object, X_WO, stamp_s, &error)
+                         : monitor_->SetObjectPose(bound.object, X_WO, &error)))) {
           bound.X_WO = X_WO;
+          bound.stamp_s = stamp_s;
           bound.has_pose = true;
           bound.is_available = true;
           continue;

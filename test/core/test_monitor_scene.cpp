@@ -875,6 +875,70 @@ TEST(MonitorScene, SpeedScaledToleranceTakesAnObjectAttachedToAMovingArmAtTheLar
   ExpectValid(monitor);
 }
 
+// A frame-bound object posed with its sample times (a 10 Hz tracker) in a 20 Hz monitor whose
+// arms move every cycle: its speed over the interval between its poses is kept in the cycle
+// between them (untimed, it took it at rest: its base tolerance, every other cycle); the same
+// pose at a later time takes it to rest, in an idle cycle too; a move at a time not later
+// takes the largest speed; an untimed pose gives the speed of its move in the cycle.
+TEST(MonitorScene, SpeedScaledToleranceKeepsATimedObjectsSpeedBetweenItsPoses) {
+  const auto wc = LoadBundledWorkcell();
+  MonitorOptions options;
+  options.speed_scaled_tolerance = true;
+  const double gain_s = options.reaction_time_s + options.stopping_time_s;
+  const PrimitiveId camera = Prim(*wc, "camera");
+  const double base_m = wc->primitives[camera].tolerance_m;
+  const Eigen::Isometry3d X_start = wc->objects[wc->FindObject("camera")].X_WO_start;
+  const int l1 = test::JointIndex(*wc, "left_joint1");
+  Monitor monitor(wc, options);
+  Eigen::VectorXd q = MakeQ(*wc, {{"left_joint2", 0.5}});
+  std::string error;
+  auto pose_at = [&](double x_m) {
+    Eigen::Isometry3d X = X_start;
+    X.translation().x() += x_m;
+    return X;
+  };
+  const double speed_mps = 0.2;
+  std::vector<double> tolerances;
+  for (int k = 0; k < 10; ++k) {
+    const double t_s = 0.05 * k;
+    if (k % 2 == 0) {
+      ASSERT_TRUE(monitor.SetObjectPoseAt("camera", pose_at(speed_mps * t_s), t_s, &error))
+          << error;
+    }
+    q[l1] += 0.01;
+    ASSERT_EQ(monitor.Update(q, t_s).input, InputStatus::kOk);
+    tolerances.push_back(monitor.tolerance_m(camera));
+  }
+  // From the second timed pose on, every cycle: 0.2 m/s (0.02 m over 0.1 s, to rounding).
+  for (std::size_t k = 2; k < tolerances.size(); ++k) {
+    EXPECT_NEAR(tolerances[k], base_m + speed_mps * gain_s, 1e-12) << "cycle " << k;
+  }
+  // Sampled again where it is: at rest, in an idle cycle (the same q) too.
+  ASSERT_TRUE(monitor.SetObjectPoseAt("camera", pose_at(speed_mps * 0.4), 0.5, &error));
+  ASSERT_EQ(monitor.Update(q, 0.5).input, InputStatus::kOk);
+  EXPECT_EQ(monitor.tolerance_m(camera), base_m);
+  // Moved at the same time again: its speed is unknown, the largest, kept the next cycle.
+  ASSERT_TRUE(monitor.SetObjectPoseAt("camera", pose_at(0.1), 0.5, &error));
+  q[l1] += 0.01;
+  ASSERT_EQ(monitor.Update(q, 0.55).input, InputStatus::kOk);
+  EXPECT_EQ(monitor.tolerance_m(camera), base_m + options.max_speed_mps * gain_s);
+  q[l1] += 0.01;
+  ASSERT_EQ(monitor.Update(q, 0.6).input, InputStatus::kOk);
+  EXPECT_EQ(monitor.tolerance_m(camera), base_m + options.max_speed_mps * gain_s);
+  // Untimed: its move in the cycle (0.01 m in 0.05 s), then at rest in the next.
+  ASSERT_TRUE(monitor.SetObjectPose("camera", pose_at(0.11), &error));
+  q[l1] += 0.01;
+  ASSERT_EQ(monitor.Update(q, 0.65).input, InputStatus::kOk);
+  EXPECT_NEAR(monitor.tolerance_m(camera), base_m + 0.01 / options.cycle_period_s * gain_s,
+              1e-12);
+  q[l1] += 0.01;
+  ASSERT_EQ(monitor.Update(q, 0.7).input, InputStatus::kOk);
+  EXPECT_EQ(monitor.tolerance_m(camera), base_m);
+  EXPECT_FALSE(monitor.SetObjectPoseAt("camera", pose_at(0.0),
+                                       std::numeric_limits<double>::quiet_NaN(), &error));
+  ExpectValid(monitor);
+}
+
 TEST(MonitorScene, InconsistentOptionsAreRejected) {
   const auto wc = LoadBundledWorkcell();
   MonitorOptions options;

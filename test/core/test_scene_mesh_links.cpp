@@ -99,17 +99,6 @@ TriangleMesh Scaled(TriangleMesh mesh, const Eigen::Vector3d& scale) {
   return mesh;
 }
 
-bool SameShape(const Shape& a, const Shape& b) {
-  if (a.index() != b.index()) return false;
-  if (const auto* ca = std::get_if<Capsule>(&a)) {
-    const Capsule& cb = std::get<Capsule>(b);
-    return ca->p0_W == cb.p0_W && ca->p1_W == cb.p1_W && ca->radius_m == cb.radius_m;
-  }
-  const Box& ba = std::get<Box>(a);
-  const Box& bb = std::get<Box>(b);
-  return ba.X_WB.matrix() == bb.X_WB.matrix() && ba.half_extents_m == bb.half_extents_m;
-}
-
 // The workcell's notices but the one on meshes named by paths relative to the URDF's folder,
 // as these tests name them.
 std::vector<std::string> FitNotices(const Workcell& w) {
@@ -143,7 +132,7 @@ TEST(SceneMeshLinks, EveryFormatLoadsEnclosedAndAlike) {
     ExpectEncloses(w, link, l_shape, kX_LC);
     // The same vertices and triangles in every format: the same fit.
     ASSERT_EQ(ShapesOf(w, link).size(), 1u) << names[k];
-    EXPECT_TRUE(SameShape(ShapesOf(w, link)[0], ShapesOf(w, "link0")[0])) << names[k];
+    EXPECT_TRUE(IsSameShape(ShapesOf(w, link)[0], ShapesOf(w, "link0")[0])) << names[k];
   }
   EXPECT_EQ(FitNotices(w).size(), names.size());
   // rviz's RobotModel cannot read relative mesh paths: a notice counts them.
@@ -330,7 +319,7 @@ TEST(SceneMeshLinks, SecondLoadTakesEveryFitFromTheCache) {
   EXPECT_EQ(second.mesh_fits.from_cache, 3);
   ASSERT_EQ(first.primitives.size(), second.primitives.size());
   for (std::size_t i = 0; i < first.primitives.size(); ++i) {
-    EXPECT_TRUE(SameShape(first.primitives[i].shape_L, second.primitives[i].shape_L)) << i;
+    EXPECT_TRUE(IsSameShape(first.primitives[i].shape_L, second.primitives[i].shape_L)) << i;
   }
   EXPECT_NE(second.notices[0].find("(cached)"), std::string::npos);
   // No cache: every fit computed.
@@ -362,7 +351,7 @@ TEST(SceneMeshLinks, CorruptOrWrongCacheEntriesAreRefitted) {
     EXPECT_EQ(w.mesh_fits.computed, 1) << bad;
     EXPECT_EQ(w.mesh_fits.from_cache, 0) << bad;
     ExpectEncloses(w, "link0", l_shape, Eigen::Isometry3d::Identity());
-    EXPECT_TRUE(SameShape(ShapesOf(w, "link0")[0], c));
+    EXPECT_TRUE(IsSameShape(ShapesOf(w, "link0")[0], c));
     // Rewritten: the next load uses it.
     EXPECT_EQ(LoadWorkcell(files.urdf, files.scene, CacheIn(dir)).mesh_fits.from_cache, 1);
   }

@@ -28,12 +28,10 @@ constexpr int kConfigurations = 200;
 // Bit-for-bit equality: both sides run the same FK and the same TransformShape, so any
 // difference means WorkcellShapes used a different pose, primitive or link.
 ::testing::AssertionResult SameShape(const Shape& got, const Shape& want) {
+  if (IsSameShape(got, want)) return ::testing::AssertionSuccess();
   if (got.index() != want.index()) return ::testing::AssertionFailure() << "shape kinds differ";
   if (const auto* g = std::get_if<Capsule>(&got)) {
     const auto& w = std::get<Capsule>(want);
-    if (g->p0_W == w.p0_W && g->p1_W == w.p1_W && g->radius_m == w.radius_m) {
-      return ::testing::AssertionSuccess();
-    }
     return ::testing::AssertionFailure()
            << "capsule p0 " << g->p0_W.transpose() << " p1 " << g->p1_W.transpose() << " r "
            << g->radius_m << ", expected p0 " << w.p0_W.transpose() << " p1 "
@@ -41,9 +39,6 @@ constexpr int kConfigurations = 200;
   }
   const auto& g = std::get<Box>(got);
   const auto& w = std::get<Box>(want);
-  if (g.X_WB.matrix() == w.X_WB.matrix() && g.half_extents_m == w.half_extents_m) {
-    return ::testing::AssertionSuccess();
-  }
   return ::testing::AssertionFailure() << "box centre " << g.X_WB.translation().transpose()
                                        << ", expected " << w.X_WB.translation().transpose();
 }

@@ -92,6 +92,18 @@ struct Box {
 /// Any primitive. New primitive types are added here and to every pairwise routine.
 using Shape = std::variant<Capsule, Box>;
 
+/// Whether two shapes are the same to the bit (-0 and +0 alike).
+inline bool IsSameShape(const Shape& a, const Shape& b) {
+  if (a.index() != b.index()) return false;
+  if (const auto* c = std::get_if<Capsule>(&a)) {
+    const Capsule& d = std::get<Capsule>(b);
+    return c->p0_W == d.p0_W && c->p1_W == d.p1_W && c->radius_m == d.radius_m;
+  }
+  const Box& x = std::get<Box>(a);
+  const Box& y = std::get<Box>(b);
+  return x.X_WB.matrix() == y.X_WB.matrix() && x.half_extents_m == y.half_extents_m;
+}
+
 /// Tight AABB of any primitive.
 inline Aabb ComputeAabb(const Shape& shape) {
   return std::visit([](const auto& s) { return s.ComputeAabb(); }, shape);

@@ -180,6 +180,13 @@ class Monitor {
   /// Moves a free object (for one bound to a TF frame) to pose X_WO.
   bool SetObjectPose(const std::string& object, const Eigen::Isometry3d& X_WO,
                      std::string* error);
+  /// SetObjectPose of a pose sampled at `time_s` (s, finite; a TF stamp). With speed-scaled
+  /// tolerance the object's speed is then its move over the time since its timed pose before,
+  /// kept in the cycles until its next one (a 10 Hz tracker in a 20 Hz monitor: not at rest
+  /// every other cycle); the same pose at a later time takes it to rest. A move with no timed
+  /// pose before (or at a time not later) takes max_speed_mps. Detach forgets its times.
+  bool SetObjectPoseAt(const std::string& object, const Eigen::Isometry3d& X_WO, double time_s,
+                       std::string* error);
 
   // --- live objects: added, moved and removed at run time ----------------------------------
   // Room for them is preallocated at start-up (MonitorOptions::live_objects: capacity objects of

@@ -148,6 +148,7 @@ class MonitorNode {
     std::string object;
     std::string frame;
     Eigen::Isometry3d X_WO = Eigen::Isometry3d::Identity();  // the frame's, last read
+    double stamp_s = 0.0;  // its stamp, last read (0: a static chain's)
     bool has_pose = false;
     bool is_available = false;  // the frame's pose read in the last cycle (OnAttach asks)
   };
