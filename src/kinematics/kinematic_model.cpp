@@ -582,8 +582,13 @@ void KinematicModel::ResolveMimic(int link, const urdf::JointMimic& mimic,
   JointSpec& spec = joints_[link];
   const int target = FindJointChildLink(mimic.joint_name);
   if (target < 0 || joints_[target].q_index < 0) {
+    // A typo names no joint; a fixed joint, a mimic one or itself has no position of its own.
+    const std::string what = target < 0 ? "names no joint of the URDF (a typo?)"
+                                        : "names a joint with no position of its own (fixed, "
+                                          "itself a mimic, or this joint)";
     throw LoadError(urdf_path + ": joint '" + spec.name + "': <mimic joint='" +
-                    mimic.joint_name + "'> must name an actuated, non-mimic joint");
+                    mimic.joint_name + "'> " + what +
+                    "; it must name an actuated, non-mimic joint");
   }
   spec.mimic_q_index = joints_[target].q_index;
   spec.mimic_multiplier = mimic.multiplier;

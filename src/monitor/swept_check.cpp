@@ -88,6 +88,14 @@ bool Monitor::Impl::IsWithinVelocityLimits(const Eigen::Ref<const Eigen::VectorX
   return true;
 }
 
+bool Monitor::Impl::IsBeyondSampleCheck(double step_m) {
+  if (model.options.swept_check || !(step_m > 0.0)) return false;
+  for (const PrimitiveId id : carried) {
+    if (in_broad_phase[id] && StepBound_m(id) > tol_base[id]) return true;
+  }
+  return false;
+}
+
 // --- the swept check ----------------------------------------------------------------------
 
 void Monitor::Impl::InitSwept() {

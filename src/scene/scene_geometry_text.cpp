@@ -184,8 +184,8 @@ void ReadShape(TokenReader* in, const Eigen::Isometry3d& X_FO, SceneCollisionObj
     } else if (type == "plane") {
       in->Fail("planes are not supported (expected box, sphere, cylinder, cone or mesh)");
     } else {
-      in->Fail("unknown shape type '" + type +
-               "' (expected box, sphere, cylinder, cone or mesh)");
+      in->Fail(std::string(type.empty() ? "" : "unknown shape type ") + Found(type) +
+               " (expected box, sphere, cylinder, cone or mesh)");
     }
     primitive.X_FP = X_FO * in->Pose("the " + type + "'s pose");
     object->primitives.push_back(std::move(primitive));

@@ -273,6 +273,15 @@ std::vector<std::string> OverlapFindings(
   return report.findings();
 }
 
+// What a primitive `width_m` wide (over kLargeDerivedWorldEdge_m) most likely is.
+std::string UnitErrorHint(const PrimitiveSpec& p, double width_m) {
+  char text[64];
+  std::snprintf(text, sizeof(text), "%.6g m", width_m);
+  const std::string owner = (p.link_index >= 0 ? "link '" : "object '") + p.owner + "'";
+  return std::string("it is ") + text + " wide: a unit error in " + owner +
+         " (a mesh in millimetres without scale=\"0.001 0.001 0.001\"?)";
+}
+
 // The start-up warning of a primitive whose box (with its tolerance) `box_W` in the home pose is
 // not inside the world cube `world_W`; one wider than kLargeDerivedWorldEdge_m (as with a derived
 // cube, DerivedWorldNotice) and than the cube itself, so that no shift of its home pose would
@@ -285,11 +294,32 @@ std::string OutsideWorldWarning(const PrimitiveSpec& p, const Aabb& box_W, const
   const double width_m = (box_W.max_W - box_W.min_W).maxCoeff();
   const double world_edge_m = (world_W.max_W - world_W.min_W).maxCoeff();
   if (!(width_m > kLargeDerivedWorldEdge_m && width_m > world_edge_m)) return warning;
-  char text[64];
-  std::snprintf(text, sizeof(text), "%.6g m", width_m);
-  const std::string owner = (p.link_index >= 0 ? "link '" : "object '") + p.owner + "'";
-  return warning + "; it is " + text + " wide: a unit error in " + owner +
-         " (a mesh in millimetres without scale=\"0.001 0.001 0.001\"?)";
+  return warning + "; " + UnitErrorHint(p, width_m);
+}
+
+// With a derived world cube, which holds every primitive, the start-up warnings of those wider
+// than kLargeDerivedWorldEdge_m in the home pose (the widest of each link or object), put first:
+// a unit error otherwise shows as pairs that warn in every cycle, its hint far below them.
+std::vector<std::string> WideInDerivedWorldWarnings(const Workcell& w) {
+  const WorkcellShapes shapes(w, WorkcellShapes::Models::kAll);  // the home pose
+  std::map<std::string, std::pair<double, PrimitiveId>> widest;  // per owner
+  for (PrimitiveId id = 0; id < w.primitives.size(); ++id) {
+    const PrimitiveSpec& p = w.primitives[id];
+    const Aabb box_W = ComputeAabb(shapes.shape_W(id)).Inflated(p.tolerance_m);
+    const double width_m = (box_W.max_W - box_W.min_W).maxCoeff();
+    if (!(width_m > kLargeDerivedWorldEdge_m)) continue;
+    auto [it, is_new] = widest.emplace(p.owner, std::make_pair(width_m, id));
+    if (!is_new && width_m > it->second.first) it->second = {width_m, id};
+  }
+  std::vector<std::string> warnings;
+  for (const auto& [owner, found] : widest) {
+    const PrimitiveSpec& p = w.primitives[found.second];
+    warnings.push_back(w.urdf_path + ", " + w.scene_path + ": '" + p.name +
+                       "' with its tolerance, in the home pose: " +
+                       UnitErrorHint(p, found.first) +
+                       "; if it is that wide, give world: to enclose the workcell");
+  }
+  return warnings;
 }
 
 // Start-up findings from sampled configurations of every model: primitives outside the world
@@ -540,6 +570,8 @@ Workcell ReadWorkcell(const std::string& urdf_path, const std::string& scene_pat
   if (derives_world) {
     w.world_W = DeriveWorldCube(w);
     w.notices.push_back(DerivedWorldNotice(w));
+    const std::vector<std::string> wide = WideInDerivedWorldWarnings(w);
+    w.warnings.insert(w.warnings.begin(), wide.begin(), wide.end());
   }
   if (w.arms.empty()) w.warnings.push_back(NoArmsWarning(w, default_arm_tolerance_m));
   w.joint_names = w.kinematics.ActuatedJointNames();

@@ -530,6 +530,30 @@ TEST(KinematicsFk, FloatingJointIsRejectedNamingTheJoint) {
   }
 }
 
+// A <mimic> naming no joint (a typo) or one without a position of its own (itself) is refused,
+// saying which of the two it is (both read "must name an actuated, non-mimic joint" before).
+TEST(KinematicsFk, AMimicOfNoJointOrOfOneWithoutAPositionIsRejectedSayingWhich) {
+  const std::string mimic = "<mimic joint=\"j_negative_z\"";
+  for (const auto& [target, why] :
+       {std::make_pair("j_negative_zz", "names no joint of the URDF (a typo?)"),
+        std::make_pair("j_mimic", "names a joint with no position of its own")}) {
+    std::string urdf = kAwkwardAxesUrdf;
+    urdf.replace(urdf.find(mimic), mimic.size(), "<mimic joint=\"" + std::string(target) + "\"");
+    const std::string path = ::testing::TempDir() + "bad_mimic.urdf";
+    std::ofstream(path) << urdf;
+    try {
+      KinematicModel::FromUrdfFile(path);
+      ADD_FAILURE() << "expected LoadError for " << target;
+    } catch (const LoadError& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find("joint 'j_mimic': <mimic joint='" + std::string(target) + "'> " +
+                             why),
+                std::string::npos)
+          << message;
+    }
+  }
+}
+
 // A mistyped <parent link> that names a link below the joint's own child leaves that part of
 // the chain in a loop, not below the root (urdfdom accepts it: one root): refused, naming the
 // links and a joint of the loop (a Techman user's URDF lost six links without a word).

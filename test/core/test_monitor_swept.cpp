@@ -209,11 +209,26 @@ TEST(MonitorSwept, ThinPlateCrossedInOneStep) {
   StepTally tally;
   CheckStep(*wc, options, q0, q1, report, "plate", &tally);
   EXPECT_GT(tally.dense_contacts, 0);
-  // The same step with the swept check off: both ends are clear, the plate is missed.
+  // The same step with the swept check off: both ends are clear, the plate is missed; but the
+  // step moves the gripper farther than its tolerance, beyond what the samples cover (the
+  // start-up check assumed steps of cycle_period_s): a jump, and a stop.
   options.swept_check = false;
   options.cycle_period_s = 0.001;  // (a tolerance above the per-cycle motion, as required)
   Monitor discrete(wc, options);
-  EXPECT_FALSE(RunStep(&discrete, q0, q1).stop);
+  const CycleReport samples_only = RunStep(&discrete, q0, q1);
+  EXPECT_FALSE(HasBetweenSamples(*wc, samples_only, "left_link7", "plate"));
+  EXPECT_TRUE(samples_only.warnings.empty());
+  EXPECT_TRUE(samples_only.input_jumped);
+  EXPECT_TRUE(samples_only.stop);
+  // Steps within the tolerances (a cycle's at most) are covered: no stop.
+  Eigen::VectorXd q = q0;
+  discrete.Update(q);
+  for (int k = 0; k < 20; ++k) {
+    q[j1] += 0.001;
+    const CycleReport& small = discrete.Update(q);
+    EXPECT_FALSE(small.input_jumped) << k << ": " << small.step_motion_m;
+    EXPECT_FALSE(small.stop) << k;
+  }
 }
 
 // The same swing past a live plate that a scene change moves into the path after a swept step

@@ -643,6 +643,30 @@ TEST(SceneLoader, ALinkWiderThanAWorkcellIsNamedAUnitError) {
   EXPECT_TRUE(found) << ::testing::PrintToString(w.warnings);
 }
 
+// Without world: (the derived cube holds every link) a link in millimetres is named a unit error
+// first among the warnings, before the pairs it makes warn in every cycle.
+TEST(SceneLoader, AWideLinkInADerivedWorldIsNamedAUnitErrorFirst) {
+  const std::string urdf = WriteEditedArmUrdf(
+      "mm_arm_derived.urdf", "<cylinder radius=\"0.04\" length=\"0.35\"/>",
+      "<cylinder radius=\"40\" length=\"350\"/>");
+  const Workcell w = LoadWorkcell(urdf, WriteTempFile("no_world.yaml", "{}\n"));
+  ASSERT_FALSE(w.warnings.empty());
+  EXPECT_NE(w.warnings[0].find("'forearm' with its tolerance, in the home pose: it is "),
+            std::string::npos) << w.warnings[0];
+  EXPECT_NE(w.warnings[0].find("unit error in link 'forearm' (a mesh in millimetres without "
+                               "scale"), std::string::npos) << w.warnings[0];
+  int unit_errors = 0;
+  for (const std::string& warning : w.warnings) {
+    unit_errors += warning.find("unit error") != std::string::npos;
+  }
+  EXPECT_EQ(unit_errors, 1) << ::testing::PrintToString(w.warnings);
+  // The workcell as it should be: no such warning.
+  for (const std::string& warning : LoadWorkcell(kArmUrdf, WriteTempFile("no_world.yaml",
+                                                                         "{}\n")).warnings) {
+    EXPECT_EQ(warning.find("unit error"), std::string::npos) << warning;
+  }
+}
+
 // A link wider than 20 m (a gantry's rail) outside a given world cube of 100 m that could hold
 // it: misplaced, not a unit error; wider than the cube itself, it is named one.
 TEST(SceneLoader, ALinkTheWorldCouldHoldIsNotNamedAUnitError) {

@@ -190,6 +190,8 @@ TEST(PlanningSceneReader, BadSceneGeometryTextNamesLineObjectAndExpectation) {
            {":6:", "object 'a' shape 0", "planes are not supported"}},
           {OneTextObject("prism\n1"),
            {":6:", "object 'a' shape 0", "unknown shape type 'prism'", "box, sphere"}},
+          {"s\n* a\n0 0 0\n0 0 0 1\n2\nsphere\n1\n0 0 0\n0 0 0 1\n0 0 0 0\n",  // cut short
+           {"object 'a' shape 1: the file ends (expected box, sphere"}},
           {OneTextObject("cylinder\n0.1 -2"),
            {":7:", "object 'a' shape 0", "the cylinder's length -2", "a number > 0"}},
           {OneTextObject("cylinder\n0.025"),
