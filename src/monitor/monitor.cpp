@@ -123,7 +123,8 @@ void Monitor::Impl::RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q) {
     work.step_m = step.ComputeLargestBound_m();
     work.is_jumped = (!(work.step_m <= model.options.max_step_m) &&
                       !IsWithinVelocityLimits(q)) ||
-                     is_turn_ambiguous || IsBeyondSampleCheck(work.step_m);
+                     is_turn_ambiguous ||
+                     (!model.options.swept_check && IsBeyondSampleCheck(work.step_m));
   }
   if (model.speed_tol_gain_s != 0.0) NoteJointMotion(q);
   DateGood();  // q is accepted: q_good below

@@ -196,9 +196,10 @@ struct Monitor::Impl {
   bool IsWithinVelocityLimit(const JointSpec& joint, double move) const;
   // IsWithinVelocityLimit for every joint's move from q_good to q.
   bool IsWithinVelocityLimits(const Eigen::Ref<const Eigen::VectorXd>& q) const;
-  // Without the swept check, whether this cycle's step (largest bound `step_m`) moves an
-  // indexed primitive farther than its tolerance: the samples alone do not cover it (start-up
-  // checked a cycle_period_s step at max_speed_mps or the velocity limits; sparser input).
+  // For a Monitor without the swept check: whether this cycle's step (largest bound `step_m`)
+  // moves an indexed primitive farther than its tolerance, which the samples alone do not cover
+  // (start-up checked a cycle_period_s step at max_speed_mps or the velocity limits; sparser
+  // input).
   bool IsBeyondSampleCheck(double step_m);
   // The readings of a continuous joint without limits (MonitorModel::turning_links) in
   // q_good's turns: turns_next is turns_good but where a reading's move from the last

@@ -89,7 +89,7 @@ bool Monitor::Impl::IsWithinVelocityLimits(const Eigen::Ref<const Eigen::VectorX
 }
 
 bool Monitor::Impl::IsBeyondSampleCheck(double step_m) {
-  if (model.options.swept_check || !(step_m > 0.0)) return false;
+  if (!(step_m > 0.0)) return false;
   for (const PrimitiveId id : carried) {
     if (in_broad_phase[id] && StepBound_m(id) > tol_base[id]) return true;
   }
