@@ -290,15 +290,18 @@ void MonitorNode::UpdateBoundObjects(const ros::Time& now) {
         // Most frames (a calibrated camera) do not move: skip the index update then. A stamped
         // one (a tracker's) is posed with each new stamp, moved or not: with speed-scaled
         // tolerance, its speed spans the interval between its samples, and an unmoved sample
-        // takes it to rest.
+        // takes it to rest; now stamped 0, it is posed untimed again. Let go, the object waits
+        // for its frame's pose to move, whatever the stamps.
         const bool is_stamped = !X.header.stamp.isZero();
         const double stamp_s = X.header.stamp.toSec();
+        bound.is_let_go |= is_held;
         const bool is_same = bound.has_pose && X_WO.matrix() == bound.X_WO.matrix() &&
-                             (!is_stamped || stamp_s == bound.stamp_s);
+                             (stamp_s == bound.stamp_s || bound.is_let_go);
         if (error.empty() &&
             (is_held || is_same ||
              (is_stamped ? monitor_->SetObjectPoseAt(bound.object, X_WO, stamp_s, &error)
                          : monitor_->SetObjectPose(bound.object, X_WO, &error)))) {
+          bound.is_let_go = bound.is_let_go && (is_held || is_same);
           bound.X_WO = X_WO;
           bound.stamp_s = stamp_s;
           bound.has_pose = true;

@@ -302,13 +302,14 @@ std::string OutsideWorldWarning(const PrimitiveSpec& p, const Aabb& box_W, const
 // a unit error otherwise shows as pairs that warn in every cycle, its hint far below them.
 std::vector<std::string> WideInDerivedWorldWarnings(const Workcell& w) {
   const WorkcellShapes shapes(w, WorkcellShapes::Models::kAll);  // the home pose
-  std::map<std::string, std::pair<double, PrimitiveId>> widest;  // per owner
+  std::map<std::string, std::pair<double, PrimitiveId>> widest;  // per link or object
   for (PrimitiveId id = 0; id < w.primitives.size(); ++id) {
     const PrimitiveSpec& p = w.primitives[id];
     const Aabb box_W = ComputeAabb(shapes.shape_W(id)).Inflated(p.tolerance_m);
     const double width_m = (box_W.max_W - box_W.min_W).maxCoeff();
     if (!(width_m > kLargeDerivedWorldEdge_m)) continue;
-    auto [it, is_new] = widest.emplace(p.owner, std::make_pair(width_m, id));
+    const std::string owner = (p.link_index >= 0 ? "link " : "object ") + p.owner;
+    auto [it, is_new] = widest.emplace(owner, std::make_pair(width_m, id));
     if (!is_new && width_m > it->second.first) it->second = {width_m, id};
   }
   std::vector<std::string> warnings;

@@ -68,9 +68,10 @@ struct CycleReport {
   double step_motion_m = 0.0;
   /// The step exceeded MonitorOptions::max_step_m and the sample times given to Update do not
   /// show every joint within kJumpVelocityFactor times its velocity limit since the last
-  /// accepted q (a sparse path's large step does); or, without the swept check, it moved a
-  /// primitive farther than its tolerance, which the samples alone do not cover (input sparser
-  /// than cycle_period_s): accepted, but stop is requested.
+  /// accepted q (a sparse path's large step does); or, without the swept check, its motion
+  /// bound for a moving primitive exceeds that one's tolerance, which the samples alone do not
+  /// cover (input sparser than cycle_period_s, a joint without a velocity limit, a held object
+  /// reaching beyond its holder): accepted, but stop is requested.
   bool input_jumped = false;
   /// Pairs whose swept check needed the path (their distance at the step's start, and
   /// bisection); 0 when every pair was certified by its distance at q less its motion bound.

@@ -149,6 +149,9 @@ class MonitorNode {
     std::string frame;
     Eigen::Isometry3d X_WO = Eigen::Isometry3d::Identity();  // the frame's, last read
     double stamp_s = 0.0;  // its stamp, last read (0: a static chain's)
+    // Held since the frame last posed it: let go, it stays there until the frame's pose moves
+    // (a stamped frame that does not follow it, re-sent unmoved, would pull it back).
+    bool is_let_go = false;
     bool has_pose = false;
     bool is_available = false;  // the frame's pose read in the last cycle (OnAttach asks)
   };
