@@ -493,7 +493,7 @@ void Monitor::Impl::InitData() {
   grasp.assign(static_cast<std::size_t>(link_count) * model.objects.size(), 0);
   holder.assign(model.objects.size(), -1);
   object_sample_s.assign(model.objects.size(), std::numeric_limits<double>::quiet_NaN());
-  object_speed_mps = object_sample_s;
+  object_speed_mps.assign(model.objects.size(), std::numeric_limits<double>::quiet_NaN());
   active_variant.assign(link_count, 0);
   carrier = model.carrier_start;
   is_moving = model.is_moving_start;

@@ -345,6 +345,12 @@ struct Monitor::Impl {
     const int o = model.object_of[id];
     return o >= 0 && holder[o] < 0 && !std::isnan(object_speed_mps[o]);
   }
+  // No timed pose of object `o` is known (posed untimed, or let go): its move in the cycle
+  // gives its speed.
+  void ForgetObjectTimes(int o) {
+    object_sample_s[o] = std::numeric_limits<double>::quiet_NaN();
+    object_speed_mps[o] = std::numeric_limits<double>::quiet_NaN();
+  }
   // Monitor::SetObjectPose, and SetObjectPoseAt with `time_s` (NaN: untimed).
   bool SetObjectPose(const std::string& object, const Eigen::Isometry3d& X_WO, double time_s,
                      std::string* error);

@@ -206,9 +206,7 @@ bool Monitor::Detach(const std::string& object, std::string* error) {
   }
   m.PrepareBounds();
   m.holder[o] = -1;
-  // Its timed poses start anew: the last one is from before it was held.
-  m.object_sample_s[o] = std::numeric_limits<double>::quiet_NaN();
-  m.object_speed_mps[o] = m.object_sample_s[o];
+  m.ForgetObjectTimes(o);  // its last timed pose is from before it was held
   m.RefreshCompatibility(l, o);
   m.scene_changed = true;
   return true;
@@ -336,15 +334,17 @@ bool Monitor::Impl::SetObjectPose(const std::string& object, const Eigen::Isomet
   // its move in the cycle gives it. A new speed is a change of the scene: the next cycle
   // computes the tolerances.
   const double before_mps = object_speed_mps[o];
-  const double since_s = time_s - object_sample_s[o];
   if (std::isnan(time_s)) {
-    object_speed_mps[o] = time_s;
-  } else if (since_s > 0.0) {
-    object_speed_mps[o] = step_m / since_s;
-  } else if (step_m > 0.0) {
-    object_speed_mps[o] = std::numeric_limits<double>::infinity();
+    ForgetObjectTimes(o);
+  } else {
+    const double since_s = time_s - object_sample_s[o];
+    if (since_s > 0.0) {
+      object_speed_mps[o] = step_m / since_s;
+    } else if (step_m > 0.0) {
+      object_speed_mps[o] = std::numeric_limits<double>::infinity();
+    }
+    object_sample_s[o] = time_s;
   }
-  object_sample_s[o] = time_s;
   const bool is_same_speed = object_speed_mps[o] == before_mps ||
                              (std::isnan(object_speed_mps[o]) && std::isnan(before_mps));
   if (!is_same_speed) scene_changed = true;

@@ -481,6 +481,15 @@ std::string DerivedWorldNotice(const Workcell& w) {
          " m from the origin in the home pose; a unit or origin error in its link or object?)";
 }
 
+// The world cube of a scene file without one: derived from the arms' reach and the objects,
+// with its notice, and the warnings of primitives too wide for a workcell put first.
+void DeriveWorld(Workcell* w) {
+  w->world_W = DeriveWorldCube(*w);
+  w->notices.push_back(DerivedWorldNotice(*w));
+  const std::vector<std::string> wide = WideInDerivedWorldWarnings(*w);
+  w->warnings.insert(w->warnings.begin(), wide.begin(), wide.end());
+}
+
 // The start-up warning of a scene file without arms: every link is then the environment's, a
 // moving one with the default tolerance, and an SRDF's 'Never' pairs are all excused, between
 // what the user takes for two arms too (moveit_sections.cpp).
@@ -568,12 +577,7 @@ Workcell ReadWorkcell(const std::string& urdf_path, const std::string& scene_pat
                                                      Where{scene_path, "grasp_targets"}, w);
 
   // Derived values.
-  if (derives_world) {
-    w.world_W = DeriveWorldCube(w);
-    w.notices.push_back(DerivedWorldNotice(w));
-    const std::vector<std::string> wide = WideInDerivedWorldWarnings(w);
-    w.warnings.insert(w.warnings.begin(), wide.begin(), wide.end());
-  }
+  if (derives_world) DeriveWorld(&w);
   if (w.arms.empty()) w.warnings.push_back(NoArmsWarning(w, default_arm_tolerance_m));
   w.joint_names = w.kinematics.ActuatedJointNames();
   const std::string no_velocity_limit = NoVelocityLimitNotice(w);
