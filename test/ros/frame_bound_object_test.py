@@ -163,73 +163,82 @@ class FrameBoundObjectTest(unittest.TestCase):
         self.assertFalse(stopped, 'with camera_link\'s quaternion of norm 1.004: %s'
                          % self.describe(stopped))
 
+    def send_both(self, client, probe_xyz_m, left=HOME):
+        """camera_link at the scene's pose and probe_link at `probe_xyz_m` (none if None), both
+        stamped now, then the left arm at `left` and the right one home to `client`'s node."""
+        stamp = rospy.Time.now()
+        frames = []
+        for frame, xyz_m, rpy in ((FRAME, SCENE_XYZ_M, SCENE_RPY),
+                                  (PROBE_FRAME, probe_xyz_m, (0.0, 0.0, 0.0))):
+            if xyz_m is None:
+                continue
+            t = TransformStamped()
+            t.header.stamp = stamp
+            t.header.frame_id = 'world'
+            t.child_frame_id = frame
+            (t.transform.translation.x, t.transform.translation.y,
+             t.transform.translation.z) = xyz_m
+            t.transform.rotation = quaternion_from_rpy(*rpy)
+            frames.append(t)
+        self.tf_pub.publish(TFMessage(transforms=frames))
+        client.publish_pose(left, HOME)
+
+    def send_for_reports(self, client, publish, count, what):
+        start = client.report_count()
+        self.assertIsNotNone(client.publish_until(
+            publish, lambda r: len(client.reports_since(start)) >= count, TIMEOUT_S),
+            'fewer than %d reports %s' % (count, what))
+        return client.reports_since(start)
+
+    def hold_probe(self, client, attach):
+        """Lowers the probe's frame onto the left arm (home: straight up) until ~attach takes it
+        to left_link7 (within its hold reach, clear of every threshold); returns that pose."""
+        x, y = IN_LEFT_ARM_XYZ_M[0], IN_LEFT_ARM_XYZ_M[1]
+        for step in range(150):
+            xyz_m = (x, y, 3.5 - 0.01 * step)
+            self.send_for_reports(client, lambda: self.send_both(client, xyz_m), 3,
+                                  'with the probe at %s' % (xyz_m,))
+            if attach(PROBE, 'left_link7').success:
+                return xyz_m
+        self.fail('the probe lowered onto the left arm was never attachable')
+
     def test_held_probe_follows_its_holder_not_its_frame(self):
         # A held frame-bound object follows its holder; its frame, still broadcast and moving,
         # made every cycle a stop ('held by link', SetObjectPose refusing it) until it was let
         # go. Its frame silent (stale), ~attach is refused: held, it would silence that stop.
-        # The probe is lowered onto the left arm (home: straight up) until ~attach takes it
-        # (within 0.1 m of left_link7's geometry, clear of every threshold); then its frame
-        # moves 1 mm a message for 40 reports: none may stop (the first few may still be of
-        # cycles before the attach). Let go, it follows its frame again: into the arm, a warning.
+        # Held, its frame moves 1 mm a message for 40 reports: none may stop (the first few may
+        # still be of cycles before the attach). Let go, it follows its frame again: into the
+        # arm, a warning.
         client = MonitorClient(TWO_FRAMES_NODE)
         self.assertTrue(client.wait_connected())
         attach = rospy.ServiceProxy(TWO_FRAMES_NODE + '/attach', AttachObject)
         detach = rospy.ServiceProxy(TWO_FRAMES_NODE + '/detach', DetachObject)
 
-        def send_both(probe_xyz_m):
-            stamp = rospy.Time.now()
-            frames = []
-            for frame, xyz_m, rpy in ((FRAME, SCENE_XYZ_M, SCENE_RPY),
-                                      (PROBE_FRAME, probe_xyz_m, (0.0, 0.0, 0.0))):
-                if xyz_m is None:
-                    continue
-                t = TransformStamped()
-                t.header.stamp = stamp
-                t.header.frame_id = 'world'
-                t.child_frame_id = frame
-                (t.transform.translation.x, t.transform.translation.y,
-                 t.transform.translation.z) = xyz_m
-                t.transform.rotation = quaternion_from_rpy(*rpy)
-                frames.append(t)
-            self.tf_pub.publish(TFMessage(transforms=frames))
-            client.publish_pose(HOME, HOME)
-
         def clear(report):
             return (report.input_status == MonitorReport.INPUT_OK and not report.warnings and
                     not report.stop)
-        self.assertIsNotNone(client.publish_until(lambda: send_both(PROBE_CLEAR_XYZ_M), clear,
-                                                  TIMEOUT_S), 'no clear report before')
+        self.assertIsNotNone(client.publish_until(
+            lambda: self.send_both(client, PROBE_CLEAR_XYZ_M), clear, TIMEOUT_S),
+            'no clear report before')
         probe_stale = client.publish_until(
-            lambda: send_both(None),
+            lambda: self.send_both(client, None),
             lambda r: r.stop and "object '%s'" % PROBE in r.stop_reason, TIMEOUT_S)
         self.assertIsNotNone(probe_stale, 'no stop naming the probe with its frame silent')
         res = attach(PROBE, 'left_link7')
         self.assertFalse(res.success, 'attached with its frame unavailable')
         self.assertIn("its frame '%s' is unavailable" % PROBE_FRAME, res.message)
-        x, y = IN_LEFT_ARM_XYZ_M[0], IN_LEFT_ARM_XYZ_M[1]
         held_at = None
         try:
-            for step in range(150):
-                xyz_m = (x, y, 3.5 - 0.01 * step)
-                start = client.report_count()
-                self.assertIsNotNone(client.publish_until(
-                    lambda: send_both(xyz_m), lambda r: len(client.reports_since(start)) >= 3,
-                    TIMEOUT_S), 'no reports with the probe at %s' % (xyz_m,))
-                if attach(PROBE, 'left_link7').success:
-                    held_at = xyz_m
-                    break
-            self.assertIsNotNone(held_at, 'the probe lowered onto the left arm was never '
-                                 'attachable')
-            start = client.report_count()
+            held_at = self.hold_probe(client, attach)
             moved = [0]
 
             def send_moved():
                 moved[0] += 1
-                send_both((held_at[0] + 0.001 * (moved[0] % 2), held_at[1], held_at[2]))
-            self.assertIsNotNone(client.publish_until(
-                send_moved, lambda r: len(client.reports_since(start)) >= 40, TIMEOUT_S),
-                'fewer than 40 reports with the held probe\'s frame moving')
-            stopped = [r for r in client.reports_since(start)[5:] if r.stop]
+                self.send_both(client, (held_at[0] + 0.001 * (moved[0] % 2), held_at[1],
+                                        held_at[2]))
+            reports = self.send_for_reports(client, send_moved, 40,
+                                            'with the held probe\'s frame moving')
+            stopped = [r for r in reports[5:] if r.stop]
             self.assertFalse(stopped, 'the held probe at %s, its frame moving: %s'
                              % (held_at, self.describe(stopped)))
         finally:
@@ -239,12 +248,68 @@ class FrameBoundObjectTest(unittest.TestCase):
 
         def probe_warns(report):
             return any(PROBE in (w.owner_a, w.owner_b) for w in report.warnings)
-        self.assertIsNotNone(client.publish_until(lambda: send_both(IN_LEFT_ARM_XYZ_M),
-                                                  probe_warns, TIMEOUT_S),
-                             'no probe warning with the probe let go and its frame in the arm')
-        self.assertIsNotNone(client.publish_until(lambda: send_both(PROBE_CLEAR_XYZ_M), clear,
-                                                  TIMEOUT_S),
-                             'no clear report with the probe let go and its frame moved away')
+        self.assertIsNotNone(client.publish_until(
+            lambda: self.send_both(client, IN_LEFT_ARM_XYZ_M), probe_warns, TIMEOUT_S),
+            'no probe warning with the probe let go and its frame in the arm')
+        self.assertIsNotNone(client.publish_until(
+            lambda: self.send_both(client, PROBE_CLEAR_XYZ_M), clear, TIMEOUT_S),
+            'no clear report with the probe let go and its frame moved away')
+
+    def test_let_go_probe_stays_where_released_while_its_frame_repeats(self):
+        # A stamped frame that does not follow the object (a static_transform_publisher's, a
+        # tracker repeating its estimate while the gripper hides the object) keeps coming with
+        # the pose it had when the object was taken. Let go elsewhere, the object must stay
+        # where it was released until the frame's pose moves; it was pulled back to the frame's
+        # pose at the frame's next stamp, and the monitor modelled it where it no longer was.
+        # Held, the probe is carried 0.6 rad about left_joint2 (left_link7 moves about 0.8 m)
+        # and let go there; with the arm home again, ~attach to left_link7 must be refused as
+        # out of reach (it was taken back at the frame's pose, within reach), and with the arm
+        # back where it let go, taken.
+        client = MonitorClient(TWO_FRAMES_NODE)
+        self.assertTrue(client.wait_connected())
+        attach = rospy.ServiceProxy(TWO_FRAMES_NODE + '/attach', AttachObject)
+        detach = rospy.ServiceProxy(TWO_FRAMES_NODE + '/detach', DetachObject)
+        self.assertIsNotNone(client.publish_until(
+            lambda: self.send_both(client, PROBE_CLEAR_XYZ_M),
+            lambda r: not any(PROBE in (w.owner_a, w.owner_b) for w in r.warnings),
+            TIMEOUT_S), 'no report without a probe warning before')
+        held_at = self.hold_probe(client, attach)
+        is_held = True
+        try:
+            released = list(HOME)
+            for step in range(1, 13):
+                released[1] = -0.05 * step
+                self.send_for_reports(client, lambda: self.send_both(client, held_at, released),
+                                      2, 'carrying the probe at left_joint2 %.2f' % released[1])
+            res = detach(PROBE)
+            self.assertTrue(res.success, res.message)
+            is_held = False
+            self.send_for_reports(client, lambda: self.send_both(client, held_at, released), 10,
+                                  'with the probe let go, its frame where it was taken')
+            for step in range(11, -1, -1):
+                back = list(released)
+                back[1] = -0.05 * step
+                self.send_for_reports(client, lambda: self.send_both(client, held_at, back), 2,
+                                      'with the arm going home, left_joint2 %.2f' % back[1])
+            res = attach(PROBE, 'left_link7')
+            is_held = res.success
+            self.assertFalse(res.success, 'the let-go probe was in reach of left_link7 at home: '
+                             'pulled back to its frame\'s pose %s' % (held_at,))
+            self.assertIn('reaches', res.message)
+            self.send_for_reports(client, lambda: self.send_both(client, held_at, released), 5,
+                                  'with the arm back where it let the probe go')
+            res = attach(PROBE, 'left_link7')
+            self.assertTrue(res.success, 'the let-go probe is not where the arm let it go: %s'
+                            % res.message)
+            is_held = True
+        finally:
+            if is_held:
+                res = detach(PROBE)
+                self.assertTrue(res.success, res.message)
+        self.assertIsNotNone(client.publish_until(
+            lambda: self.send_both(client, PROBE_CLEAR_XYZ_M),
+            lambda r: not any(PROBE in (w.owner_a, w.owner_b) for w in r.warnings),
+            TIMEOUT_S), 'no report without a probe warning with its frame moved away')
 
     def test_second_frame_followed_while_the_first_is_unavailable(self):
         # test/data/two_frames_scene.yaml: camera (camera_link), then probe (probe_link). Once
