@@ -171,6 +171,18 @@ std::string FixedChildrenHint(const Workcell& workcell, const std::vector<std::s
   return hint.empty() ? "" : hint + " (a rule holds for a link's own geometry: name the children)";
 }
 
+/// QuotedNames with each name's line where `lines` has one: "'a' (line 6), 'b'".
+std::string QuotedNamesWithLines(const std::vector<std::string>& names,
+                                 const std::map<std::string, int>& lines) {
+  std::string text;
+  for (const std::string& name : names) {
+    text += (text.empty() ? "'" : ", '") + name + "'";
+    const auto at = lines.find(name);
+    if (at != lines.end()) text += " (line " + std::to_string(at->second) + ")";
+  }
+  return text;
+}
+
 }  // namespace
 
 NamedFile FetchNamedFile(const YAML::Node& node, const Where& where,
@@ -227,7 +239,7 @@ std::vector<std::pair<PrimitiveId, PrimitiveId>> ResolveCollisionRules(
     workcell->warnings.push_back(source + ": skipped " + std::to_string(unknown.size()) +
                                  " unknown name(s), neither a URDF link nor an object of the "
                                  "scene (a typo, or a file of another robot?): " +
-                                 QuotedNames(unknown) +
+                                 QuotedNamesWithLines(unknown, rules.first_line) +
                                  PrefixedNamesHint(workcell->kinematics.link_names(), unknown,
                                                    "the URDF"));
   }
@@ -297,6 +309,14 @@ std::vector<std::pair<PrimitiveId, PrimitiveId>> SrdfPairs(const SrdfInput& inpu
     }
     rules.allowed_pairs.emplace_back(pair.link1, pair.link2);
   }
+  auto note_line = [&](const std::string& name, int line) {
+    const auto [at, is_new] = rules.first_line.emplace(name, line);
+    if (!is_new) at->second = std::min(at->second, line);
+  };
+  for (const SrdfLinkPair& pair : input.rules.disabled_pairs) {
+    note_line(pair.link1, pair.line);
+    note_line(pair.link2, pair.line);
+  }
   if (!kept_checked.empty()) {
     workcell->notices.push_back(
         input.path + ": " + std::to_string(kept_checked.size()) +
@@ -307,9 +327,12 @@ std::vector<std::pair<PrimitiveId, PrimitiveId>> SrdfPairs(const SrdfInput& inpu
   }
   for (const SrdfLinkPair& pair : input.rules.enabled_pairs) {
     rules.denied_pairs.emplace_back(pair.link1, pair.link2);
+    note_line(pair.link1, pair.line);
+    note_line(pair.link2, pair.line);
   }
   for (const SrdfLink& link : input.rules.default_disabled_links) {
     rules.default_allowed.push_back(link.link);
+    note_line(link.link, link.line);
   }
   return ResolveCollisionRules(rules, input.path + ": collision rules", workcell);
 }
@@ -377,7 +400,7 @@ std::vector<std::pair<PrimitiveId, PrimitiveId>> PlanningSceneAcmPairs(
     return {};
   }
   const NamedCollisionRules rules{acm.allowed_pairs, acm.disallowed_pairs,
-                                  acm.default_allowed_names};
+                                  acm.default_allowed_names, {}};
   return ResolveCollisionRules(rules, input.path + ": allowed_collision_matrix", workcell);
 }
 

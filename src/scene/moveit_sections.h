@@ -5,6 +5,7 @@
 // frames onto the workcell. Every failure is a LoadError naming the file and the element.
 #pragma once
 
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -33,6 +34,9 @@ struct NamedCollisionRules {
   std::vector<std::pair<std::string, std::string>> allowed_pairs;
   std::vector<std::pair<std::string, std::string>> denied_pairs;
   std::vector<std::string> default_allowed;
+  /// The line where a name first appears in the source (an SRDF's), for the notice of unknown
+  /// names; a name without one is listed bare.
+  std::map<std::string, int> first_line;
 };
 
 /// The primitive pairs of `rules` in `workcell` (a name stands for what ResolveNames gives).

@@ -158,6 +158,7 @@ TEST(SceneMoveitInputs, SrdfDefaultDisabledLinkIsCompatibleWithAllButItsEnabledP
   const std::string srdf = WriteTempFile(
       "default.srdf",
       "<robot name='workcell'>\n"
+      "  <enable_collisions link1='ink7' link2='floor'/>\n"
       "  <disable_default_collisions link='left_link7'/>\n"
       "  <enable_collisions link1='front_box' link2='left_link7'/>\n"
       "  <enable_collisions link1='left_link7' link2='floor'/>\n"
@@ -177,9 +178,11 @@ TEST(SceneMoveitInputs, SrdfDefaultDisabledLinkIsCompatibleWithAllButItsEnabledP
   EXPECT_FALSE(Compatible(w, "right_link7", "left_link6"));
   // A name the URDF and the scene do not know is told apart from a link without geometry.
   // A name the URDF has with a prefix (an SRDF of one arm) is shown with the links that carry
-  // it; the end of a name without a separator before it is not ('ink7').
+  // it; the end of a name without a separator before it is not ('ink7'). Each is named with the
+  // line where it first appears, whatever the element ('ink7' in lines 2 and 9).
   const std::string unknown = FindWarning(w, "skipped 3 unknown name(s), neither a URDF link");
-  EXPECT_NE(unknown.find("(a typo, or a file of another robot?): 'no_such_link', 'link7', 'ink7'; "
+  EXPECT_NE(unknown.find("(a typo, or a file of another robot?): 'no_such_link' (line 7), "
+                         "'link7' (line 8), 'ink7' (line 2); "
                          "the URDF has 'link7' as 'left_link7', 'right_link7'"),
             std::string::npos)
       << unknown;
