@@ -78,6 +78,8 @@ const char* kUsage =
     "  --grasp L:O    declare object O the grasp target of link L before the first cycle\n"
     "                 (repeatable)\n"
     "  --task N       the grasp targets of the seed's task N (task 3: right_link7:front_box)\n"
+    "  --every N      check cycles 0, N, 2N, ... only: the same path sampled N times\n"
+    "                 sparser (what sparser input costs and what the swept check finds)\n"
     "  --json         machine-readable output\n"
     "  -h, --help     this text (on stdout)\n"
     "The monitor options are loaded before the workcell and give it the default arm tolerance,\n"
@@ -137,6 +139,13 @@ bool ParseOptions(int argc, char** argv, Options* options, std::string* error) {
       for (const TaskGraspTarget& t : GetTaskSpec(task).grasp_targets) {
         options->grasp_targets.push_back(t);
       }
+    } else if (arg == "--every") {
+      if (!value(&v)) return false;
+      options->every = std::atoi(v.c_str());
+      if (options->every < 1 || v != std::to_string(options->every)) {
+        *error = "--every expects a whole number of cycles, 1 or more, got '" + v + "'";
+        return false;
+      }
     } else if (arg == "-h" || arg == "--help") {
       options->help = true;
       return true;
@@ -168,6 +177,20 @@ Input ReadCsv(const std::string& path, const Workcell& workcell) {
   for (const double t : csv.time_s) result.time_s.push_back(t - csv.time_s.front());
   result.messages = result.q.size();
   return result;
+}
+
+// Keeps cycles 0, every, 2 every, ... of `input` (--every): the same path sampled sparser, each
+// kept cycle with its own time and joint times.
+void KeepEvery(int every, Input* input) {
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < input->q.size(); k += static_cast<std::size_t>(every), ++kept) {
+    input->q[kept] = input->q[k];
+    input->time_s[kept] = input->time_s[k];
+    if (!input->joint_time_s.empty()) input->joint_time_s[kept] = input->joint_time_s[k];
+  }
+  input->q.resize(kept);
+  input->time_s.resize(kept);
+  if (!input->joint_time_s.empty()) input->joint_time_s.resize(kept);
 }
 
 // The checker under test: the Monitor with a broad phase, or (when built with them) a peer.
@@ -330,9 +353,10 @@ int Run(const Options& options) {
                                                        : "--topic selects") +
                     " a bag's topics; " + options.input + " is a CSV file");
   }
-  const Input input =
+  Input input =
       is_csv ? ReadCsv(options.input, *workcell)
              : replay::ReadBag(options.input, options.topics, options.joint_prefixes, *workcell);
+  if (options.every > 1) KeepEvery(options.every, &input);
   std::vector<CycleResult> cycles(input.q.size());
   Eigen::VectorXd row_time_s;  // a CSV row's time, for every joint
   for (std::size_t k = 0; k < input.q.size(); ++k) {

@@ -285,6 +285,33 @@ class ReplayConfigTest(unittest.TestCase):
         self.assertIn('; 2 steps beyond max_step_m (input_jumped: the monitor asks a stop on '
                       'each)', summary[0])
 
+    def test_every_nth_cycle_is_the_same_path_sampled_sparser(self):
+        # The bundled real robot's bag (20 Hz) with --every 10: cycles 0, 10, 20, ... at their own
+        # times, each warning at its sample as the full run does at that cycle, to the bit (a
+        # sample's warnings depend on its q alone; its step is swept from the kept cycle before).
+        package = rospkg.RosPack().get_path(PKG)
+        files = ['--urdf', os.path.join(package, 'urdf', 'dual_arm_shelf.urdf'),
+                 '--scene', os.path.join(package, 'config', 'dual_arm_shelf', 'scene.yaml'),
+                 os.path.join(package, 'test', 'bags', 'dual_arm_shelf.bag')]
+        reports = {}
+        for every in (1, 10):
+            result = rosrun('replay', '--json', '--every', str(every), *files)
+            self.assertEqual(result.returncode, 0, result.stderr)
+            reports[every] = json.loads(result.stdout)
+            self.assertEqual(reports[every]['every'], every)
+        full, sparse = reports[1]['per_cycle'], reports[10]['per_cycle']
+        self.assertEqual(len(sparse), (len(full) + 9) // 10)
+        self.assertEqual([c['time_s'] for c in sparse], [c['time_s'] for c in full[::10]])
+        self.assertEqual([c['warnings'] for c in sparse], [c['warnings'] for c in full[::10]])
+        self.assertTrue(any(c['warnings'] for c in sparse), 'no warning at the kept samples')
+        text = rosrun('replay', '--every', '10', *files).stdout
+        self.assertIn(' (--every 10: cycles 0, 10, 20, ... kept)', text.splitlines()[0])
+        for bad in ('0', '-1', '1.5', 'x'):
+            result = rosrun('replay', '--every', bad, files[-1])
+            self.assertEqual(result.returncode, 2, bad)
+            self.assertIn("--every expects a whole number of cycles, 1 or more, got '%s'" % bad,
+                          result.stderr)
+
     def test_a_csv_is_read_as_the_node_reads_joint_states(self):
         # A column of no model joint (a gripper the driver publishes) is ignored and listed, as
         # is one of a joint the URDF holds fixed, marked so; a nan position is a refused cycle,

@@ -55,9 +55,10 @@ constexpr std::pair<const char*, std::uint64_t BroadPhaseCounters::*> kCounters[
 // The JSON header: input, method, grasp targets, message and cycle counts.
 void PrintJsonCounts(const Options& options, const Input& input, std::size_t cycle_count,
                      const RunSummary& summary, bool is_swept) {
-  std::printf("{\n  \"input\": %s,\n  \"method\": %s,\n  \"swept_check\": %s,\n",
-              JsonString(options.input).c_str(), JsonString(options.method).c_str(),
-              is_swept ? "true" : "false");
+  std::printf("{\n  \"input\": %s,\n  \"every\": %d,\n  \"method\": %s,\n",
+              JsonString(options.input).c_str(), options.every,
+              JsonString(options.method).c_str());
+  std::printf("  \"swept_check\": %s,\n", is_swept ? "true" : "false");
   std::printf("  \"grasp_targets\": [");
   for (std::size_t i = 0; i < options.grasp_targets.size(); ++i) {
     std::printf("%s[%s, %s]", i ? ", " : "", JsonString(options.grasp_targets[i].link).c_str(),
@@ -420,6 +421,10 @@ void PrintText(const Options& options, const Workcell& wc, const Input& input,
   std::printf("replay %s: method %s (%s), %s from %s", options.input.c_str(),
               options.method.c_str(), is_swept ? "swept check on" : "samples only",
               Counted(cycles.size(), "cycle").c_str(), Counted(input.messages, "message").c_str());
+  if (options.every > 1) {
+    std::printf(" (--every %d: cycles 0, %d, %d, ... kept)", options.every, options.every,
+                2 * options.every);
+  }
   for (const TaskGraspTarget& t : options.grasp_targets) {
     std::printf(", grasp target %s:%s", t.link.c_str(), t.object.c_str());
   }

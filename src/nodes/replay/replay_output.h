@@ -30,6 +30,7 @@ struct Options {
   /// that publish the same names)
   std::map<std::string, std::string> joint_prefixes;
   std::string input;
+  int every = 1;  ///< --every: only cycles 0, every, 2 every, ... are checked
   bool help = false;  ///< -h or --help: print the usage on stdout and exit 0
 };
 
