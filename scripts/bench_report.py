@@ -1197,10 +1197,12 @@ def section_real_robot(out_dir, md):
               "peer's figure over ours. The second table fits the same meshes with `mesh_fit: "
               "tighter`, which makes the boxy ones boxes, as a user modelling a boxy robot "
               "would: the box-box and capsule-box paths of every method. The third replays "
-              "every 10th sample (2 Hz, a sparse path): the default checks each 0.5 s step "
-              "along its way (the swept check) and the peers the samples only, which costs it "
-              "more per cycle; *warned* counts the cycles that warn, at their "
-              "sample or, the default's, between samples (`replay` tells which kind).\n")
+              "every 10th sample (2 Hz, a sparse path, 35 cycles: the first cycle, each method's "
+              "slowest, weighs on its mean): the default checks each 0.5 s step along its way "
+              "(the swept check) and the peers the samples only; *warned* counts the cycles "
+              "that warn, at their sample or, the default's, between samples (`replay` tells "
+              "which kind, and whether the step only starts within the previous sample's "
+              "warning).\n")
     for title, rr in fits:
         if not rr:
             continue

@@ -124,7 +124,8 @@ void Monitor::Impl::RunCycle(const Eigen::Ref<const Eigen::VectorXd>& q) {
     work.is_jumped = (!(work.step_m <= model.options.max_step_m) &&
                       !IsWithinVelocityLimits(q)) ||
                      is_turn_ambiguous ||
-                     (!model.options.swept_check && IsBeyondSampleCheck(work.step_m));
+                     (!model.options.swept_check &&
+                      IsBeyondSampleCheck(work.step_m, &work.beyond_samples));
   }
   if (model.speed_tol_gain_s != 0.0) NoteJointMotion(q);
   DateGood();  // q is accepted: q_good below
@@ -458,6 +459,7 @@ void Monitor::Impl::RecordCycle(CycleKind kind, InputStatus input, const CycleWo
   }
   report.step_motion_m = work.step_m;
   report.input_jumped = work.is_jumped;
+  report.beyond_samples = work.beyond_samples;
   report.stop = report.stop || report.input_jumped;
   report.swept_pairs = work.swept_pairs;
   report.swept_distance_tests = work.swept_tests;

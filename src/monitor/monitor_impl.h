@@ -159,6 +159,7 @@ struct Monitor::Impl {
     std::uint32_t narrow_phase_tests = 0;
     double step_m = 0.0;  // largest motion bound over primitives since the last accepted q
     bool is_jumped = false;
+    StepBeyondSamples beyond_samples;
     std::uint32_t swept_pairs = 0;
     std::uint32_t swept_tests = 0;
   };
@@ -199,8 +200,8 @@ struct Monitor::Impl {
   // For a Monitor without the swept check: whether this cycle's step (largest bound `step_m`)
   // moves an indexed primitive farther than its tolerance, which the samples alone do not cover
   // (start-up checked a cycle_period_s step at max_speed_mps or the velocity limits; sparser
-  // input).
-  bool IsBeyondSampleCheck(double step_m);
+  // input); the first such primitive goes to *beyond.
+  bool IsBeyondSampleCheck(double step_m, StepBeyondSamples* beyond);
   // The readings of a continuous joint without limits (MonitorModel::turning_links) in
   // q_good's turns: turns_next is turns_good but where a reading's move from the last
   // accepted one is more than half a turn and the move the other way round is within the

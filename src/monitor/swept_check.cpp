@@ -88,10 +88,15 @@ bool Monitor::Impl::IsWithinVelocityLimits(const Eigen::Ref<const Eigen::VectorX
   return true;
 }
 
-bool Monitor::Impl::IsBeyondSampleCheck(double step_m) {
+bool Monitor::Impl::IsBeyondSampleCheck(double step_m, StepBeyondSamples* beyond) {
   if (!(step_m > 0.0)) return false;
   for (const PrimitiveId id : carried) {
-    if (in_broad_phase[id] && StepBound_m(id) > tol_base[id]) return true;
+    if (!in_broad_phase[id]) continue;
+    const double motion_m = StepBound_m(id);
+    if (motion_m > tol_base[id]) {
+      *beyond = StepBeyondSamples{true, id, motion_m, tol_base[id]};
+      return true;
+    }
   }
   return false;
 }

@@ -85,6 +85,9 @@ const char* kUsage =
     "The monitor options are loaded before the workcell and give it the default arm tolerance,\n"
     "as in the node; the workcell's start-up findings are printed on stderr before the run.\n";
 
+// The largest --every.
+constexpr int kMaxEvery = 1000000;
+
 bool ParseOptions(int argc, char** argv, Options* options, std::string* error) {
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -141,9 +144,13 @@ bool ParseOptions(int argc, char** argv, Options* options, std::string* error) {
       }
     } else if (arg == "--every") {
       if (!value(&v)) return false;
-      options->every = std::atoi(v.c_str());
-      if (options->every < 1 || v != std::to_string(options->every)) {
-        *error = "--every expects a whole number of cycles, 1 or more, got '" + v + "'";
+      // Digits only, so that std::atoi stays in range (its result is undefined out of it).
+      const bool is_digits =
+          !v.empty() && v.size() <= 7 && v.find_first_not_of("0123456789") == std::string::npos;
+      options->every = is_digits ? std::atoi(v.c_str()) : 0;
+      if (options->every < 1 || options->every > kMaxEvery) {
+        *error = "--every expects a whole number of cycles from 1 to " +
+                 std::to_string(kMaxEvery) + ", got '" + v + "'";
         return false;
       }
     } else if (arg == "-h" || arg == "--help") {
@@ -188,6 +195,8 @@ void KeepEvery(int every, Input* input) {
     input->time_s[kept] = input->time_s[k];
     if (!input->joint_time_s.empty()) input->joint_time_s[kept] = input->joint_time_s[k];
   }
+  input->cycle_stride = static_cast<std::size_t>(every);
+  input->all_cycles = input->q.size();
   input->q.resize(kept);
   input->time_s.resize(kept);
   if (!input->joint_time_s.empty()) input->joint_time_s.resize(kept);
@@ -234,6 +243,7 @@ class MonitorChecker : public Checker {
     result->refused = report.input != InputStatus::kOk;
     result->refusal = result->refused ? monitor_.DescribeRefusal(q) : std::string();
     result->is_jumped = report.input_jumped;
+    result->is_beyond_samples = report.beyond_samples.is_beyond;
   }
   BroadPhaseCounters counters() const override { return monitor_.total_counters(); }
   bool is_swept() const override { return monitor_.options().swept_check; }

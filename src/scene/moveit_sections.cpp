@@ -229,6 +229,12 @@ std::vector<std::pair<PrimitiveId, PrimitiveId>> ResolveCollisionRules(
       }
     }
   }
+  // The names of a denied pair without a default among them (which it does not limit) are
+  // resolved too, so that a typo there is reported as well.
+  for (const auto& [name1, name2] : rules.denied_pairs) {
+    resolve(name1);
+    resolve(name2);
+  }
   if (!bare_links.empty()) {
     workcell->warnings.push_back(source + ": skipped " + std::to_string(bare_links.size()) +
                                  " link(s) without primitives (no collision geometry, or "

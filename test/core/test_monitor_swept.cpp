@@ -220,6 +220,17 @@ TEST(MonitorSwept, ThinPlateCrossedInOneStep) {
   EXPECT_TRUE(samples_only.warnings.empty());
   EXPECT_TRUE(samples_only.input_jumped);
   EXPECT_TRUE(samples_only.stop);
+  // It says which primitive the samples leave uncovered: one of the swinging arm's, whose step
+  // bound is over its tolerance (the gripper's swing is about 0.5 m; the swept Monitor's is no
+  // such step).
+  const StepBeyondSamples& beyond = samples_only.beyond_samples;
+  ASSERT_TRUE(beyond.is_beyond);
+  EXPECT_EQ(wc->primitives[beyond.primitive].name.rfind("left_", 0), 0u)
+      << wc->primitives[beyond.primitive].name;
+  EXPECT_EQ(beyond.tolerance_m, discrete.tolerance_m(beyond.primitive));
+  EXPECT_GT(beyond.motion_m, beyond.tolerance_m);
+  EXPECT_LE(beyond.motion_m, samples_only.step_motion_m);
+  EXPECT_FALSE(report.beyond_samples.is_beyond);
   // Steps within the tolerances (a cycle's at most) are covered: no stop.
   Eigen::VectorXd q = q0;
   discrete.Update(q);
@@ -227,6 +238,7 @@ TEST(MonitorSwept, ThinPlateCrossedInOneStep) {
     q[j1] += 0.001;
     const CycleReport& small = discrete.Update(q);
     EXPECT_FALSE(small.input_jumped) << k << ": " << small.step_motion_m;
+    EXPECT_FALSE(small.beyond_samples.is_beyond) << k;
     EXPECT_FALSE(small.stop) << k;
   }
 }

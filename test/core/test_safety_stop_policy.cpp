@@ -270,6 +270,22 @@ TEST_F(StopPolicyTest, InputJumpStopsUntilANormalStepAndOutranksAWarning) {
   EXPECT_EQ(ClearedAt(2.125 + kStep_s), 2.125 + kHold_s);
 }
 
+// The swept check off, a step that moves a primitive beyond its tolerance is a jump that says
+// so (it read "input jumped: a 0.043 m step", as if the input were broken, for sparse input).
+TEST_F(StopPolicyTest, AStepTheSamplesDoNotCoverNamesThePrimitiveAndItsTolerance) {
+  ASSERT_GE(ClearedAt(1.0), 0.0);
+  CycleReport step = WarningReport();
+  step.input_jumped = true;
+  step.step_motion_m = 0.0431;
+  step.beyond_samples = StepBeyondSamples{true, 2, 0.0431, 0.0305};
+  Feed(2.0);
+  Cycle(2.0, step);
+  EXPECT_TRUE(policy_.stop());
+  EXPECT_EQ(policy_.reason(),
+            "a step the samples do not cover (swept_check false): 'right_link5' may move "
+            "0.0431 m in it, over its tolerance 0.0305 m");
+}
+
 TEST_F(StopPolicyTest, ObjectPoseFailureStops) {
   ASSERT_GE(ClearedAt(1.0), 0.0);
   Feed(2.0);

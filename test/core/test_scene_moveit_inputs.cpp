@@ -166,6 +166,7 @@ TEST(SceneMoveitInputs, SrdfDefaultDisabledLinkIsCompatibleWithAllButItsEnabledP
       "  <disable_collisions link1='right_link7' link2='no_such_link'/>\n"
       "  <disable_collisions link1='link7' link2='right_link6'/>\n"
       "  <disable_collisions link1='ink7' link2='right_link6'/>\n"
+      "  <enable_collisions link1='floor' link2='flor'/>\n"
       "</robot>\n");
   const Workcell w = LoadWorkcell(kUrdf, BundledSceneWith("default.yaml", "srdf: " + srdf));
   ExpectValid(w);
@@ -179,10 +180,11 @@ TEST(SceneMoveitInputs, SrdfDefaultDisabledLinkIsCompatibleWithAllButItsEnabledP
   // A name the URDF and the scene do not know is told apart from a link without geometry.
   // A name the URDF has with a prefix (an SRDF of one arm) is shown with the links that carry
   // it; the end of a name without a separator before it is not ('ink7'). Each is named with the
-  // line where it first appears, whatever the element ('ink7' in lines 2 and 9).
-  const std::string unknown = FindWarning(w, "skipped 3 unknown name(s), neither a URDF link");
+  // line where it first appears, whatever the element ('ink7' in lines 2 and 9), also one in
+  // an enabled pair that limits no default ('flor').
+  const std::string unknown = FindWarning(w, "skipped 4 unknown name(s), neither a URDF link");
   EXPECT_NE(unknown.find("(a typo, or a file of another robot?): 'no_such_link' (line 7), "
-                         "'link7' (line 8), 'ink7' (line 2); "
+                         "'link7' (line 8), 'ink7' (line 2), 'flor' (line 10); "
                          "the URDF has 'link7' as 'left_link7', 'right_link7'"),
             std::string::npos)
       << unknown;

@@ -285,32 +285,66 @@ class ReplayConfigTest(unittest.TestCase):
         self.assertIn('; 2 steps beyond max_step_m (input_jumped: the monitor asks a stop on '
                       'each)', summary[0])
 
+    def test_steps_the_samples_do_not_cover_are_counted_apart(self):
+        # Without the swept check (cycle_period_s 0.001 s, which start-up's tolerance check
+        # needs), the left arm leaning over turns its base 0.1 rad a row at 20 Hz: each step
+        # moves it beyond its tolerance, which the samples alone do not cover. Those stops were
+        # counted as steps beyond max_step_m, which none of them is.
+        directory = temp_dir(self, 'acm_beyond_samples_')
+        config = os.path.join(directory, 'samples_only.yaml')
+        with open(config, 'w') as f:
+            f.write('swept_check: false\ncycle_period_s: 0.001\n')
+        csv_path = os.path.join(directory, 'turn.csv')
+        write_csv(csv_path, LEFT_JOINTS + RIGHT_JOINTS,
+                  [[0.1 * k, 0.5] + [0.0] * 12 for k in range(5)])
+        args = ['--scene', self.bundled_scene, '--config', config, csv_path]
+        result = rosrun('replay', '--json', *args)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        report = json.loads(result.stdout)
+        self.assertFalse(report['swept_check'])
+        self.assertEqual((report['jumped_cycles'], report['beyond_samples_cycles']), (4, 4))
+        summary = [line for line in rosrun('replay', *args).stdout.splitlines()
+                   if line.startswith('summary:')]
+        self.assertEqual(len(summary), 1)
+        self.assertIn('; 4 steps the samples do not cover, each moving a primitive farther than '
+                      'its tolerance (swept_check false; input_jumped: the monitor asks a stop on '
+                      'each)', summary[0])
+        self.assertNotIn('max_step_m', summary[0])
+
     def test_every_nth_cycle_is_the_same_path_sampled_sparser(self):
-        # The bundled real robot's bag (20 Hz) with --every 10: cycles 0, 10, 20, ... at their own
-        # times, each warning at its sample as the full run does at that cycle, to the bit (a
-        # sample's warnings depend on its q alone; its step is swept from the kept cycle before).
+        # The bundled real robot's bag (20 Hz) with --every 10: cycles 0, 10, 20, ..., numbered and
+        # timed as in the full run, each warning at its sample as the full run does at that
+        # cycle, to the bit (with fixed tolerances a sample's warnings depend on its q alone; its
+        # step is swept from the kept cycle before), none refused; and at --every 40 none a jump
+        # (each joint's sample times are thinned with it: 2 s steps each timed 0.05 s gave 5).
         package = rospkg.RosPack().get_path(PKG)
         files = ['--urdf', os.path.join(package, 'urdf', 'dual_arm_shelf.urdf'),
                  '--scene', os.path.join(package, 'config', 'dual_arm_shelf', 'scene.yaml'),
                  os.path.join(package, 'test', 'bags', 'dual_arm_shelf.bag')]
         reports = {}
-        for every in (1, 10):
+        for every in (1, 10, 40):
             result = rosrun('replay', '--json', '--every', str(every), *files)
             self.assertEqual(result.returncode, 0, result.stderr)
             reports[every] = json.loads(result.stdout)
             self.assertEqual(reports[every]['every'], every)
         full, sparse = reports[1]['per_cycle'], reports[10]['per_cycle']
         self.assertEqual(len(sparse), (len(full) + 9) // 10)
-        self.assertEqual([c['time_s'] for c in sparse], [c['time_s'] for c in full[::10]])
+        for key in ('cycle', 'time_s'):
+            self.assertEqual([c[key] for c in sparse], [c[key] for c in full[::10]], key)
+        self.assertEqual(reports[10]['first_warning']['cycle'] % 10, 0)
+        self.assertEqual(reports[10]['refused_cycles'], 0)
+        self.assertEqual((reports[40]['refused_cycles'], reports[40]['jumped_cycles']), (0, 0))
         self.assertEqual([c['warnings'] for c in sparse], [c['warnings'] for c in full[::10]])
         self.assertTrue(any(c['warnings'] for c in sparse), 'no warning at the kept samples')
         text = rosrun('replay', '--every', '10', *files).stdout
-        self.assertIn(' (--every 10: cycles 0, 10, 20, ... kept)', text.splitlines()[0])
-        for bad in ('0', '-1', '1.5', 'x'):
+        self.assertIn(': method auto (swept check on), %d cycles of %d (--every 10: cycles 0, 10, '
+                      '20, ...) from 682 messages' % (len(sparse), len(full)),
+                      text.splitlines()[0])
+        for bad in ('0', '-1', '1.5', 'x', '1000001', '4294967297'):
             result = rosrun('replay', '--every', bad, files[-1])
             self.assertEqual(result.returncode, 2, bad)
-            self.assertIn("--every expects a whole number of cycles, 1 or more, got '%s'" % bad,
-                          result.stderr)
+            self.assertIn("--every expects a whole number of cycles from 1 to 1000000, got '%s'"
+                          % bad, result.stderr)
 
     def test_a_csv_is_read_as_the_node_reads_joint_states(self):
         # A column of no model joint (a gripper the driver publishes) is ignored and listed, as

@@ -49,6 +49,14 @@ inline bool IsWarningDistance(double distance_m, double threshold_m) {
   return distance_m < threshold_m || distance_m <= 0.0;
 }
 
+/// A step that the samples alone do not cover, with the swept check off (CycleReport).
+struct StepBeyondSamples {
+  bool is_beyond = false;
+  PrimitiveId primitive = 0;  ///< the first moving primitive found moved beyond its tolerance
+  double motion_m = 0.0;      ///< its motion bound over the step
+  double tolerance_m = 0.0;   ///< its tolerance
+};
+
 /// The result of one cycle. Lives in the Monitor's preallocated data: valid until the next
 /// Update().
 struct CycleReport {
@@ -73,6 +81,9 @@ struct CycleReport {
   /// cover (input sparser than cycle_period_s, a joint without a velocity limit, a held object
   /// reaching beyond its holder): accepted, but stop is requested.
   bool input_jumped = false;
+  /// input_jumped for the second reason alone (the swept check off, a step the samples do not
+  /// cover): which primitive, by how much; is_beyond false otherwise.
+  StepBeyondSamples beyond_samples;
   /// Pairs whose swept check needed the path (their distance at the step's start, and
   /// bisection); 0 when every pair was certified by its distance at q less its motion bound.
   std::uint32_t swept_pairs = 0;

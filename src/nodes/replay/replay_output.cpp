@@ -92,13 +92,14 @@ void PrintJsonCounts(const Options& options, const Input& input, std::size_t cyc
   std::printf("  \"incomplete_cycles\": %llu,\n  \"cycles\": %zu,\n"
               "  \"refused_cycles\": %llu,\n  \"warning_cycles\": %llu,\n"
               "  \"between_samples_cycles\": %llu,\n  \"warned_cycles\": %llu,\n"
-              "  \"jumped_cycles\": %llu,\n",
+              "  \"jumped_cycles\": %llu,\n  \"beyond_samples_cycles\": %llu,\n",
               static_cast<unsigned long long>(input.incomplete_cycles), cycle_count,
               static_cast<unsigned long long>(summary.refused_cycles),
               static_cast<unsigned long long>(summary.warning_cycles),
               static_cast<unsigned long long>(summary.between_cycles),
               static_cast<unsigned long long>(summary.warned_cycles),
-              static_cast<unsigned long long>(summary.jumped_cycles));
+              static_cast<unsigned long long>(summary.jumped_cycles),
+              static_cast<unsigned long long>(summary.beyond_samples_cycles));
 }
 
 // "[x, y, z]" of a vector, to the bit (17 significant digits).
@@ -158,8 +159,8 @@ void PrintWarningRuns(const Workcell& wc, const Input& input,
     const std::string key = PairSetKey(cycles[k].warnings);
     std::size_t end = k + 1;
     while (end < cycles.size() && PairSetKey(cycles[end].warnings) == key) ++end;
-    std::printf("cycles %zu-%zu (%.2f-%.2f s):\n", k, end - 1, input.time_s[k],
-                input.time_s[end - 1]);
+    std::printf("cycles %zu-%zu (%.2f-%.2f s):\n", CycleNumber(input, k),
+                CycleNumber(input, end - 1), input.time_s[k], input.time_s[end - 1]);
     for (std::size_t i = 0; i < cycles[k].warnings.size(); ++i) {
       const Warning& w = cycles[k].warnings[i];
       double closest_m = w.distance_m;
@@ -215,7 +216,8 @@ void PrintBetweenSamples(const Workcell& wc, const Input& input,
       if (lines++ >= kMaxLines) continue;
       std::printf("cycle %zu (%.2f s), between samples at %.3f of the step: %s -- %s  %.4f m "
                   "(threshold %.4f m)%s\n",
-                  k, input.time_s[k], w.step_fraction, wc.primitives[w.a].name.c_str(),
+                  CycleNumber(input, k), input.time_s[k], w.step_fraction,
+                  wc.primitives[w.a].name.c_str(),
                   wc.primitives[w.b].name.c_str(), w.distance_m, w.threshold_m,
                   kBetweenKinds[static_cast<int>(kind)].note);
     }
@@ -264,7 +266,8 @@ void PrintInputLines(const Input& input, const std::vector<CycleResult>& cycles,
                 Counted(input.incomplete_cycles, "cycle").c_str(),
                 Counted(summary.refused_cycles, "cycle").c_str());
     if (summary.first_refused >= 0) {
-      std::printf(" (the first, cycle %d at %.3f s: %s)", summary.first_refused,
+      std::printf(" (the first, cycle %zu at %.3f s: %s)",
+                  CycleNumber(input, summary.first_refused),
                   input.time_s[summary.first_refused],
                   cycles[summary.first_refused].refusal.c_str());
     }
@@ -337,6 +340,7 @@ RunSummary Summarize(const Input& input, const std::vector<CycleResult>& cycles,
     }
     summary.warned_cycles += !cycles[k].warnings.empty() || !cycles[k].between_samples.empty();
     summary.jumped_cycles += cycles[k].is_jumped;
+    summary.beyond_samples_cycles += cycles[k].is_beyond_samples;
   }
   summary.time_s = SummarizeTimings(std::move(times));
   summary.moving_time_s = SummarizeTimings(std::move(moving_times));
@@ -353,26 +357,27 @@ void PrintJson(const Options& options, const Workcell& wc, const Input& input,
   PrintJsonPrimitives(wc);
   if (summary.first >= 0) {
     const Warning& w = cycles[summary.first].warnings.front();
-    std::printf("  \"first_warning\": {\"cycle\": %d, \"time_s\": %.9f, \"a\": %s, \"b\": %s, "
+    std::printf("  \"first_warning\": {\"cycle\": %zu, \"time_s\": %.9f, \"a\": %s, \"b\": %s, "
                 "\"distance_m\": %.17g, \"threshold_m\": %.17g},\n",
-                summary.first, input.time_s[summary.first], name(w.a).c_str(),
+                CycleNumber(input, summary.first), input.time_s[summary.first], name(w.a).c_str(),
                 name(w.b).c_str(), w.distance_m, w.threshold_m);
   } else {
     std::printf("  \"first_warning\": null,\n");
   }
   if (summary.first_between >= 0) {
     const Warning& w = cycles[summary.first_between].between_samples.front();
-    std::printf("  \"first_between_samples\": {\"cycle\": %d, \"time_s\": %.9f, \"a\": %s, "
+    std::printf("  \"first_between_samples\": {\"cycle\": %zu, \"time_s\": %.9f, \"a\": %s, "
                 "\"b\": %s, \"distance_m\": %.17g, \"threshold_m\": %.17g, \"step_fraction\": "
                 "%.17g, \"kind\": \"%s\"},\n",
-                summary.first_between, input.time_s[summary.first_between], name(w.a).c_str(),
+                CycleNumber(input, summary.first_between), input.time_s[summary.first_between],
+                name(w.a).c_str(),
                 name(w.b).c_str(), w.distance_m, w.threshold_m, w.step_fraction, KindName(w));
   } else {
     std::printf("  \"first_between_samples\": null,\n");
   }
   if (summary.first_refused >= 0) {
-    std::printf("  \"first_refusal\": {\"cycle\": %d, \"time_s\": %.9f, \"reason\": %s},\n",
-                summary.first_refused, input.time_s[summary.first_refused],
+    std::printf("  \"first_refusal\": {\"cycle\": %zu, \"time_s\": %.9f, \"reason\": %s},\n",
+                CycleNumber(input, summary.first_refused), input.time_s[summary.first_refused],
                 JsonString(cycles[summary.first_refused].refusal).c_str());
   } else {
     std::printf("  \"first_refusal\": null,\n");
@@ -398,7 +403,8 @@ void PrintJson(const Options& options, const Workcell& wc, const Input& input,
   std::printf("  \"per_cycle\": [");
   for (std::size_t k = 0; k < cycles.size(); ++k) {
     std::printf("%s\n    {\"cycle\": %zu, \"time_s\": %.9f, \"refused\": %s, \"warnings\": [",
-                k ? "," : "", k, input.time_s[k], cycles[k].refused ? "true" : "false");
+                k ? "," : "", CycleNumber(input, k), input.time_s[k],
+                cycles[k].refused ? "true" : "false");
     for (std::size_t i = 0; i < cycles[k].warnings.size(); ++i) {
       const Warning& w = cycles[k].warnings[i];
       std::printf("%s[%s, %s, %.17g, %.17g]", i ? ", " : "", name(w.a).c_str(),
@@ -415,20 +421,27 @@ void PrintJson(const Options& options, const Workcell& wc, const Input& input,
   std::printf("\n  ]\n}\n");
 }
 
-void PrintText(const Options& options, const Workcell& wc, const Input& input,
-               const std::vector<CycleResult>& cycles, const RunSummary& summary,
-               bool is_swept) {
-  std::printf("replay %s: method %s (%s), %s from %s", options.input.c_str(),
-              options.method.c_str(), is_swept ? "swept check on" : "samples only",
-              Counted(cycles.size(), "cycle").c_str(), Counted(input.messages, "message").c_str());
+// The first line: the input, the method, what was checked.
+void PrintHeader(const Options& options, const Input& input, std::size_t cycle_count,
+                 bool is_swept) {
+  std::printf("replay %s: method %s (%s), %s", options.input.c_str(), options.method.c_str(),
+              is_swept ? "swept check on" : "samples only",
+              Counted(cycle_count, "cycle").c_str());
   if (options.every > 1) {
-    std::printf(" (--every %d: cycles 0, %d, %d, ... kept)", options.every, options.every,
-                2 * options.every);
+    std::printf(" of %zu (--every %d: cycles 0, %d, %d, ...)", input.all_cycles, options.every,
+                options.every, 2 * options.every);
   }
+  std::printf(" from %s", Counted(input.messages, "message").c_str());
   for (const TaskGraspTarget& t : options.grasp_targets) {
     std::printf(", grasp target %s:%s", t.link.c_str(), t.object.c_str());
   }
   std::printf("\n");
+}
+
+void PrintText(const Options& options, const Workcell& wc, const Input& input,
+               const std::vector<CycleResult>& cycles, const RunSummary& summary,
+               bool is_swept) {
+  PrintHeader(options, input, cycles.size(), is_swept);
   PrintInputLines(input, cycles, summary, wc.kinematics);
   PrintWarningRuns(wc, input, cycles);
   if (is_swept) PrintBetweenSamples(wc, input, cycles, summary);
@@ -441,9 +454,15 @@ void PrintText(const Options& options, const Workcell& wc, const Input& input,
     unchecked += "; " + Counted(refused, "cycle") + " refused, not checked (the monitor " +
                  "asks a stop on each; see 'input:' above)";
   }
-  if (summary.jumped_cycles > 0) {
-    unchecked += "; " + Counted(summary.jumped_cycles, "step") +
+  const std::uint64_t jumped = summary.jumped_cycles - summary.beyond_samples_cycles;
+  if (jumped > 0) {
+    unchecked += "; " + Counted(jumped, "step") +
                  " beyond max_step_m (input_jumped: the monitor asks a stop on each)";
+  }
+  if (summary.beyond_samples_cycles > 0) {
+    unchecked += "; " + Counted(summary.beyond_samples_cycles, "step") +
+                 " the samples do not cover, each moving a primitive farther than its tolerance "
+                 "(swept_check false; input_jumped: the monitor asks a stop on each)";
   }
   std::string refused_messages;
   if (summary.refused_messages > 0) {
@@ -466,11 +485,11 @@ void PrintText(const Options& options, const Workcell& wc, const Input& input,
                     w.step_fraction);
     }
     std::printf("summary: %llu of %zu cycles warn (%llu at their sample, %llu only between "
-                "samples); first at cycle %d (%.2f s): %s -- %s at %.4f m%s%s\n",
+                "samples); first at cycle %zu (%.2f s): %s -- %s at %.4f m%s%s\n",
                 static_cast<unsigned long long>(summary.warned_cycles), cycles.size(),
                 static_cast<unsigned long long>(summary.warning_cycles),
                 static_cast<unsigned long long>(summary.warned_cycles - summary.warning_cycles),
-                first, input.time_s[first], wc.primitives[w.a].name.c_str(),
+                CycleNumber(input, first), input.time_s[first], wc.primitives[w.a].name.c_str(),
                 wc.primitives[w.b].name.c_str(), w.distance_m, where, unchecked.c_str());
   } else if (refused > 0 && refused == cycles.size()) {
     std::printf("summary: no cycle checked: all %llu refused (the monitor asks a stop on each; "

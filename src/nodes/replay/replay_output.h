@@ -37,6 +37,10 @@ struct Options {
 // The input as one q per cycle (model order) with its time, plus what was refused on the way.
 struct Input {
   std::vector<Eigen::VectorXd> q;
+  /// --every: q[k] is the input's cycle k * cycle_stride, of its all_cycles (the others were
+  /// left out)
+  std::size_t cycle_stride = 1;
+  std::size_t all_cycles = 0;
   std::vector<double> time_s;  ///< since the first cycle
   /// a bag's: per cycle, each joint's sample time on the same clock (the message that gave
   /// it); empty for a CSV, whose rows date every joint at once
@@ -61,6 +65,12 @@ struct Input {
   std::vector<std::string> ignored_names, mimic_names;
 };
 
+/// The input's number of checked cycle `k` (the output's cycle numbers: with --every, the
+/// cycles' own, not their places among those kept).
+inline std::size_t CycleNumber(const Input& input, std::size_t k) {
+  return k * input.cycle_stride;
+}
+
 /// How many names of each kind Input notes from a bag.
 inline constexpr std::size_t kNotedNames = 8;
 
@@ -73,6 +83,8 @@ struct CycleResult {
   bool refused = false;
   std::string refusal;  ///< why, when refused (Monitor::DescribeRefusal)
   bool is_jumped = false;
+  /// is_jumped as a step the samples do not cover (the swept check off; the Monitor only)
+  bool is_beyond_samples = false;
   bool is_moving = true;  ///< its q differs from the previous cycle's (the first one's does)
   double time_s = 0.0;
 };
@@ -86,7 +98,8 @@ struct RunSummary {
   int first_between = -1;            ///< the first of those, -1 if none
   /// cycles with a warning at their q or between samples: those the node asks a stop in
   std::uint64_t warned_cycles = 0;
-  std::uint64_t jumped_cycles = 0;   ///< steps beyond max_step_m
+  std::uint64_t jumped_cycles = 0;   ///< input_jumped steps: beyond max_step_m, or beyond_samples
+  std::uint64_t beyond_samples_cycles = 0;  ///< of those, steps the samples do not cover
   TimingSummary time_s;
   TimingSummary moving_time_s;  ///< over the moving cycles: the Monitor's idle ones left out
   BroadPhaseCounters counters;
