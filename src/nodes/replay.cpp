@@ -85,8 +85,18 @@ const char* kUsage =
     "The monitor options are loaded before the workcell and give it the default arm tolerance,\n"
     "as in the node; the workcell's start-up findings are printed on stderr before the run.\n";
 
-// The largest --every.
-constexpr int kMaxEvery = 1000000;
+// --every's value `v` in *every, a whole number from 1 to kMaxEvery; else false with *error.
+bool ParseEvery(const std::string& v, int* every, std::string* error) {
+  constexpr int kMaxEvery = 1000000;
+  // Digits only, so that std::atoi stays in range (its result is undefined out of it).
+  const bool is_digits =
+      !v.empty() && v.size() <= 7 && v.find_first_not_of("0123456789") == std::string::npos;
+  *every = is_digits ? std::atoi(v.c_str()) : 0;
+  if (*every >= 1 && *every <= kMaxEvery) return true;
+  *error = "--every expects a whole number of cycles from 1 to " + std::to_string(kMaxEvery) +
+           ", got '" + v + "'";
+  return false;
+}
 
 bool ParseOptions(int argc, char** argv, Options* options, std::string* error) {
   for (int i = 1; i < argc; ++i) {
@@ -143,16 +153,7 @@ bool ParseOptions(int argc, char** argv, Options* options, std::string* error) {
         options->grasp_targets.push_back(t);
       }
     } else if (arg == "--every") {
-      if (!value(&v)) return false;
-      // Digits only, so that std::atoi stays in range (its result is undefined out of it).
-      const bool is_digits =
-          !v.empty() && v.size() <= 7 && v.find_first_not_of("0123456789") == std::string::npos;
-      options->every = is_digits ? std::atoi(v.c_str()) : 0;
-      if (options->every < 1 || options->every > kMaxEvery) {
-        *error = "--every expects a whole number of cycles from 1 to " +
-                 std::to_string(kMaxEvery) + ", got '" + v + "'";
-        return false;
-      }
+      if (!value(&v) || !ParseEvery(v, &options->every, error)) return false;
     } else if (arg == "-h" || arg == "--help") {
       options->help = true;
       return true;

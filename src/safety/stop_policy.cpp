@@ -151,8 +151,7 @@ void StopPolicy::OnCycleReport(const CycleReport& report, const std::string& ref
     Raise(Rank::kJumped, SafetyStatus::kOk,
           "a step the samples do not cover (swept_check false): '%s' may move %.4f m in it, "
           "over its tolerance %.4f m",
-          beyond.primitive < primitives.size() ? primitives[beyond.primitive].name.c_str() : "?",
-          beyond.motion_m, beyond.tolerance_m);
+          primitives[beyond.primitive].name.c_str(), beyond.motion_m, beyond.tolerance_m);
   } else if (report.input_jumped) {
     Raise(Rank::kJumped, SafetyStatus::kOk, "input jumped: a %.3f m step in one cycle",
           report.step_motion_m);

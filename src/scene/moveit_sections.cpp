@@ -303,8 +303,14 @@ std::vector<std::pair<PrimitiveId, PrimitiveId>> SrdfPairs(const SrdfInput& inpu
     const std::vector<PrimitiveId> ids = ResolveNames(*workcell, link);
     return ids.empty() ? std::string() : workcell->primitives[ids.front()].group;
   };
+  auto note_line = [&](const std::string& name, int line) {
+    const auto [at, is_new] = rules.first_line.emplace(name, line);
+    if (!is_new) at->second = std::min(at->second, line);
+  };
   std::vector<std::string> kept_checked;
   for (const SrdfLinkPair& pair : input.rules.disabled_pairs) {
+    note_line(pair.link1, pair.line);
+    note_line(pair.link2, pair.line);
     if (!input.is_never_between_arms_trusted && pair.reason == "Never") {
       const std::string arm1 = arm_of(pair.link1);
       const std::string arm2 = arm_of(pair.link2);
@@ -314,14 +320,6 @@ std::vector<std::pair<PrimitiveId, PrimitiveId>> SrdfPairs(const SrdfInput& inpu
       }
     }
     rules.allowed_pairs.emplace_back(pair.link1, pair.link2);
-  }
-  auto note_line = [&](const std::string& name, int line) {
-    const auto [at, is_new] = rules.first_line.emplace(name, line);
-    if (!is_new) at->second = std::min(at->second, line);
-  };
-  for (const SrdfLinkPair& pair : input.rules.disabled_pairs) {
-    note_line(pair.link1, pair.line);
-    note_line(pair.link2, pair.line);
   }
   if (!kept_checked.empty()) {
     workcell->notices.push_back(
