@@ -48,7 +48,9 @@ std::unique_ptr<BroadPhase> MakeOctree(const BroadPhaseOptions& options,
 }  // namespace
 
 BroadPhaseMethod ChooseBroadPhaseMethod(std::uint32_t moving, std::uint32_t statics) {
-  const bool grid_wins = statics >= kAutoGridMinStatics || moving >= kAutoGridMinMoving;
+  const bool grid_wins = moving >= kAutoGridMinMoving ||
+                         static_cast<double>(statics) >=
+                             kAutoGridMinStatics + kAutoGridStaticsPerMover * moving;
   return grid_wins ? BroadPhaseMethod::kGrid : BroadPhaseMethod::kNaive;
 }
 

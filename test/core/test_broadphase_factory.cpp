@@ -1,5 +1,6 @@
 // The factory: names, and auto's rule (ChooseBroadPhaseMethod) on each side of its crossovers,
-// its monotonicity in the counts, and MakeBroadPhase(kAuto) building what the rule names.
+// its monotonicity in the statics, its crossover rising with the movers, and MakeBroadPhase(kAuto)
+// building what the rule names.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -37,32 +38,51 @@ TEST(BroadPhaseAuto, CrossoversOnBothSides) {
   EXPECT_EQ(ChooseBroadPhaseMethod(kAutoGridMinMoving - 1, kAutoGridMinStatics - 1),
             BroadPhaseMethod::kNaive);
   EXPECT_EQ(ChooseBroadPhaseMethod(kAutoGridMinMoving, 0), BroadPhaseMethod::kGrid);
-  // More statics: the grid from its crossover, for any number of movers.
-  EXPECT_EQ(ChooseBroadPhaseMethod(14, kAutoGridMinStatics - 1), BroadPhaseMethod::kNaive);
-  EXPECT_EQ(ChooseBroadPhaseMethod(14, kAutoGridMinStatics), BroadPhaseMethod::kGrid);
+  // More statics: the grid from its crossover, which grows with the movers.
+  EXPECT_EQ(ChooseBroadPhaseMethod(0, kAutoGridMinStatics - 1), BroadPhaseMethod::kNaive);
+  EXPECT_EQ(ChooseBroadPhaseMethod(0, kAutoGridMinStatics), BroadPhaseMethod::kGrid);
+  EXPECT_EQ(ChooseBroadPhaseMethod(10, kAutoGridMinStatics + 18), BroadPhaseMethod::kNaive);
+  EXPECT_EQ(ChooseBroadPhaseMethod(10, kAutoGridMinStatics + 19), BroadPhaseMethod::kGrid);
+  // The sweep's points where one crossover for all mover counts chose the slower side
+  // (core/constants.h): naive at 300+700, 450+1,000 and 1,200+1,000; the grid at 14+2,000,
+  // 150+1,000, 300+3,000 and 1,200+3,000.
+  EXPECT_EQ(ChooseBroadPhaseMethod(300, 700), BroadPhaseMethod::kNaive);
+  EXPECT_EQ(ChooseBroadPhaseMethod(450, 1000), BroadPhaseMethod::kNaive);
+  EXPECT_EQ(ChooseBroadPhaseMethod(1200, 1000), BroadPhaseMethod::kNaive);
+  EXPECT_EQ(ChooseBroadPhaseMethod(14, 2000), BroadPhaseMethod::kGrid);
+  EXPECT_EQ(ChooseBroadPhaseMethod(150, 1000), BroadPhaseMethod::kGrid);
+  EXPECT_EQ(ChooseBroadPhaseMethod(300, 3000), BroadPhaseMethod::kGrid);
+  EXPECT_EQ(ChooseBroadPhaseMethod(1200, 3000), BroadPhaseMethod::kGrid);
   EXPECT_EQ(ChooseBroadPhaseMethod(1, 100000), BroadPhaseMethod::kGrid);
   EXPECT_EQ(ChooseBroadPhaseMethod(0xffffffffu, 0xffffffffu), BroadPhaseMethod::kGrid);
+  EXPECT_EQ(ChooseBroadPhaseMethod(kAutoGridMinMoving - 1, 0xffffffffu),
+            BroadPhaseMethod::kGrid);
   // An empty scene still gets a structure.
   EXPECT_EQ(ChooseBroadPhaseMethod(0, 0), BroadPhaseMethod::kNaive);
 }
 
-// Rank: naive < octree < grid. More primitives of either kind never choose a lighter index.
-int Rank(BroadPhaseMethod m) {
-  return m == BroadPhaseMethod::kNaive ? 0 : m == BroadPhaseMethod::kOctree ? 1 : 2;
-}
-
-TEST(BroadPhaseAuto, MonotoneInBothCounts) {
-  for (std::uint32_t moving = 0; moving <= 2 * kAutoGridMinMoving; moving += 97) {
-    for (std::uint32_t statics = 0; statics <= 2 * kAutoGridMinStatics; statics += 11) {
+// More statics never choose a lighter index than fewer, for any count of movers; more movers
+// raise the statics the grid needs, up to kAutoGridMinMoving, from which it is always the grid.
+TEST(BroadPhaseAuto, MonotoneInStaticsCrossoverRisingWithMovers) {
+  std::uint32_t previous_crossover = 0;
+  for (std::uint32_t moving = 0; moving < kAutoGridMinMoving; moving += 97) {
+    std::uint32_t crossover = 0;  // the fewest statics (step 11) that choose the grid
+    for (std::uint32_t statics = 0; statics <= 30000; statics += 11) {
       const BroadPhaseMethod m = ChooseBroadPhaseMethod(moving, statics);
-      ASSERT_TRUE(m == BroadPhaseMethod::kNaive || m == BroadPhaseMethod::kOctree ||
-                  m == BroadPhaseMethod::kGrid)
+      ASSERT_TRUE(m == BroadPhaseMethod::kNaive || m == BroadPhaseMethod::kGrid)
           << moving << " " << statics;
-      EXPECT_LE(Rank(m), Rank(ChooseBroadPhaseMethod(moving + 7, statics)))
-          << moving << " " << statics;
-      EXPECT_LE(Rank(m), Rank(ChooseBroadPhaseMethod(moving, statics + 5)))
-          << moving << " " << statics;
+      if (m == BroadPhaseMethod::kGrid && crossover == 0) crossover = statics;
+      if (crossover != 0) {
+        ASSERT_EQ(m, BroadPhaseMethod::kGrid) << moving << " " << statics;
+      }
     }
+    ASSERT_GT(crossover, 0u) << moving;
+    EXPECT_GE(crossover, previous_crossover) << moving;
+    previous_crossover = crossover;
+  }
+  EXPECT_GT(previous_crossover, 10 * kAutoGridMinStatics);
+  for (std::uint32_t statics = 0; statics <= 30000; statics += 997) {
+    EXPECT_EQ(ChooseBroadPhaseMethod(kAutoGridMinMoving, statics), BroadPhaseMethod::kGrid);
   }
 }
 

@@ -199,18 +199,24 @@ inline constexpr double kJumpVelocityFactor = 2.0;
 
 /// auto's rule (ChooseBroadPhaseMethod), from the sweep of bench_broadphase_workloads (moving
 /// 7..1,200 x static 0..3,000 primitives; counts, dimensionless): the uniform grid from
-/// kAutoGridMinStatics statics or from kAutoGridMinMoving moving up; otherwise all pairs
-/// (naive), whose branch-free scan of every box (BoxArray, float, masked by the compatibility
-/// words) beats any index's upkeep below that. The octree was best nowhere in the sweep, so auto
-/// does not pick it. Measured 2026-11-25 on this 2-core machine (medians per cycle,
-/// bench_broadphase_workloads --sweep-only): the crossover lies at about 700 statics for every
-/// mover count: naive best at 500 statics (0.79 against the grid's 0.85 us at 7+500, 53.9
-/// against 62.0 at 300+500, 565 against 593 at 1,200+500), the grid within 5 % or better from
-/// 700 (0.96 against 1.02 at 7+700, 65.1 against 65.3 at 300+700, 668 against 635 at
-/// 1,200+700) and best from 1,000. Naive leads at 0 statics up to the sweep's 1,200 movers
-/// (340 against 469 us), the grid's ratio to it falling about 9 % per doubling (1.52 at 600,
-/// 1.38 at 1,200): kAutoGridMinMoving extrapolates that to where it reaches 1.
+/// kAutoGridMinStatics + kAutoGridStaticsPerMover x moving statics up, or from
+/// kAutoGridMinMoving moving up; otherwise all pairs (naive), whose branch-free scan of every
+/// box (BoxArray, float, masked by the compatibility words) beats any index's upkeep below that.
+/// The octree was best nowhere in the sweep, so auto does not pick it. Measured 2026-12-02 on
+/// this 2-core machine (medians per cycle, bench_broadphase_workloads --sweep-only, two runs):
+/// up to 150 movers the grid draws level at about 700 statics (0.99 against naive's 0.99 us at
+/// 7+700, 28.9 against 28.2 at 150+700) and leads from 1,000; with more movers naive's lead
+/// lasts longer, the crossover (interpolated between 1,000 and 3,000 statics) at about 1,250
+/// statics for 300 movers, 1,400 for 450, 1,750 for 600 and 2,000 for 1,200 (naive 85 against
+/// the grid's 91 us at 300+1,000, 177 against 194 at 450+1,000, 668 against 744 at
+/// 1,200+1,000; the grid 160 against 216 at 300+3,000, 1,167 against 1,268 at 1,200+3,000).
+/// A single crossover of 700 statics had the grid up to 1.35x naive's time (450+700). The line
+/// 700 + 1.9 per mover lies within 10 % of the faster side at every point of the sweep. Naive
+/// leads at 0 statics up to the sweep's 1,200 movers (340 against 469 us), the grid's ratio to
+/// it falling about 9 % per doubling (1.52 at 600, 1.38 at 1,200): kAutoGridMinMoving
+/// extrapolates that to where it reaches 1.
 inline constexpr std::uint32_t kAutoGridMinStatics = 700;
+inline constexpr double kAutoGridStaticsPerMover = 1.9;
 inline constexpr std::uint32_t kAutoGridMinMoving = 12000;
 /// Bounds on auto's grid resolution (GridCellsFor; cells per axis). 4: coarser and the grid is
 /// all pairs in a few cells; 64: 262,144 cells, 3 MB of per-cell arrays.
