@@ -330,15 +330,16 @@ bool Monitor::Impl::SetObjectPose(const std::string& object, const Eigen::Isomet
     scene_changed = true;
   }
   // Timed: its speed over the interval since its timed pose before, kept until the next; after
-  // none (or at a time not later) a move's speed is unknown: the largest. Untimed: none kept,
-  // its move in the cycle gives it. A new speed is a change of the scene: the next cycle
-  // computes the tolerances.
+  // none, at a time not later or after a long gap (kObjectSpeedMaxGapCycles) a move's speed is
+  // unknown: the largest. Untimed: none kept, its move in the cycle gives it. A new speed is a
+  // change of the scene: the next cycle computes the tolerances.
   const double before_mps = object_speed_mps[o];
   if (std::isnan(time_s)) {
     ForgetObjectTimes(o);
   } else {
     const double since_s = time_s - object_sample_s[o];
-    if (since_s > 0.0) {
+    const double longest_s = kObjectSpeedMaxGapCycles * model.options.cycle_period_s;
+    if (since_s > 0.0 && (since_s <= longest_s || step_m == 0.0)) {
       object_speed_mps[o] = step_m / since_s;
     } else if (step_m > 0.0) {
       object_speed_mps[o] = std::numeric_limits<double>::infinity();

@@ -939,6 +939,43 @@ TEST(MonitorScene, SpeedScaledToleranceKeepsATimedObjectsSpeedBetweenItsPoses) {
   ExpectValid(monitor);
 }
 
+// A tracker that went silent: a move after more than kObjectSpeedMaxGapCycles cycle periods
+// without a timed pose takes the largest speed (averaged over the gap, 0.02 m in 0.55 s would
+// read 0.036 m/s); within that gap the measured speed stands, and an unmoved pose after any gap
+// is at rest.
+TEST(MonitorScene, SpeedScaledToleranceTakesTheLargestSpeedForAMoveAfterALongGap) {
+  const auto wc = LoadBundledWorkcell();
+  MonitorOptions options;
+  options.speed_scaled_tolerance = true;
+  const double gain_s = options.reaction_time_s + options.stopping_time_s;
+  const PrimitiveId camera = Prim(*wc, "camera");
+  const double base_m = wc->primitives[camera].tolerance_m;
+  const double largest_m = base_m + options.max_speed_mps * gain_s;
+  const Eigen::Isometry3d X_start = wc->objects[wc->FindObject("camera")].X_WO_start;
+  Monitor monitor(wc, options);
+  const Eigen::VectorXd q = MakeQ(*wc, {{"left_joint2", 0.5}});
+  std::string error;
+  // Posed at `x_m` along x at time `t_s`, then a cycle at that time: the camera's tolerance.
+  auto tolerance_after = [&](double x_m, double t_s) {
+    Eigen::Isometry3d X = X_start;
+    X.translation().x() += x_m;
+    EXPECT_TRUE(monitor.SetObjectPoseAt("camera", X, t_s, &error)) << error;
+    EXPECT_EQ(monitor.Update(q, t_s).input, InputStatus::kOk);
+    return monitor.tolerance_m(camera);
+  };
+  const double gap_s = kObjectSpeedMaxGapCycles * options.cycle_period_s;
+  tolerance_after(0.0, 0.0);
+  EXPECT_NEAR(tolerance_after(0.02, 0.1), base_m + 0.2 * gain_s, 1e-12);
+  EXPECT_EQ(tolerance_after(0.04, 0.1 + gap_s + 0.05), largest_m);
+  EXPECT_NEAR(tolerance_after(0.06, 0.2 + gap_s + 0.05), base_m + 0.2 * gain_s, 1e-12);
+  // Just within the gap: 0.09 m over 0.9 of it, the measured speed.
+  const double t_s = 0.2 + gap_s + 0.05 + 0.9 * gap_s;
+  EXPECT_NEAR(tolerance_after(0.15, t_s), base_m + 0.09 / (0.9 * gap_s) * gain_s, 1e-9);
+  // Unmoved after a long gap: at rest.
+  EXPECT_EQ(tolerance_after(0.15, t_s + 3.0 * gap_s), base_m);
+  ExpectValid(monitor);
+}
+
 TEST(MonitorScene, InconsistentOptionsAreRejected) {
   const auto wc = LoadBundledWorkcell();
   MonitorOptions options;

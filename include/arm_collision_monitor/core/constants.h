@@ -197,6 +197,14 @@ inline constexpr double kMaxMimicPosition = 16.0 * kMaxUnlimitedPosition_rad;
 /// do not make a path at its velocity limits jump. Dimensionless.
 inline constexpr double kJumpVelocityFactor = 2.0;
 
+/// A frame-bound object's speed from its timed poses (Monitor::SetObjectPoseAt, speed-scaled
+/// tolerance): a move after more than this many cycle periods without a timed pose takes
+/// max_speed_mps, as its speed over so long a gap would average a burst down (a tracker that
+/// went silent, then a pose 0.5 m on: 0.1 m/s over 5 s, though it may have moved in the last
+/// 0.1 s). 10: a tracker at 2 Hz beside a 20 Hz monitor keeps its measured speed. Cycles,
+/// dimensionless.
+inline constexpr double kObjectSpeedMaxGapCycles = 10.0;
+
 /// auto's rule (ChooseBroadPhaseMethod), from the sweep of bench_broadphase_workloads (moving
 /// 7..1,200 x static 0..3,000 primitives; counts, dimensionless): the uniform grid from
 /// kAutoGridMinStatics + kAutoGridStaticsPerMover x moving statics up, or from

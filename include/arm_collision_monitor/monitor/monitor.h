@@ -198,7 +198,8 @@ class Monitor {
   /// tolerance the object's speed is then its move over the time since its timed pose before,
   /// kept in the cycles until its next one (a 10 Hz tracker in a 20 Hz monitor: not at rest
   /// every other cycle); the same pose at a later time takes it to rest. A move with no timed
-  /// pose before (or at a time not later) takes max_speed_mps. Detach forgets its times.
+  /// pose before, at a time not later, or more than kObjectSpeedMaxGapCycles cycle periods
+  /// after the one before takes max_speed_mps. Detach forgets its times.
   bool SetObjectPoseAt(const std::string& object, const Eigen::Isometry3d& X_WO, double time_s,
                        std::string* error);
 
