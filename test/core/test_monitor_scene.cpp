@@ -875,34 +875,42 @@ TEST(MonitorScene, SpeedScaledToleranceTakesAnObjectAttachedToAMovingArmAtTheLar
   ExpectValid(monitor);
 }
 
+// The bundled workcell with speed-scaled tolerance, and its tracked box `camera` (a frame-bound
+// object): its base tolerance, the tolerance gain of a speed, and its pose moved along x.
+class TrackedCamera : public ::testing::Test {
+ protected:
+  TrackedCamera() { options.speed_scaled_tolerance = true; }
+  Eigen::Isometry3d PoseAt(double x_m) const {
+    Eigen::Isometry3d X = wc->objects[wc->FindObject("camera")].X_WO_start;
+    X.translation().x() += x_m;
+    return X;
+  }
+  // The camera's tolerance at speed `speed_mps`.
+  double ToleranceAt(double speed_mps) const {
+    return base_m + speed_mps * (options.reaction_time_s + options.stopping_time_s);
+  }
+  const std::shared_ptr<const Workcell> wc = LoadBundledWorkcell();
+  MonitorOptions options;
+  const PrimitiveId camera = Prim(*wc, "camera");
+  const double base_m = wc->primitives[camera].tolerance_m;
+};
+
 // A frame-bound object posed with its sample times (a 10 Hz tracker) in a 20 Hz monitor whose
 // arms move every cycle: its speed over the interval between its poses is kept in the cycle
 // between them (untimed, it took it at rest: its base tolerance, every other cycle); the same
 // pose at a later time takes it to rest, in an idle cycle too; a move at a time not later
 // takes the largest speed; an untimed pose gives the speed of its move in the cycle.
-TEST(MonitorScene, SpeedScaledToleranceKeepsATimedObjectsSpeedBetweenItsPoses) {
-  const auto wc = LoadBundledWorkcell();
-  MonitorOptions options;
-  options.speed_scaled_tolerance = true;
-  const double gain_s = options.reaction_time_s + options.stopping_time_s;
-  const PrimitiveId camera = Prim(*wc, "camera");
-  const double base_m = wc->primitives[camera].tolerance_m;
-  const Eigen::Isometry3d X_start = wc->objects[wc->FindObject("camera")].X_WO_start;
+TEST_F(TrackedCamera, SpeedScaledToleranceKeepsATimedObjectsSpeedBetweenItsPoses) {
   const int l1 = test::JointIndex(*wc, "left_joint1");
   Monitor monitor(wc, options);
   Eigen::VectorXd q = MakeQ(*wc, {{"left_joint2", 0.5}});
   std::string error;
-  auto pose_at = [&](double x_m) {
-    Eigen::Isometry3d X = X_start;
-    X.translation().x() += x_m;
-    return X;
-  };
   const double speed_mps = 0.2;
   std::vector<double> tolerances;
   for (int k = 0; k < 10; ++k) {
     const double t_s = 0.05 * k;
     if (k % 2 == 0) {
-      ASSERT_TRUE(monitor.SetObjectPoseAt("camera", pose_at(speed_mps * t_s), t_s, &error))
+      ASSERT_TRUE(monitor.SetObjectPoseAt("camera", PoseAt(speed_mps * t_s), t_s, &error))
           << error;
     }
     q[l1] += 0.01;
@@ -911,30 +919,29 @@ TEST(MonitorScene, SpeedScaledToleranceKeepsATimedObjectsSpeedBetweenItsPoses) {
   }
   // From the second timed pose on, every cycle: 0.2 m/s (0.02 m over 0.1 s, to rounding).
   for (std::size_t k = 2; k < tolerances.size(); ++k) {
-    EXPECT_NEAR(tolerances[k], base_m + speed_mps * gain_s, 1e-12) << "cycle " << k;
+    EXPECT_NEAR(tolerances[k], ToleranceAt(speed_mps), 1e-12) << "cycle " << k;
   }
   // Sampled again where it is: at rest, in an idle cycle (the same q) too.
-  ASSERT_TRUE(monitor.SetObjectPoseAt("camera", pose_at(speed_mps * 0.4), 0.5, &error));
+  ASSERT_TRUE(monitor.SetObjectPoseAt("camera", PoseAt(speed_mps * 0.4), 0.5, &error));
   ASSERT_EQ(monitor.Update(q, 0.5).input, InputStatus::kOk);
   EXPECT_EQ(monitor.tolerance_m(camera), base_m);
   // Moved at the same time again: its speed is unknown, the largest, kept the next cycle.
-  ASSERT_TRUE(monitor.SetObjectPoseAt("camera", pose_at(0.1), 0.5, &error));
+  ASSERT_TRUE(monitor.SetObjectPoseAt("camera", PoseAt(0.1), 0.5, &error));
   q[l1] += 0.01;
   ASSERT_EQ(monitor.Update(q, 0.55).input, InputStatus::kOk);
-  EXPECT_EQ(monitor.tolerance_m(camera), base_m + options.max_speed_mps * gain_s);
+  EXPECT_EQ(monitor.tolerance_m(camera), ToleranceAt(options.max_speed_mps));
   q[l1] += 0.01;
   ASSERT_EQ(monitor.Update(q, 0.6).input, InputStatus::kOk);
-  EXPECT_EQ(monitor.tolerance_m(camera), base_m + options.max_speed_mps * gain_s);
+  EXPECT_EQ(monitor.tolerance_m(camera), ToleranceAt(options.max_speed_mps));
   // Untimed: its move in the cycle (0.01 m in 0.05 s), then at rest in the next.
-  ASSERT_TRUE(monitor.SetObjectPose("camera", pose_at(0.11), &error));
+  ASSERT_TRUE(monitor.SetObjectPose("camera", PoseAt(0.11), &error));
   q[l1] += 0.01;
   ASSERT_EQ(monitor.Update(q, 0.65).input, InputStatus::kOk);
-  EXPECT_NEAR(monitor.tolerance_m(camera), base_m + 0.01 / options.cycle_period_s * gain_s,
-              1e-12);
+  EXPECT_NEAR(monitor.tolerance_m(camera), ToleranceAt(0.01 / options.cycle_period_s), 1e-12);
   q[l1] += 0.01;
   ASSERT_EQ(monitor.Update(q, 0.7).input, InputStatus::kOk);
   EXPECT_EQ(monitor.tolerance_m(camera), base_m);
-  EXPECT_FALSE(monitor.SetObjectPoseAt("camera", pose_at(0.0),
+  EXPECT_FALSE(monitor.SetObjectPoseAt("camera", PoseAt(0.0),
                                        std::numeric_limits<double>::quiet_NaN(), &error));
   ExpectValid(monitor);
 }
@@ -943,34 +950,24 @@ TEST(MonitorScene, SpeedScaledToleranceKeepsATimedObjectsSpeedBetweenItsPoses) {
 // without a timed pose takes the largest speed (averaged over the gap, 0.02 m in 0.55 s would
 // read 0.036 m/s); within that gap the measured speed stands, and an unmoved pose after any gap
 // is at rest.
-TEST(MonitorScene, SpeedScaledToleranceTakesTheLargestSpeedForAMoveAfterALongGap) {
-  const auto wc = LoadBundledWorkcell();
-  MonitorOptions options;
-  options.speed_scaled_tolerance = true;
-  const double gain_s = options.reaction_time_s + options.stopping_time_s;
-  const PrimitiveId camera = Prim(*wc, "camera");
-  const double base_m = wc->primitives[camera].tolerance_m;
-  const double largest_m = base_m + options.max_speed_mps * gain_s;
-  const Eigen::Isometry3d X_start = wc->objects[wc->FindObject("camera")].X_WO_start;
+TEST_F(TrackedCamera, SpeedScaledToleranceTakesTheLargestSpeedForAMoveAfterALongGap) {
   Monitor monitor(wc, options);
   const Eigen::VectorXd q = MakeQ(*wc, {{"left_joint2", 0.5}});
   std::string error;
   // Posed at `x_m` along x at time `t_s`, then a cycle at that time: the camera's tolerance.
   auto tolerance_after = [&](double x_m, double t_s) {
-    Eigen::Isometry3d X = X_start;
-    X.translation().x() += x_m;
-    EXPECT_TRUE(monitor.SetObjectPoseAt("camera", X, t_s, &error)) << error;
+    EXPECT_TRUE(monitor.SetObjectPoseAt("camera", PoseAt(x_m), t_s, &error)) << error;
     EXPECT_EQ(monitor.Update(q, t_s).input, InputStatus::kOk);
     return monitor.tolerance_m(camera);
   };
   const double gap_s = kObjectSpeedMaxGapCycles * options.cycle_period_s;
   tolerance_after(0.0, 0.0);
-  EXPECT_NEAR(tolerance_after(0.02, 0.1), base_m + 0.2 * gain_s, 1e-12);
-  EXPECT_EQ(tolerance_after(0.04, 0.1 + gap_s + 0.05), largest_m);
-  EXPECT_NEAR(tolerance_after(0.06, 0.2 + gap_s + 0.05), base_m + 0.2 * gain_s, 1e-12);
+  EXPECT_NEAR(tolerance_after(0.02, 0.1), ToleranceAt(0.2), 1e-12);
+  EXPECT_EQ(tolerance_after(0.04, 0.1 + gap_s + 0.05), ToleranceAt(options.max_speed_mps));
+  EXPECT_NEAR(tolerance_after(0.06, 0.2 + gap_s + 0.05), ToleranceAt(0.2), 1e-12);
   // Just within the gap: 0.09 m over 0.9 of it, the measured speed.
   const double t_s = 0.2 + gap_s + 0.05 + 0.9 * gap_s;
-  EXPECT_NEAR(tolerance_after(0.15, t_s), base_m + 0.09 / (0.9 * gap_s) * gain_s, 1e-9);
+  EXPECT_NEAR(tolerance_after(0.15, t_s), ToleranceAt(0.09 / (0.9 * gap_s)), 1e-9);
   // Unmoved after a long gap: at rest.
   EXPECT_EQ(tolerance_after(0.15, t_s + 3.0 * gap_s), base_m);
   ExpectValid(monitor);
