@@ -420,6 +420,28 @@ class ReplayConfigTest(unittest.TestCase):
                       "ignored: 'gripper_x', 'tool_joint' (a fixed joint of the URDF)\n", text)
         self.assertIn("input: mimic joints in the messages, not read (their positions follow from "
                       "the joints they mimic in the URDF): 'finger_mimic'\n", text)
+        self.assertEqual((report['more_ignored_names'], report['more_mimic_names']),
+                         (False, False))
+
+    def test_a_bags_names_beyond_those_listed_are_said_to_be(self):
+        # Ten names of no model joint, one new per message after the first (a Baxter trial's
+        # head and gripper joints): the first 8 are listed, and that there were more.
+        data = os.path.join(rospkg.RosPack().get_path(PKG), 'test', 'data')
+        path = os.path.join(temp_dir(self, 'acm_bag_more_names_'), 'names.bag')
+        extra = ['extra_%d' % i for i in range(10)]
+        with rosbag.Bag(path, 'w') as bag:
+            for k in range(3, 11):
+                msg = JointState(name=['shoulder', 'slide', 'elbow', 'spin'] + extra[:k],
+                                 position=[0.0] * (4 + k))
+                msg.header.stamp = rospy.Time(10) + rospy.Duration(0.05 * k)
+                bag.write('/joint_states', msg, msg.header.stamp)
+        args = ['--urdf', os.path.join(data, 'three_link_arm.urdf'), '--scene',
+                os.path.join(data, 'three_link_scene.yaml'), path]
+        report = json.loads(rosrun('replay', '--json', *args).stdout)
+        self.assertEqual((report['ignored_names'], report['more_ignored_names']),
+                         (extra[:8], True))
+        text = rosrun('replay', *args).stdout
+        self.assertIn("ignored: %s, and more\n" % ', '.join("'%s'" % n for n in extra[:8]), text)
 
     def test_between_samples_lines_say_what_they_are(self):
         # Home, both arms swung into each other in one step, home again (20 Hz).
@@ -514,6 +536,29 @@ class ReplayConfigTest(unittest.TestCase):
         self.assertIn('input: 1 message refused (non_finite: 1) (the first %s), ' % first, text)
         self.assertIn('summary: no warning in 2 cycles; 1 message or planned point refused, no '
                       'cycle (the node asks a stop on a message;', text)
+
+    def test_the_first_refused_message_is_the_first_met(self):
+        # A NaN in the second message, then a message stamped before it (refused,
+        # stamp_backwards): the NaN one came first and is named (the earliest stamp named the
+        # later one: a Baxter trial's).
+        path = os.path.join(temp_dir(self, 'acm_refused_order_'), 'order.bag')
+        with rosbag.Bag(path, 'w') as bag:
+            for k in range(5):
+                recorded_at = rospy.Time(100) + rospy.Duration(0.05 * k)
+                msg = JointState(name=LEFT_JOINTS + RIGHT_JOINTS, position=[0.0] * 14)
+                msg.header.stamp = recorded_at
+                if k == 1:
+                    msg.position[1] = float('nan')
+                if k == 3:
+                    msg.header.stamp = rospy.Time(100, 10000000)
+                bag.write('/joint_states', msg, recorded_at)
+        result = rosrun('replay', '--json', '--scene', self.bundled_scene, path)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        report = json.loads(result.stdout)
+        self.assertEqual(report['refused_messages'], {'non_finite': 1, 'stamp_backwards': 1})
+        self.assertTrue(report['first_refused_message'].startswith(
+            'stamped 100.050000 s: %s: sensor_msgs/JointState on /joint_states at bag time '
+            '100.050000: non_finite' % path), report['first_refused_message'])
 
     def test_stamps_are_taken_as_the_node_takes_them(self):
         # Five messages 0.05 s apart: the second stamped 100 s further ahead of the time the

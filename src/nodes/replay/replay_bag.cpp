@@ -83,6 +83,7 @@ class Cycles {
     if (message != nullptr && sample.stamp_s != 0.0) {
       now_s -= std::max(stamp.toSec() - message->getTime().toSec() - offset_s, 0.0);
     }
+    arrival_s_ = std::max(arrival_s_, now_s);
     if (JointMerger::GivesNoPositions(sample)) {  // nothing to merge, and no cycle of its own
       ++result_->position_less;
       return;
@@ -103,7 +104,7 @@ class Cycles {
     }
     ++result_->refused[MergeStatusName(status)];
     NoteRefusal(
-        stamp.toSec(),
+        arrival_s_, stamp.toSec(),
         [&] {
           const std::string why = input_.DescribeRefusal(sample, status, now_s);
           return (message != nullptr ? MessageWhere(path_, *message) + ": " : std::string()) +
@@ -125,8 +126,8 @@ class Cycles {
         // topic): the model's, told apart, have prefixes.
         // Such names with a prefix in the model: --joint-prefix puts it on them, topic by topic.
         const std::string prefixed = PrefixedNamesHint(joint_names_, ignored, "the model");
-        unknown = "; the input gives " + std::string(ignored.size() == kNotedNames
-                                                          ? "these names, and maybe more, "
+        unknown = "; the input gives " + std::string(result_->more_ignored_names
+                                                          ? "these names, and more, "
                                                           : "these names ") +
                   "that are no joints of the model: " + QuotedNames(ignored) + prefixed +
                   (prefixed.empty() ? " (publish the model's joint names)"
@@ -141,15 +142,17 @@ class Cycles {
 
  private:
   // Notes up to kNotedNames names of the input that are no model joints, and as many of mimic
-  // joints, apart.
+  // joints, apart, and whether there were more.
   void NoteUnknownNames(const std::vector<std::string>& names) {
     for (const std::string& name : names) {
       if (input_.IsModelJoint(name)) continue;
-      std::vector<std::string>& noted =
-          input_.IsMimicJoint(name) ? result_->mimic_names : result_->ignored_names;
-      if (noted.size() < kNotedNames &&
-          std::find(noted.begin(), noted.end(), name) == noted.end()) {
+      const bool is_mimic = input_.IsMimicJoint(name);
+      std::vector<std::string>& noted = is_mimic ? result_->mimic_names : result_->ignored_names;
+      if (std::find(noted.begin(), noted.end(), name) != noted.end()) continue;
+      if (noted.size() < kNotedNames) {
         noted.push_back(name);
+      } else {
+        (is_mimic ? result_->more_mimic_names : result_->more_ignored_names) = true;
       }
     }
   }
@@ -179,6 +182,8 @@ class Cycles {
   ros::Time group_stamp_, first_stamp_;
   bool has_group_ = false;
   bool is_group_accepted_ = false;  // a sample of the group was merged
+  // The latest time of the samples so far (a refusal is met then: NoteRefusal).
+  double arrival_s_ = -std::numeric_limits<double>::infinity();
 };
 
 // `read` (ReadDisplayTrajectory, or ReadGoalTrajectory's type bound) of the message `m` of the

@@ -89,6 +89,9 @@ void PrintJsonCounts(const Options& options, const Input& input, std::size_t cyc
     }
     std::printf("],\n");
   }
+  std::printf("  \"more_ignored_names\": %s,\n  \"more_mimic_names\": %s,\n",
+              input.more_ignored_names ? "true" : "false",
+              input.more_mimic_names ? "true" : "false");
   std::printf("  \"incomplete_cycles\": %llu,\n  \"cycles\": %zu,\n"
               "  \"refused_cycles\": %llu,\n  \"warning_cycles\": %llu,\n"
               "  \"between_samples_cycles\": %llu,\n  \"warned_cycles\": %llu,\n"
@@ -295,16 +298,17 @@ void PrintInputLines(const Input& input, const std::vector<CycleResult>& cycles,
                 QuotedNames(input.mimic_columns).c_str());
   }
   // A bag's names, noted up to kNotedNames of each kind.
-  auto noted = [&](const std::vector<std::string>& names) {
-    return described(names) + (names.size() == kNotedNames ? ", maybe more" : "");
+  auto noted = [&](const std::vector<std::string>& names, bool more) {
+    return described(names) + (more ? ", and more" : "");
   };
   if (!input.ignored_names.empty()) {
     std::printf("input: joint names in the messages that are no joints of the model, ignored: "
-                "%s\n", noted(input.ignored_names).c_str());
+                "%s\n", noted(input.ignored_names, input.more_ignored_names).c_str());
   }
   if (!input.mimic_names.empty()) {
     std::printf("input: mimic joints in the messages, not read (their positions follow from the "
-                "joints they mimic in the URDF): %s\n", noted(input.mimic_names).c_str());
+                "joints they mimic in the URDF): %s\n",
+                noted(input.mimic_names, input.more_mimic_names).c_str());
   }
   if (input.position_less > 0) {
     std::printf("input: %llu messages named joints without positions (ignored)\n",

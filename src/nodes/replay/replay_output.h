@@ -48,11 +48,12 @@ struct Input {
   std::uint64_t messages = 0;  ///< samples read: JointState messages, trajectory points, rows
   /// MergeStatusName (or "time_out_of_range": a trajectory point's stamp) -> count
   std::map<std::string, std::uint64_t> refused;
-  /// the refused message or planned point of the earliest stamp (s, on the bag's clock):
+  /// the refused message or planned point met first in the replay's time (s, on the bag's
+  /// clock; a message stamped backwards is met when it comes, NoteRefusal):
   /// "stamped <t> s: <message>: <status> (<why>)", <message> with ", point <k>" for a point ("" if
-  /// none), and that stamp
+  /// none), and the time it was met
   std::string first_refused_message;
-  double first_refused_stamp_s = std::numeric_limits<double>::infinity();
+  double first_refused_arrival_s = std::numeric_limits<double>::infinity();
   std::uint64_t incomplete_cycles = 0;           ///< before every joint was received
   std::uint64_t superseded_points = 0;  ///< planned points (partly) replaced by a later plan
   std::uint64_t position_less = 0;      ///< messages and points naming joints without positions
@@ -63,6 +64,8 @@ struct Input {
   /// a bag's joint names that are no model joints, and those of the URDF's mimic joints (not
   /// read, as a CSV's columns): the first kNotedNames of each
   std::vector<std::string> ignored_names, mimic_names;
+  /// whether the bag gave more such names than those noted
+  bool more_ignored_names = false, more_mimic_names = false;
 };
 
 /// The input's number of checked cycle `k` (the output's cycle numbers: with --every, the

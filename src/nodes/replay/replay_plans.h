@@ -35,12 +35,13 @@ inline bool PointStamp(const ros::Time& start,
   return true;
 }
 
-// Names the refusal of a sample stamped `stamp_s` as the first if none earlier was:
-// "stamped <t> s: " and what `describe` gives (made only then).
+// Names the refusal of a sample stamped `stamp_s`, met at `arrival_s` of the replay's time, as
+// the first if none met earlier was: "stamped <t> s: " and what `describe` gives (made only
+// then). A message stamped backwards is met when it comes, after the later stamps before it.
 template <typename Describe>
-void NoteRefusal(double stamp_s, Describe describe, Input* input) {
-  if (!(stamp_s < input->first_refused_stamp_s)) return;
-  input->first_refused_stamp_s = stamp_s;
+void NoteRefusal(double arrival_s, double stamp_s, Describe describe, Input* input) {
+  if (!(arrival_s < input->first_refused_arrival_s)) return;
+  input->first_refused_arrival_s = arrival_s;
   input->first_refused_message = "stamped " + std::to_string(stamp_s) + " s: " + describe();
 }
 
@@ -157,7 +158,7 @@ class Plans {
   void Refuse(const char* status, double stamp_s, const std::string& where,
               const std::string& reason) {
     ++counts_->refused[status];
-    NoteRefusal(stamp_s, [&] { return where + ": " + status + " (" + reason + ")"; }, counts_);
+    NoteRefusal(stamp_s, stamp_s, [&] { return where + ": " + status + " (" + reason + ")"; }, counts_);
   }
 
   // Whether a sample's positions match its names (one read message, refused if not; one
