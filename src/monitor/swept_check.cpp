@@ -90,6 +90,17 @@ bool Monitor::Impl::IsWithinVelocityLimits(const Eigen::Ref<const Eigen::VectorX
 
 bool Monitor::Impl::IsBeyondSampleCheck(double step_m, StepBeyondSamples* beyond) {
   if (!(step_m > 0.0)) return false;
+  // step_m is the largest of the bounds below (ComputeLargestBound_m, bit for bit): a step
+  // within the smallest tolerance of those with levers (the others' bound is 0) is within
+  // each, without the primitives' own bounds.
+  const MotionBounds& step = StepMotion();
+  double smallest_tol_m = std::numeric_limits<double>::infinity();
+  for (const PrimitiveId id : carried) {
+    if (in_broad_phase[id] && step.lever_count(id) > 0) {
+      smallest_tol_m = std::min(smallest_tol_m, tol_base[id]);
+    }
+  }
+  if (step_m <= smallest_tol_m) return false;
   for (const PrimitiveId id : carried) {
     if (!in_broad_phase[id]) continue;
     const double motion_m = StepBound_m(id);

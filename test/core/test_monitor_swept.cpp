@@ -243,6 +243,48 @@ TEST(MonitorSwept, ThinPlateCrossedInOneStep) {
   }
 }
 
+// With the swept check off, a step is beyond the samples when some primitive's bound exceeds
+// its own tolerance, also when every other primitive's tolerance would cover the whole step:
+// right_link7 (its fingers too) with a 4 mm zone, the others 30.5 mm; a wrist roll of each arm
+// moving its tool by about 10 mm.
+TEST(MonitorSwept, AStepBeyondTheSmallestToleranceIsBeyondTheSamples) {
+  const auto wc = test::LoadBundledSceneEdited("small_zone", [](std::string* scene) {
+    const std::string at = "  right_base_link: {ignore: true}\n";
+    const std::size_t k = scene->find(at);
+    ASSERT_NE(k, std::string::npos);
+    scene->insert(k + at.size(), "  right_link7: {tolerance_m: 0.004}\n");
+  });
+  MonitorOptions options = Unlimited();
+  options.swept_check = false;
+  options.cycle_period_s = 0.0002;  // within the 4 mm at the URDF's velocity limits
+  const Eigen::VectorXd home = MakeQ(*wc, {});
+  for (const char* arm : {"left", "right"}) {
+    Monitor monitor(wc, options);
+    const int j7 = JointIndex(*wc, std::string(arm) + "_joint7");
+    Eigen::VectorXd q = home;
+    q[j7] += 0.1;
+    // The step's bound is linear in the roll: scaled to 10 mm.
+    const double per_rad_m = RunStep(&monitor, home, q).step_motion_m / 0.1;
+    ASSERT_GT(per_rad_m, 0.0) << arm;
+    q = home;
+    q[j7] += 0.01 / per_rad_m;
+    const CycleReport report = RunStep(&monitor, home, q);
+    ASSERT_NEAR(report.step_motion_m, 0.01, 1e-9) << arm;
+    const StepBeyondSamples& beyond = report.beyond_samples;
+    if (std::string(arm) == "left") {
+      EXPECT_FALSE(beyond.is_beyond) << wc->primitives[beyond.primitive].name;
+      EXPECT_FALSE(report.stop);
+      continue;
+    }
+    ASSERT_TRUE(beyond.is_beyond);
+    EXPECT_EQ(wc->primitives[beyond.primitive].owner, "right_link7");
+    EXPECT_EQ(beyond.tolerance_m, 0.004);
+    EXPECT_GT(beyond.motion_m, 0.004);
+    EXPECT_TRUE(report.input_jumped);
+    EXPECT_TRUE(report.stop);
+  }
+}
+
 // The same swing past a live plate that a scene change moves into the path after a swept step
 // found it far: the swept check's kept boxes of primitives without levers (cached until a scene
 // change) must follow it.
