@@ -26,10 +26,6 @@
 namespace arm_collision_monitor {
 namespace {
 
-/// Relative margin on a sum of two motion bounds (IsProvablyClear): each is a sum of a few dozen
-/// non-negative products, within 1e-14 of its exact value, as their sum is.
-constexpr double kBoundSumRounding = 1e-12;
-
 /// Bit-identical poses: a link whose pose did not change bit for bit has not moved.
 bool IsSamePose(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
   return std::memcmp(a.matrix().data(), b.matrix().data(), sizeof(double) * 16) == 0;

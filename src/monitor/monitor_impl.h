@@ -23,6 +23,11 @@
 
 namespace arm_collision_monitor {
 
+/// Relative margin on motion bounds summed in another order, or a sum of two (IsProvablyClear,
+/// IsBeyondSampleCheck): each is a sum of a few dozen non-negative products, within 1e-14 of
+/// its exact value, as their sum is.
+inline constexpr double kBoundSumRounding = 1e-12;
+
 /// Finite, its rotation orthonormal and proper (kLiveObjectRotationTolerance): a pose an object
 /// may be moved to (AddObject, MoveObject, SetObjectPose).
 bool IsRigidPose(const Eigen::Isometry3d& X);

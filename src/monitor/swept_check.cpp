@@ -90,9 +90,10 @@ bool Monitor::Impl::IsWithinVelocityLimits(const Eigen::Ref<const Eigen::VectorX
 
 bool Monitor::Impl::IsBeyondSampleCheck(double step_m, StepBeyondSamples* beyond) {
   if (!(step_m > 0.0)) return false;
-  // step_m is the largest of the bounds below (ComputeLargestBound_m, bit for bit): a step
-  // within the smallest tolerance of those with levers (the others' bound is 0) is within
-  // each, without the primitives' own bounds.
+  // step_m is the largest of the bounds below (ComputeLargestBound_m; a sum in another order,
+  // which a mimic joint's levers may take, can differ in its last bits: kBoundSumRounding
+  // covers that): a step within the smallest tolerance of those with levers (the others'
+  // bound is 0) is within each, without the primitives' own bounds.
   const MotionBounds& step = StepMotion();
   double smallest_tol_m = std::numeric_limits<double>::infinity();
   for (const PrimitiveId id : carried) {
@@ -100,7 +101,7 @@ bool Monitor::Impl::IsBeyondSampleCheck(double step_m, StepBeyondSamples* beyond
       smallest_tol_m = std::min(smallest_tol_m, tol_base[id]);
     }
   }
-  if (step_m <= smallest_tol_m) return false;
+  if (step_m * (1.0 + kBoundSumRounding) <= smallest_tol_m) return false;
   for (const PrimitiveId id : carried) {
     if (!in_broad_phase[id]) continue;
     const double motion_m = StepBound_m(id);

@@ -245,8 +245,11 @@ TEST(MonitorSwept, ThinPlateCrossedInOneStep) {
 
 // With the swept check off, a step is beyond the samples when some primitive's bound exceeds
 // its own tolerance, also when every other primitive's tolerance would cover the whole step:
-// right_link7 (its fingers too) with a 4 mm zone, the others 30.5 mm; a wrist roll of each arm
-// moving its tool by about 10 mm.
+// right_link7 (its fingers too) with a 4 mm zone, the others 30.5 mm; a wrist pitch of either
+// arm moving its tool by 10 mm, and the right one's by 3 mm (within every tolerance: no
+// primitive's own bound is needed). With speed-scaled tolerance the same: the zones grown by
+// the speed (each wrist primitive moved in the cycle before) do not cover what the samples
+// leave out.
 TEST(MonitorSwept, AStepBeyondTheSmallestToleranceIsBeyondTheSamples) {
   const auto wc = test::LoadBundledSceneEdited("small_zone", [](std::string* scene) {
     const std::string at = "  right_base_link: {ignore: true}\n";
@@ -258,25 +261,34 @@ TEST(MonitorSwept, AStepBeyondTheSmallestToleranceIsBeyondTheSamples) {
   options.swept_check = false;
   options.cycle_period_s = 0.0002;  // within the 4 mm at the URDF's velocity limits
   const Eigen::VectorXd home = MakeQ(*wc, {});
-  for (const char* arm : {"left", "right"}) {
-    Monitor monitor(wc, options);
-    const int j7 = JointIndex(*wc, std::string(arm) + "_joint7");
+  // The step of `arm`'s wrist pitch that moves its tool by `step_m`.
+  auto pitch = [&](const MonitorOptions& o, const std::string& arm, double step_m) {
+    Monitor monitor(wc, o);
+    const int j6 = JointIndex(*wc, arm + "_joint6");
     Eigen::VectorXd q = home;
-    q[j7] += 0.1;
-    // The step's bound is linear in the roll: scaled to 10 mm.
+    q[j6] += 0.1;
+    // The step's bound is linear in the pitch.
     const double per_rad_m = RunStep(&monitor, home, q).step_motion_m / 0.1;
-    ASSERT_GT(per_rad_m, 0.0) << arm;
+    EXPECT_GT(per_rad_m, 0.0) << arm;
     q = home;
-    q[j7] += 0.01 / per_rad_m;
+    q[j6] += step_m / per_rad_m;
     const CycleReport report = RunStep(&monitor, home, q);
-    ASSERT_NEAR(report.step_motion_m, 0.01, 1e-9) << arm;
-    const StepBeyondSamples& beyond = report.beyond_samples;
-    if (std::string(arm) == "left") {
-      EXPECT_FALSE(beyond.is_beyond) << wc->primitives[beyond.primitive].name;
-      EXPECT_FALSE(report.stop);
-      continue;
+    EXPECT_NEAR(report.step_motion_m, step_m, 1e-9) << arm;
+    return report;
+  };
+  for (const bool is_speed_scaled : {false, true}) {
+    options.speed_scaled_tolerance = is_speed_scaled;
+    for (const auto& [arm, step_m] : {std::pair{"left", 0.01}, std::pair{"right", 0.003}}) {
+      const CycleReport report = pitch(options, arm, step_m);
+      EXPECT_FALSE(report.beyond_samples.is_beyond)
+          << arm << " " << wc->primitives[report.beyond_samples.primitive].name;
+      EXPECT_FALSE(report.input_jumped) << arm;
+      // (Grown by the speed, the zones of link5 and link7, 0.13 m apart, meet: a warning.)
+      if (!is_speed_scaled) EXPECT_FALSE(report.stop) << arm;
     }
-    ASSERT_TRUE(beyond.is_beyond);
+    const CycleReport report = pitch(options, "right", 0.01);
+    const StepBeyondSamples& beyond = report.beyond_samples;
+    ASSERT_TRUE(beyond.is_beyond) << is_speed_scaled;
     EXPECT_EQ(wc->primitives[beyond.primitive].owner, "right_link7");
     EXPECT_EQ(beyond.tolerance_m, 0.004);
     EXPECT_GT(beyond.motion_m, 0.004);

@@ -17,6 +17,7 @@ import rospy
 import rostest
 import yaml
 from sensor_msgs.msg import JointState
+from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
 
 from acm_test_util import (HOME, LEFT_JOINTS, LEFT_TOWARDS_RIGHT, RIGHT_JOINTS,
                            RIGHT_TOWARDS_LEFT, rosrun, temp_dir)
@@ -559,6 +560,27 @@ class ReplayConfigTest(unittest.TestCase):
         self.assertTrue(report['first_refused_message'].startswith(
             'stamped 100.050000 s: %s: sensor_msgs/JointState on /joint_states at bag time '
             '100.050000: non_finite' % path), report['first_refused_message'])
+        # A planned point of the right arm refused at the time of a left arm's NaN message (6
+        # positions for 7 names): the replay takes the recorded state first at equal times, and
+        # names it first.
+        path = os.path.join(temp_dir(self, 'acm_refused_tie_'), 'tie.bag')
+        with rosbag.Bag(path, 'w') as bag:
+            plan = JointTrajectory(joint_names=RIGHT_JOINTS)
+            plan.header.stamp = rospy.Time(100)
+            plan.points = [JointTrajectoryPoint(positions=[0.0] * (6 if k == 2 else 7),
+                                                time_from_start=rospy.Duration(0.05 * k))
+                           for k in range(5)]
+            bag.write('/plan', plan, rospy.Time(99))
+            for k in range(5):
+                msg = JointState(name=LEFT_JOINTS, position=[0.0] * 7)
+                msg.header.stamp = rospy.Time(100) + rospy.Duration(0.05 * k)
+                msg.position[1] = float('nan') if k == 2 else 0.0
+                bag.write('/joint_states', msg, msg.header.stamp)
+        result = rosrun('replay', '--json', '--scene', self.bundled_scene, path)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        report = json.loads(result.stdout)
+        self.assertEqual(report['refused_messages'], {'non_finite': 1, 'wrong_size': 1})
+        self.assertIn('100.100000: non_finite', report['first_refused_message'])
 
     def test_stamps_are_taken_as_the_node_takes_them(self):
         # Five messages 0.05 s apart: the second stamped 100 s further ahead of the time the

@@ -614,7 +614,7 @@ class ReplayTrajectoryTest(unittest.TestCase):
         self.assertEqual(report['position_less_messages'], 1)
         self.assertEqual(report['refused_messages'], {'wrong_size': 1, 'time_out_of_range': 1})
         self.assertEqual(report['cycles'], 20)  # refused points make no cycle
-        # The one of the earliest stamp is named, with its message and point (a Reachy 2 user
+        # The first met (the earliest stamp) is named, with its message and point (a Reachy 2 user
         # found a refused point only counted): the point dated before the plan's start, read
         # after the short one.
         self.assertRegex(report['first_refused_message'],

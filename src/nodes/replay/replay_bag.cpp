@@ -104,7 +104,7 @@ class Cycles {
     }
     ++result_->refused[MergeStatusName(status)];
     NoteRefusal(
-        arrival_s_, stamp.toSec(),
+        arrival_s_, message == nullptr, stamp.toSec(),
         [&] {
           const std::string why = input_.DescribeRefusal(sample, status, now_s);
           return (message != nullptr ? MessageWhere(path_, *message) + ": " : std::string()) +

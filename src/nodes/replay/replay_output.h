@@ -54,6 +54,7 @@ struct Input {
   /// none), and the time it was met
   std::string first_refused_message;
   double first_refused_arrival_s = std::numeric_limits<double>::infinity();
+  bool is_first_refused_planned = true;  ///< a planned point's (met after a message's)
   std::uint64_t incomplete_cycles = 0;           ///< before every joint was received
   std::uint64_t superseded_points = 0;  ///< planned points (partly) replaced by a later plan
   std::uint64_t position_less = 0;      ///< messages and points naming joints without positions

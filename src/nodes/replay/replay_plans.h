@@ -37,11 +37,18 @@ inline bool PointStamp(const ros::Time& start,
 
 // Names the refusal of a sample stamped `stamp_s`, met at `arrival_s` of the replay's time, as
 // the first if none met earlier was: "stamped <t> s: " and what `describe` gives (made only
-// then). A message stamped backwards is met when it comes, after the later stamps before it.
+// then). A message stamped backwards is met when it comes, after the later stamps before it;
+// at the same time a recorded message is met before a planned point (`is_planned`), as the
+// replay takes them.
 template <typename Describe>
-void NoteRefusal(double arrival_s, double stamp_s, Describe describe, Input* input) {
-  if (!(arrival_s < input->first_refused_arrival_s)) return;
+void NoteRefusal(double arrival_s, bool is_planned, double stamp_s, Describe describe,
+                 Input* input) {
+  const std::pair<double, bool> met{arrival_s, is_planned};
+  if (!(met < std::pair{input->first_refused_arrival_s, input->is_first_refused_planned})) {
+    return;
+  }
   input->first_refused_arrival_s = arrival_s;
+  input->is_first_refused_planned = is_planned;
   input->first_refused_message = "stamped " + std::to_string(stamp_s) + " s: " + describe();
 }
 
@@ -158,7 +165,9 @@ class Plans {
   void Refuse(const char* status, double stamp_s, const std::string& where,
               const std::string& reason) {
     ++counts_->refused[status];
-    NoteRefusal(stamp_s, stamp_s, [&] { return where + ": " + status + " (" + reason + ")"; }, counts_);
+    NoteRefusal(
+        stamp_s, true, stamp_s, [&] { return where + ": " + status + " (" + reason + ")"; },
+        counts_);
   }
 
   // Whether a sample's positions match its names (one read message, refused if not; one
