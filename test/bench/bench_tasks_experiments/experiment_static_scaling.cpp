@@ -33,9 +33,9 @@ void ExperimentStaticScaling(const Args& args, const Scenario& base, std::uint64
       const int total = static_cast<int>(s.workcell->primitives.size());
       std::vector<RunResult> results = RunScalingImplementations(s, ref, SeedLoopOptions());
       if (near) {
-        // The default Monitor (index slack) too: where its octree overtakes its naive broad
-        // phase is one of the crossovers auto's rule (ChooseBroadPhaseMethod) is checked against.
-        for (const char* method : {"octree", "naive"}) {
+        // The default Monitor (index slack) too: where its octree or grid overtakes its naive
+        // broad phase are crossovers auto's rule (ChooseBroadPhaseMethod) is checked against.
+        for (const char* method : {"octree", "naive", "grid"}) {
           MonitorOptions o = DefaultOptions();
           ParseBroadPhaseMethod(method, &o.broad_phase.method);
           results.push_back(RunMonitor(s, o, &ref, std::string(method) + " (default slack)"));
