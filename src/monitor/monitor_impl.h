@@ -148,6 +148,7 @@ struct Monitor::Impl {
   SweptScratch swept;                   // the swept check's scratch (swept_check.h)
   std::uint64_t swept_cycles = 0;       // cycles whose swept check bisected some pair
   std::vector<std::string> notices;     // start-up notices (CheckStepTolerance)
+  Eigen::VectorXd cycle_dq;             // per joint: its velocity limit x cycle_period_s
 
   Impl(std::shared_ptr<const Workcell> workcell, const MonitorOptions& options);
   // The data's start state (from the model's) and the index.
@@ -248,6 +249,9 @@ struct Monitor::Impl {
   // a moving primitive whose tolerance is below its per-cycle motion.
   void InitSwept();
   void CheckStepTolerance();
+  // Bound (m) on the motion of `id` in one cycle_period_s with every joint above it at its URDF
+  // velocity limit (joints without a limit count as 0), each at its longest lever.
+  double UrdfCycleMotion_m(PrimitiveId id) const;
   // The step's motion bounds, from swept.q_start to the cycle's q (lever sums for PairBound_m;
   // the motion set in RunCycle, each bound computed on first use): see SweptScratch::step.
   MotionBounds& StepMotion() { return swept.is_behind ? swept.step : motion; }

@@ -181,6 +181,33 @@ bool Monitor::IsHeld(const std::string& object) const {
   return o >= 0 && impl_->holder[o] >= 0;
 }
 
+std::string Monitor::DescribeHeldMotionBeyondTolerance(const std::string& object) const {
+  const Impl& m = *impl_;
+  const MonitorOptions& options = m.model.options;
+  const int o = m.FindObject(object);
+  if (options.swept_check || o < 0 || m.holder[o] < 0) return "";
+  const double speed_step_m = options.max_speed_mps * options.cycle_period_s;
+  double worst_gap_m = 0.0;
+  PrimitiveId worst = 0;
+  for (const PrimitiveId id : m.model.objects[o].prims) {
+    const double gap_m = std::max(speed_step_m, m.UrdfCycleMotion_m(id)) - m.tol_base[id];
+    if (gap_m > worst_gap_m) {
+      worst_gap_m = gap_m;
+      worst = id;
+    }
+  }
+  if (worst_gap_m <= 0.0) return "";
+  std::ostringstream msg;
+  msg << "with swept_check off, held '" << object << "' may move "
+      << m.tol_base[worst] + worst_gap_m << " m in one cycle (primitive '" << m.Spec(worst).name
+      << "': the larger of max_speed_mps * cycle_period_s, " << speed_step_m
+      << " m, and what the URDF velocity limits allow), more than its tolerance ("
+      << m.tol_base[worst]
+      << " m): a step that fast is beyond what the samples check, a stop (switch swept_check "
+         "on, or give the joints' real top speeds)";
+  return msg.str();
+}
+
 bool Monitor::Detach(const std::string& object, std::string* error) {
   Impl& m = *impl_;
   m.SyncKinematics();  // the object stays where it is let go: at the last good q

@@ -137,24 +137,31 @@ void Monitor::Impl::InitSwept() {
   CheckStepTolerance();
 }
 
+double Monitor::Impl::UrdfCycleMotion_m(PrimitiveId id) const {
+  const MotionBounds::Lever* levers = motion.levers(id);
+  double sum_m = 0.0;
+  for (int k = 0; k < motion.lever_count(id); ++k) {
+    sum_m += cycle_dq[levers[k].q_index] * levers[k].m_per_unit;
+  }
+  return sum_m;
+}
+
 void Monitor::Impl::CheckStepTolerance() {
   const MonitorOptions& options = model.options;
   const KinematicModel& kinematics = *model.kinematics;
   const double speed_step_m = options.max_speed_mps * options.cycle_period_s;
-  // What the URDF velocity limits allow per cycle (joints without a limit count as 0).
-  Eigen::VectorXd dq = Eigen::VectorXd::Zero(kinematics.q_size());
+  cycle_dq = Eigen::VectorXd::Zero(kinematics.q_size());
   for (int link = 1; link < kinematics.link_count(); ++link) {
     const JointSpec& joint = kinematics.joint(link);
-    if (joint.q_index >= 0) dq[joint.q_index] = joint.max_velocity * options.cycle_period_s;
+    if (joint.q_index >= 0) cycle_dq[joint.q_index] = joint.max_velocity * options.cycle_period_s;
   }
-  motion.SetJointMotion(dq, Eigen::VectorXd::Zero(kinematics.q_size()));
   double worst_gap_m = 0.0;
   PrimitiveId worst = 0;
   double worst_urdf_m = 0.0;
   int below = 0;  // moving primitives whose tolerance is below their motion
   for (PrimitiveId id = 0; id < model.primitive_count; ++id) {
     if (!is_moving[id] || motion.lever_count(id) == 0) continue;
-    const double urdf_step_m = motion.ComputeBound_m(id);
+    const double urdf_step_m = UrdfCycleMotion_m(id);
     const double gap_m = std::max(speed_step_m, urdf_step_m) - tol_base[id];
     below += gap_m > 0.0;
     if (gap_m > worst_gap_m) {

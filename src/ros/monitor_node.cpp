@@ -584,6 +584,11 @@ bool MonitorNode::OnAttach(AttachObject::Request& req, AttachObject::Response& r
                   (previous.empty() || previous == req.link
                        ? ""
                        : " (taken from '" + previous + "', which held it)");
+    const std::string notice = monitor_->DescribeHeldMotionBeyondTolerance(req.object);
+    if (!notice.empty()) {
+      ROS_WARN_STREAM("attach: " << notice);
+      res.message += "; " + notice;
+    }
   }
   return true;
 }

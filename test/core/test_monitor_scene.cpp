@@ -200,6 +200,60 @@ TEST(MonitorScene, AttachedBoxMovesWithTheGripperAndWarnsAgainstAnotherTable) {
   EXPECT_NE(error.find("reaches"), std::string::npos) << error;
 }
 
+// With the swept check off, a held object that can move farther in one cycle than its
+// tolerance is named when held (helper-58 M1): the box hangs 0.2 m below the gripper, at the
+// longest cycle period at which every link is within its tolerance (start-up's check), so its
+// lever is longer. The right arm's joints each at their velocity limit for one period is then a
+// step beyond the samples for the box alone, as the notice says.
+TEST(MonitorScene, AHeldObjectMovingFartherInACycleThanItsToleranceIsNamed) {
+  const auto wc = LoadBundledWorkcell();
+  MonitorOptions options;
+  options.swept_check = false;
+  options.max_step_m = std::numeric_limits<double>::infinity();
+  options.cycle_period_s = 0.005;
+  for (;;) {
+    try {
+      Monitor probe(wc, options);
+      break;
+    } catch (const LoadError&) {
+      options.cycle_period_s *= 0.99;
+    }
+  }
+  const PrimitiveId box = Prim(*wc, "right_box");
+  const Eigen::VectorXd q = ArmReachDown(*wc, "right", 0.1, -1.55, 0.95);
+  std::string error;
+  for (const bool is_swept : {true, false}) {
+    options.swept_check = is_swept;
+    Monitor monitor(wc, options);
+    ASSERT_TRUE(monitor.SetGraspTarget("right_link7", "right_box", true, &error)) << error;
+    monitor.Update(q);
+    EXPECT_EQ(monitor.DescribeHeldMotionBeyondTolerance("right_box"), "");  // not held
+    ASSERT_TRUE(monitor.Attach("right_box", "right_link7", &error)) << error;
+    const std::string notice = monitor.DescribeHeldMotionBeyondTolerance("right_box");
+    if (is_swept) {
+      EXPECT_EQ(notice, "");  // the swept check covers the motion between samples
+      continue;
+    }
+    const std::string says = "held 'right_box' may move ";
+    ASSERT_NE(notice.find(says), std::string::npos) << notice;
+    const double notice_m = std::atof(notice.c_str() + notice.find(says) + says.size());
+    EXPECT_GT(notice_m, monitor.tolerance_m(box)) << notice;
+    Eigen::VectorXd q_fast = q;
+    for (int k = 1; k <= 7; ++k) {
+      const std::string joint = "right_joint" + std::to_string(k);
+      const int link = wc->kinematics.FindLink("right_link" + std::to_string(k));
+      ASSERT_GE(link, 0) << joint;
+      q_fast[test::JointIndex(*wc, joint)] +=
+          wc->kinematics.joint(link).max_velocity * options.cycle_period_s;
+    }
+    const CycleReport& report = monitor.Update(q_fast);
+    ASSERT_TRUE(report.beyond_samples.is_beyond);
+    EXPECT_EQ(report.beyond_samples.primitive, box);
+    EXPECT_NEAR(report.beyond_samples.motion_m, notice_m, 1e-4 * notice_m) << notice;
+    EXPECT_TRUE(report.stop);
+  }
+}
+
 // A tool point without geometry can hold an object: the kinematics, which skips such a frame
 // while nothing hangs from it (KinematicModel::MovingLinksTo), places it at the Attach and
 // follows it from then on, with the held box, to the end of the carry and after a Detach and a

@@ -182,6 +182,11 @@ class Monitor {
   std::string HolderOf(const std::string& object) const;
   /// Whether a link holds `object` (HolderOf without the name: the node asks every cycle).
   bool IsHeld(const std::string& object) const;
+  /// With the swept check off, for a held `object` a primitive of which may move farther in one
+  /// cycle than its tolerance (the larger of max_speed_mps * cycle_period_s and what the URDF
+  /// velocity limits allow, as start-up checks the links): a notice naming the one furthest
+  /// beyond, as a step that fast is beyond the samples and a stop (beyond_samples); else "".
+  std::string DescribeHeldMotionBeyondTolerance(const std::string& object) const;
   /// Declares (or clears) `object` a grasp target of `link`: compatible while set. A scene
   /// object only with a link its scene file lists under grasp_targets; a live object with any
   /// link (until it is removed).
