@@ -133,7 +133,8 @@ void Monitor::Impl::ValidatePrimitives(std::ostringstream* msg) const {
       break;
     }
     const int o = model.object_of[id];
-    if (o >= 0 && (holder[o] >= 0) != (link >= 0)) {
+    // A held object's primitives have its holder as carrier; a live object's free slots none.
+    if (o >= 0 && (holder[o] >= 0 && is_present[id]) != (link >= 0)) {
       *msg << "object primitive " << id << " carrier disagrees with its holder";
       break;
     }

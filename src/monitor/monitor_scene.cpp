@@ -107,6 +107,8 @@ bool Monitor::Attach(const std::string& object, const std::string& link, std::st
   if (m.model.LiveSlot(o) >= 0) m.MarkAllStaticsReachable();
   const int previous = m.holder[o];
   for (const PrimitiveId id : m.model.objects[o].prims) {
+    // A live object's free slots stay out: carried, they would widen every step's bounds.
+    if (!m.is_present[id]) continue;
     m.shape_C[id] = TransformShape(X_LW, m.shape_W[id]);
     m.carrier[id] = l;
     m.tol_base[id] = std::max(m.Spec(id).tolerance_m, holder_tol_m);
@@ -190,6 +192,7 @@ std::string Monitor::DescribeHeldMotionBeyondTolerance(const std::string& object
   double worst_gap_m = 0.0;
   PrimitiveId worst = 0;
   for (const PrimitiveId id : m.model.objects[o].prims) {
+    if (!m.in_broad_phase[id]) continue;  // not checked at run time either
     const double gap_m = std::max(speed_step_m, m.UrdfCycleMotion_m(id)) - m.tol_base[id];
     if (gap_m > worst_gap_m) {
       worst_gap_m = gap_m;
@@ -203,8 +206,8 @@ std::string Monitor::DescribeHeldMotionBeyondTolerance(const std::string& object
       << "': the larger of max_speed_mps * cycle_period_s, " << speed_step_m
       << " m, and what the URDF velocity limits allow), more than its tolerance ("
       << m.tol_base[worst]
-      << " m): a step that fast is beyond what the samples check, a stop (switch swept_check "
-         "on, or give the joints' real top speeds)";
+      << " m): a step that fast is beyond what the samples check, a stop (raise the object's "
+         "tolerance_m, give the joints' real top speeds, or switch swept_check on)";
   return msg.str();
 }
 

@@ -252,6 +252,23 @@ TEST(MonitorScene, AHeldObjectMovingFartherInACycleThanItsToleranceIsNamed) {
     EXPECT_NEAR(report.beyond_samples.motion_m, notice_m, 1e-4 * notice_m) << notice;
     EXPECT_TRUE(report.stop);
   }
+  // A live 1 cm sphere at the gripper's origin, within every tolerance, held: no notice, and
+  // the step bounds are the arm's own (the object's free slots, not carried, widen none).
+  Monitor bare(wc, options), holding(wc, options);
+  for (Monitor* monitor : {&bare, &holding}) monitor->Update(q);
+  const std::vector<Shape> pebble = {Capsule{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
+                                             0.005}};
+  holding.SyncShapes();
+  const int gripper = wc->kinematics.FindLink("right_link7");
+  std::vector<Eigen::Isometry3d> X_WL(wc->kinematics.link_count());
+  wc->kinematics.ComputeLinkPoses(q, &X_WL);
+  ASSERT_TRUE(holding.AddObject("pebble", pebble, X_WL[gripper], 0.0, true, &error)) << error;
+  ASSERT_TRUE(holding.SetGraspTarget("right_link7", "pebble", true, &error)) << error;
+  ASSERT_TRUE(holding.Attach("pebble", "right_link7", &error)) << error;
+  EXPECT_EQ(holding.DescribeHeldMotionBeyondTolerance("pebble"), "");
+  Eigen::VectorXd q_step = q;
+  q_step[test::JointIndex(*wc, "right_joint1")] += 0.001;
+  EXPECT_EQ(holding.Update(q_step).step_motion_m, bare.Update(q_step).step_motion_m);
 }
 
 // A tool point without geometry can hold an object: the kinematics, which skips such a frame
