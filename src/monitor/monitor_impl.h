@@ -252,6 +252,14 @@ struct Monitor::Impl {
   // Bound (m) on the motion of `id` in one cycle_period_s with every joint above it at its URDF
   // velocity limit (joints without a limit count as 0), each at its longest lever.
   double UrdfCycleMotion_m(PrimitiveId id) const;
+  // How far (m) one cycle may move `id` beyond its tolerance (> 0: beyond): the larger of
+  // max_speed_mps * cycle_period_s and UrdfCycleMotion_m, less tol_base. Start-up's check of
+  // the links (CheckStepTolerance) and the held-object notice (DescribeHeldMotionBeyondTolerance).
+  double CycleMotionExcess_m(PrimitiveId id) const {
+    const MonitorOptions& options = model.options;
+    return std::max(options.max_speed_mps * options.cycle_period_s, UrdfCycleMotion_m(id)) -
+           tol_base[id];
+  }
   // The step's motion bounds, from swept.q_start to the cycle's q (lever sums for PairBound_m;
   // the motion set in RunCycle, each bound computed on first use): see SweptScratch::step.
   MotionBounds& StepMotion() { return swept.is_behind ? swept.step : motion; }

@@ -193,7 +193,7 @@ std::string Monitor::DescribeHeldMotionBeyondTolerance(const std::string& object
   PrimitiveId worst = 0;
   for (const PrimitiveId id : m.model.objects[o].prims) {
     if (!m.in_broad_phase[id]) continue;  // not checked at run time either
-    const double gap_m = std::max(speed_step_m, m.UrdfCycleMotion_m(id)) - m.tol_base[id];
+    const double gap_m = m.CycleMotionExcess_m(id);
     if (gap_m > worst_gap_m) {
       worst_gap_m = gap_m;
       worst = id;
@@ -202,8 +202,8 @@ std::string Monitor::DescribeHeldMotionBeyondTolerance(const std::string& object
   if (worst_gap_m <= 0.0) return "";
   std::ostringstream msg;
   msg << "with swept_check off, held '" << object << "' may move "
-      << m.tol_base[worst] + worst_gap_m << " m in one cycle (primitive '" << m.Spec(worst).name
-      << "': the larger of max_speed_mps * cycle_period_s, " << speed_step_m
+      << std::max(speed_step_m, m.UrdfCycleMotion_m(worst)) << " m in one cycle (primitive '"
+      << m.Spec(worst).name << "': the larger of max_speed_mps * cycle_period_s, " << speed_step_m
       << " m, and what the URDF velocity limits allow), more than its tolerance ("
       << m.tol_base[worst]
       << " m): a step that fast is beyond what the samples check, a stop (raise the object's "

@@ -157,29 +157,27 @@ void Monitor::Impl::CheckStepTolerance() {
   }
   double worst_gap_m = 0.0;
   PrimitiveId worst = 0;
-  double worst_urdf_m = 0.0;
   int below = 0;  // moving primitives whose tolerance is below their motion
   for (PrimitiveId id = 0; id < model.primitive_count; ++id) {
     if (!is_moving[id] || motion.lever_count(id) == 0) continue;
-    const double urdf_step_m = UrdfCycleMotion_m(id);
-    const double gap_m = std::max(speed_step_m, urdf_step_m) - tol_base[id];
+    const double gap_m = CycleMotionExcess_m(id);
     below += gap_m > 0.0;
     if (gap_m > worst_gap_m) {
       worst_gap_m = gap_m;
       worst = id;
-      worst_urdf_m = urdf_step_m;
     }
   }
   if (worst_gap_m <= 0.0) return;
+  const double urdf_step_m = UrdfCycleMotion_m(worst);
   std::ostringstream msg;
   msg << "the tolerance of primitive '" << model.workcell->primitives[worst].name << "' ("
       << tol_base[worst] << " m) is below its motion in one cycle, "
-      << std::max(speed_step_m, worst_urdf_m)
+      << std::max(speed_step_m, urdf_step_m)
       << " m: the larger of max_speed_mps * cycle_period_s (" << speed_step_m
       << " m, cycle_period_s " << options.cycle_period_s
       << " s, the input's expected period: the monitor options' cycle_period_s, to be set to "
          "the period of faster input) and what the URDF velocity limits allow in a cycle ("
-      << worst_urdf_m << " m, a bound: every joint at its limit at once, each at its longest "
+      << urdf_step_m << " m, a bound: every joint at its limit at once, each at its longest "
       << "lever; joints without a velocity limit not counted) (of the " << below
       << " moving primitive" << (below == 1 ? "" : "s")
       << " whose tolerance is below their motion, the one furthest "
