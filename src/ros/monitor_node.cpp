@@ -111,6 +111,17 @@ MonitorNode::MonitorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   fixed_frame_ = !options_.fixed_frame.empty()      ? options_.fixed_frame
                  : !monitor_options.fixed_frame.empty() ? monitor_options.fixed_frame
                                                         : workcell_->fixed_frame;
+  // Another link of the URDF has a pose of its own, moving or not: not the root's frame, which
+  // fixed_frame only renames (TF poses are looked up in it).
+  if (fixed_frame_ != workcell_->fixed_frame && workcell_->kinematics.FindLink(fixed_frame_) >= 0) {
+    throw LoadError((!options_.fixed_frame.empty()
+                         ? "parameter " + private_nh.resolveName("fixed_frame")
+                         : options_.config_path + ": fixed_frame") +
+                    ": '" + fixed_frame_ + "' is a link of the URDF " + options_.urdf_path +
+                    " other than its root '" + workcell_->fixed_frame +
+                    "': the monitor computes in the root's frame, which fixed_frame only "
+                    "renames (leave it empty, or name a frame at the root's pose)");
+  }
   input_ = std::make_unique<JointMerger>(workcell_->joint_names, options_.input_timeout_s);
   input_->SetDefaults(workcell_->joint_defaults);
   input_->SetMimicJoints(workcell_->kinematics.MimicJointNames());
@@ -266,7 +277,7 @@ void MonitorNode::UpdateBoundObjects(const ros::Time& now) {
     std::string error;
     try {
       const geometry_msgs::TransformStamped X =
-          tf_buffer_.lookupTransform(fixed_frame_, bound.frame, ros::Time(0));
+          LookupInFixedFrame(bound.frame);
       // A broadcast frame (a static chain comes stamped 0) not sent for frame_timeout_s is
       // stale: the object may have moved since (a tracker or a conveyor's driver stopped). One
       // stamped further ahead of the node's clock cannot be dated, as JointState input. In

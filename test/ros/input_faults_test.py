@@ -11,11 +11,12 @@ import rosgraph
 import rospy
 import rostest
 from diagnostic_msgs.msg import DiagnosticArray
+from geometry_msgs.msg import Point, Pose, Quaternion
 from rosgraph_msgs.msg import Log
 from sensor_msgs.msg import JointState
 
 from arm_collision_monitor.msg import MonitorReport
-from arm_collision_monitor.srv import (AttachObject, CheckJointState, DetachObject,
+from arm_collision_monitor.srv import (AddObject, AttachObject, CheckJointState, DetachObject,
                                        SetGraspTarget)
 
 from acm_test_util import (HOME, LEFT_AT_FRONT_BOX, LEFT_JOINTS, LEFT_TOWARDS_RIGHT,
@@ -498,6 +499,28 @@ class InputFaultsTest(unittest.TestCase):
         self.assertIsNotNone(report)
         self.assertTrue(report.stop)
         self.assertIn("object 'camera'", report.stop_reason)
+
+    def test_17b_fixed_frame_apart_from_the_root_stops(self):
+        """A fixed frame that TF puts apart from the URDF root (odom, 0.8 m from world) would
+        misplace every pose looked up in it: the frame-bound camera (a stop naming it and the
+        offset, even on good input) and a live object in a TF frame (refused); a pose in the
+        root's own frame is taken as it is."""
+        c = MonitorClient('/offset_monitor')
+        self.assertTrue(c.wait_connected())
+        report = c.publish_until(lambda: c.publish_pose(HOME, HOME),
+                                 lambda r: r.input_status == MonitorReport.INPUT_OK and r.stop)
+        self.assertIsNotNone(report)
+        self.assertIn("object 'camera'", report.stop_reason)
+        self.assertIn("TF puts the fixed frame 'odom' 0.8 m and 0 rad from the URDF root 'world'",
+                      report.stop_reason)
+        rospy.wait_for_service('/offset_monitor/add_object', timeout=20.0)
+        add = rospy.ServiceProxy('/offset_monitor/add_object', AddObject)
+        far = Pose(position=Point(x=3.0, y=0.0, z=3.0), orientation=Quaternion(w=1.0))
+        res = add(name='drum', type='sphere', dimensions_m=[0.05], frame='camera_link', pose=far)
+        self.assertFalse(res.success, 'added in a frame looked up through the offset fixed frame')
+        self.assertIn("TF puts the fixed frame 'odom' 0.8 m", res.message)
+        res = add(name='drum', type='sphere', dimensions_m=[0.05], frame='world', pose=far)
+        self.assertTrue(res.success, res.message)
 
     def test_18_diagnostics(self):
         c = self.client

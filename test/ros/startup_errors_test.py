@@ -111,6 +111,18 @@ class StartupErrorsTest(unittest.TestCase):
         self.assertIn('input_joint_prefixes: expected a list of one prefix per input topic (2, as '
                       '~input_topics), or none', output)
 
+    def test_fixed_frame_a_link_other_than_the_root(self):
+        # fixed_frame only renames the URDF root's frame: a moving link, or a link fixed beside
+        # the root, has a pose of its own (TF poses looked up in it were misplaced).
+        for link in ('left_link3', 'left_pedestal'):
+            code, output = self.run_node(extra=['_fixed_frame:=' + link], **self.defaults())
+            self.assertNotEqual(code, 0, 'started with fixed_frame %s:\n%s' % (link, output))
+            self.assertIn('cannot start', output)
+            self.assertIn("/fixed_frame: '%s' is a link of the URDF %s other than its root "
+                          "'world'" % (link, self.defaults()['urdf']), output)
+        path = self.write('link_frame.yaml', 'fixed_frame: left_link3\n')
+        self.assert_fails_naming(path + ": fixed_frame: 'left_link3' is a link", config=path)
+
 
 if __name__ == '__main__':
     rostest.rosrun(PACKAGE, 'startup_errors', StartupErrorsTest, sys.argv)

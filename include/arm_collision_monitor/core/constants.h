@@ -249,6 +249,11 @@ inline constexpr std::uint32_t kLiveObjectMaxPrimitives = 64;
 /// is below this (dimensionless). Typical 1e-6: a unit quaternion turned into a matrix is
 /// orthonormal to ~1e-15; a float32 round trip to ~1e-7.
 inline constexpr double kLiveObjectRotationTolerance = 1e-6;
+/// The node's fixed frame only renames the URDF root's: where TF relates the two, it takes them
+/// as one within this offset (m) and rotation angle (rad), else it refuses poses looked up in
+/// it (MonitorNode::LookupInFixedFrame). A static identity transform is exact to ~1e-9.
+inline constexpr double kFixedFrameMaxOffset_m = 1e-6;
+inline constexpr double kFixedFrameMaxAngle_rad = 1e-6;
 /// Margin (m) on every side of the world cube derived when the scene file omits world:
 /// (DeriveWorldCube). The reach envelopes already bound every primitive for every q; this leaves
 /// room for what the broad phase grows boxes by (index slack, speed-scaled tolerance: a box

@@ -120,7 +120,13 @@ class MonitorNode {
   bool OnRemoveObject(RemoveObject::Request& req, RemoveObject::Response& res);
   // primitives_ from Monitor::primitive after a live object came or went.
   void RefreshPrimitives();
-  // X_WO from a pose in `frame` ("" or the fixed frame: as is; else through TF now).
+  // TF's newest transform from `frame` to the fixed frame, which only renames the URDF root's
+  // frame (the monitor computes in it): throws tf2::TransformException, as TF's lookup does,
+  // also when TF relates the two frames and puts them apart (the pose would be misplaced by as
+  // much).
+  geometry_msgs::TransformStamped LookupInFixedFrame(const std::string& frame);
+  // X_WO from a pose in `frame` ("", the fixed frame or the URDF root's: as is; else through TF
+  // now).
   bool ResolvePose(const geometry_msgs::Pose& pose, const std::string& frame,
                    Eigen::Isometry3d* X_WO, std::string* error);
 
