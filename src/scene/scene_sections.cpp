@@ -354,10 +354,17 @@ void ReadActuatedJointMap(const YAML::Node& node, const Where& where, const Kine
     const std::string joint_name = entry.first.as<std::string>("");
     const Where item = where.Child(joint_name);
     const int link = model.FindJointChildLink(joint_name);
-    if (link < 0 || model.joint(link).q_index < 0) {
-      item.Fail(entry.first, "unknown joint (expected an actuated joint of the URDF)");
+    if (link < 0) item.Fail(entry.first, "unknown joint (expected an actuated joint of the URDF)");
+    const JointSpec& joint = model.joint(link);
+    if (joint.mimic_q_index >= 0) {
+      item.Fail(entry.first, "a mimic joint of '" +
+                                 model.ActuatedJointNames()[joint.mimic_q_index] +
+                                 "' (its position follows that joint's: give that joint's)");
     }
-    read(entry.second, item, joint_name, model.joint(link));
+    if (joint.q_index < 0) {
+      item.Fail(entry.first, "a fixed joint of the URDF (expected an actuated joint)");
+    }
+    read(entry.second, item, joint_name, joint);
   }
 }
 

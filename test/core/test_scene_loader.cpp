@@ -698,6 +698,8 @@ TEST(SceneLoader, JointLimitOverrides) {
                    {"joint_limits.elbow", "URDF upper"});
   ExpectSceneError(kArmUrdf, kWorldLine + "joint_limits: {knee: {upper: 1.0}}\n",
                    {"joint_limits.knee", "unknown joint"});
+  ExpectSceneError(kArmUrdf, kWorldLine + "joint_limits: {finger_mimic: {upper: 0.0}}\n",
+                   {"joint_limits.finger_mimic", "a mimic joint of 'slide'"});
   // The continuous wrist's soft limits lie within kMaxUnlimitedPosition_rad (beyond it, no
   // position would be accepted).
   ExpectSceneError(kArmUrdf, kWorldLine + "joint_limits: {spin: {lower: 2e9}}\n",
@@ -743,8 +745,12 @@ TEST(SceneLoader, JointDefaults) {
       {"joint_defaults: {slide: 0.3}\n", {"joint_defaults.slide", "within the joint's limits"}},
       {"joint_limits: {elbow: {lower: -1.0}}\njoint_defaults: {elbow: -1.5}\n",
        {"joint_defaults.elbow", "within the joint's limits"}},
-      {"joint_defaults: {finger_mimic: 0}\n", {"joint_defaults.finger_mimic", "unknown joint"}},
-      {"joint_defaults: {tool_joint: 0}\n", {"joint_defaults.tool_joint", "unknown joint"}},
+      {"joint_defaults: {finger_mimic: 0}\n",
+       {"joint_defaults.finger_mimic",
+        "a mimic joint of 'slide' (its position follows that joint's: give that joint's)"}},
+      {"joint_defaults: {tool_joint: 0}\n",
+       {"joint_defaults.tool_joint", "a fixed joint of the URDF (expected an actuated joint)"}},
+      {"joint_defaults: {knee: 0}\n", {"joint_defaults.knee", "unknown joint"}},
       {"joint_defaults: {elbow: open}\n", {"joint_defaults.elbow"}},
       {"joint_defaults: {elbow: .nan}\n", {"joint_defaults.elbow"}},
       // The continuous wrist: within kMaxUnlimitedPosition_rad (beyond, every cycle is refused).
