@@ -4,11 +4,13 @@
 #include <cmath>
 #include <cstdio>
 
+#include <Eigen/Geometry>
 #include <boost/make_shared.hpp>
 
 #include <std_msgs/Bool.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/core/load_error.h"
 #include "arm_collision_monitor/monitor/monitor_startup.h"
 #include "arm_collision_monitor/core/timing_summary.h"
@@ -40,6 +42,17 @@ void ReadPositive(const ros::NodeHandle& nh, const std::string& name, bool allow
     throw LoadError("parameter " + nh.resolveName(name) + " = " + std::to_string(*value) +
                     ": expected a " + (allow_zero ? "non-negative" : "positive") + " number");
   }
+}
+
+// Whether `link` is fixed to the URDF root at the root's own pose (within kFixedFrameMaxOffset_m
+// and kFixedFrameMaxAngle_rad): the same frame under another name (a world link's base_link).
+bool IsFixedAtRoot(const KinematicModel& kinematics, int link) {
+  if (kinematics.is_moving(link)) return false;
+  std::vector<Eigen::Isometry3d> X_WL(kinematics.link_count());
+  kinematics.ComputeLinkPoses(Eigen::VectorXd::Zero(kinematics.q_size()), &X_WL);
+  const Eigen::Isometry3d X_RootL = X_WL[0].inverse(Eigen::Isometry) * X_WL[link];
+  return X_RootL.translation().norm() <= kFixedFrameMaxOffset_m &&
+         Eigen::AngleAxisd(X_RootL.linear()).angle() <= kFixedFrameMaxAngle_rad;
 }
 
 }  // namespace
@@ -111,14 +124,15 @@ MonitorNode::MonitorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   fixed_frame_ = !options_.fixed_frame.empty()      ? options_.fixed_frame
                  : !monitor_options.fixed_frame.empty() ? monitor_options.fixed_frame
                                                         : workcell_->fixed_frame;
-  // Another link of the URDF has a pose of its own, moving or not: not the root's frame, which
-  // fixed_frame only renames (TF poses are looked up in it).
-  if (fixed_frame_ != workcell_->fixed_frame && workcell_->kinematics.FindLink(fixed_frame_) >= 0) {
+  // Another link of the URDF has a pose of its own (but one fixed at the root's): not the
+  // root's frame, which fixed_frame only renames (TF poses are looked up in it).
+  const int fixed_link = workcell_->kinematics.FindLink(fixed_frame_);
+  if (fixed_link > 0 && !IsFixedAtRoot(workcell_->kinematics, fixed_link)) {
     throw LoadError((!options_.fixed_frame.empty()
                          ? "parameter " + private_nh.resolveName("fixed_frame")
                          : options_.config_path + ": fixed_frame") +
                     ": '" + fixed_frame_ + "' is a link of the URDF " + options_.urdf_path +
-                    " other than its root '" + workcell_->fixed_frame +
+                    " away from its root '" + workcell_->fixed_frame +
                     "': the monitor computes in the root's frame, which fixed_frame only "
                     "renames (leave it empty, or name a frame at the root's pose)");
   }

@@ -111,17 +111,38 @@ class StartupErrorsTest(unittest.TestCase):
         self.assertIn('input_joint_prefixes: expected a list of one prefix per input topic (2, as '
                       '~input_topics), or none', output)
 
-    def test_fixed_frame_a_link_other_than_the_root(self):
+    def test_fixed_frame_a_link_away_from_the_root(self):
         # fixed_frame only renames the URDF root's frame: a moving link, or a link fixed beside
         # the root, has a pose of its own (TF poses looked up in it were misplaced).
         for link in ('left_link3', 'left_pedestal'):
             code, output = self.run_node(extra=['_fixed_frame:=' + link], **self.defaults())
             self.assertNotEqual(code, 0, 'started with fixed_frame %s:\n%s' % (link, output))
             self.assertIn('cannot start', output)
-            self.assertIn("/fixed_frame: '%s' is a link of the URDF %s other than its root "
+            self.assertIn("/fixed_frame: '%s' is a link of the URDF %s away from its root "
                           "'world'" % (link, self.defaults()['urdf']), output)
         path = self.write('link_frame.yaml', 'fixed_frame: left_link3\n')
         self.assert_fails_naming(path + ": fixed_frame: 'left_link3' is a link", config=path)
+
+    def test_fixed_frame_a_link_fixed_at_the_root(self):
+        # The same frame under another name: the node starts (and runs until stopped).
+        with open(self.defaults()['urdf']) as f:
+            urdf = f.read().replace(
+                '</robot>', '<link name="world_alias"/><joint name="alias_joint" type="fixed">'
+                '<parent link="world"/><child link="world_alias"/></joint></robot>')
+        args = self.defaults()
+        args['urdf'] = self.write('alias.urdf', urdf)
+        StartupErrorsTest.runs += 1
+        command = [self.node, '__name:=startup_probe_%d' % self.runs, '_fixed_frame:=world_alias']
+        command += ['_%s:=%s' % item for item in sorted(args.items())]
+        proc = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                                universal_newlines=True)
+        try:
+            output = proc.communicate(timeout=10.0)[0]
+            self.fail('the node exited (%s) with fixed_frame world_alias:\n%s'
+                      % (proc.returncode, output))
+        except subprocess.TimeoutExpired:
+            proc.terminate()
+            proc.communicate()
 
 
 if __name__ == '__main__':
