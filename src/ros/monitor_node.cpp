@@ -4,13 +4,11 @@
 #include <cmath>
 #include <cstdio>
 
-#include <Eigen/Geometry>
 #include <boost/make_shared.hpp>
 
 #include <std_msgs/Bool.h>
 #include <visualization_msgs/MarkerArray.h>
 
-#include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/core/load_error.h"
 #include "arm_collision_monitor/monitor/monitor_startup.h"
 #include "arm_collision_monitor/core/timing_summary.h"
@@ -42,17 +40,6 @@ void ReadPositive(const ros::NodeHandle& nh, const std::string& name, bool allow
     throw LoadError("parameter " + nh.resolveName(name) + " = " + std::to_string(*value) +
                     ": expected a " + (allow_zero ? "non-negative" : "positive") + " number");
   }
-}
-
-// Whether `link` is fixed to the URDF root at the root's own pose (within kFixedFrameMaxOffset_m
-// and kFixedFrameMaxAngle_rad): the same frame under another name (a world link's base_link).
-bool IsFixedAtRoot(const KinematicModel& kinematics, int link) {
-  if (kinematics.is_moving(link)) return false;
-  std::vector<Eigen::Isometry3d> X_WL(kinematics.link_count());
-  kinematics.ComputeLinkPoses(Eigen::VectorXd::Zero(kinematics.q_size()), &X_WL);
-  const Eigen::Isometry3d X_RootL = X_WL[0].inverse(Eigen::Isometry) * X_WL[link];
-  return X_RootL.translation().norm() <= kFixedFrameMaxOffset_m &&
-         Eigen::AngleAxisd(X_RootL.linear()).angle() <= kFixedFrameMaxAngle_rad;
 }
 
 }  // namespace
@@ -120,22 +107,7 @@ MonitorNode::MonitorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   for (const std::string& notice : monitor_->startup_notices()) {
     ROS_INFO("arm_collision_monitor: %s", notice.c_str());
   }
-  // The launch file's, else the config file's, else the URDF root link.
-  fixed_frame_ = !options_.fixed_frame.empty()      ? options_.fixed_frame
-                 : !monitor_options.fixed_frame.empty() ? monitor_options.fixed_frame
-                                                        : workcell_->fixed_frame;
-  // Another link of the URDF has a pose of its own (but one fixed at the root's): not the
-  // root's frame, which fixed_frame only renames (TF poses are looked up in it).
-  const int fixed_link = workcell_->kinematics.FindLink(fixed_frame_);
-  if (fixed_link > 0 && !IsFixedAtRoot(workcell_->kinematics, fixed_link)) {
-    throw LoadError((!options_.fixed_frame.empty()
-                         ? "parameter " + private_nh.resolveName("fixed_frame")
-                         : options_.config_path + ": fixed_frame") +
-                    ": '" + fixed_frame_ + "' is a link of the URDF " + options_.urdf_path +
-                    " away from its root '" + workcell_->fixed_frame +
-                    "': the monitor computes in the root's frame, which fixed_frame only "
-                    "renames (leave it empty, or name a frame at the root's pose)");
-  }
+  ResolveFixedFrame(monitor_options.fixed_frame);
   input_ = std::make_unique<JointMerger>(workcell_->joint_names, options_.input_timeout_s);
   input_->SetDefaults(workcell_->joint_defaults);
   input_->SetMimicJoints(workcell_->kinematics.MimicJointNames());
@@ -145,8 +117,10 @@ MonitorNode::MonitorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
       bound_objects_.push_back(BoundObject{object.name, object.frame});
     }
   }
-  // Live objects given in a frame other than the fixed one are looked up in TF too.
-  if (!bound_objects_.empty() || monitor_options.live_objects.capacity > 0) {
+  // Live objects given in a frame other than the fixed one are looked up in TF too, and a fixed
+  // frame other than the root's name is checked against it (FixedFrameOffset).
+  if (!bound_objects_.empty() || monitor_options.live_objects.capacity > 0 ||
+      fixed_frame_ != workcell_->fixed_frame) {
     tf_listener_ = std::make_unique<tf2_ros::TransformListener>(tf_buffer_, nh_);
   }
 
@@ -290,8 +264,7 @@ void MonitorNode::UpdateBoundObjects(const ros::Time& now) {
     const bool is_held = monitor_->IsHeld(bound.object);
     std::string error;
     try {
-      const geometry_msgs::TransformStamped X =
-          LookupInFixedFrame(bound.frame);
+      const geometry_msgs::TransformStamped X = LookupInFixedFrame(bound.frame);
       // A broadcast frame (a static chain comes stamped 0) not sent for frame_timeout_s is
       // stale: the object may have moved since (a tracker or a conveyor's driver stopped). One
       // stamped further ahead of the node's clock cannot be dated, as JointState input. In

@@ -90,6 +90,12 @@ void MonitorNode::DiagnoseSafety(diagnostic_updater::DiagnosticStatusWrapper& st
   } else {
     status.summary(diagnostic_msgs::DiagnosticStatus::OK, "clear");
   }
+  // Reports and markers carry the fixed frame's name on the root's coordinates.
+  const std::string offset = FixedFrameOffset();
+  if (!offset.empty()) {
+    status.mergeSummaryf(diagnostic_msgs::DiagnosticStatus::ERROR, "%s", offset.c_str());
+    ROS_ERROR_THROTTLE(10.0, "arm_collision_monitor: %s", offset.c_str());
+  }
   status.add("stop", policy_.stop() ? "true" : "false");
   status.add("warnings", report_.warnings.size());
   status.add("fixed frame", fixed_frame_);

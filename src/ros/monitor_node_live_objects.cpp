@@ -3,43 +3,12 @@
 // primitives here (MakeSolidShapes_O, which may fit a mesh), in the service call, never in the
 // cycle.
 
-#include <cmath>
-#include <sstream>
-
-#include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/ros/conversions.h"
 #include "arm_collision_monitor/ros/monitor_node.h"
 #include "arm_collision_monitor/scene/unit_quaternion.h"
 #include "arm_collision_monitor/scene/solid_spec.h"
 
 namespace arm_collision_monitor {
-
-geometry_msgs::TransformStamped MonitorNode::LookupInFixedFrame(const std::string& frame) {
-  const std::string& root = workcell_->fixed_frame;
-  if (fixed_frame_ != root && tf_buffer_.canTransform(fixed_frame_, root, ros::Time(0))) {
-    const geometry_msgs::Transform X =
-        tf_buffer_.lookupTransform(fixed_frame_, root, ros::Time(0)).transform;
-    const double offset_m =
-        std::sqrt(X.translation.x * X.translation.x + X.translation.y * X.translation.y +
-                  X.translation.z * X.translation.z);
-    // The rotation's angle, 2 atan2(|v|, |w|), of the quaternion as TF keeps it (any norm).
-    const double angle_rad =
-        2.0 * std::atan2(std::sqrt(X.rotation.x * X.rotation.x + X.rotation.y * X.rotation.y +
-                                   X.rotation.z * X.rotation.z),
-                         std::abs(X.rotation.w));
-    if (!(offset_m <= kFixedFrameMaxOffset_m && angle_rad <= kFixedFrameMaxAngle_rad)) {
-      std::ostringstream msg;
-      msg << "TF puts the fixed frame '" << fixed_frame_ << "' " << offset_m << " m and "
-          << angle_rad << " rad from the URDF root '" << root
-          << "': fixed_frame only renames the root's frame, in which the monitor computes, so a "
-             "pose looked up in '"
-          << fixed_frame_ << "' would be misplaced by as much (leave fixed_frame empty, or "
-          << "name a frame at the root's pose)";
-      throw tf2::TransformException(msg.str());
-    }
-  }
-  return tf_buffer_.lookupTransform(fixed_frame_, frame, ros::Time(0));
-}
 
 bool MonitorNode::ResolvePose(const geometry_msgs::Pose& pose, const std::string& frame,
                               Eigen::Isometry3d* X_WO, std::string* error) {
@@ -56,7 +25,17 @@ bool MonitorNode::ResolvePose(const geometry_msgs::Pose& pose, const std::string
   Eigen::Isometry3d X_FO = Eigen::Isometry3d::Identity();
   X_FO.linear() = R_FO.toRotationMatrix();
   X_FO.translation() = Eigen::Vector3d(pose.position.x, pose.position.y, pose.position.z);
-  if (frame.empty() || frame == fixed_frame_ || frame == workcell_->fixed_frame) {
+  if (frame == workcell_->fixed_frame) {
+    *X_WO = X_FO;
+    return true;
+  }
+  // In (or through) a fixed frame that TF puts apart from the root, it would be misplaced.
+  const std::string offset = FixedFrameOffset();
+  if (!offset.empty()) {
+    *error = offset;
+    return false;
+  }
+  if (frame.empty() || frame == fixed_frame_) {
     *X_WO = X_FO;
     return true;
   }
@@ -67,8 +46,7 @@ bool MonitorNode::ResolvePose(const geometry_msgs::Pose& pose, const std::string
   }
   try {
     Eigen::Isometry3d X_WF = Eigen::Isometry3d::Identity();
-    const std::string bad = ToRigidTransform(
-        LookupInFixedFrame(frame).transform, &X_WF);
+    const std::string bad = ToRigidTransform(LookupInFixedFrame(frame).transform, &X_WF);
     if (!bad.empty()) {
       *error = "transform from '" + frame + "' to '" + fixed_frame_ + "': " + bad;
       return false;

@@ -10,7 +10,7 @@ import unittest
 import rosgraph
 import rospy
 import rostest
-from diagnostic_msgs.msg import DiagnosticArray
+from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from geometry_msgs.msg import Point, Pose, Quaternion
 from rosgraph_msgs.msg import Log
 from sensor_msgs.msg import JointState
@@ -502,25 +502,42 @@ class InputFaultsTest(unittest.TestCase):
 
     def test_17b_fixed_frame_apart_from_the_root_stops(self):
         """A fixed frame that TF puts apart from the URDF root (odom, 0.8 m from world) would
-        misplace every pose looked up in it: the frame-bound camera (a stop naming it and the
-        offset, even on good input) and a live object in a TF frame (refused); a pose in the
-        root's own frame is taken as it is."""
+        misplace every pose looked up in it or given in it: the frame-bound camera (a stop naming
+        it and the offset, even on good input), a live object in a TF frame, in the fixed frame
+        or in no frame (refused); the Safety diagnostics say so (reports and markers carry the
+        fixed frame's name on the root's coordinates); a pose in the root's own frame is taken
+        as it is."""
+        offset = "the fixed frame 'odom' is 0.8 m and 0 rad from the URDF root 'world' in TF"
         c = MonitorClient('/offset_monitor')
         self.assertTrue(c.wait_connected())
         report = c.publish_until(lambda: c.publish_pose(HOME, HOME),
                                  lambda r: r.input_status == MonitorReport.INPUT_OK and r.stop)
         self.assertIsNotNone(report)
         self.assertIn("object 'camera'", report.stop_reason)
-        self.assertIn("TF puts the fixed frame 'odom' 0.8 m and 0 rad from the URDF root 'world'",
-                      report.stop_reason)
+        self.assertIn(offset, report.stop_reason)
         rospy.wait_for_service('/offset_monitor/add_object', timeout=20.0)
         add = rospy.ServiceProxy('/offset_monitor/add_object', AddObject)
         far = Pose(position=Point(x=3.0, y=0.0, z=3.0), orientation=Quaternion(w=1.0))
-        res = add(name='drum', type='sphere', dimensions_m=[0.05], frame='camera_link', pose=far)
-        self.assertFalse(res.success, 'added in a frame looked up through the offset fixed frame')
-        self.assertIn("TF puts the fixed frame 'odom' 0.8 m", res.message)
+        for frame in ('camera_link', 'odom', ''):
+            res = add(name='drum', type='sphere', dimensions_m=[0.05], frame=frame, pose=far)
+            self.assertFalse(res.success, 'added in %r through the offset fixed frame' % frame)
+            self.assertEqual(res.message, "add_object 'drum': " + offset +
+                             " (fixed_frame only renames the root's frame: leave it empty)")
         res = add(name='drum', type='sphere', dimensions_m=[0.05], frame='world', pose=far)
         self.assertTrue(res.success, res.message)
+        safety = []
+
+        def on_diagnostics(msg):
+            safety.extend(s for s in msg.status if s.name == 'offset_monitor: Safety')
+
+        sub = rospy.Subscriber('/diagnostics', DiagnosticArray, on_diagnostics)
+        deadline = time.time() + 10.0
+        while time.time() < deadline and not safety:
+            time.sleep(0.05)
+        sub.unregister()
+        self.assertTrue(safety, 'no Safety diagnostics from offset_monitor')
+        self.assertEqual(safety[-1].level, DiagnosticStatus.ERROR)
+        self.assertIn(offset, safety[-1].message)
 
     def test_18_diagnostics(self):
         c = self.client

@@ -2,10 +2,12 @@
 """Start-up tier: the monitor node given a bad URDF, scene, options file or parameter exits
 non-zero with a message naming the file (or parameter) (test/ros/startup_errors.test)."""
 import os
+import select
 import shutil
 import subprocess
 import sys
 import tempfile
+import time
 import unittest
 
 import rospkg
@@ -122,9 +124,13 @@ class StartupErrorsTest(unittest.TestCase):
                           "'world'" % (link, self.defaults()['urdf']), output)
         path = self.write('link_frame.yaml', 'fixed_frame: left_link3\n')
         self.assert_fails_naming(path + ": fixed_frame: 'left_link3' is a link", config=path)
+        # tf2 refuses a frame id with a leading '/' (and logs each time it is asked about one).
+        code, output = self.run_node(extra=['_fixed_frame:=/odom'], **self.defaults())
+        self.assertNotEqual(code, 0, 'started with fixed_frame /odom:\n' + output)
+        self.assertIn("/fixed_frame: '/odom': a TF frame id has no leading '/'", output)
 
     def test_fixed_frame_a_link_fixed_at_the_root(self):
-        # The same frame under another name: the node starts (and runs until stopped).
+        # The same frame under another name: the node starts (its start-up line names the frame).
         with open(self.defaults()['urdf']) as f:
             urdf = f.read().replace(
                 '</robot>', '<link name="world_alias"/><joint name="alias_joint" type="fixed">'
@@ -136,14 +142,21 @@ class StartupErrorsTest(unittest.TestCase):
         command += ['_%s:=%s' % item for item in sorted(args.items())]
         proc = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                                 universal_newlines=True)
+        lines = []
+        deadline = time.time() + TIMEOUT_S
         try:
-            output = proc.communicate(timeout=10.0)[0]
-            self.fail('the node exited (%s) with fixed_frame world_alias:\n%s'
-                      % (proc.returncode, output))
-        except subprocess.TimeoutExpired:
+            while time.time() < deadline:
+                ready, _, _ = select.select([proc.stdout], [], [], deadline - time.time())
+                line = proc.stdout.readline() if ready else ''
+                if not line:
+                    break  # exited (or the deadline)
+                lines.append(line)
+                if "frame 'world_alias'; input from" in line:
+                    return
+            self.fail('no start-up line with fixed_frame world_alias:\n' + ''.join(lines))
+        finally:
             proc.terminate()
             proc.communicate()
-
 
 if __name__ == '__main__':
     rostest.rosrun(PACKAGE, 'startup_errors', StartupErrorsTest, sys.argv)

@@ -120,13 +120,18 @@ class MonitorNode {
   bool OnRemoveObject(RemoveObject::Request& req, RemoveObject::Response& res);
   // primitives_ from Monitor::primitive after a live object came or went.
   void RefreshPrimitives();
-  // TF's newest transform from `frame` to the fixed frame, which only renames the URDF root's
-  // frame (the monitor computes in it): throws tf2::TransformException, as TF's lookup does,
-  // also when TF relates the two frames and puts them apart (the pose would be misplaced by as
-  // much).
+  // The fixed frame and TF (monitor_node_frames.cpp). fixed_frame_ from the parameter, else
+  // `config_fixed_frame`, else the URDF root's name; a LoadError, naming where it came from,
+  // for a name tf2 refuses or a link of the URDF away from the root.
+  void ResolveFixedFrame(const std::string& config_fixed_frame);
+  // "" unless TF relates the fixed frame to the URDF root and puts them apart (the fixed frame
+  // only renames the root's frame, in which the monitor computes): then how far, and what to do.
+  std::string FixedFrameOffset();
+  // TF's newest transform from `frame` to the fixed frame; throws tf2::TransformException, as
+  // TF's lookup does, also with FixedFrameOffset's text (the pose would be misplaced).
   geometry_msgs::TransformStamped LookupInFixedFrame(const std::string& frame);
-  // X_WO from a pose in `frame` ("", the fixed frame or the URDF root's: as is; else through TF
-  // now).
+  // X_WO from a pose in `frame` (the URDF root's: as is; "" or the fixed frame: as is, unless
+  // FixedFrameOffset; else through TF now).
   bool ResolvePose(const geometry_msgs::Pose& pose, const std::string& frame,
                    Eigen::Isometry3d* X_WO, std::string* error);
 

@@ -1,0 +1,83 @@
+// The node's fixed frame: the name its reports and markers give the URDF root's frame, in which
+// the monitor computes (README "Your own robot", fixed_frame), and the TF lookups into it
+// (frame-bound objects, live objects given in a TF frame).
+
+#include <cmath>
+#include <sstream>
+
+#include <Eigen/Geometry>
+
+#include "arm_collision_monitor/core/constants.h"
+#include "arm_collision_monitor/core/load_error.h"
+#include "arm_collision_monitor/ros/monitor_node.h"
+
+namespace arm_collision_monitor {
+namespace {
+
+// Whether `link` is fixed to the URDF root at the root's own pose (within kFixedFrameMaxOffset_m
+// and kFixedFrameMaxAngle_rad): the same frame under another name (a world link's base_link).
+bool IsFixedAtRoot(const KinematicModel& kinematics, int link) {
+  if (kinematics.is_moving(link)) return false;
+  std::vector<Eigen::Isometry3d> X_WL(kinematics.link_count());
+  kinematics.ComputeLinkPoses(Eigen::VectorXd::Zero(kinematics.q_size()), &X_WL);
+  const Eigen::Isometry3d X_RootL = X_WL[0].inverse(Eigen::Isometry) * X_WL[link];
+  return X_RootL.translation().norm() <= kFixedFrameMaxOffset_m &&
+         Eigen::AngleAxisd(X_RootL.linear()).angle() <= kFixedFrameMaxAngle_rad;
+}
+
+}  // namespace
+
+void MonitorNode::ResolveFixedFrame(const std::string& config_fixed_frame) {
+  // The launch file's, else the config file's, else the URDF root link.
+  const std::string& root = workcell_->fixed_frame;
+  fixed_frame_ = !options_.fixed_frame.empty()  ? options_.fixed_frame
+                 : !config_fixed_frame.empty() ? config_fixed_frame
+                                               : root;
+  const std::string source = !options_.fixed_frame.empty()
+                                 ? "parameter " + private_nh_.resolveName("fixed_frame")
+                                 : options_.config_path + ": fixed_frame";
+  // tf2 refuses such a frame id (and logs each time it is asked about one).
+  if (fixed_frame_.front() == '/') {
+    throw LoadError(source + ": '" + fixed_frame_ + "': a TF frame id has no leading '/'");
+  }
+  // Another link of the URDF has a pose of its own (but one fixed at the root's): not the
+  // root's frame, which fixed_frame only renames (TF poses are looked up in it).
+  const int link = workcell_->kinematics.FindLink(fixed_frame_);
+  if (link > 0 && !IsFixedAtRoot(workcell_->kinematics, link)) {
+    throw LoadError(source + ": '" + fixed_frame_ + "' is a link of the URDF " +
+                    options_.urdf_path + " away from its root '" + root +
+                    "': the monitor computes in the root's frame, which fixed_frame only "
+                    "renames (leave it empty, or name a frame at the root's pose)");
+  }
+}
+
+std::string MonitorNode::FixedFrameOffset() {
+  const std::string& root = workcell_->fixed_frame;
+  if (fixed_frame_ == root || !tf_buffer_.canTransform(fixed_frame_, root, ros::Time(0))) {
+    return "";  // the same name, or a pure rename: TF does not relate them
+  }
+  const geometry_msgs::Transform X =
+      tf_buffer_.lookupTransform(fixed_frame_, root, ros::Time(0)).transform;
+  const double offset_m =
+      std::sqrt(X.translation.x * X.translation.x + X.translation.y * X.translation.y +
+                X.translation.z * X.translation.z);
+  // The rotation's angle, 2 atan2(|v|, |w|), of the quaternion as TF keeps it (any norm).
+  const double angle_rad =
+      2.0 * std::atan2(std::sqrt(X.rotation.x * X.rotation.x + X.rotation.y * X.rotation.y +
+                                 X.rotation.z * X.rotation.z),
+                       std::abs(X.rotation.w));
+  if (offset_m <= kFixedFrameMaxOffset_m && angle_rad <= kFixedFrameMaxAngle_rad) return "";
+  std::ostringstream msg;
+  msg << "the fixed frame '" << fixed_frame_ << "' is " << offset_m << " m and " << angle_rad
+      << " rad from the URDF root '" << root
+      << "' in TF (fixed_frame only renames the root's frame: leave it empty)";
+  return msg.str();
+}
+
+geometry_msgs::TransformStamped MonitorNode::LookupInFixedFrame(const std::string& frame) {
+  const std::string offset = FixedFrameOffset();
+  if (!offset.empty()) throw tf2::TransformException(offset);
+  return tf_buffer_.lookupTransform(fixed_frame_, frame, ros::Time(0));
+}
+
+}  // namespace arm_collision_monitor
