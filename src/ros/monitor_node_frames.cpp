@@ -40,6 +40,14 @@ void MonitorNode::ResolveFixedFrame(const std::string& config_fixed_frame) {
   if (fixed_frame_.front() == '/') {
     throw LoadError(source + ": '" + fixed_frame_ + "': a TF frame id has no leading '/'");
   }
+  for (const auto& [frame, where] : workcell_->moving_root_frames) {
+    if (frame == fixed_frame_) {
+      throw LoadError(source + ": '" + fixed_frame_ + "' is the frame " + where +
+                      " moves the URDF root '" + root +
+                      "' in: the monitor computes in the root's frame, which fixed_frame only "
+                      "renames (leave it empty)");
+    }
+  }
   // Another link of the URDF has a pose of its own (but one fixed at the root's): not the
   // root's frame, which fixed_frame only renames (TF poses are looked up in it).
   const int link = workcell_->kinematics.FindLink(fixed_frame_);

@@ -282,9 +282,12 @@ SrdfInput ReadSrdf(const YAML::Node& scene, const std::string& scene_path,
       input.root_aliases.push_back(joint.parent_frame);
     } else {
       input.moving_root_joints.push_back(joint);
+      const std::string where = input.path + ":" + std::to_string(joint.line) +
+                                ": <virtual_joint name='" + joint.name + "' type='" + joint.type +
+                                "'>";
+      workcell->moving_root_frames.emplace_back(joint.parent_frame, where);
       workcell->warnings.push_back(
-          input.path + ":" + std::to_string(joint.line) + ": <virtual_joint name='" + joint.name +
-          "' type='" + joint.type + "'>: the root link moves in '" + joint.parent_frame +
+          where + ": the root link moves in '" + joint.parent_frame +
           "'; the monitor works in the root link's frame '" + root +
           "' (planning-scene objects in '" + joint.parent_frame +
           "' are placed with the root link where the scene's robot state puts the joint, else at "

@@ -124,6 +124,22 @@ class StartupErrorsTest(unittest.TestCase):
                           "'world'" % (link, self.defaults()['urdf']), output)
         path = self.write('link_frame.yaml', 'fixed_frame: left_link3\n')
         self.assert_fails_naming(path + ": fixed_frame: 'left_link3' is a link", config=path)
+        # The frame an SRDF's floating virtual joint moves the root in (a mobile base's odom).
+        with open(os.path.join(self.root, 'test', 'data', 'moveit', 'workcell.srdf')) as f:
+            srdf = f.read()
+        fixed = ('<virtual_joint name="virtual_joint" type="fixed" parent_frame="world" '
+                 'child_link="world"/>')
+        self.assertIn(fixed, srdf)
+        srdf_path = self.write('floating.srdf', srdf.replace(fixed, fixed.replace(
+            'type="fixed" parent_frame="world"', 'type="floating" parent_frame="odom"')))
+        with open(self.defaults()['scene']) as f:
+            scene_path = self.write('floating_scene.yaml', f.read() + '\nsrdf: %s\n' % srdf_path)
+        code, output = self.run_node(extra=['_fixed_frame:=odom'],
+                                     **dict(self.defaults(), scene=scene_path))
+        self.assertNotEqual(code, 0, 'started with fixed_frame odom:\n' + output)
+        self.assertIn("/fixed_frame: 'odom' is the frame %s:69: <virtual_joint "
+                      "name='virtual_joint' type='floating'> moves the URDF root 'world' in"
+                      % srdf_path, output)
         # tf2 refuses a frame id with a leading '/' (and logs each time it is asked about one).
         code, output = self.run_node(extra=['_fixed_frame:=/odom'], **self.defaults())
         self.assertNotEqual(code, 0, 'started with fixed_frame /odom:\n' + output)

@@ -83,6 +83,10 @@ struct Workcell {
   std::string urdf_path;
   std::string scene_path;
   std::string fixed_frame = "world";
+  /// The frames an SRDF's floating or planar virtual joint moves the root link in, each with
+  /// where it says so ("robot.srdf:87: <virtual_joint name='base' type='floating'>"): never the
+  /// root's frame, which the node's fixed_frame only renames.
+  std::vector<std::pair<std::string, std::string>> moving_root_frames;
   Aabb world_W;  ///< the world cube the spatial index covers
   KinematicModel kinematics;
   std::vector<std::string> joint_names;   ///< actuated joints, in the order of Monitor's q
