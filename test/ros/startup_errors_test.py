@@ -156,23 +156,25 @@ class StartupErrorsTest(unittest.TestCase):
         StartupErrorsTest.runs += 1
         command = [self.node, '__name:=startup_probe_%d' % self.runs, '_fixed_frame:=world_alias']
         command += ['_%s:=%s' % item for item in sorted(args.items())]
-        proc = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                                universal_newlines=True)
-        lines = []
+        proc = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
+        # The pipe read as it comes (os.read: no reader-side buffer that select cannot see).
+        output = ''
         deadline = time.time() + TIMEOUT_S
         try:
             while time.time() < deadline:
-                ready, _, _ = select.select([proc.stdout], [], [], deadline - time.time())
-                line = proc.stdout.readline() if ready else ''
-                if not line:
+                ready, _, _ = select.select([proc.stdout], [], [],
+                                            max(0.0, deadline - time.time()))
+                chunk = os.read(proc.stdout.fileno(), 65536) if ready else b''
+                if not chunk:
                     break  # exited (or the deadline)
-                lines.append(line)
-                if "frame 'world_alias'; input from" in line:
+                output += chunk.decode('utf-8', 'replace')
+                if "frame 'world_alias'; input from" in output:
                     return
-            self.fail('no start-up line with fixed_frame world_alias:\n' + ''.join(lines))
+            self.fail('no start-up line with fixed_frame world_alias:\n' + output)
         finally:
             proc.terminate()
             proc.communicate()
+
 
 if __name__ == '__main__':
     rostest.rosrun(PACKAGE, 'startup_errors', StartupErrorsTest, sys.argv)
