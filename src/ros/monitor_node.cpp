@@ -96,6 +96,7 @@ MonitorNode::MonitorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
                          FetchRosResource);
   const MonitorOptions& monitor_options = startup.options;
   workcell_ = startup.workcell;
+  ResolveFixedFrame(monitor_options.fixed_frame);
   for (const std::string& finding : workcell_->warnings) {
     ROS_WARN("arm_collision_monitor: %s", finding.c_str());
   }
@@ -107,7 +108,6 @@ MonitorNode::MonitorNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   for (const std::string& notice : monitor_->startup_notices()) {
     ROS_INFO("arm_collision_monitor: %s", notice.c_str());
   }
-  ResolveFixedFrame(monitor_options.fixed_frame);
   input_ = std::make_unique<JointMerger>(workcell_->joint_names, options_.input_timeout_s);
   input_->SetDefaults(workcell_->joint_defaults);
   input_->SetMimicJoints(workcell_->kinematics.MimicJointNames());
@@ -254,7 +254,8 @@ void MonitorNode::OnCycleTimer(const ros::TimerEvent&) {
 void MonitorNode::UpdateBoundObjects(const ros::Time& now) {
   // Each object on its own: one whose frame is unavailable keeps its last pose (at first its
   // scene pose), the others still follow theirs. The stop names the first unavailable one and
-  // the objects of the others.
+  // the objects of the others. Through a fixed frame TF puts apart from the root, none is.
+  const std::string offset = FixedFrameOffset();
   const BoundObject* first = nullptr;
   std::string first_error, others;
   for (BoundObject& bound : bound_objects_) {
@@ -262,56 +263,9 @@ void MonitorNode::UpdateBoundObjects(const ros::Time& now) {
     // frame's pose is only noted, and neither it nor its absence stops. Let go, the object
     // stays where it was let go until its frame moves (a static frame never does).
     const bool is_held = monitor_->IsHeld(bound.object);
-    std::string error;
-    try {
-      const geometry_msgs::TransformStamped X = LookupInFixedFrame(bound.frame);
-      // A broadcast frame (a static chain comes stamped 0) not sent for frame_timeout_s is
-      // stale: the object may have moved since (a tracker or a conveyor's driver stopped). One
-      // stamped further ahead of the node's clock cannot be dated, as JointState input. In
-      // seconds: ros::Time's difference throws past 2^31 s (a stamp from a broken clock).
-      const double age_s = now.toSec() - X.header.stamp.toSec();
-      if (options_.frame_timeout_s > 0.0 && !X.header.stamp.isZero() &&
-          std::abs(age_s) > options_.frame_timeout_s) {
-        char text[160];
-        std::snprintf(text, sizeof(text),
-                      age_s > 0.0
-                          ? "its newest transform is %.3f s old, over ~frame_timeout_s (%.3f s)"
-                          : "its newest transform is stamped %.3f s ahead of the node's clock, "
-                            "over ~frame_timeout_s (%.3f s)",
-                      std::abs(age_s), options_.frame_timeout_s);
-        ++stale_frames_;
-        error = text;
-      } else {
-        // Its quaternion normalised (TF keeps one off unit norm by up to 0.5 %).
-        Eigen::Isometry3d X_WO = Eigen::Isometry3d::Identity();
-        error = ToRigidTransform(X.transform, &X_WO);
-        // Most frames (a calibrated camera) do not move: skip the index update then. A stamped
-        // one (a tracker's) is posed with each new stamp, moved or not: with speed-scaled
-        // tolerance, its speed spans the interval between its samples, and an unmoved sample
-        // takes it to rest; now stamped 0, it is posed untimed again. Let go, the object waits
-        // for its frame's pose to move, whatever the stamps.
-        const bool is_stamped = !X.header.stamp.isZero();
-        const double stamp_s = X.header.stamp.toSec();
-        bound.is_let_go |= is_held;
-        const bool is_same = bound.has_pose && X_WO.matrix() == bound.X_WO.matrix() &&
-                             (stamp_s == bound.stamp_s || bound.is_let_go);
-        if (error.empty() &&
-            (is_held || is_same ||
-             (is_stamped ? monitor_->SetObjectPoseAt(bound.object, X_WO, stamp_s, &error)
-                         : monitor_->SetObjectPose(bound.object, X_WO, &error)))) {
-          bound.is_let_go = bound.is_let_go && (is_held || is_same);
-          bound.X_WO = X_WO;
-          bound.stamp_s = stamp_s;
-          bound.has_pose = true;
-          bound.is_available = true;
-          continue;
-        }
-        ++tf_failures_;
-      }
-    } catch (const tf2::TransformException& e) {
-      error = e.what();
-      ++tf_failures_;
-    }
+    std::string error = offset;
+    if (error.empty() && PoseBoundObject(&bound, is_held, now, &error)) continue;
+    if (!offset.empty()) ++tf_failures_;
     bound.is_available = false;
     if (is_held) continue;
     if (first == nullptr) {
@@ -326,6 +280,59 @@ void MonitorNode::UpdateBoundObjects(const ros::Time& now) {
         first->object, first->frame,
         others.empty() ? first_error : first_error + "; also unavailable: " + others);
   }
+}
+
+bool MonitorNode::PoseBoundObject(BoundObject* bound, bool is_held, const ros::Time& now,
+                                  std::string* error) {
+  try {
+    const geometry_msgs::TransformStamped X = LookupInFixedFrame(bound->frame);
+    // A broadcast frame (a static chain comes stamped 0) not sent for frame_timeout_s is
+    // stale: the object may have moved since (a tracker or a conveyor's driver stopped). One
+    // stamped further ahead of the node's clock cannot be dated, as JointState input. In
+    // seconds: ros::Time's difference throws past 2^31 s (a stamp from a broken clock).
+    const double age_s = now.toSec() - X.header.stamp.toSec();
+    if (options_.frame_timeout_s > 0.0 && !X.header.stamp.isZero() &&
+        std::abs(age_s) > options_.frame_timeout_s) {
+      char text[160];
+      std::snprintf(text, sizeof(text),
+                    age_s > 0.0
+                        ? "its newest transform is %.3f s old, over ~frame_timeout_s (%.3f s)"
+                        : "its newest transform is stamped %.3f s ahead of the node's clock, "
+                          "over ~frame_timeout_s (%.3f s)",
+                    std::abs(age_s), options_.frame_timeout_s);
+      ++stale_frames_;
+      *error = text;
+      return false;
+    }
+    // Its quaternion normalised (TF keeps one off unit norm by up to 0.5 %).
+    Eigen::Isometry3d X_WO = Eigen::Isometry3d::Identity();
+    *error = ToRigidTransform(X.transform, &X_WO);
+    // Most frames (a calibrated camera) do not move: skip the index update then. A stamped
+    // one (a tracker's) is posed with each new stamp, moved or not: with speed-scaled
+    // tolerance, its speed spans the interval between its samples, and an unmoved sample
+    // takes it to rest; now stamped 0, it is posed untimed again. Let go, the object waits
+    // for its frame's pose to move, whatever the stamps.
+    const bool is_stamped = !X.header.stamp.isZero();
+    const double stamp_s = X.header.stamp.toSec();
+    bound->is_let_go |= is_held;
+    const bool is_same = bound->has_pose && X_WO.matrix() == bound->X_WO.matrix() &&
+                         (stamp_s == bound->stamp_s || bound->is_let_go);
+    if (error->empty() &&
+        (is_held || is_same ||
+         (is_stamped ? monitor_->SetObjectPoseAt(bound->object, X_WO, stamp_s, error)
+                     : monitor_->SetObjectPose(bound->object, X_WO, error)))) {
+      bound->is_let_go = bound->is_let_go && (is_held || is_same);
+      bound->X_WO = X_WO;
+      bound->stamp_s = stamp_s;
+      bound->has_pose = true;
+      bound->is_available = true;
+      return true;
+    }
+  } catch (const tf2::TransformException& e) {
+    *error = e.what();
+  }
+  ++tf_failures_;
+  return false;
 }
 
 void MonitorNode::RunCycle(std::chrono::steady_clock::time_point start) {

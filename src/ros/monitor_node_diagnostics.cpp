@@ -90,11 +90,20 @@ void MonitorNode::DiagnoseSafety(diagnostic_updater::DiagnosticStatusWrapper& st
   } else {
     status.summary(diagnostic_msgs::DiagnosticStatus::OK, "clear");
   }
-  // Reports and markers carry the fixed frame's name on the root's coordinates.
+  // Reports and markers carry the fixed frame's name on the root's coordinates. Logged when it
+  // changes.
   const std::string offset = FixedFrameOffset();
   if (!offset.empty()) {
     status.mergeSummaryf(diagnostic_msgs::DiagnosticStatus::ERROR, "%s", offset.c_str());
-    ROS_ERROR_THROTTLE(10.0, "arm_collision_monitor: %s", offset.c_str());
+  }
+  if (offset != logged_offset_) {
+    if (offset.empty()) {
+      ROS_INFO("arm_collision_monitor: the fixed frame '%s' is at the URDF root's pose again",
+               fixed_frame_.c_str());
+    } else {
+      ROS_ERROR("arm_collision_monitor: %s", offset.c_str());
+    }
+    logged_offset_ = offset;
   }
   status.add("stop", policy_.stop() ? "true" : "false");
   status.add("warnings", report_.warnings.size());

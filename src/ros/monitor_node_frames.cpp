@@ -28,11 +28,12 @@ bool IsFixedAtRoot(const KinematicModel& kinematics, int link) {
 }  // namespace
 
 void MonitorNode::ResolveFixedFrame(const std::string& config_fixed_frame) {
-  // The launch file's, else the config file's, else the URDF root link.
+  // The launch file's, else the config file's, else the URDF root link's own name.
   const std::string& root = workcell_->fixed_frame;
   fixed_frame_ = !options_.fixed_frame.empty()  ? options_.fixed_frame
                  : !config_fixed_frame.empty() ? config_fixed_frame
                                                : root;
+  if (fixed_frame_ == root) return;
   const std::string source = !options_.fixed_frame.empty()
                                  ? "parameter " + private_nh_.resolveName("fixed_frame")
                                  : options_.config_path + ": fixed_frame";
@@ -42,9 +43,9 @@ void MonitorNode::ResolveFixedFrame(const std::string& config_fixed_frame) {
   }
   for (const auto& [frame, where] : workcell_->moving_root_frames) {
     if (frame == fixed_frame_) {
-      throw LoadError(source + ": '" + fixed_frame_ + "' is the frame " + where +
-                      " moves the URDF root '" + root +
-                      "' in: the monitor computes in the root's frame, which fixed_frame only "
+      throw LoadError(source + ": '" + fixed_frame_ + "' is the parent_frame of " + where +
+                      ", which moves the URDF root '" + root +
+                      "': the monitor computes in the root's frame, which fixed_frame only "
                       "renames (leave it empty)");
     }
   }
@@ -59,13 +60,20 @@ void MonitorNode::ResolveFixedFrame(const std::string& config_fixed_frame) {
   }
 }
 
-std::string MonitorNode::FixedFrameOffset() {
+std::string MonitorNode::FixedFrameOffset() const {
   const std::string& root = workcell_->fixed_frame;
-  if (fixed_frame_ == root || !tf_buffer_.canTransform(fixed_frame_, root, ros::Time(0))) {
-    return "";  // the same name, or a pure rename: TF does not relate them
+  if (fixed_frame_ == root) return "";
+  const char* const hint = " (fixed_frame only renames the root's frame: leave it empty)";
+  geometry_msgs::Transform X;
+  try {
+    X = tf_buffer_.lookupTransform(fixed_frame_, root, ros::Time(0)).transform;
+  } catch (const tf2::TransformException&) {
+    // A pure rename: TF does not have both. Two frames it has but has not joined (yet: a
+    // driver still starting) may be apart once it does.
+    if (!tf_buffer_._frameExists(fixed_frame_) || !tf_buffer_._frameExists(root)) return "";
+    return "TF has the fixed frame '" + fixed_frame_ + "' and the URDF root '" + root +
+           "' but does not relate them" + hint;
   }
-  const geometry_msgs::Transform X =
-      tf_buffer_.lookupTransform(fixed_frame_, root, ros::Time(0)).transform;
   const double offset_m =
       std::sqrt(X.translation.x * X.translation.x + X.translation.y * X.translation.y +
                 X.translation.z * X.translation.z);
@@ -77,14 +85,19 @@ std::string MonitorNode::FixedFrameOffset() {
   if (offset_m <= kFixedFrameMaxOffset_m && angle_rad <= kFixedFrameMaxAngle_rad) return "";
   std::ostringstream msg;
   msg << "the fixed frame '" << fixed_frame_ << "' is " << offset_m << " m and " << angle_rad
-      << " rad from the URDF root '" << root
-      << "' in TF (fixed_frame only renames the root's frame: leave it empty)";
+      << " rad from the URDF root '" << root << "' in TF" << hint;
   return msg.str();
 }
 
-geometry_msgs::TransformStamped MonitorNode::LookupInFixedFrame(const std::string& frame) {
-  const std::string offset = FixedFrameOffset();
-  if (!offset.empty()) throw tf2::TransformException(offset);
+geometry_msgs::TransformStamped MonitorNode::LookupInFixedFrame(const std::string& frame) const {
+  if (frame == workcell_->fixed_frame) {
+    // The root's own frame is the one the monitor computes in, whatever TF says of it.
+    geometry_msgs::TransformStamped X;
+    X.header.frame_id = fixed_frame_;
+    X.child_frame_id = frame;
+    X.transform.rotation.w = 1.0;
+    return X;
+  }
   return tf_buffer_.lookupTransform(fixed_frame_, frame, ros::Time(0));
 }
 

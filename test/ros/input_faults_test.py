@@ -500,6 +500,17 @@ class InputFaultsTest(unittest.TestCase):
         self.assertTrue(report.stop)
         self.assertIn("object 'camera'", report.stop_reason)
 
+    def assert_camera_stop(self, node, needle):
+        """Good input to `node` gets (once its TF has come) a stop naming the frame-bound camera
+        and `needle`."""
+        c = MonitorClient(node)
+        self.assertTrue(c.wait_connected())
+        report = c.publish_until(lambda: c.publish_pose(HOME, HOME),
+                                 lambda r: r.input_status == MonitorReport.INPUT_OK and r.stop)
+        self.assertIsNotNone(report, '%s: no stop on good input' % node)
+        self.assertIn("object 'camera'", report.stop_reason)
+        self.assertIn(needle, report.stop_reason)
+
     def test_17b_fixed_frame_apart_from_the_root_stops(self):
         """A fixed frame that TF puts apart from the URDF root (odom, 0.8 m from world) would
         misplace every pose looked up in it or given in it: the frame-bound camera (a stop naming
@@ -508,13 +519,7 @@ class InputFaultsTest(unittest.TestCase):
         fixed frame's name on the root's coordinates); a pose in the root's own frame is taken
         as it is."""
         offset = "the fixed frame 'odom' is 0.8 m and 0 rad from the URDF root 'world' in TF"
-        c = MonitorClient('/offset_monitor')
-        self.assertTrue(c.wait_connected())
-        report = c.publish_until(lambda: c.publish_pose(HOME, HOME),
-                                 lambda r: r.input_status == MonitorReport.INPUT_OK and r.stop)
-        self.assertIsNotNone(report)
-        self.assertIn("object 'camera'", report.stop_reason)
-        self.assertIn(offset, report.stop_reason)
+        self.assert_camera_stop('/offset_monitor', offset)
         rospy.wait_for_service('/offset_monitor/add_object', timeout=20.0)
         add = rospy.ServiceProxy('/offset_monitor/add_object', AddObject)
         far = Pose(position=Point(x=3.0, y=0.0, z=3.0), orientation=Quaternion(w=1.0))
@@ -538,6 +543,12 @@ class InputFaultsTest(unittest.TestCase):
         self.assertTrue(safety, 'no Safety diagnostics from offset_monitor')
         self.assertEqual(safety[-1].level, DiagnosticStatus.ERROR)
         self.assertIn(offset, safety[-1].message)
+
+    def test_17c_fixed_frame_unrelated_to_the_root_stops(self):
+        """A fixed frame TF has in a tree apart from the URDF root's (a driver's tree not yet
+        joined) may be anywhere: the frame-bound camera stops, naming it."""
+        self.assert_camera_stop('/island_monitor', "TF has the fixed frame 'island' and the URDF "
+                                "root 'world' but does not relate them")
 
     def test_18_diagnostics(self):
         c = self.client

@@ -137,8 +137,8 @@ class StartupErrorsTest(unittest.TestCase):
         code, output = self.run_node(extra=['_fixed_frame:=odom'],
                                      **dict(self.defaults(), scene=scene_path))
         self.assertNotEqual(code, 0, 'started with fixed_frame odom:\n' + output)
-        self.assertIn("/fixed_frame: 'odom' is the frame %s:69: <virtual_joint "
-                      "name='virtual_joint' type='floating'> moves the URDF root 'world' in"
+        self.assertIn("/fixed_frame: 'odom' is the parent_frame of %s:69: <virtual_joint "
+                      "name='virtual_joint' type='floating'>, which moves the URDF root 'world'"
                       % srdf_path, output)
         # tf2 refuses a frame id with a leading '/' (and logs each time it is asked about one).
         code, output = self.run_node(extra=['_fixed_frame:=/odom'], **self.defaults())

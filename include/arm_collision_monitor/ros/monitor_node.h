@@ -122,14 +122,18 @@ class MonitorNode {
   void RefreshPrimitives();
   // The fixed frame and TF (monitor_node_frames.cpp). fixed_frame_ from the parameter, else
   // `config_fixed_frame`, else the URDF root's name; a LoadError, naming where it came from,
-  // for a name tf2 refuses or a link of the URDF away from the root.
+  // for a name tf2 refuses, a moving virtual joint's parent frame or a link of the URDF away
+  // from the root.
   void ResolveFixedFrame(const std::string& config_fixed_frame);
-  // "" unless TF relates the fixed frame to the URDF root and puts them apart (the fixed frame
-  // only renames the root's frame, in which the monitor computes): then how far, and what to do.
-  std::string FixedFrameOffset();
-  // TF's newest transform from `frame` to the fixed frame; throws tf2::TransformException, as
-  // TF's lookup does, also with FixedFrameOffset's text (the pose would be misplaced).
-  geometry_msgs::TransformStamped LookupInFixedFrame(const std::string& frame);
+  // "" unless TF puts the fixed frame apart from the URDF root, or has both and does not
+  // relate them (the fixed frame only renames the root's frame, in which the monitor computes):
+  // then how far, and what to do. Never throws.
+  std::string FixedFrameOffset() const;
+  // TF's newest transform from `frame` to the fixed frame (the root's own frame: the identity);
+  // throws tf2::TransformException as TF's lookup does. After FixedFrameOffset: "" for a pose
+  // the monitor may take.
+  geometry_msgs::TransformStamped LookupInFixedFrame(const std::string& frame) const;
+
   // X_WO from a pose in `frame` (the URDF root's: as is; "" or the fixed frame: as is, unless
   // FixedFrameOffset; else through TF now).
   bool ResolvePose(const geometry_msgs::Pose& pose, const std::string& frame,
@@ -167,6 +171,11 @@ class MonitorNode {
     bool is_available = false;  // the frame's pose read in the last cycle (OnAttach asks)
   };
   std::vector<BoundObject> bound_objects_;
+  // UpdateBoundObjects' step for one object: true when its frame's pose is taken (or noted,
+  // held), else false with why in `error`.
+  bool PoseBoundObject(BoundObject* bound, bool is_held, const ros::Time& now,
+                       std::string* error);
+  std::string logged_offset_;  // FixedFrameOffset as last logged (DiagnoseSafety)
 
   std::vector<ros::Subscriber> subscribers_;
   // Per input topic with a joint prefix: the names of its last message and those prefixed (made
