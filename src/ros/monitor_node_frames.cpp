@@ -2,27 +2,31 @@
 // the monitor computes (README "Your own robot", fixed_frame), and the TF lookups into it
 // (frame-bound objects, live objects given in a TF frame).
 
-#include <cmath>
 #include <sstream>
 
 #include <Eigen/Geometry>
 
 #include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/core/load_error.h"
+#include "arm_collision_monitor/ros/conversions.h"
 #include "arm_collision_monitor/ros/monitor_node.h"
 
 namespace arm_collision_monitor {
 namespace {
 
-// Whether `link` is fixed to the URDF root at the root's own pose (within kFixedFrameMaxOffset_m
-// and kFixedFrameMaxAngle_rad): the same frame under another name (a world link's base_link).
+// Whether a frame at pose `X_FRoot` relative to the URDF root is the root's own frame under
+// another name: within kFixedFrameMaxOffset_m and kFixedFrameMaxAngle_rad (NaN is not).
+bool IsAtRoot(const Eigen::Isometry3d& X_FRoot) {
+  return X_FRoot.translation().norm() <= kFixedFrameMaxOffset_m &&
+         Eigen::AngleAxisd(X_FRoot.linear()).angle() <= kFixedFrameMaxAngle_rad;
+}
+
+// Whether `link` is fixed to the URDF root at the root's own pose (a world link's base_link).
 bool IsFixedAtRoot(const KinematicModel& kinematics, int link) {
   if (kinematics.is_moving(link)) return false;
   std::vector<Eigen::Isometry3d> X_WL(kinematics.link_count());
   kinematics.ComputeLinkPoses(Eigen::VectorXd::Zero(kinematics.q_size()), &X_WL);
-  const Eigen::Isometry3d X_RootL = X_WL[0].inverse(Eigen::Isometry) * X_WL[link];
-  return X_RootL.translation().norm() <= kFixedFrameMaxOffset_m &&
-         Eigen::AngleAxisd(X_RootL.linear()).angle() <= kFixedFrameMaxAngle_rad;
+  return IsAtRoot(X_WL[0].inverse(Eigen::Isometry) * X_WL[link]);
 }
 
 }  // namespace
@@ -64,9 +68,12 @@ std::string MonitorNode::FixedFrameOffset() const {
   const std::string& root = workcell_->fixed_frame;
   if (fixed_frame_ == root) return "";
   const char* const hint = " (fixed_frame only renames the root's frame: leave it empty)";
-  geometry_msgs::Transform X;
+  // The root's pose in the fixed frame, its quaternion normalised (ToRigidTransform).
+  Eigen::Isometry3d X_FRoot = Eigen::Isometry3d::Identity();
+  std::string bad;
   try {
-    X = tf_buffer_.lookupTransform(fixed_frame_, root, ros::Time(0)).transform;
+    bad = ToRigidTransform(
+        tf_buffer_.lookupTransform(fixed_frame_, root, ros::Time(0)).transform, &X_FRoot);
   } catch (const tf2::TransformException&) {
     // A pure rename: TF does not have both. Two frames it has but has not joined (yet: a
     // driver still starting) may be apart once it does.
@@ -74,18 +81,15 @@ std::string MonitorNode::FixedFrameOffset() const {
     return "TF has the fixed frame '" + fixed_frame_ + "' and the URDF root '" + root +
            "' but does not relate them" + hint;
   }
-  const double offset_m =
-      std::sqrt(X.translation.x * X.translation.x + X.translation.y * X.translation.y +
-                X.translation.z * X.translation.z);
-  // The rotation's angle, 2 atan2(|v|, |w|), of the quaternion as TF keeps it (any norm).
-  const double angle_rad =
-      2.0 * std::atan2(std::sqrt(X.rotation.x * X.rotation.x + X.rotation.y * X.rotation.y +
-                                 X.rotation.z * X.rotation.z),
-                       std::abs(X.rotation.w));
-  if (offset_m <= kFixedFrameMaxOffset_m && angle_rad <= kFixedFrameMaxAngle_rad) return "";
+  if (!bad.empty()) {
+    return "TF's transform from the URDF root '" + root + "' to the fixed frame '" +
+           fixed_frame_ + "': " + bad + hint;
+  }
+  if (IsAtRoot(X_FRoot)) return "";
   std::ostringstream msg;
-  msg << "the fixed frame '" << fixed_frame_ << "' is " << offset_m << " m and " << angle_rad
-      << " rad from the URDF root '" << root << "' in TF" << hint;
+  msg << "the fixed frame '" << fixed_frame_ << "' is " << X_FRoot.translation().norm()
+      << " m and " << Eigen::AngleAxisd(X_FRoot.linear()).angle() << " rad from the URDF root '"
+      << root << "' in TF" << hint;
   return msg.str();
 }
 
