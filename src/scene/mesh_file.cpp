@@ -168,6 +168,14 @@ TriangleMesh ReadMeshFileBytes(const std::string& bytes, const std::string& name
     throw LoadError("cannot read the mesh: " + NameInMessage(importer.GetErrorString(), name) +
                     " (expected a mesh file: STL, DAE, OBJ, ...)");
   }
+  // assimp marks a scene incomplete when the file placed no mesh in it (a COLLADA
+  // <instance_geometry> naming no geometry, a geometry never instanced), and some of its
+  // readers then add a stand-in skeleton mesh: fitting that would give the link a speck.
+  if ((scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) != 0) {
+    throw LoadError("the file places no mesh in its scene (assimp reads it as incomplete: a "
+                    "COLLADA <instance_geometry> naming no geometry, or a geometry no node "
+                    "instances?); expected a surface of triangles or polygons");
+  }
   TriangleMesh mesh;
   const Eigen::Affine3d X_scale(Eigen::Scaling(scale));
   AppendNode(*scene, *scene->mRootNode,

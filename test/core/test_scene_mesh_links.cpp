@@ -472,6 +472,29 @@ TEST(SceneMeshLinks, MalformedStlFilesAreRejected) {
   }
 }
 
+// A COLLADA file that places no geometry in its scene (its node names a geometry it lacks, or
+// no node instances its geometry) is refused: assimp marks the scene incomplete and gives it a
+// stand-in skeleton mesh, whose fit was a 0.1 mm capsule for the link (helper-66 trial, a
+// contact missed).
+TEST(SceneMeshLinks, ColladaPlacingNoGeometryIsRejected) {
+  const std::string dir = FreshDir("dae_no_geometry");
+  const std::string dae = Dae(LShapeMesh(0.1, 0.05));
+  const std::string instance = "<instance_geometry url=\"#g\"/>";
+  const std::size_t at = dae.find(instance);
+  ASSERT_NE(at, std::string::npos);
+  std::string dangling = dae;
+  dangling.replace(at, instance.size(), "<instance_geometry url=\"#nothere\"/>");
+  ExpectBadLinkMesh(dir, "dangling.dae", dangling, {"places no mesh in its scene"});
+  std::string unplaced = dae;
+  unplaced.erase(at, instance.size());
+  ExpectBadLinkMesh(dir, "unplaced.dae", unplaced, {"places no mesh in its scene"});
+  // The file as written loads (the edits above are what fails).
+  WriteBytes(dir + "placed.dae", dae);
+  const Files files = WriteRobot(dir, {MeshCollision("placed.dae")});
+  ExpectEncloses(LoadWorkcell(files.urdf, files.scene, CacheIn(dir)), "link0",
+                 LShapeMesh(0.1, 0.05), Eigen::Isometry3d::Identity());
+}
+
 // assimp 5.2 appends index 0 until memory runs out when a COLLADA <p> holds a non-number: the
 // reader refuses it first, naming the element and its line (fuzzer finding), whatever the
 // file's extension; a valid file with spaces, signs and attributes in <p> still loads.
