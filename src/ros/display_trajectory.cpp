@@ -1,6 +1,8 @@
 #include "arm_collision_monitor/ros/display_trajectory.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <map>
 #include <sstream>
@@ -300,37 +302,46 @@ void CheckGoalFields(const Reader& reader, std::string type,
 }
 
 // Reads the value of `type` at the reader, taking the value at the end of `fields` (from
-// `depth` on; none when that field is not of type Msg) into *msg and skipping every other field.
+// `depth` on; none when that field is not of type Msg) into *msg and skipping every other field;
+// `multi_dof` (unless null) takes its sibling multi_dof_joint_trajectory, a RobotTrajectory's.
 template <typename Msg>
 void ReadAlong(Reader* reader, const std::string& type, const std::string& path,
-               const std::vector<std::string>& fields, std::size_t depth, Msg* msg) {
+               const std::vector<std::string>& fields, std::size_t depth, Msg* msg,
+               trajectory_msgs::MultiDOFJointTrajectory* multi_dof = nullptr) {
   const bool is_last = depth + 1 == fields.size();
   for (const Field& field : reader->FieldsOf(type, path)) {
+    const std::string field_path = path.empty() ? field.name : path + "." + field.name;
+    if (is_last && multi_dof != nullptr && !field.is_array &&
+        field.name == "multi_dof_joint_trajectory" &&
+        field.type == ros::message_traits::DataType<trajectory_msgs::MultiDOFJointTrajectory>::
+                          value()) {
+      reader->ReadTyped(field.type, field_path, multi_dof);
+      continue;
+    }
     if (field.is_array || field.name != fields[depth] ||
         (is_last && field.type != ros::message_traits::DataType<Msg>::value())) {
       reader->SkipField(field, path);
       continue;
     }
-    const std::string field_path = path.empty() ? field.name : path + "." + field.name;
     if (is_last) {
       reader->ReadTyped(field.type, field_path, msg);
     } else {
-      ReadAlong(reader, field.type, field_path, fields, depth + 1, msg);
+      ReadAlong(reader, field.type, field_path, fields, depth + 1, msg, multi_dof);
     }
   }
 }
 
 }  // namespace
 
-trajectory_msgs::JointTrajectory ReadGoalTrajectory(const std::string& type,
-                                                    const std::string& definition,
-                                                    const std::uint8_t* data, std::size_t size) {
+trajectory_msgs::JointTrajectory ReadGoalTrajectory(
+    const std::string& type, const std::string& definition, const std::uint8_t* data,
+    std::size_t size, trajectory_msgs::MultiDOFJointTrajectory* multi_dof) {
   const std::vector<std::string>& fields = GoalFields(type);
   const Definitions definitions = ParseDefinitions(type, definition);
   Reader reader(definitions, type, data, size);
   CheckGoalFields(reader, type, fields);
   trajectory_msgs::JointTrajectory trajectory;
-  ReadAlong(&reader, type, "", fields, 0, &trajectory);
+  ReadAlong(&reader, type, "", fields, 0, &trajectory, multi_dof);
   if (reader.remaining() != 0) {
     throw Error("", std::to_string(reader.remaining()) + " bytes left after the last field");
   }
@@ -358,8 +369,10 @@ DisplayedPlan ReadDisplayTrajectory(const std::string& definition, const std::ui
       const std::uint32_t count = reader.ReadArrayCount(field, field.name);
       for (std::uint32_t k = 0; k < count; ++k) {
         plan.trajectories.emplace_back();
+        plan.multi_dof_trajectories.emplace_back();
         ReadAlong(&reader, field.type, "trajectory[" + std::to_string(k) + "]",
-                  {"joint_trajectory"}, 0, &plan.trajectories.back());
+                  {"joint_trajectory"}, 0, &plan.trajectories.back(),
+                  &plan.multi_dof_trajectories.back());
       }
     } else if (field.name == "trajectory_start" && field.type == "moveit_msgs/RobotState" &&
                !field.is_array) {
@@ -372,6 +385,51 @@ DisplayedPlan ReadDisplayTrajectory(const std::string& definition, const std::ui
     throw Error("", std::to_string(reader.remaining()) + " bytes left after the last field");
   }
   return plan;
+}
+
+std::string DescribeMultiDofMotion(const trajectory_msgs::MultiDOFJointTrajectory& trajectory) {
+  if (trajectory.points.empty()) return "";
+  const std::vector<geometry_msgs::Transform>& first = trajectory.points.front().transforms;
+  double largest_m = 0.0, largest_rad = 0.0;
+  std::size_t moving = 0;  // the joints named that move
+  bool is_count_same = true;
+  std::vector<std::uint8_t> moves(first.size(), 0);
+  for (const trajectory_msgs::MultiDOFJointTrajectoryPoint& point : trajectory.points) {
+    is_count_same &= point.transforms.size() == first.size();
+    for (std::size_t j = 0; j < first.size() && j < point.transforms.size(); ++j) {
+      const geometry_msgs::Vector3& a = first[j].translation;
+      const geometry_msgs::Vector3& b = point.transforms[j].translation;
+      // Not std::hypot: libstdc++'s three-argument one gives 0 for (0, NaN, 0).
+      const double m = std::sqrt((b.x - a.x) * (b.x - a.x) + (b.y - a.y) * (b.y - a.y) +
+                                 (b.z - a.z) * (b.z - a.z));
+      const geometry_msgs::Quaternion& qa = first[j].rotation;
+      const geometry_msgs::Quaternion& qb = point.transforms[j].rotation;
+      const double norms = std::sqrt((qa.x * qa.x + qa.y * qa.y + qa.z * qa.z + qa.w * qa.w) *
+                                     (qb.x * qb.x + qb.y * qb.y + qb.z * qb.z + qb.w * qb.w));
+      const double dot = qa.x * qb.x + qa.y * qb.y + qa.z * qb.z + qa.w * qb.w;
+      const double rad = 2.0 * std::acos(std::min(1.0, std::abs(dot) / norms));
+      // NaN moves: nothing proves it stands still.
+      const bool is_moving = !(m <= kMultiDofStill) || !(rad <= kMultiDofStill);
+      if (is_moving && !moves[j]) ++moving;
+      moves[j] |= is_moving ? 1 : 0;
+      largest_m = std::max(largest_m, m);
+      largest_rad = std::max(largest_rad, rad);
+    }
+  }
+  if (!is_count_same) {
+    return "its multi_dof_joint_trajectory's points give different numbers of transforms";
+  }
+  if (moving == 0) return "";
+  std::string names;
+  for (std::size_t j = 0; j < moves.size(); ++j) {
+    if (!moves[j]) continue;
+    const std::string name =
+        j < trajectory.joint_names.size() ? trajectory.joint_names[j] : std::to_string(j);
+    names += (names.empty() ? "'" : ", '") + name + "'";
+  }
+  char amount[96];
+  std::snprintf(amount, sizeof(amount), " by up to %.6g m and %.6g rad", largest_m, largest_rad);
+  return "its multi_dof_joint_trajectory moves " + names + amount;
 }
 
 }  // namespace arm_collision_monitor

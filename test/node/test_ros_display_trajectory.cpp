@@ -4,6 +4,7 @@
 // allocation as large as a corrupted count; a definition that fans out over empty types costs
 // no more than its bytes; definitions that lack what is read, that differ from this build's,
 // whose type contains itself or that nest too deep are refused before any byte is read.
+#include <cmath>
 #include <cstdint>
 #include <map>
 #include <stdexcept>
@@ -85,8 +86,29 @@ trajectory_msgs::JointTrajectory Trajectory(double offset) {
   return plan;
 }
 
-// The bytes of a DisplayTrajectory laid out as Definition(group_name).
-std::vector<std::uint8_t> Bytes(bool group_name) {
+// A mobile base's plan: 'virtual_joint' at its first point's pose, then moved by `step_m` along
+// y and turned by `turn_rad` about z.
+trajectory_msgs::MultiDOFJointTrajectory BasePlan(double step_m, double turn_rad) {
+  trajectory_msgs::MultiDOFJointTrajectory plan;
+  plan.joint_names = {"virtual_joint"};
+  for (int k = 0; k < 2; ++k) {
+    trajectory_msgs::MultiDOFJointTrajectoryPoint point;
+    geometry_msgs::Transform pose;
+    pose.translation.x = 1.0;
+    pose.translation.y = k * step_m;
+    pose.rotation.z = std::sin(0.5 * k * turn_rad);
+    pose.rotation.w = std::cos(0.5 * k * turn_rad);
+    point.transforms = {pose};
+    point.time_from_start = ros::Duration(0.5 * k);
+    plan.points.push_back(point);
+  }
+  return plan;
+}
+
+// The bytes of a DisplayTrajectory laid out as Definition(group_name), the second trajectory's
+// multi-DOF part `multi_dof`.
+std::vector<std::uint8_t> Bytes(bool group_name,
+                                const trajectory_msgs::MultiDOFJointTrajectory& multi_dof = {}) {
   namespace ser = ros::serialization;
   std::vector<std::uint8_t> bytes(4096);
   ser::OStream out(bytes.data(), static_cast<std::uint32_t>(bytes.size()));
@@ -94,7 +116,7 @@ std::vector<std::uint8_t> Bytes(bool group_name) {
   ser::serialize(out, std::uint32_t{2});
   for (const double offset : {0.0, 10.0}) {
     ser::serialize(out, Trajectory(offset));
-    ser::serialize(out, trajectory_msgs::MultiDOFJointTrajectory());
+    ser::serialize(out, offset > 0.0 ? multi_dof : trajectory_msgs::MultiDOFJointTrajectory());
     if (group_name) ser::serialize(out, std::string("arms"));
   }
   sensor_msgs::JointState start;
@@ -125,6 +147,32 @@ TEST(DisplayTrajectory, ReadsWhatWasWritten) {
     EXPECT_THROW(ReadDisplayTrajectory(Definition(!group_name), bytes.data(), bytes.size()),
                  std::runtime_error);
   }
+}
+
+// Each trajectory's multi-DOF part is read beside it, and its motion told: replay refuses a plan
+// that moves a mobile base (the monitor's robot stands on a fixed root); standing still, or
+// without a multi-DOF part, it is no motion.
+TEST(DisplayTrajectory, ReadsEachMultiDofPartAndTellsItsMotion) {
+  const trajectory_msgs::MultiDOFJointTrajectory base = BasePlan(0.4, 0.0);
+  const std::vector<std::uint8_t> bytes = Bytes(true, base);
+  const DisplayedPlan plan = ReadDisplayTrajectory(Definition(true), bytes.data(), bytes.size());
+  ASSERT_EQ(plan.multi_dof_trajectories.size(), 2u);
+  EXPECT_EQ(plan.multi_dof_trajectories[0], trajectory_msgs::MultiDOFJointTrajectory());
+  EXPECT_EQ(plan.multi_dof_trajectories[1], base);
+  EXPECT_EQ(plan.trajectories[1], Trajectory(10.0));
+  EXPECT_EQ(DescribeMultiDofMotion(plan.multi_dof_trajectories[0]), "");
+  EXPECT_EQ(DescribeMultiDofMotion(base),
+            "its multi_dof_joint_trajectory moves 'virtual_joint' by up to 0.4 m and 0 rad");
+  EXPECT_EQ(DescribeMultiDofMotion(BasePlan(0.0, 0.0)), "");
+  EXPECT_EQ(DescribeMultiDofMotion(BasePlan(0.0, 0.3)),
+            "its multi_dof_joint_trajectory moves 'virtual_joint' by up to 0 m and 0.3 rad");
+  EXPECT_EQ(DescribeMultiDofMotion(BasePlan(1e-9, 0.0)), "");
+  EXPECT_NE(DescribeMultiDofMotion(BasePlan(2e-9, 0.0)), "");
+  EXPECT_NE(DescribeMultiDofMotion(BasePlan(std::nan(""), 0.0)), "");
+  trajectory_msgs::MultiDOFJointTrajectory uneven = BasePlan(0.0, 0.0);
+  uneven.points[1].transforms.push_back(uneven.points[1].transforms[0]);
+  EXPECT_EQ(DescribeMultiDofMotion(uneven),
+            "its multi_dof_joint_trajectory's points give different numbers of transforms");
 }
 
 TEST(DisplayTrajectory, EveryTruncationIsRefused) {
@@ -271,7 +319,7 @@ std::vector<std::uint8_t> GoalBytes(const std::string& type) {
     ser::serialize(out, std::uint32_t{0});  // no goal tolerance
     ser::serialize(out, ros::Duration(0.5));
   } else {
-    ser::serialize(out, trajectory_msgs::MultiDOFJointTrajectory());
+    ser::serialize(out, BasePlan(0.25, 0.0));
   }
   bytes.resize(static_cast<std::size_t>(out.getData() - bytes.data()));
   return bytes;
@@ -282,6 +330,14 @@ TEST(GoalTrajectory, ReadsWhatWasWrittenAndRefusesEveryTruncation) {
     const std::vector<std::uint8_t> bytes = GoalBytes(type);
     const std::string definition = GoalDefinition(type);
     EXPECT_EQ(ReadGoalTrajectory(type, definition, bytes.data(), bytes.size()), Trajectory(1.0))
+        << type;
+    // An ExecuteTrajectory goal's RobotTrajectory carries a multi-DOF part; a
+    // FollowJointTrajectory goal none.
+    trajectory_msgs::MultiDOFJointTrajectory multi_dof;
+    ReadGoalTrajectory(type, definition, bytes.data(), bytes.size(), &multi_dof);
+    EXPECT_EQ(multi_dof, type == kExecuteTrajectoryGoalType
+                             ? BasePlan(0.25, 0.0)
+                             : trajectory_msgs::MultiDOFJointTrajectory())
         << type;
     for (std::size_t size = 0; size < bytes.size(); ++size) {
       EXPECT_THROW(ReadGoalTrajectory(type, definition, bytes.data(), size), std::runtime_error)

@@ -32,8 +32,10 @@ import rospkg
 import rospy
 import rostest
 from sensor_msgs.msg import JointState, MultiDOFJointState
+from geometry_msgs.msg import Transform
 from std_msgs.msg import Header
-from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint, MultiDOFJointTrajectory
+from trajectory_msgs.msg import (JointTrajectory, JointTrajectoryPoint, MultiDOFJointTrajectory,
+                                 MultiDOFJointTrajectoryPoint)
 
 from acm_test_util import (LEFT_JOINTS, LEFT_TOWARDS_RIGHT, RIGHT_JOINTS, RIGHT_TOWARDS_LEFT,
                            rosrun)
@@ -113,15 +115,16 @@ def serialized_string(text):
     return struct.pack('<I', len(data)) + data
 
 
-def display_bytes(trajectories, start_state, group_name):
+def display_bytes(trajectories, start_state, group_name, multi_dof=None):
     """A DisplayTrajectory serialized by display_definition(group_name), with one attached
-    object in its start state."""
+    object in its start state; `multi_dof` (a MultiDOFJointTrajectory) beside each trajectory,
+    else an empty one."""
     buff = io.BytesIO()
     buff.write(serialized_string('dual_arm'))
     buff.write(struct.pack('<I', len(trajectories)))
     for trajectory in trajectories:
         trajectory.serialize(buff)
-        MultiDOFJointTrajectory().serialize(buff)
+        (multi_dof or MultiDOFJointTrajectory()).serialize(buff)
         if group_name:
             buff.write(serialized_string('both_arms'))
     start_state.serialize(buff)
@@ -570,6 +573,35 @@ class ReplayTrajectoryTest(unittest.TestCase):
         report = json.loads(result.stdout)
         self.assertEqual([round(c['time_s'], 9) for c in report['per_cycle']], [0.0, 0.05, 0.1])
         self.assertEqual(report['jumped_cycles'], 0)
+
+    def test_a_moveit_display_moving_the_base_is_refused(self):
+        # A mobile manipulator's plan: its multi-DOF part moves the SRDF's virtual joint (the
+        # base) 0.4 m. The monitor's robot stands on a fixed root, so replay cannot check it and
+        # says so, naming the message and trajectory; the same base standing still replays.
+        start_state = JointState(name=LEFT_JOINTS + RIGHT_JOINTS, position=self.samples[0][1])
+        plan = trajectory_of(self.samples[:5], slice(0, 14), self.samples[0][0])
+        path = os.path.join(self.directory, 'display_base.bag')
+        for step_m in (0.4, 0.0):
+            base = MultiDOFJointTrajectory(joint_names=['virtual_joint'])
+            for k in range(2):
+                pose = Transform()
+                pose.translation.y = k * step_m
+                pose.rotation.w = 1.0
+                base.points.append(MultiDOFJointTrajectoryPoint(
+                    transforms=[pose], time_from_start=rospy.Duration(0.1 * k)))
+            write_display(path, display_bytes([plan], start_state, True, base),
+                          display_definition(True), self.samples[0][0])
+            result, report = self.replay(path)
+            if step_m == 0.0:
+                self.assertEqual(result.returncode, 0, result.stderr)
+                self.assertEqual(report['cycles'], 5)
+                continue
+            self.assertEqual(result.returncode, 1)
+            self.assertIn('display_base.bag: moveit_msgs/DisplayTrajectory on '
+                          '/move_group/display_planned_path at bag time ', result.stderr)
+            self.assertIn(", trajectory 0: its multi_dof_joint_trajectory moves 'virtual_joint' "
+                          'by up to 0.4 m and 0 rad', result.stderr)
+            self.assertIn('cannot check a plan that moves it', result.stderr)
 
     def test_an_unreadable_display_names_the_message_and_field(self):
         start_state = JointState(name=LEFT_JOINTS + RIGHT_JOINTS, position=self.samples[0][1])

@@ -16,6 +16,7 @@
 
 #include <sensor_msgs/JointState.h>
 #include <trajectory_msgs/JointTrajectory.h>
+#include <trajectory_msgs/MultiDOFJointTrajectory.h>
 
 namespace arm_collision_monitor {
 
@@ -33,6 +34,9 @@ struct DisplayedPlan {
   sensor_msgs::JointState start_state;
   /// trajectory[k].joint_trajectory in order (executed one after the other)
   std::vector<trajectory_msgs::JointTrajectory> trajectories;
+  /// trajectory[k].multi_dof_joint_trajectory beside each (empty where the bag's definition of
+  /// RobotTrajectory has none): the motion of the SRDF's virtual joint, a mobile base's
+  std::vector<trajectory_msgs::MultiDOFJointTrajectory> multi_dof_trajectories;
 };
 
 /// Reads the `size` bytes at `data`, a message of type kDisplayTrajectoryType serialized by
@@ -46,8 +50,18 @@ DisplayedPlan ReadDisplayTrajectory(const std::string& definition, const std::ui
 /// Reads the joint trajectory of an action goal of `type` (kFollowJointTrajectoryGoalType or
 /// kExecuteTrajectoryGoalType) from its `size` bytes at `data`, serialized by `definition`, as
 /// ReadDisplayTrajectory does (the same errors); std::invalid_argument for another type.
-trajectory_msgs::JointTrajectory ReadGoalTrajectory(const std::string& type,
-                                                    const std::string& definition,
-                                                    const std::uint8_t* data, std::size_t size);
+/// `multi_dof` (unless null) gets an ExecuteTrajectory goal's multi_dof_joint_trajectory.
+trajectory_msgs::JointTrajectory ReadGoalTrajectory(
+    const std::string& type, const std::string& definition, const std::uint8_t* data,
+    std::size_t size, trajectory_msgs::MultiDOFJointTrajectory* multi_dof = nullptr);
+
+/// A multi-DOF transform within this many m and rad of where the first point has it stands
+/// still (DescribeMultiDofMotion).
+inline constexpr double kMultiDofStill = 1e-9;
+
+/// Empty when every point of `trajectory` has each transform where its first point has it
+/// (within kMultiDofStill), else what moves and how far ("its multi_dof_joint_trajectory moves
+/// 'virtual_joint' by up to 0.4 m and 0 rad"); NaN moves.
+std::string DescribeMultiDofMotion(const trajectory_msgs::MultiDOFJointTrajectory& trajectory);
 
 }  // namespace arm_collision_monitor

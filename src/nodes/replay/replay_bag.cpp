@@ -257,6 +257,18 @@ void UnwindAsMoveItExecutes(const std::set<std::string>& turning,
   }
 }
 
+// A LoadError naming the plan at `where` when its multi-DOF part (a mobile base's virtual joint)
+// moves: the monitor keeps the URDF root where the fixed frame is, and would check the arms as
+// if the base stood still.
+void RefuseBaseMotion(const std::string& where,
+                      const trajectory_msgs::MultiDOFJointTrajectory& multi_dof) {
+  const std::string motion = DescribeMultiDofMotion(multi_dof);
+  if (motion.empty()) return;
+  throw LoadError(where + ": " + motion + "; the monitor keeps the robot's root link fixed "
+                  "(a fixed base), so it cannot check a plan that moves it (plan the arms with "
+                  "the base standing still)");
+}
+
 // The plans of the bag at `path` on `topics`, in bag order, their joint names prefixed; those
 // of MoveIt's displays unwound as MoveIt executes them (`model`'s turning joints).
 PlanSources ReadPlans(const std::string& path, const rosbag::Bag& bag,
@@ -303,17 +315,20 @@ PlanSources ReadPlans(const std::string& path, const rosbag::Bag& bag,
       displayed_at = &at;
       for (std::size_t k = 0; k < displayed.trajectories.size(); ++k) {
         const trajectory_msgs::JointTrajectory& plan = displayed.trajectories[k];
-        start = add(plan, plan.header.stamp.isZero() ? start : plan.header.stamp,
-                    where + ", trajectory " + std::to_string(k));
+        const std::string where_k = where + ", trajectory " + std::to_string(k);
+        RefuseBaseMotion(where_k, displayed.multi_dof_trajectories[k]);
+        start = add(plan, plan.header.stamp.isZero() ? start : plan.header.stamp, where_k);
       }
       displayed_at = nullptr;
     } else {
       // An action goal's trajectory: header.stamp 0 is when the goal arrived.
       const std::string type = m.getDataType();
+      trajectory_msgs::MultiDOFJointTrajectory multi_dof;
       const trajectory_msgs::JointTrajectory plan = ReadRaw(
           path, m, [&](const std::string& definition, const std::uint8_t* data, std::size_t size) {
-            return ReadGoalTrajectory(type, definition, data, size);
+            return ReadGoalTrajectory(type, definition, data, size, &multi_dof);
           });
+      RefuseBaseMotion(where, multi_dof);
       add(plan, plan.header.stamp.isZero() ? m.getTime() : plan.header.stamp, where);
     }
   }
