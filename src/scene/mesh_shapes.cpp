@@ -91,6 +91,10 @@ std::vector<Shape> MeshFitter::FitFile(const std::string& name, const std::strin
          << ") must be 3 finite, non-zero numbers";
     throw LoadError(text.str());
   }
+  if (name.empty()) {
+    throw LoadError(element + ": an empty file name (expected a mesh file: a path, or a "
+                    "package:// or file:// URL)");
+  }
   TriangleMesh mesh;
   try {
     const std::string url = ResolveResourceName(name, base_dir);

@@ -441,6 +441,7 @@ void ExpectBadLinkMesh(const std::string& dir, const std::string& file, const st
 TEST(SceneMeshLinks, BadMeshFilesAreRejectedNamingUrdfLinkAndFile) {
   const std::string dir = FreshDir("bad_files");
   ExpectBadLinkMesh(dir, "missing.stl", "", {"cannot open the file"});
+  ExpectBadLinkMesh(dir, "", "", {"an empty file name"});
   std::string garbage;
   for (int i = 0; i < 3000; ++i) garbage += static_cast<char>((i * 7919 + 13) % 251);
   for (const std::string& name :
