@@ -44,6 +44,17 @@ std::string SizeText(const std::vector<Shape>& shapes) {
   return text.str();
 }
 
+// The extent of the mesh's vertices along the axes of its frame (m).
+Eigen::Vector3d Extent_m(const TriangleMesh& mesh) {
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector3d hi = -lo;
+  for (const Eigen::Vector3d& v : mesh.vertices_L) {
+    lo = lo.cwiseMin(v);
+    hi = hi.cwiseMax(v);
+  }
+  return hi - lo;
+}
+
 // One report line: "<where>: mesh fit: 1 capsule, 1204 vertices, fitted/mesh volume 1.37 (cached)".
 std::string ReportLine(const std::string& where, const MeshFitOptions& options,
                        const TriangleMesh& mesh, const MeshFit& fit, bool is_cached) {
@@ -60,13 +71,7 @@ std::string ReportLine(const std::string& where, const MeshFitOptions& options,
     }
   } else {
     // No volume to compare with: the vertices' extent gives the fit a scale.
-    Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
-    Eigen::Vector3d hi = -lo;
-    for (const Eigen::Vector3d& v : mesh.vertices_L) {
-      lo = lo.cwiseMin(v);
-      hi = hi.cwiseMax(v);
-    }
-    const Eigen::Vector3d extent_m = hi - lo;
+    const Eigen::Vector3d extent_m = Extent_m(mesh);
     line.precision(3);
     line << "open mesh: volume undefined (its vertices span " << extent_m.x() << " x "
          << extent_m.y() << " x " << extent_m.z() << " m along the mesh axes)";
@@ -110,6 +115,15 @@ std::vector<Shape> MeshFitter::FitInline(const TriangleMesh& mesh, const std::st
   if (check.status != MeshStatus::kOk) {
     throw LoadError(where + ": " + MeshStatusName(check.status) + ": " + check.message);
   }
+  const double across_m = Extent_m(mesh).maxCoeff();
+  if (across_m < kSmallMeshEdge_m) {
+    std::ostringstream text;
+    text << where << ": the mesh is " << across_m
+         << " m across at most: a unit error? (a mesh in metres given scale=\"0.001 0.001 "
+            "0.001\", or a COLLADA <unit> and a scale both applied); its part is modelled that "
+            "small, and the real part's contacts would be missed";
+    warnings_.push_back(text.str());
+  }
   const std::uint64_t key = MeshFitHash(mesh, options_);
   if (const std::optional<MeshFit> cached = cache_.Find(key, mesh)) {
     ++counts_.from_cache;
@@ -129,6 +143,7 @@ std::vector<Shape> MeshFitter::FitInline(const TriangleMesh& mesh, const std::st
 
 void MeshFitter::ReportTo(Workcell* workcell) const {
   workcell->notices.insert(workcell->notices.end(), notices_.begin(), notices_.end());
+  workcell->warnings.insert(workcell->warnings.end(), warnings_.begin(), warnings_.end());
   if (!cache_trouble_.empty()) {
     workcell->notices.push_back("mesh fit cache " + cache_.dir() + " not written (" +
                                 cache_trouble_ +

@@ -32,7 +32,8 @@ class MeshFitter {
   /// read), in its frame M.
   std::vector<Shape> FitInline(const TriangleMesh& mesh, const std::string& where);
 
-  /// Adds the report lines, the cache's trouble (if any) and the fit counts to `workcell`.
+  /// Adds the report lines, the warnings (meshes under kSmallMeshEdge_m), the cache's trouble
+  /// (if any) and the fit counts to `workcell`.
   void ReportTo(Workcell* workcell) const;
 
  private:
@@ -40,6 +41,7 @@ class MeshFitter {
   MeshFitCache cache_;
   MeshFitOptions options_;
   std::vector<std::string> notices_;
+  std::vector<std::string> warnings_;
   std::string cache_trouble_;  // the first failed store, "" if none
   MeshFitCounts counts_;
 };

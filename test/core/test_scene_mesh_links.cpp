@@ -389,6 +389,32 @@ TEST(SceneMeshLinks, ColladaUnitIsAppliedAndItsUpAxisIgnored) {
   }
 }
 
+// A mesh under a millimetre across (a COLLADA <unit> in mm and a scale of 0.001 too: the helper-66
+// trial's 0.5 mm speck for a 0.5 m part) is loaded as it is, with a warning naming the link and
+// the likely unit error; the part at its real size gets none.
+TEST(SceneMeshLinks, AMeshUnderAMillimetreIsAWarning) {
+  const std::string dir = FreshDir("speck");
+  WriteBytes(dir + "box.dae", Dae(BoxMesh(Eigen::Vector3d(40, 10, 500)), "0.001"));
+  auto unit_warnings = [](const Workcell& w) {
+    std::vector<std::string> found;
+    for (const std::string& warning : w.warnings) {
+      if (warning.find("a unit error?") != std::string::npos) found.push_back(warning);
+    }
+    return found;
+  };
+  Files files = WriteRobot(dir, {MeshCollision("box.dae")});
+  EXPECT_EQ(unit_warnings(LoadWorkcell(files.urdf, files.scene, CacheIn(dir))),
+            std::vector<std::string>{});
+  files = WriteRobot(dir, {MeshCollision("box.dae", "", "0.001 0.001 0.001")});
+  const std::vector<std::string> found =
+      unit_warnings(LoadWorkcell(files.urdf, files.scene, CacheIn(dir)));
+  ASSERT_EQ(found.size(), 1u);
+  for (const std::string& part : {files.urdf, std::string("link 'link0'"),
+                                  std::string("mesh 'box.dae'"), std::string("0.0005 m across")}) {
+    EXPECT_NE(found[0].find(part), std::string::npos) << part << " in " << found[0];
+  }
+}
+
 TEST(SceneMeshLinks, ObjectsOfTypeMesh) {
   const std::string dir = FreshDir("objects");
   const TriangleMesh l_shape = LShapeMesh(0.1, 0.05);

@@ -379,6 +379,10 @@ inline constexpr int kXacroMaxMacroDepth = 16;
 /// a pointer to mesh_fit: tighter: a boxy part (a torso, a base, a camera) gets 2 to 4.5, where
 /// its box would be near 1; a round link's capsule stays well below.
 inline constexpr double kLooseMeshFitRatio = 2.0;
+/// A mesh (after scale) smaller than this across every axis, m, is reported as a likely unit
+/// error (typical robot parts are centimetres; a mesh in metres scaled by 0.001 is a speck): the
+/// fit is taken as it is, but the real part's contacts would be missed.
+inline constexpr double kSmallMeshEdge_m = 1e-3;
 /// Compass search of the fit's axis (and box frame): first step and smallest step, rad. 0.1 rad
 /// reaches past the principal axes' typical error on near-symmetric meshes; below 1e-3 rad the
 /// volume changes by less than ~1e-3 relative, too little to matter.
