@@ -67,12 +67,12 @@ class MonitorClient(object):
     """Talks to one monitor node: its input topics, ~report and ~stop."""
 
     def __init__(self, node='/arm_collision_monitor',
-                 topics=('left_arm/joint_states', 'right_arm/joint_states')):
+                 topics=('left_arm/joint_states', 'right_arm/joint_states'), queue_size=100):
         self.node = node
         self._lock = threading.Lock()
         self._reports = []
         self._stops = []
-        self.publishers = [rospy.Publisher(t, JointState, queue_size=100) for t in topics]
+        self.publishers = [rospy.Publisher(t, JointState, queue_size=queue_size) for t in topics]
         rospy.Subscriber(node + '/report', MonitorReport, self._on_report, queue_size=1000)
         rospy.Subscriber(node + '/stop', Bool, self._on_stop, queue_size=100)
 

@@ -42,8 +42,10 @@ class BurstTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         rospy.init_node('fault_burst_test')
-        cls.client = MonitorClient(NODE)
-        # A burst must leave this process whole: the publisher queue holds all of it.
+        # A burst must leave this process whole: the publisher queue holds all of it. rospy
+        # shares one publisher per topic in a process, its connections keeping the queue size
+        # of the first: the client's too.
+        cls.client = MonitorClient(NODE, queue_size=BURST_MESSAGES)
         cls.left = rospy.Publisher('left_arm/joint_states', JointState,
                                    queue_size=BURST_MESSAGES)
         cls.right = rospy.Publisher('right_arm/joint_states', JointState,
@@ -101,12 +103,15 @@ class BurstTest(unittest.TestCase):
             return newest[0]
 
         stamps = self.publish_burst(stamp_of, pose_of)
-        # The two topics' queues are served in no fixed order: the final state is reached by
-        # whichever of the two last messages is taken second, so its report is the final one.
-        last_two = c.wait_stamps(start, [stamps['left'], stamps['right']], WAIT_S)
-        self.assertIsNotNone(last_two, 'no report for one of the last two messages of the burst; '
+        # Not the reports of the burst's last two messages: the topics are taken in no fixed
+        # order, so one arm's last report can be followed by hundreds of the other's, and ~report
+        # (queue 100, oldest dropped) loses it when this process falls behind (helper-67: 9 of
+        # 69 loaded runs). The final pose again, fresh stamps, until reported: each topic is
+        # delivered in order, so both bursts have been taken by then, every report of them
+        # accepted (below).
+        final = c.hold_pose(LEFT_TOWARDS_RIGHT, RIGHT_TOWARDS_LEFT, WAIT_S)
+        self.assertIsNotNone(final, 'no report on the final pose after the burst; '
                              + self.describe(c.reports_since(start), stamps))
-        final = last_two[-1]
         self.assertEqual(final.input_status, MonitorReport.INPUT_OK)
         self.assertGreater(len(final.warnings), 0, 'the final pose must warn (arms crossed)')
         self.assertTrue(final.stop)
@@ -145,13 +150,12 @@ class BurstTest(unittest.TestCase):
         self.assertNotEqual(backwards.stop_reason, '')
         # The burst may still be on its way (its publishers' sending threads fall behind on a
         # loaded machine), and would be refused after go_clear()'s newer stamps, into the next
-        # test. One message more on each of its publishers, stamped after all of it: their
-        # reports come once the whole burst has been taken (or dropped by the queues).
-        ends = [rospy.Time.now()]
-        ends.append(ends[0] + rospy.Duration(0, 1000))
-        self.left.publish(joint_state(LEFT_JOINTS, HOME, ends[0]))
-        self.right.publish(joint_state(RIGHT_JOINTS, HOME, ends[1]))
-        self.assertIsNotNone(c.wait_stamps(start, ends, WAIT_S),
+        # test. Home on the same topics (each delivered in order), stamped after all of it and
+        # republished until both arms' reports of one round come (hold_pose): then the whole
+        # burst has been taken (or dropped by the input queues). Not one message each: ~report
+        # (queue 100, oldest dropped) can lose one arm's report behind the other arm's burst
+        # tail when this process falls behind (helper-67: 6 of 69 loaded runs).
+        self.assertIsNotNone(c.hold_pose(HOME, HOME, WAIT_S),
                              'no reports after the burst; '
                              + self.describe(c.reports_since(start), stamps))
         reports = c.reports_since(start)
