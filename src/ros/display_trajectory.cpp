@@ -5,11 +5,15 @@
 #include <cstdio>
 #include <cstring>
 #include <map>
+#include <set>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include <ros/message_traits.h>
 #include <ros/serialization.h>
+
+#include "arm_collision_monitor/core/constants.h"
 
 namespace arm_collision_monitor {
 namespace {
@@ -303,18 +307,18 @@ void CheckGoalFields(const Reader& reader, std::string type,
 
 // Reads the value of `type` at the reader, taking the value at the end of `fields` (from
 // `depth` on; none when that field is not of type Msg) into *msg and skipping every other field;
-// `multi_dof` (unless null) takes its sibling multi_dof_joint_trajectory, a RobotTrajectory's.
-template <typename Msg>
+// `multi_dof` (unless null) takes the sibling "multi_dof_<last field>" of type MultiDof (a
+// RobotTrajectory's multi_dof_joint_trajectory, a RobotState's multi_dof_joint_state).
+template <typename Msg, typename MultiDof = trajectory_msgs::MultiDOFJointTrajectory>
 void ReadAlong(Reader* reader, const std::string& type, const std::string& path,
                const std::vector<std::string>& fields, std::size_t depth, Msg* msg,
-               trajectory_msgs::MultiDOFJointTrajectory* multi_dof = nullptr) {
+               MultiDof* multi_dof = nullptr) {
   const bool is_last = depth + 1 == fields.size();
   for (const Field& field : reader->FieldsOf(type, path)) {
     const std::string field_path = path.empty() ? field.name : path + "." + field.name;
     if (is_last && multi_dof != nullptr && !field.is_array &&
-        field.name == "multi_dof_joint_trajectory" &&
-        field.type == ros::message_traits::DataType<trajectory_msgs::MultiDOFJointTrajectory>::
-                          value()) {
+        field.name == "multi_dof_" + fields[depth] &&
+        field.type == ros::message_traits::DataType<MultiDof>::value()) {
       reader->ReadTyped(field.type, field_path, multi_dof);
       continue;
     }
@@ -329,6 +333,32 @@ void ReadAlong(Reader* reader, const std::string& type, const std::string& path,
       ReadAlong(reader, field.type, field_path, fields, depth + 1, msg, multi_dof);
     }
   }
+}
+
+// Whether the 7 numbers of `pose` are finite and its quaternion not zero.
+bool IsValidPose(const geometry_msgs::Transform& pose) {
+  const geometry_msgs::Vector3& t = pose.translation;
+  const geometry_msgs::Quaternion& q = pose.rotation;
+  const double norm2 = q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w;
+  return std::isfinite(t.x + t.y + t.z) && std::isfinite(norm2) && norm2 > 0.0;
+}
+
+// The distance (m) and the rotation angle (rad) from valid pose `a` to valid pose `b`.
+std::pair<double, double> PoseChange(const geometry_msgs::Transform& a,
+                                     const geometry_msgs::Transform& b) {
+  const geometry_msgs::Vector3& ta = a.translation;
+  const geometry_msgs::Vector3& tb = b.translation;
+  const double m = std::sqrt((tb.x - ta.x) * (tb.x - ta.x) + (tb.y - ta.y) * (tb.y - ta.y) +
+                             (tb.z - ta.z) * (tb.z - ta.z));
+  // conj(qa) qb = (w, v): the angle is 2 atan2(|v|, |w|), exact for small turns too (acos of
+  // the dot product reads a turn below ~2e-8 rad as none), for quaternions of any norm.
+  const geometry_msgs::Quaternion& qa = a.rotation;
+  const geometry_msgs::Quaternion& qb = b.rotation;
+  const double w = qa.w * qb.w + qa.x * qb.x + qa.y * qb.y + qa.z * qb.z;
+  const double vx = qa.w * qb.x - qb.w * qa.x - (qa.y * qb.z - qa.z * qb.y);
+  const double vy = qa.w * qb.y - qb.w * qa.y - (qa.z * qb.x - qa.x * qb.z);
+  const double vz = qa.w * qb.z - qb.w * qa.z - (qa.x * qb.y - qa.y * qb.x);
+  return {m, 2.0 * std::atan2(std::sqrt(vx * vx + vy * vy + vz * vz), std::abs(w))};
 }
 
 }  // namespace
@@ -376,7 +406,8 @@ DisplayedPlan ReadDisplayTrajectory(const std::string& definition, const std::ui
       }
     } else if (field.name == "trajectory_start" && field.type == "moveit_msgs/RobotState" &&
                !field.is_array) {
-      ReadAlong(&reader, field.type, field.name, {"joint_state"}, 0, &plan.start_state);
+      ReadAlong(&reader, field.type, field.name, {"joint_state"}, 0, &plan.start_state,
+                &plan.start_multi_dof);
     } else {
       reader.SkipField(field, "");
     }
@@ -387,49 +418,53 @@ DisplayedPlan ReadDisplayTrajectory(const std::string& definition, const std::ui
   return plan;
 }
 
-std::string DescribeMultiDofMotion(const trajectory_msgs::MultiDOFJointTrajectory& trajectory) {
-  if (trajectory.points.empty()) return "";
-  const std::vector<geometry_msgs::Transform>& first = trajectory.points.front().transforms;
+MultiDofPoses StartMultiDofPoses(const sensor_msgs::MultiDOFJointState& state) {
+  MultiDofPoses at;
+  for (std::size_t j = 0; j < state.joint_names.size() && j < state.transforms.size(); ++j) {
+    at[state.joint_names[j]] = state.transforms[j];
+  }
+  return at;
+}
+
+std::string DescribeMultiDofMotion(const trajectory_msgs::MultiDOFJointTrajectory& trajectory,
+                                   MultiDofPoses* at) {
+  const std::vector<std::string>& names = trajectory.joint_names;
   double largest_m = 0.0, largest_rad = 0.0;
-  std::size_t moving = 0;  // the joints named that move
-  bool is_count_same = true;
-  std::vector<std::uint8_t> moves(first.size(), 0);
+  bool is_invalid = false;
+  std::set<std::string> moving;
   for (const trajectory_msgs::MultiDOFJointTrajectoryPoint& point : trajectory.points) {
-    is_count_same &= point.transforms.size() == first.size();
-    for (std::size_t j = 0; j < first.size() && j < point.transforms.size(); ++j) {
-      const geometry_msgs::Vector3& a = first[j].translation;
-      const geometry_msgs::Vector3& b = point.transforms[j].translation;
-      // Not std::hypot: libstdc++'s three-argument one gives 0 for (0, NaN, 0).
-      const double m = std::sqrt((b.x - a.x) * (b.x - a.x) + (b.y - a.y) * (b.y - a.y) +
-                                 (b.z - a.z) * (b.z - a.z));
-      const geometry_msgs::Quaternion& qa = first[j].rotation;
-      const geometry_msgs::Quaternion& qb = point.transforms[j].rotation;
-      const double norms = std::sqrt((qa.x * qa.x + qa.y * qa.y + qa.z * qa.z + qa.w * qa.w) *
-                                     (qb.x * qb.x + qb.y * qb.y + qb.z * qb.z + qb.w * qb.w));
-      const double dot = qa.x * qb.x + qa.y * qb.y + qa.z * qb.z + qa.w * qb.w;
-      const double rad = 2.0 * std::acos(std::min(1.0, std::abs(dot) / norms));
-      // NaN moves: nothing proves it stands still.
-      const bool is_moving = !(m <= kMultiDofStill) || !(rad <= kMultiDofStill);
-      if (is_moving && !moves[j]) ++moving;
-      moves[j] |= is_moving ? 1 : 0;
+    if (point.transforms.size() != names.size()) {
+      return "its multi_dof_joint_trajectory has a point of " +
+             std::to_string(point.transforms.size()) + " transforms for " +
+             std::to_string(names.size()) + " joints";
+    }
+    for (std::size_t j = 0; j < names.size(); ++j) {
+      const geometry_msgs::Transform& pose = point.transforms[j];
+      const auto [before, is_new] = at->emplace(names[j], pose);  // new: its first point's
+      if (!IsValidPose(pose) || !IsValidPose(before->second)) {
+        is_invalid = true;
+        moving.insert(names[j]);
+        continue;
+      }
+      const auto [m, rad] = PoseChange(before->second, pose);
+      if (m > kMultiDofStill_m || rad > kMultiDofStill_rad) moving.insert(names[j]);
       largest_m = std::max(largest_m, m);
       largest_rad = std::max(largest_rad, rad);
     }
   }
-  if (!is_count_same) {
-    return "its multi_dof_joint_trajectory's points give different numbers of transforms";
+  for (std::size_t j = 0; j < names.size() && !trajectory.points.empty(); ++j) {
+    (*at)[names[j]] = trajectory.points.back().transforms[j];
   }
-  if (moving == 0) return "";
-  std::string names;
-  for (std::size_t j = 0; j < moves.size(); ++j) {
-    if (!moves[j]) continue;
-    const std::string name =
-        j < trajectory.joint_names.size() ? trajectory.joint_names[j] : std::to_string(j);
-    names += (names.empty() ? "'" : ", '") + name + "'";
+  if (moving.empty()) return "";
+  std::string text = "its multi_dof_joint_trajectory moves";
+  const char* separator = " '";
+  for (const std::string& name : moving) {
+    text += separator + name + "'";
+    separator = ", '";
   }
   char amount[96];
   std::snprintf(amount, sizeof(amount), " by up to %.6g m and %.6g rad", largest_m, largest_rad);
-  return "its multi_dof_joint_trajectory moves " + names + amount;
+  return text + amount + (is_invalid ? " (and to a pose not finite, or a zero quaternion)" : "");
 }
 
 }  // namespace arm_collision_monitor

@@ -35,15 +35,23 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
     least += 4 * plan.start_state.name.size() + 8 * plan.start_state.position.size();
     if (least > bytes.size()) std::abort();
+    // The base's motion over what was read, as replay takes it (any numbers, any counts).
+    MultiDofPoses at = StartMultiDofPoses(plan.start_multi_dof);
+    for (const auto& multi_dof : plan.multi_dof_trajectories) {
+      DescribeMultiDofMotion(multi_dof, &at);
+    }
   } catch (const std::runtime_error&) {
   }
   for (const char* type : {kFollowJointTrajectoryGoalType, kExecuteTrajectoryGoalType}) {
     try {
+      trajectory_msgs::MultiDOFJointTrajectory multi_dof;
       const trajectory_msgs::JointTrajectory trajectory =
-          ReadGoalTrajectory(type, definition, bytes.data(), bytes.size());
+          ReadGoalTrajectory(type, definition, bytes.data(), bytes.size(), &multi_dof);
       std::size_t least = 4 * trajectory.joint_names.size();
       for (const auto& point : trajectory.points) least += 8 * point.positions.size();
       if (least > bytes.size()) std::abort();
+      MultiDofPoses at;
+      DescribeMultiDofMotion(multi_dof, &at);
     } catch (const std::runtime_error&) {
     }
   }

@@ -106,9 +106,10 @@ trajectory_msgs::MultiDOFJointTrajectory BasePlan(double step_m, double turn_rad
 }
 
 // The bytes of a DisplayTrajectory laid out as Definition(group_name), the second trajectory's
-// multi-DOF part `multi_dof`.
+// multi-DOF part `multi_dof`, the start state's `start_multi_dof`.
 std::vector<std::uint8_t> Bytes(bool group_name,
-                                const trajectory_msgs::MultiDOFJointTrajectory& multi_dof = {}) {
+                                const trajectory_msgs::MultiDOFJointTrajectory& multi_dof = {},
+                                const sensor_msgs::MultiDOFJointState& start_multi_dof = {}) {
   namespace ser = ros::serialization;
   std::vector<std::uint8_t> bytes(4096);
   ser::OStream out(bytes.data(), static_cast<std::uint32_t>(bytes.size()));
@@ -123,7 +124,7 @@ std::vector<std::uint8_t> Bytes(bool group_name,
   start.name = {"a", "b", "c"};
   start.position = {1.0, 2.0, 3.0};
   ser::serialize(out, start);
-  ser::serialize(out, sensor_msgs::MultiDOFJointState());
+  ser::serialize(out, start_multi_dof);
   ser::serialize(out, std::uint32_t{1});  // one attached object
   ser::serialize(out, std::string("hand"));
   ser::serialize(out, std::vector<std::string>{"finger", "palm"});
@@ -149,30 +150,70 @@ TEST(DisplayTrajectory, ReadsWhatWasWritten) {
   }
 }
 
-// Each trajectory's multi-DOF part is read beside it, and its motion told: replay refuses a plan
-// that moves a mobile base (the monitor's robot stands on a fixed root); standing still, or
+// DescribeMultiDofMotion from where the trajectory's first point has its joints.
+std::string MotionOf(const trajectory_msgs::MultiDOFJointTrajectory& trajectory) {
+  MultiDofPoses at;
+  return DescribeMultiDofMotion(trajectory, &at);
+}
+
+// Each trajectory's multi-DOF part is read beside it, and the start state's: replay refuses a
+// plan that moves a mobile base (the monitor's robot stands on a fixed root); standing still, or
 // without a multi-DOF part, it is no motion.
 TEST(DisplayTrajectory, ReadsEachMultiDofPartAndTellsItsMotion) {
   const trajectory_msgs::MultiDOFJointTrajectory base = BasePlan(0.4, 0.0);
-  const std::vector<std::uint8_t> bytes = Bytes(true, base);
+  sensor_msgs::MultiDOFJointState start;
+  start.joint_names = {"virtual_joint"};
+  start.transforms = {base.points[1].transforms[0]};
+  const std::vector<std::uint8_t> bytes = Bytes(true, base, start);
   const DisplayedPlan plan = ReadDisplayTrajectory(Definition(true), bytes.data(), bytes.size());
   ASSERT_EQ(plan.multi_dof_trajectories.size(), 2u);
   EXPECT_EQ(plan.multi_dof_trajectories[0], trajectory_msgs::MultiDOFJointTrajectory());
   EXPECT_EQ(plan.multi_dof_trajectories[1], base);
+  EXPECT_EQ(plan.start_multi_dof, start);
   EXPECT_EQ(plan.trajectories[1], Trajectory(10.0));
-  EXPECT_EQ(DescribeMultiDofMotion(plan.multi_dof_trajectories[0]), "");
-  EXPECT_EQ(DescribeMultiDofMotion(base),
+  EXPECT_EQ(plan.start_state.name, (std::vector<std::string>{"a", "b", "c"}));
+  EXPECT_EQ(MotionOf(plan.multi_dof_trajectories[0]), "");
+  EXPECT_EQ(MotionOf(base),
             "its multi_dof_joint_trajectory moves 'virtual_joint' by up to 0.4 m and 0 rad");
-  EXPECT_EQ(DescribeMultiDofMotion(BasePlan(0.0, 0.0)), "");
-  EXPECT_EQ(DescribeMultiDofMotion(BasePlan(0.0, 0.3)),
+  EXPECT_EQ(MotionOf(BasePlan(0.0, 0.0)), "");
+  EXPECT_EQ(MotionOf(BasePlan(0.0, 0.3)),
             "its multi_dof_joint_trajectory moves 'virtual_joint' by up to 0 m and 0.3 rad");
-  EXPECT_EQ(DescribeMultiDofMotion(BasePlan(1e-9, 0.0)), "");
-  EXPECT_NE(DescribeMultiDofMotion(BasePlan(2e-9, 0.0)), "");
-  EXPECT_NE(DescribeMultiDofMotion(BasePlan(std::nan(""), 0.0)), "");
+  EXPECT_EQ(MotionOf(BasePlan(1e-9, 1e-9)), "");
+  EXPECT_NE(MotionOf(BasePlan(2e-9, 0.0)), "");
+  EXPECT_NE(MotionOf(BasePlan(0.0, 2e-9)), "");  // atan2's angle: acos would read 0
+  const std::string not_finite = "(and to a pose not finite, or a zero quaternion)";
+  EXPECT_NE(MotionOf(BasePlan(std::nan(""), 0.0)).find(not_finite), std::string::npos);
+  EXPECT_NE(MotionOf(BasePlan(0.0, std::nan(""))).find(not_finite), std::string::npos);
+  trajectory_msgs::MultiDOFJointTrajectory zero = BasePlan(0.0, 0.0);
+  zero.points[1].transforms[0].rotation.w = 0.0;
+  EXPECT_NE(MotionOf(zero).find(not_finite), std::string::npos);
   trajectory_msgs::MultiDOFJointTrajectory uneven = BasePlan(0.0, 0.0);
   uneven.points[1].transforms.push_back(uneven.points[1].transforms[0]);
-  EXPECT_EQ(DescribeMultiDofMotion(uneven),
-            "its multi_dof_joint_trajectory's points give different numbers of transforms");
+  EXPECT_EQ(MotionOf(uneven),
+            "its multi_dof_joint_trajectory has a point of 2 transforms for 1 joints");
+}
+
+// A base standing still in each trajectory is still moved when it stands elsewhere than the
+// start state, or than where the trajectory before left it; each trajectory leaves `at` at its
+// end.
+TEST(DisplayTrajectory, AStillBaseMovesFromTheStartOrTheTrajectoryBefore) {
+  const trajectory_msgs::MultiDOFJointTrajectory still = BasePlan(0.0, 0.0);  // x = 1
+  sensor_msgs::MultiDOFJointState start;
+  start.joint_names = {"virtual_joint"};
+  start.transforms = {still.points[0].transforms[0]};
+  MultiDofPoses at = StartMultiDofPoses(start);
+  EXPECT_EQ(DescribeMultiDofMotion(still, &at), "");
+  start.transforms[0].translation.x = 1.25;
+  at = StartMultiDofPoses(start);
+  EXPECT_EQ(DescribeMultiDofMotion(still, &at),
+            "its multi_dof_joint_trajectory moves 'virtual_joint' by up to 0.25 m and 0 rad");
+  at.clear();
+  const trajectory_msgs::MultiDOFJointTrajectory forward = BasePlan(0.5, 0.0);
+  EXPECT_NE(DescribeMultiDofMotion(forward, &at), "");
+  EXPECT_EQ(at.at("virtual_joint"), forward.points.back().transforms[0]);
+  // A still trajectory at the first's start, after it: the base went back 0.5 m in between.
+  EXPECT_EQ(DescribeMultiDofMotion(still, &at),
+            "its multi_dof_joint_trajectory moves 'virtual_joint' by up to 0.5 m and 0 rad");
 }
 
 TEST(DisplayTrajectory, EveryTruncationIsRefused) {

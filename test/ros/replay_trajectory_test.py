@@ -115,10 +115,10 @@ def serialized_string(text):
     return struct.pack('<I', len(data)) + data
 
 
-def display_bytes(trajectories, start_state, group_name, multi_dof=None):
+def display_bytes(trajectories, start_state, group_name, multi_dof=None, start_multi_dof=None):
     """A DisplayTrajectory serialized by display_definition(group_name), with one attached
     object in its start state; `multi_dof` (a MultiDOFJointTrajectory) beside each trajectory,
-    else an empty one."""
+    `start_multi_dof` (a MultiDOFJointState) in the start state, else empty ones."""
     buff = io.BytesIO()
     buff.write(serialized_string('dual_arm'))
     buff.write(struct.pack('<I', len(trajectories)))
@@ -128,7 +128,7 @@ def display_bytes(trajectories, start_state, group_name, multi_dof=None):
         if group_name:
             buff.write(serialized_string('both_arms'))
     start_state.serialize(buff)
-    MultiDOFJointState().serialize(buff)
+    (start_multi_dof or MultiDOFJointState()).serialize(buff)
     buff.write(struct.pack('<I', 1) + serialized_string('left_link7') + struct.pack('<I', 2) +
                serialized_string('left_link6') + serialized_string('left_link5') +
                struct.pack('<d', 0.5))
@@ -576,31 +576,38 @@ class ReplayTrajectoryTest(unittest.TestCase):
 
     def test_a_moveit_display_moving_the_base_is_refused(self):
         # A mobile manipulator's plan: its multi-DOF part moves the SRDF's virtual joint (the
-        # base) 0.4 m. The monitor's robot stands on a fixed root, so replay cannot check it and
-        # says so, naming the message and trajectory; the same base standing still replays.
+        # base) 0.4 m, or stands still 0.3 m from where its start state has it. The monitor's
+        # robot stands on a fixed root, so replay cannot check it and says so, naming the
+        # message and trajectory; the base standing still where it starts replays.
         start_state = JointState(name=LEFT_JOINTS + RIGHT_JOINTS, position=self.samples[0][1])
         plan = trajectory_of(self.samples[:5], slice(0, 14), self.samples[0][0])
         path = os.path.join(self.directory, 'display_base.bag')
-        for step_m in (0.4, 0.0):
+
+        def pose(y):
+            transform = Transform()
+            transform.translation.y = y
+            transform.rotation.w = 1.0
+            return transform
+
+        for step_m, start_y, moved in ((0.4, 0.0, '0.4'), (0.0, 0.3, '0.3'), (0.0, 0.0, None)):
             base = MultiDOFJointTrajectory(joint_names=['virtual_joint'])
             for k in range(2):
-                pose = Transform()
-                pose.translation.y = k * step_m
-                pose.rotation.w = 1.0
                 base.points.append(MultiDOFJointTrajectoryPoint(
-                    transforms=[pose], time_from_start=rospy.Duration(0.1 * k)))
-            write_display(path, display_bytes([plan], start_state, True, base),
+                    transforms=[pose(k * step_m)], time_from_start=rospy.Duration(0.1 * k)))
+            base_start = MultiDOFJointState(joint_names=['virtual_joint'],
+                                            transforms=[pose(start_y)])
+            write_display(path, display_bytes([plan], start_state, True, base, base_start),
                           display_definition(True), self.samples[0][0])
             result, report = self.replay(path)
-            if step_m == 0.0:
+            if moved is None:
                 self.assertEqual(result.returncode, 0, result.stderr)
                 self.assertEqual(report['cycles'], 5)
                 continue
-            self.assertEqual(result.returncode, 1)
+            self.assertEqual(result.returncode, 1, moved)
             self.assertIn('display_base.bag: moveit_msgs/DisplayTrajectory on '
                           '/move_group/display_planned_path at bag time ', result.stderr)
             self.assertIn(", trajectory 0: its multi_dof_joint_trajectory moves 'virtual_joint' "
-                          'by up to 0.4 m and 0 rad', result.stderr)
+                          'by up to %s m and 0 rad' % moved, result.stderr)
             self.assertIn('cannot check a plan that moves it', result.stderr)
 
     def test_an_unreadable_display_names_the_message_and_field(self):

@@ -379,6 +379,11 @@ inline constexpr int kXacroMaxMacroDepth = 16;
 /// a pointer to mesh_fit: tighter: a boxy part (a torso, a base, a camera) gets 2 to 4.5, where
 /// its box would be near 1; a round link's capsule stays well below.
 inline constexpr double kLooseMeshFitRatio = 2.0;
+/// A plan's multi-DOF joint (a mobile base's virtual joint) within this distance (m) and angle
+/// (rad) of where it was stands still (DescribeMultiDofMotion): far below any base's motion, far
+/// above the rounding of poses written out and read back.
+inline constexpr double kMultiDofStill_m = 1e-9;
+inline constexpr double kMultiDofStill_rad = 1e-9;
 /// A mesh (after scale) smaller than this across every axis, m, is reported as a likely unit
 /// error (typical robot parts are centimetres; a mesh in metres scaled by 0.001 is a speck): the
 /// fit is taken as it is, but the real part's contacts would be missed.

@@ -11,10 +11,13 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
+#include <geometry_msgs/Transform.h>
 #include <sensor_msgs/JointState.h>
+#include <sensor_msgs/MultiDOFJointState.h>
 #include <trajectory_msgs/JointTrajectory.h>
 #include <trajectory_msgs/MultiDOFJointTrajectory.h>
 
@@ -32,6 +35,8 @@ struct DisplayedPlan {
   /// trajectory_start.joint_state: where the joints are at the start, those the trajectories
   /// leave out included
   sensor_msgs::JointState start_state;
+  /// trajectory_start.multi_dof_joint_state: where a mobile base's virtual joint is at the start
+  sensor_msgs::MultiDOFJointState start_multi_dof;
   /// trajectory[k].joint_trajectory in order (executed one after the other)
   std::vector<trajectory_msgs::JointTrajectory> trajectories;
   /// trajectory[k].multi_dof_joint_trajectory beside each (empty where the bag's definition of
@@ -55,13 +60,19 @@ trajectory_msgs::JointTrajectory ReadGoalTrajectory(
     const std::string& type, const std::string& definition, const std::uint8_t* data,
     std::size_t size, trajectory_msgs::MultiDOFJointTrajectory* multi_dof = nullptr);
 
-/// A multi-DOF transform within this many m and rad of where the first point has it stands
-/// still (DescribeMultiDofMotion).
-inline constexpr double kMultiDofStill = 1e-9;
+/// Where a plan's multi-DOF joints (a mobile base's virtual joint) are, by name.
+using MultiDofPoses = std::map<std::string, geometry_msgs::Transform>;
 
-/// Empty when every point of `trajectory` has each transform where its first point has it
-/// (within kMultiDofStill), else what moves and how far ("its multi_dof_joint_trajectory moves
-/// 'virtual_joint' by up to 0.4 m and 0 rad"); NaN moves.
-std::string DescribeMultiDofMotion(const trajectory_msgs::MultiDOFJointTrajectory& trajectory);
+/// The poses of a plan's start state (a DisplayedPlan's start_multi_dof).
+MultiDofPoses StartMultiDofPoses(const sensor_msgs::MultiDOFJointState& state);
+
+/// Empty when every point of `trajectory` has each of its joints where `at` has it (a joint `at`
+/// lacks: where the trajectory's first point has it), within kMultiDofStill_m and
+/// kMultiDofStill_rad; else what moves and how far ("its multi_dof_joint_trajectory moves
+/// 'virtual_joint' by up to 0.4 m and 0 rad"), a pose not finite or a zero quaternion moving, a
+/// point whose transforms do not match the joint names said to. Sets `at` to where the
+/// trajectory ends: the next trajectory of a plan starts there.
+std::string DescribeMultiDofMotion(const trajectory_msgs::MultiDOFJointTrajectory& trajectory,
+                                   MultiDofPoses* at);
 
 }  // namespace arm_collision_monitor

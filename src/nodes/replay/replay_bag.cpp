@@ -258,11 +258,12 @@ void UnwindAsMoveItExecutes(const std::set<std::string>& turning,
 }
 
 // A LoadError naming the plan at `where` when its multi-DOF part (a mobile base's virtual joint)
-// moves: the monitor keeps the URDF root where the fixed frame is, and would check the arms as
-// if the base stood still.
+// moves from `at` (DescribeMultiDofMotion, which moves `at` to its end): the monitor keeps the
+// URDF root where the fixed frame is, and would check the arms as if the base stood still.
 void RefuseBaseMotion(const std::string& where,
-                      const trajectory_msgs::MultiDOFJointTrajectory& multi_dof) {
-  const std::string motion = DescribeMultiDofMotion(multi_dof);
+                      const trajectory_msgs::MultiDOFJointTrajectory& multi_dof,
+                      MultiDofPoses* at) {
+  const std::string motion = DescribeMultiDofMotion(multi_dof, at);
   if (motion.empty()) return;
   throw LoadError(where + ": " + motion + "; the monitor keeps the robot's root link fixed "
                   "(a fixed base), so it cannot check a plan that moves it (plan the arms with "
@@ -313,10 +314,12 @@ PlanSources ReadPlans(const std::string& path, const rosbag::Bag& bag,
         at[state.name[j]] = state.position[j];
       }
       displayed_at = &at;
+      // The base where the start state has it, then where each trajectory leaves it.
+      MultiDofPoses base_at = StartMultiDofPoses(displayed.start_multi_dof);
       for (std::size_t k = 0; k < displayed.trajectories.size(); ++k) {
         const trajectory_msgs::JointTrajectory& plan = displayed.trajectories[k];
         const std::string where_k = where + ", trajectory " + std::to_string(k);
-        RefuseBaseMotion(where_k, displayed.multi_dof_trajectories[k]);
+        RefuseBaseMotion(where_k, displayed.multi_dof_trajectories[k], &base_at);
         start = add(plan, plan.header.stamp.isZero() ? start : plan.header.stamp, where_k);
       }
       displayed_at = nullptr;
@@ -328,7 +331,8 @@ PlanSources ReadPlans(const std::string& path, const rosbag::Bag& bag,
           path, m, [&](const std::string& definition, const std::uint8_t* data, std::size_t size) {
             return ReadGoalTrajectory(type, definition, data, size, &multi_dof);
           });
-      RefuseBaseMotion(where, multi_dof);
+      MultiDofPoses base_at;
+      RefuseBaseMotion(where, multi_dof, &base_at);
       add(plan, plan.header.stamp.isZero() ? m.getTime() : plan.header.stamp, where);
     }
   }
