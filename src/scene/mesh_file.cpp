@@ -150,6 +150,41 @@ void CheckColladaIndexLists(const std::string& bytes) {
   }
 }
 
+// Whether an element of the XML text `bytes` has the attribute id="`id`" (or in single quotes).
+bool DeclaresId(const std::string& bytes, const std::string& id) {
+  for (const std::string attribute : {"id=\"" + id + "\"", "id='" + id + "'"}) {
+    for (std::size_t at = bytes.find(attribute); at != std::string::npos;
+         at = bytes.find(attribute, at + 1)) {
+      if (at > 0 && std::isspace(static_cast<unsigned char>(bytes[at - 1]))) return true;
+    }
+  }
+  return false;
+}
+
+// assimp leaves out, with only a log line, a COLLADA <instance_geometry> or <instance_node>
+// whose url names an id the file does not declare (or another file's): the part is missing from
+// the link, its contacts would be missed. Refused here, naming the element and its line.
+void CheckColladaReferences(const std::string& bytes) {
+  for (const std::string tag : {"<instance_geometry", "<instance_node"}) {
+    for (std::size_t at = bytes.find(tag); at != std::string::npos;
+         at = bytes.find(tag, at + tag.size())) {
+      const std::size_t tag_end = bytes.find('>', at);
+      if (tag_end == std::string::npos) return;  // not a tag: assimp's XML parser refuses it
+      const std::size_t url = bytes.find("url=", at);
+      if (url == std::string::npos || url > tag_end || url + 5 >= tag_end) continue;
+      const char quote = bytes[url + 4];
+      const std::size_t value_end = bytes.find(quote, url + 5);
+      if ((quote != '"' && quote != '\'') || value_end == std::string::npos) continue;
+      const std::string value = bytes.substr(url + 5, value_end - url - 5);
+      if (!value.empty() && value[0] == '#' && DeclaresId(bytes, value.substr(1))) continue;
+      const auto line = 1 + std::count(bytes.begin(), bytes.begin() + at, '\n');
+      throw LoadError("COLLADA " + tag + "> on line " + std::to_string(line) + " names '" +
+                      value + "', which the file does not declare (expected '#' and the id of "
+                      "an element of this file)");
+    }
+  }
+}
+
 }  // namespace
 
 TriangleMesh ReadMeshFileBytes(const std::string& bytes, const std::string& name,
@@ -158,7 +193,10 @@ TriangleMesh ReadMeshFileBytes(const std::string& bytes, const std::string& name
   Assimp::Importer importer;
   const std::string hint = ExtensionHint(name);
   // Whatever the extension, assimp takes a file that names COLLADA near its start for one.
-  if (hint == "dae" || ContainsCaseless(bytes, "collada")) CheckColladaIndexLists(bytes);
+  if (hint == "dae" || ContainsCaseless(bytes, "collada")) {
+    CheckColladaIndexLists(bytes);
+    CheckColladaReferences(bytes);
+  }
   const aiScene* scene =
       importer.ReadFileFromMemory(bytes.data(), bytes.size(),
                                   aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |

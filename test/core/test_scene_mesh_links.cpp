@@ -499,19 +499,30 @@ TEST(SceneMeshLinks, MalformedStlFilesAreRejected) {
   }
 }
 
-// A COLLADA file that places no geometry in its scene (its node names a geometry it lacks, or
-// no node instances its geometry) is refused: assimp marks the scene incomplete and gives it a
-// stand-in skeleton mesh, whose fit was a 0.1 mm capsule for the link (helper-66 trial, a
-// contact missed).
+// A COLLADA file that places no geometry in its scene (no node instances its geometry) is
+// refused: assimp marks the scene incomplete and gives it a stand-in skeleton mesh, whose fit was
+// a 0.1 mm capsule for the link (helper-66 trial, a contact missed). So is one whose node names
+// a geometry it lacks, alone (the same stand-in) or beside a good one (that part left out), or
+// a node in another file (helper-68).
 TEST(SceneMeshLinks, ColladaPlacingNoGeometryIsRejected) {
   const std::string dir = FreshDir("dae_no_geometry");
   const std::string dae = Dae(LShapeMesh(0.1, 0.05));
   const std::string instance = "<instance_geometry url=\"#g\"/>";
   const std::size_t at = dae.find(instance);
   ASSERT_NE(at, std::string::npos);
-  std::string dangling = dae;
-  dangling.replace(at, instance.size(), "<instance_geometry url=\"#nothere\"/>");
-  ExpectBadLinkMesh(dir, "dangling.dae", dangling, {"places no mesh in its scene"});
+  const auto line = std::to_string(1 + std::count(dae.begin(), dae.begin() + at, '\n'));
+  for (const std::string& extra :
+       {std::string(), instance + "<node id=\"m\" sid=\"nothere\">"}) {
+    std::string dangling = dae;
+    dangling.replace(at, instance.size(), extra + "<instance_geometry url=\"#nothere\"/>");
+    if (!extra.empty()) dangling.replace(dangling.find("</node>"), 7, "</node></node>");
+    ExpectBadLinkMesh(dir, "dangling.dae", dangling,
+                      {"COLLADA <instance_geometry> on line " + line,
+                       "names '#nothere', which the file does not declare"});
+  }
+  std::string external = dae;
+  external.replace(at, instance.size(), "<instance_node url=\"parts.dae#arm\"/>");
+  ExpectBadLinkMesh(dir, "external.dae", external, {"<instance_node>", "'parts.dae#arm'"});
   std::string unplaced = dae;
   unplaced.erase(at, instance.size());
   ExpectBadLinkMesh(dir, "unplaced.dae", unplaced, {"places no mesh in its scene"});
