@@ -96,7 +96,7 @@ std::vector<Shape> MeshFitter::FitFile(const std::string& name, const std::strin
          << ") must be 3 finite, non-zero numbers";
     throw LoadError(text.str());
   }
-  if (name.empty()) {
+  if (name.find_first_not_of(" \t\r\n") == std::string::npos) {
     throw LoadError(element + ": an empty file name (expected a mesh file: a path, or a "
                     "package:// or file:// URL)");
   }

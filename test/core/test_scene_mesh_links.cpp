@@ -468,6 +468,7 @@ TEST(SceneMeshLinks, BadMeshFilesAreRejectedNamingUrdfLinkAndFile) {
   const std::string dir = FreshDir("bad_files");
   ExpectBadLinkMesh(dir, "missing.stl", "", {"cannot open the file"});
   ExpectBadLinkMesh(dir, "", "", {"an empty file name"});
+  ExpectBadLinkMesh(dir, " ", "", {"an empty file name"});
   std::string garbage;
   for (int i = 0; i < 3000; ++i) garbage += static_cast<char>((i * 7919 + 13) % 251);
   for (const std::string& name :

@@ -5,9 +5,10 @@
 Stop policy under test (src/ros/monitor_node.h): a message whose stamp is older than the last
 accepted stamp of one of its joints is refused (INPUT_STAMP_BACKWARDS) and requests a stop; a
 duplicate (the same stamp again) is not older, so it is accepted; excess messages of a burst may
-be dropped by the subscriber queues, but each topic's newest is never lost, so the final report is
-that of whichever arm's last message is taken last; the first cycle on accepted, complete, fresh
-input without warnings after ~stop_hold_s clears the stop."""
+be dropped by the node's input queues, and its reports by ~report's (the oldest first), so the
+tests read the node's state after a burst from fresh messages on the same topics and from its
+count of refused inputs, which no queue loses; the first cycle on accepted, complete, fresh input
+without warnings after ~stop_hold_s clears the stop."""
 import random
 import sys
 import time
@@ -86,7 +87,8 @@ class BurstTest(unittest.TestCase):
         self.assertIsNotNone(c.go_clear(), 'no clear report on home input')
         # go_clear()'s republished messages may still be in flight on the client's own
         # publishers: stamped before the burst and taken after some of it, they would be refused.
-        self.assertIsNotNone(c.settle(), 'no reports on home input after go_clear()')
+        settled = c.settle()
+        self.assertIsNotNone(settled, 'no reports on home input after go_clear()')
         # ~stop is a topic of its own: its false first, so that the true waited for after the
         # burst is the burst's.
         self.assertTrue(c.wait_stop(False))
@@ -95,11 +97,13 @@ class BurstTest(unittest.TestCase):
         pose_of = (lambda i: swing(i) if i < last else
                    (LEFT_TOWARDS_RIGHT if i % 2 == 0 else RIGHT_TOWARDS_LEFT))
         newest = [rospy.Time.now()]
+        burst_stamps = set()
 
         def stamp_of(i):
             # Taken at publication (a burst lasts seconds: stamps must not go stale), strictly
             # increasing even when the clock has not moved since the previous message.
             newest[0] = max(rospy.Time.now(), newest[0] + rospy.Duration(0, 1000))
+            burst_stamps.add((newest[0].secs, newest[0].nsecs))
             return newest[0]
 
         stamps = self.publish_burst(stamp_of, pose_of)
@@ -116,6 +120,12 @@ class BurstTest(unittest.TestCase):
         self.assertGreater(len(final.warnings), 0, 'the final pose must warn (arms crossed)')
         self.assertTrue(final.stop)
         burst_reports = c.reports_since(start)
+        self.assertTrue(any((r.header.stamp.secs, r.header.stamp.nsecs) in burst_stamps
+                            for r in burst_reports), 'no report on a message of the burst')
+        # The refusal count covers the reports ~report dropped too.
+        self.assertEqual(final.refused_inputs, settled.refused_inputs,
+                         'an in-order burst must not be refused; '
+                         + self.describe(burst_reports, stamps))
         self.assertTrue(all(r.input_status == MonitorReport.INPUT_OK for r in burst_reports),
                         'an in-order burst must not be refused; '
                         + self.describe(burst_reports, stamps))
