@@ -9,6 +9,8 @@
 #include <assimp/Importer.hpp>
 #include <cctype>
 #include <numeric>
+#include <optional>
+#include <set>
 #include <tuple>
 
 #include "arm_collision_monitor/core/load_error.h"
@@ -150,21 +152,26 @@ void CheckColladaIndexLists(const std::string& bytes) {
   }
 }
 
-// Whether an element of the XML text `bytes` has the attribute id="`id`" (or in single quotes).
-bool DeclaresId(const std::string& bytes, const std::string& id) {
-  for (const std::string attribute : {"id=\"" + id + "\"", "id='" + id + "'"}) {
-    for (std::size_t at = bytes.find(attribute); at != std::string::npos;
-         at = bytes.find(attribute, at + 1)) {
-      if (at > 0 && std::isspace(static_cast<unsigned char>(bytes[at - 1]))) return true;
-    }
+// The values of the id attributes (not sid) of the XML text `bytes`, in one pass.
+std::set<std::string> DeclaredIds(const std::string& bytes) {
+  std::set<std::string> ids;
+  for (std::size_t at = bytes.find("id="); at != std::string::npos;
+       at = bytes.find("id=", at + 3)) {
+    if (at == 0 || !std::isspace(static_cast<unsigned char>(bytes[at - 1]))) continue;
+    const char quote = at + 3 < bytes.size() ? bytes[at + 3] : '\0';
+    if (quote != '"' && quote != '\'') continue;
+    const std::size_t end = bytes.find(quote, at + 4);
+    if (end == std::string::npos) break;
+    ids.insert(bytes.substr(at + 4, end - at - 4));
   }
-  return false;
+  return ids;
 }
 
 // assimp leaves out, with only a log line, a COLLADA <instance_geometry> or <instance_node>
 // whose url names an id the file does not declare (or another file's): the part is missing from
 // the link, its contacts would be missed. Refused here, naming the element and its line.
 void CheckColladaReferences(const std::string& bytes) {
+  std::optional<std::set<std::string>> ids;  // found at the first reference
   for (const std::string tag : {"<instance_geometry", "<instance_node"}) {
     for (std::size_t at = bytes.find(tag); at != std::string::npos;
          at = bytes.find(tag, at + tag.size())) {
@@ -176,7 +183,8 @@ void CheckColladaReferences(const std::string& bytes) {
       const std::size_t value_end = bytes.find(quote, url + 5);
       if ((quote != '"' && quote != '\'') || value_end == std::string::npos) continue;
       const std::string value = bytes.substr(url + 5, value_end - url - 5);
-      if (!value.empty() && value[0] == '#' && DeclaresId(bytes, value.substr(1))) continue;
+      if (!ids) ids = DeclaredIds(bytes);
+      if (!value.empty() && value[0] == '#' && ids->count(value.substr(1)) != 0) continue;
       const auto line = 1 + std::count(bytes.begin(), bytes.begin() + at, '\n');
       throw LoadError("COLLADA " + tag + "> on line " + std::to_string(line) + " names '" +
                       value + "', which the file does not declare (expected '#' and the id of "
