@@ -152,42 +152,61 @@ void CheckColladaIndexLists(const std::string& bytes) {
   }
 }
 
-// The values of the id attributes (not sid) of the XML text `bytes`, in one pass.
-std::set<std::string> DeclaredIds(const std::string& bytes) {
-  std::set<std::string> ids;
-  for (std::size_t at = bytes.find("id="); at != std::string::npos;
-       at = bytes.find("id=", at + 3)) {
-    if (at == 0 || !std::isspace(static_cast<unsigned char>(bytes[at - 1]))) continue;
-    const char quote = at + 3 < bytes.size() ? bytes[at + 3] : '\0';
-    if (quote != '"' && quote != '\'') continue;
-    const std::size_t end = bytes.find(quote, at + 4);
-    if (end == std::string::npos) break;
-    ids.insert(bytes.substr(at + 4, end - at - 4));
-  }
-  return ids;
+// The value of the attribute `name` found at `at` in XML text `text` (whitespace before it; `=`
+// and a quoted value after, spaces allowed around `=`), or nothing.
+std::optional<std::string> AttributeAt(const std::string& text, std::size_t at,
+                                       const std::string& name) {
+  if (at == 0 || !std::isspace(static_cast<unsigned char>(text[at - 1]))) return std::nullopt;
+  std::size_t i = at + name.size();
+  auto skip_spaces = [&] {
+    while (i < text.size() && std::isspace(static_cast<unsigned char>(text[i]))) ++i;
+  };
+  skip_spaces();
+  if (i >= text.size() || text[i] != '=') return std::nullopt;
+  ++i;
+  skip_spaces();
+  if (i >= text.size() || (text[i] != '"' && text[i] != '\'')) return std::nullopt;
+  const std::size_t end = text.find(text[i], i + 1);
+  if (end == std::string::npos) return std::nullopt;
+  return text.substr(i + 1, end - i - 1);
 }
 
 // assimp leaves out, with only a log line, a COLLADA <instance_geometry> or <instance_node>
 // whose url names an id the file does not declare (or another file's): the part is missing from
 // the link, its contacts would be missed. Refused here, naming the element and its line.
+// Comments are blanked first (a reference commented out is none); ids are collected in one pass.
 void CheckColladaReferences(const std::string& bytes) {
-  std::optional<std::set<std::string>> ids;  // found at the first reference
-  for (const std::string tag : {"<instance_geometry", "<instance_node"}) {
-    for (std::size_t at = bytes.find(tag); at != std::string::npos;
-         at = bytes.find(tag, at + tag.size())) {
-      const std::size_t tag_end = bytes.find('>', at);
+  const std::vector<std::string> tags = {"<instance_geometry", "<instance_node"};
+  if (std::none_of(tags.begin(), tags.end(), [&](const std::string& tag) {
+        return bytes.find(tag) != std::string::npos;
+      })) {
+    return;
+  }
+  std::string text = bytes;
+  for (std::size_t at = text.find("<!--"); at != std::string::npos; at = text.find("<!--", at)) {
+    const std::size_t end = std::min(text.find("-->", at + 4), text.size() - 3) + 3;
+    for (std::size_t k = at; k < end; ++k) text[k] = text[k] == '\n' ? '\n' : ' ';
+    at = end;
+  }
+  std::set<std::string> ids;
+  for (std::size_t at = text.find("id"); at != std::string::npos; at = text.find("id", at + 2)) {
+    if (const std::optional<std::string> id = AttributeAt(text, at, "id")) ids.insert(*id);
+  }
+  for (const std::string& tag : tags) {
+    for (std::size_t at = text.find(tag); at != std::string::npos;
+         at = text.find(tag, at + tag.size())) {
+      const std::size_t tag_end = text.find('>', at);
       if (tag_end == std::string::npos) return;  // not a tag: assimp's XML parser refuses it
-      const std::size_t url = bytes.find("url=", at);
-      if (url == std::string::npos || url > tag_end || url + 5 >= tag_end) continue;
-      const char quote = bytes[url + 4];
-      const std::size_t value_end = bytes.find(quote, url + 5);
-      if ((quote != '"' && quote != '\'') || value_end == std::string::npos) continue;
-      const std::string value = bytes.substr(url + 5, value_end - url - 5);
-      if (!ids) ids = DeclaredIds(bytes);
-      if (!value.empty() && value[0] == '#' && ids->count(value.substr(1)) != 0) continue;
-      const auto line = 1 + std::count(bytes.begin(), bytes.begin() + at, '\n');
+      std::optional<std::string> url;
+      for (std::size_t u = text.find("url", at); !url && u < tag_end; u = text.find("url", u + 3)) {
+        url = AttributeAt(text, u, "url");
+      }
+      if (!url || (!url->empty() && (*url)[0] == '#' && ids.count(url->substr(1)) != 0)) {
+        continue;
+      }
+      const auto line = 1 + std::count(text.begin(), text.begin() + at, '\n');
       throw LoadError("COLLADA " + tag + "> on line " + std::to_string(line) + " names '" +
-                      value + "', which the file does not declare (expected '#' and the id of "
+                      *url + "', which the file does not declare (expected '#' and the id of "
                       "an element of this file)");
     }
   }

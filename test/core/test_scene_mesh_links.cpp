@@ -527,11 +527,19 @@ TEST(SceneMeshLinks, ColladaPlacingNoGeometryIsRejected) {
   std::string unplaced = dae;
   unplaced.erase(at, instance.size());
   ExpectBadLinkMesh(dir, "unplaced.dae", unplaced, {"places no mesh in its scene"});
-  // The file as written loads (the edits above are what fails).
-  WriteBytes(dir + "placed.dae", dae);
-  const Files files = WriteRobot(dir, {MeshCollision("placed.dae")});
-  ExpectEncloses(LoadWorkcell(files.urdf, files.scene, CacheIn(dir)), "link0",
-                 LShapeMesh(0.1, 0.05), Eigen::Isometry3d::Identity());
+  // The file as written loads (the edits above are what fails), and so do its reference and id
+  // spaced around '=' and a dangling reference in a comment.
+  std::string spaced = dae;
+  spaced.replace(at, instance.size(),
+                 "<!-- <instance_geometry url=\"#old\"/> --><instance_geometry url = '#g'/>");
+  const std::string geometry = "<geometry id=\"g\">";
+  spaced.replace(spaced.find(geometry), geometry.size(), "<geometry\n id =\"g\">");
+  for (const std::string& good : {dae, spaced}) {
+    WriteBytes(dir + "placed.dae", good);
+    const Files files = WriteRobot(dir, {MeshCollision("placed.dae")});
+    ExpectEncloses(LoadWorkcell(files.urdf, files.scene, CacheIn(dir)), "link0",
+                   LShapeMesh(0.1, 0.05), Eigen::Isometry3d::Identity());
+  }
 }
 
 // assimp 5.2 appends index 0 until memory runs out when a COLLADA <p> holds a non-number: the
