@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 #include <string>
@@ -397,13 +398,18 @@ std::vector<SceneJointPose> ReadJointPoses(const YAML::Node& root, const Where& 
 }
 
 /// How many entries of `node` (link_padding or link_scale: [{link_name, <key>}, ...]) set `key`
-/// to other than `neutral`.
+/// to other than `neutral` (a value that is no number too: it is ignored all the same).
 std::size_t CountChanged(const YAML::Node& node, const char* key, double neutral) {
   std::size_t count = 0;
   if (!node.IsDefined() || !node.IsSequence()) return count;
   for (const YAML::Node& entry : node) {
     const YAML::Node value = entry.IsMap() ? entry[key] : YAML::Node();
-    count += value.IsDefined() && value.IsScalar() && value.as<double>() != neutral ? 1 : 0;
+    // as<double> with a fallback: a scalar such as "1..0" threw YAML::BadConversion out of the
+    // reader (fuzz finding), where every failure is a LoadError.
+    count += value.IsDefined() && value.IsScalar() &&
+                     !(value.as<double>(std::numeric_limits<double>::quiet_NaN()) == neutral)
+                 ? 1
+                 : 0;
   }
   return count;
 }

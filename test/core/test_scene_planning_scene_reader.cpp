@@ -240,6 +240,13 @@ TEST(PlanningSceneReader, NoticesForIgnoredGeometry) {
       "neutral.yaml", "link_padding: [{link_name: a, padding: 0}]\n"
                       "link_scale: [{link_name: a, scale: 1}]\n"));
   EXPECT_TRUE(neutral.notices.empty()) << ::testing::PrintToString(neutral.notices);
+  // A value that is no number is told of too, not thrown as yaml-cpp's own exception (fuzz
+  // finding: scale "1..0" ended the reader with YAML::BadConversion).
+  const PlanningSceneFile garbled = ReadPlanningSceneFile(WriteTempFile(
+      "garbled.yaml", "link_scale: [{link_name: a, scale: 1..0}, {link_name: b, scale: x}]\n"));
+  ASSERT_EQ(garbled.notices.size(), 1u) << ::testing::PrintToString(garbled.notices);
+  EXPECT_EQ(garbled.notices[0].rfind("link_scale: MoveIt's scale of 2 links is ignored", 0), 0u)
+      << garbled.notices[0];
 }
 
 // robot_state.multi_dof_joint_state, where MoveIt's dumps say where a floating virtual joint
