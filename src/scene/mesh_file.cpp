@@ -8,8 +8,9 @@
 #include <algorithm>
 #include <assimp/Importer.hpp>
 #include <cctype>
+#include <cstdlib>
+#include <map>
 #include <numeric>
-#include <optional>
 #include <set>
 #include <tuple>
 
@@ -152,64 +153,144 @@ void CheckColladaIndexLists(const std::string& bytes) {
   }
 }
 
-// The value of the attribute `name` found at `at` in XML text `text` (whitespace before it; `=`
-// and a quoted value after, spaces allowed around `=`), or nothing.
-std::optional<std::string> AttributeAt(const std::string& text, std::size_t at,
-                                       const std::string& name) {
-  if (at == 0 || !std::isspace(static_cast<unsigned char>(text[at - 1]))) return std::nullopt;
-  std::size_t i = at + name.size();
-  auto skip_spaces = [&] {
-    while (i < text.size() && std::isspace(static_cast<unsigned char>(text[i]))) ++i;
-  };
-  skip_spaces();
-  if (i >= text.size() || text[i] != '=') return std::nullopt;
-  ++i;
-  skip_spaces();
-  if (i >= text.size() || (text[i] != '"' && text[i] != '\'')) return std::nullopt;
-  const std::size_t end = text.find(text[i], i + 1);
-  if (end == std::string::npos) return std::nullopt;
-  return text.substr(i + 1, end - i - 1);
+// `text` with the spans from each `open` to its `close` blanked (newlines kept, so that lines
+// still count); an unclosed span runs to the end.
+void Blank(const std::string& open, const std::string& close, std::string* text) {
+  for (std::size_t at = text->find(open); at != std::string::npos; at = text->find(open, at)) {
+    const std::size_t found = text->find(close, at + open.size());
+    const std::size_t end = found == std::string::npos ? text->size() : found + close.size();
+    for (std::size_t k = at; k < end; ++k) (*text)[k] = (*text)[k] == '\n' ? '\n' : ' ';
+    at = end;
+  }
 }
 
-// assimp leaves out, with only a log line, a COLLADA <instance_geometry> or <instance_node>
-// whose url names an id the file does not declare (or another file's): the part is missing from
-// the link, its contacts would be missed. Refused here, naming the element and its line.
-// Comments are blanked first (a reference commented out is none); ids are collected in one pass.
+// An attribute value with XML's character references decoded (&#NN;, &#xHH; and the five
+// named ones), as assimp's XML parser reads it; other text as it is.
+std::string DecodeXmlText(const std::string& value) {
+  static const std::map<std::string, char> kNamed = {
+      {"amp", '&'}, {"lt", '<'}, {"gt", '>'}, {"quot", '"'}, {"apos", '\''}};
+  std::string out;
+  for (std::size_t i = 0; i < value.size(); ++i) {
+    // A reference is short: the ';' within a few characters (a bounded search, on any input).
+    const std::size_t near = value[i] == '&' ? value.substr(i, 12).find(';') : std::string::npos;
+    const std::size_t semi = near == std::string::npos ? near : i + near;
+    if (semi == std::string::npos) {
+      out += value[i];
+      continue;
+    }
+    const std::string ref = value.substr(i + 1, semi - i - 1);
+    const auto named = kNamed.find(ref);
+    const bool is_hex = ref.size() > 2 && ref[0] == '#' && (ref[1] == 'x' || ref[1] == 'X');
+    const std::string digits = ref.size() > 1 && ref[0] == '#' ? ref.substr(is_hex ? 2 : 1) : "";
+    char* rest = nullptr;
+    const long code = digits.empty() ? -1 : std::strtol(digits.c_str(), &rest, is_hex ? 16 : 10);
+    if (named != kNamed.end()) {
+      out += named->second;
+    } else if (code > 0 && code < 128 && rest != nullptr && *rest == '\0') {
+      out += static_cast<char>(code);  // ids and urls are ASCII in every exporter seen
+    } else {
+      out += value.substr(i, semi - i + 1);
+    }
+    i = semi;
+  }
+  return out;
+}
+
+// One start tag of XML text: its name, its attributes (values decoded) and where it starts.
+struct XmlTag {
+  std::string name;
+  std::map<std::string, std::string> attributes;
+  std::size_t at = 0;
+};
+
+// The start tags of `text` (comments and the like blanked), in order; a '>' in a quoted value
+// does not end its tag. Scanning stops at a tag left open at the end.
+std::vector<XmlTag> StartTags(const std::string& text) {
+  std::vector<XmlTag> tags;
+  const auto is_space = [](char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; };
+  for (std::size_t at = text.find('<'); at != std::string::npos; at = text.find('<', at + 1)) {
+    std::size_t i = at + 1;
+    XmlTag tag;
+    tag.at = at;
+    while (i < text.size() && !is_space(text[i]) && text[i] != '>' && text[i] != '/') {
+      tag.name += text[i++];
+    }
+    if (tag.name.empty() || tag.name[0] == '!' || tag.name[0] == '?') continue;
+    for (;;) {
+      while (i < text.size() && is_space(text[i])) ++i;
+      if (i >= text.size()) return tags;
+      if (text[i] == '>' || text[i] == '/') break;
+      std::string key;
+      while (i < text.size() && !is_space(text[i]) && text[i] != '=' && text[i] != '>') {
+        key += text[i++];
+      }
+      while (i < text.size() && is_space(text[i])) ++i;
+      if (i >= text.size() || text[i] != '=') break;  // not XML: assimp's parser refuses it
+      ++i;
+      while (i < text.size() && is_space(text[i])) ++i;
+      if (i >= text.size() || (text[i] != '"' && text[i] != '\'')) break;
+      const std::size_t end = text.find(text[i], i + 1);
+      if (end == std::string::npos) return tags;
+      tag.attributes[key] = DecodeXmlText(text.substr(i + 1, end - i - 1));
+      i = end + 1;
+    }
+    at = i - 1;
+    tags.push_back(std::move(tag));
+  }
+  return tags;
+}
+
+// assimp leaves out, with only a log line, a COLLADA <instance_geometry> whose url names no
+// <geometry> or <controller> of the file, and an <instance_node> whose url names no <node> (by
+// id, or by name: assimp's fallback): the part is missing from the link, its contacts would be
+// missed. Refused here, naming the element and its line. Read as assimp reads the file:
+// comments, CDATA sections, processing instructions and <extra> blocks (which it skips) are
+// blanked first.
 void CheckColladaReferences(const std::string& bytes) {
-  const std::vector<std::string> tags = {"<instance_geometry", "<instance_node"};
-  if (std::none_of(tags.begin(), tags.end(), [&](const std::string& tag) {
-        return bytes.find(tag) != std::string::npos;
-      })) {
+  if (bytes.find("<instance_geometry") == std::string::npos &&
+      bytes.find("<instance_node") == std::string::npos) {
     return;
   }
   std::string text = bytes;
-  for (std::size_t at = text.find("<!--"); at != std::string::npos; at = text.find("<!--", at)) {
-    const std::size_t end = std::min(text.find("-->", at + 4), text.size() - 3) + 3;
-    for (std::size_t k = at; k < end; ++k) text[k] = text[k] == '\n' ? '\n' : ' ';
-    at = end;
-  }
-  std::set<std::string> ids;
-  for (std::size_t at = text.find("id"); at != std::string::npos; at = text.find("id", at + 2)) {
-    if (const std::optional<std::string> id = AttributeAt(text, at, "id")) ids.insert(*id);
-  }
-  for (const std::string& tag : tags) {
-    for (std::size_t at = text.find(tag); at != std::string::npos;
-         at = text.find(tag, at + tag.size())) {
-      const std::size_t tag_end = text.find('>', at);
-      if (tag_end == std::string::npos) return;  // not a tag: assimp's XML parser refuses it
-      std::optional<std::string> url;
-      for (std::size_t u = text.find("url", at); !url && u < tag_end; u = text.find("url", u + 3)) {
-        url = AttributeAt(text, u, "url");
-      }
-      if (!url || (!url->empty() && (*url)[0] == '#' && ids.count(url->substr(1)) != 0)) {
-        continue;
-      }
-      const auto line = 1 + std::count(text.begin(), text.begin() + at, '\n');
-      throw LoadError("COLLADA " + tag + "> on line " + std::to_string(line) + " names '" +
-                      *url + "', which the file does not declare (expected '#' and the id of "
-                      "an element of this file)");
+  Blank("<!--", "-->", &text);
+  Blank("<![CDATA[", "]]>", &text);
+  Blank("<?", "?>", &text);
+  Blank("<extra>", "</extra>", &text);
+  Blank("<extra ", "</extra>", &text);
+  const std::vector<XmlTag> tags = StartTags(text);
+  std::set<std::string> geometries, nodes;
+  for (const XmlTag& tag : tags) {
+    const auto id = tag.attributes.find("id");
+    if ((tag.name == "geometry" || tag.name == "controller") && id != tag.attributes.end()) {
+      geometries.insert(id->second);
+    }
+    if (tag.name != "node") continue;
+    for (const char* key : {"id", "name"}) {
+      const auto value = tag.attributes.find(key);
+      if (value != tag.attributes.end()) nodes.insert(value->second);
     }
   }
+  for (const XmlTag& tag : tags) {
+    const bool is_geometry = tag.name == "instance_geometry";
+    if (!is_geometry && tag.name != "instance_node") continue;
+    const auto url = tag.attributes.find("url");
+    if (url == tag.attributes.end()) continue;
+    const std::string& value = url->second;
+    const std::set<std::string>& targets = is_geometry ? geometries : nodes;
+    if (!value.empty() && value[0] == '#' && targets.count(value.substr(1)) != 0) continue;
+    const auto line = 1 + std::count(text.begin(), text.begin() + tag.at, '\n');
+    throw LoadError("COLLADA <" + tag.name + "> on line " + std::to_string(line) + " names '" +
+                    value + "', which is no " +
+                    (is_geometry ? "<geometry> or <controller>" : "<node>") +
+                    " of the file (expected '#' and its id)");
+  }
+}
+
+// Whether `bytes` begins as XML text does: '<' after a byte order mark and whitespace.
+bool StartsAsXml(const std::string& bytes) {
+  std::size_t i = bytes.rfind("\xEF\xBB\xBF", 0) == 0 ? 3 : 0;
+  while (i < bytes.size() && std::isspace(static_cast<unsigned char>(bytes[i]))) ++i;
+  return i < bytes.size() && bytes[i] == '<';
 }
 
 }  // namespace
@@ -219,8 +300,9 @@ TriangleMesh ReadMeshFileBytes(const std::string& bytes, const std::string& name
   if (bytes.empty()) throw LoadError("the file is empty (expected a mesh: STL, DAE, OBJ, ...)");
   Assimp::Importer importer;
   const std::string hint = ExtensionHint(name);
-  // Whatever the extension, assimp takes a file that names COLLADA near its start for one.
-  if (hint == "dae" || ContainsCaseless(bytes, "collada")) {
+  // Whatever the extension, assimp takes an XML file that names COLLADA for one (a binary STL
+  // whose header names it is no XML: its coordinates could read as a "<p >").
+  if (hint == "dae" || (StartsAsXml(bytes) && ContainsCaseless(bytes, "collada"))) {
     CheckColladaIndexLists(bytes);
     CheckColladaReferences(bytes);
   }

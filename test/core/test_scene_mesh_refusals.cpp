@@ -80,9 +80,10 @@ TEST(SceneMeshRefusals, MalformedStlFilesAreRejected) {
 
 // A COLLADA file that places no geometry in its scene (no node instances its geometry) is
 // refused: assimp marks the scene incomplete and gives it a stand-in skeleton mesh, whose fit was
-// a 0.1 mm capsule for the link (helper-66 trial, a contact missed). So is one whose node names
-// a geometry it lacks, alone (the same stand-in) or beside a good one (that part left out), or
-// a node in another file (helper-68).
+// a 0.1 mm capsule for the link (helper-66 trial, a contact missed). So is a reference assimp
+// skips with a log line, leaving its part out (helper-68, helper-69): an <instance_geometry> whose
+// url names no geometry of the file, alone or beside a good one, one naming the id of a node, one
+// whose '>' in an attribute hides its url from a naive reading, and a node in another file.
 TEST(SceneMeshRefusals, ColladaPlacingNoGeometryIsRejected) {
   const std::string dir = FreshDir("dae_no_geometry");
   const std::string dae = Dae(LShapeMesh(0.1, 0.05));
@@ -90,30 +91,55 @@ TEST(SceneMeshRefusals, ColladaPlacingNoGeometryIsRejected) {
   const std::size_t at = dae.find(instance);
   ASSERT_NE(at, std::string::npos);
   const auto line = std::to_string(1 + std::count(dae.begin(), dae.begin() + at, '\n'));
-  for (const std::string& extra :
-       {std::string(), instance + "<node id=\"m\" sid=\"nothere\">"}) {
-    std::string dangling = dae;
-    dangling.replace(at, instance.size(), extra + "<instance_geometry url=\"#nothere\"/>");
-    if (!extra.empty()) dangling.replace(dangling.find("</node>"), 7, "</node></node>");
+  auto with = [&](const std::string& in_place_of_instance) {
+    std::string edited = dae;
+    edited.replace(at, instance.size(), in_place_of_instance);
+    return edited;
+  };
+  const std::string no_geometry = "which is no <geometry> or <controller> of the file";
+  for (const std::string& dangling :
+       {with("<instance_geometry url=\"#nothere\"/>"),
+        with(instance + "<instance_geometry url=\"#nothere\"/>"),
+        with(instance + "<instance_geometry name=\"a>b\" url=\"#nothere\"/>")}) {
     ExpectBadLinkMesh(dir, "dangling.dae", dangling,
-                      {"COLLADA <instance_geometry> on line " + line,
-                       "names '#nothere', which the file does not declare"});
+                      {"COLLADA <instance_geometry> on line " + line, "names '#nothere', " +
+                       no_geometry});
   }
-  std::string external = dae;
-  external.replace(at, instance.size(), "<instance_node url=\"parts.dae#arm\"/>");
-  ExpectBadLinkMesh(dir, "external.dae", external, {"<instance_node>", "'parts.dae#arm'"});
-  std::string unplaced = dae;
-  unplaced.erase(at, instance.size());
-  ExpectBadLinkMesh(dir, "unplaced.dae", unplaced, {"places no mesh in its scene"});
-  // The file as written loads (the edits above are what fails), and so do its reference and id
-  // spaced around '=' and a dangling reference in a comment.
-  std::string spaced = dae;
-  spaced.replace(at, instance.size(),
-                 "<!-- <instance_geometry url=\"#old\"/> --><instance_geometry url = '#g'/>");
+  ExpectBadLinkMesh(dir, "node_id.dae", with(instance + "<instance_geometry url=\"#n\"/>"),
+                    {"names '#n', " + no_geometry});
+  ExpectBadLinkMesh(dir, "external.dae", with("<instance_node url=\"parts.dae#arm\"/>"),
+                    {"COLLADA <instance_node>", "names 'parts.dae#arm', which is no <node>"});
+  ExpectBadLinkMesh(dir, "unplaced.dae", with(""), {"places no mesh in its scene"});
+  // The file as written loads (the edits above are what fails), and so do the forms of a good
+  // reference: spaced around '=' in either quote, a character reference (&#103; is 'g'), a
+  // node's name (assimp's fallback), and dangling references assimp never reads (in a comment,
+  // in an <extra> block).
+  ExpectLShapeLoads(dir, "placed.dae", dae);
+  std::string spaced = with(
+      "<!-- <instance_geometry url=\"#old\"/> --><instance_geometry url = '#&#103;'/>"
+      "<extra><technique profile=\"x\"><instance_geometry url=\"#gone\"/></technique></extra>");
   const std::string geometry = "<geometry id=\"g\">";
   spaced.replace(spaced.find(geometry), geometry.size(), "<geometry\n id =\"g\">");
-  ExpectLShapeLoads(dir, "placed.dae", dae);
   ExpectLShapeLoads(dir, "spaced.dae", spaced);
+  std::string by_name = dae;
+  by_name.replace(by_name.find("<node id=\"n\">"), 13, "<node id=\"n\" name=\"Body\">");
+  by_name.replace(by_name.find("</node>"), 7,
+                  "</node><node id=\"n2\"><instance_node url=\"#Body\"/></node>");
+  ExpectLShapeLoads(dir, "by_name.dae", by_name);
+}
+
+// A binary STL whose header names COLLADA is no COLLADA: its bytes are not read as XML, though a
+// coordinate of 0.15667814 is the bytes "<p >" (helper-69: refused as a bad index list before).
+TEST(SceneMeshRefusals, ABinaryStlNamingColladaIsReadAsAnStl) {
+  const std::string dir = FreshDir("stl_named_collada");
+  const TriangleMesh box = BoxMesh(Eigen::Vector3d(2.0 * 0.15667814, 0.1, 0.1));
+  std::string stl = BinaryStl(box);
+  stl.replace(0, 24, "exported through COLLADA");
+  ASSERT_NE(stl.find("<p >"), std::string::npos);
+  WriteBytes(dir + "box.stl", stl);
+  const Files files = WriteRobot(dir, {MeshCollision("box.stl")});
+  ExpectEncloses(LoadWorkcell(files.urdf, files.scene, CacheIn(dir)), "link0", box,
+                 Eigen::Isometry3d::Identity());
 }
 
 // assimp 5.2 appends index 0 until memory runs out when a COLLADA <p> holds a non-number: the
