@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <assimp/Importer.hpp>
 #include <cctype>
+#include <cstdint>
 #include <cstdlib>
 #include <map>
 #include <numeric>
@@ -286,11 +287,13 @@ void CheckColladaReferences(const std::string& bytes) {
   }
 }
 
-// Whether `bytes` begins as XML text does: '<' after a byte order mark and whitespace.
-bool StartsAsXml(const std::string& bytes) {
-  std::size_t i = bytes.rfind("\xEF\xBB\xBF", 0) == 0 ? 3 : 0;
-  while (i < bytes.size() && std::isspace(static_cast<unsigned char>(bytes[i]))) ++i;
-  return i < bytes.size() && bytes[i] == '<';
+// Whether `bytes` is laid out as a binary STL: an 80-byte header, a triangle count n, then n
+// triangles of 50 bytes. No XML text is (its count would be four characters).
+bool IsBinaryStl(const std::string& bytes) {
+  if (bytes.size() < 84) return false;
+  std::uint32_t count = 0;
+  for (int k = 3; k >= 0; --k) count = count << 8 | static_cast<unsigned char>(bytes[80 + k]);
+  return bytes.size() == 84 + 50 * static_cast<std::uint64_t>(count);
 }
 
 }  // namespace
@@ -300,9 +303,9 @@ TriangleMesh ReadMeshFileBytes(const std::string& bytes, const std::string& name
   if (bytes.empty()) throw LoadError("the file is empty (expected a mesh: STL, DAE, OBJ, ...)");
   Assimp::Importer importer;
   const std::string hint = ExtensionHint(name);
-  // Whatever the extension, assimp takes an XML file that names COLLADA for one (a binary STL
-  // whose header names it is no XML: its coordinates could read as a "<p >").
-  if (hint == "dae" || (StartsAsXml(bytes) && ContainsCaseless(bytes, "collada"))) {
+  // Whatever the extension, assimp takes a file that names COLLADA near its start for one; not
+  // a binary STL whose header names it (its coordinates could read as a "<p >").
+  if ((hint == "dae" || ContainsCaseless(bytes, "collada")) && !IsBinaryStl(bytes)) {
     CheckColladaIndexLists(bytes);
     CheckColladaReferences(bytes);
   }
