@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include <Eigen/Geometry>
 #include <ros/message_traits.h>
 #include <ros/serialization.h>
 
@@ -343,22 +344,19 @@ bool IsValidPose(const geometry_msgs::Transform& pose) {
   return std::isfinite(t.x + t.y + t.z) && std::isfinite(norm2) && norm2 > 0.0;
 }
 
-// The distance (m) and the rotation angle (rad) from valid pose `a` to valid pose `b`.
+// The distance (m) and the rotation angle (rad) from valid pose `a` to valid pose `b`. Eigen's
+// angular distance is 2 atan2(|v|, |w|) of their quotient (w, v): exact for small turns too
+// (acos of the dot product reads a turn below ~2e-8 rad as none), for quaternions of any norm.
 std::pair<double, double> PoseChange(const geometry_msgs::Transform& a,
                                      const geometry_msgs::Transform& b) {
-  const geometry_msgs::Vector3& ta = a.translation;
-  const geometry_msgs::Vector3& tb = b.translation;
-  const double m = std::sqrt((tb.x - ta.x) * (tb.x - ta.x) + (tb.y - ta.y) * (tb.y - ta.y) +
-                             (tb.z - ta.z) * (tb.z - ta.z));
-  // conj(qa) qb = (w, v): the angle is 2 atan2(|v|, |w|), exact for small turns too (acos of
-  // the dot product reads a turn below ~2e-8 rad as none), for quaternions of any norm.
-  const geometry_msgs::Quaternion& qa = a.rotation;
-  const geometry_msgs::Quaternion& qb = b.rotation;
-  const double w = qa.w * qb.w + qa.x * qb.x + qa.y * qb.y + qa.z * qb.z;
-  const double vx = qa.w * qb.x - qb.w * qa.x - (qa.y * qb.z - qa.z * qb.y);
-  const double vy = qa.w * qb.y - qb.w * qa.y - (qa.z * qb.x - qa.x * qb.z);
-  const double vz = qa.w * qb.z - qb.w * qa.z - (qa.x * qb.y - qa.y * qb.x);
-  return {m, 2.0 * std::atan2(std::sqrt(vx * vx + vy * vy + vz * vz), std::abs(w))};
+  const auto point = [](const geometry_msgs::Vector3& t) {
+    return Eigen::Vector3d(t.x, t.y, t.z);
+  };
+  const auto rotation = [](const geometry_msgs::Quaternion& q) {
+    return Eigen::Quaterniond(q.w, q.x, q.y, q.z);
+  };
+  return {(point(b.translation) - point(a.translation)).norm(),
+          rotation(a.rotation).angularDistance(rotation(b.rotation))};
 }
 
 }  // namespace
