@@ -219,9 +219,9 @@ PlanningSceneFile ReadSceneGeometryText(const std::string& text, const std::stri
   scene.name = in.RestOfLine();
   const bool is_newer = IsNewerFormat(text);
   std::set<std::string> ids;
+  std::string last_id;
   for (;;) {
-    in.SetElement(scene.objects.empty() ? "scene"
-                                        : "after object '" + scene.objects.back().id + "'");
+    in.SetElement(last_id.empty() ? "scene" : "after object '" + last_id + "'");
     const std::string marker = in.Next();
     if (marker == ".") break;
     if (marker != "*") {
@@ -234,10 +234,10 @@ PlanningSceneFile ReadSceneGeometryText(const std::string& text, const std::stri
     in.SetElement(object.element);
     if (object.id.empty()) in.Fail("an object without id (expected '* ID')");
     if (!ids.insert(object.id).second) in.Fail("id repeated (expected unique ids)");
+    last_id = object.id;
     const Eigen::Isometry3d X_FO =
         is_newer ? in.Pose("the object's pose") : Eigen::Isometry3d::Identity();
     const std::uint32_t shape_count = in.Count("the object's shape count", kMostCount);
-    if (shape_count == 0) in.Fail("no shape (expected a shape count of at least 1)");
     for (std::uint32_t i = 0; i < shape_count; ++i) {
       in.SetElement(object.element + " shape " + std::to_string(i));
       ReadShape(&in, X_FO, &object);
@@ -249,6 +249,12 @@ PlanningSceneFile ReadSceneGeometryText(const std::string& text, const std::stri
         if (in.Next().empty()) in.Fail("the file ends (expected a subframe's name)");
         in.Pose("a subframe's pose");
       }
+    }
+    if (shape_count == 0) {
+      // MoveIt adds no object for it (its subframes name nothing): nothing to check.
+      scene.notices.push_back(object.element + " (line " + std::to_string(object.line) +
+                              "): no shapes; skipped, as MoveIt adds no object for it");
+      continue;
     }
     scene.objects.push_back(std::move(object));
   }

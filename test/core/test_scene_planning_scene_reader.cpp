@@ -206,13 +206,31 @@ TEST(PlanningSceneReader, BadSceneGeometryTextNamesLineObjectAndExpectation) {
            {":7:", "2 vertices and 1 triangles", "at least 3 vertices"}},
           {"s\n* a\n0 0 0\n0 0 0 0\n1\nsphere\n1\n0 0 0\n0 0 0 1\n0 0 0 0\n0\n.\n",
            {":4:", "object 'a'", "the object's pose", "zero quaternion"}},
-          {"s\n* a\n0 0 0\n0 0 0 1\n0\n0\n.\n", {":5:", "object 'a'", "no shape"}},
           {"s\n* a\n0 0 0\n0 0 0 1\n1\nsphere\n1\n0 0 0\n0 0 0 1\n0 0 0 0\n0\n"
            "* a\n0 0 0\n0 0 0 1\n1\nsphere\n1\n0 0 0\n0 0 0 1\n0 0 0 0\n0\n.\n",
            {":12:", "object 'a'", "id repeated", "unique ids"}},
           {"s\n* a\n0 0 0\n0 0 0 1\n-1\n.\n",
            {":5:", "'-1'", "the object's shape count, an integer from 0"}},
       },
+      [](const std::string& path) { ReadPlanningSceneFile(path); });
+}
+
+// An object of no shapes (subframes only, as MoveIt can save one) is skipped with a notice, as
+// MoveIt adds no object for it; the next object's messages still name the skipped one.
+TEST(PlanningSceneReader, SceneGeometryTextObjectWithoutShapesIsSkipped) {
+  const std::string held = "* held\n0 0 0\n0 0 0 1\n1\nsphere\n1\n0 0 0\n0 0 0 1\n0 0 0 0\n0\n";
+  const std::string marks = "* marks\n0 0 0\n0 0 0 1\n0\n1\ntip 0 0 0.1 0 0 0 1\n";
+  const PlanningSceneFile scene =
+      ReadPlanningSceneFile(WriteTempFile("shapeless.scene", "s\n" + marks + held + "."));
+  ASSERT_EQ(scene.objects.size(), 1u);
+  EXPECT_EQ(scene.objects[0].id, "held");
+  ASSERT_EQ(scene.notices.size(), 1u);
+  EXPECT_EQ(scene.notices[0], "object 'marks' (line 2): no shapes; skipped, as MoveIt adds no "
+                              "object for it");
+  ExpectBadInputFilesRejected(
+      "shapeless_bad.scene",
+      {{"s\n" + marks + "+\n.\n", {":8:", "after object 'marks': '+'"}},
+       {"s\n" + marks + "* marks\n.\n", {":8:", "object 'marks'", "id repeated"}}},
       [](const std::string& path) { ReadPlanningSceneFile(path); });
 }
 

@@ -533,18 +533,7 @@ class ReplayTrajectoryTest(unittest.TestCase):
         # (the short way). A plan of the right arm has a point between the two: there the left
         # arm is where its controller has it, on the short way, not halfway round the long way
         # (3.1 rad from its start in 0.05 s: an 'input jumped' stop, twice).
-        package = rospkg.RosPack().get_path(PKG)
-        with open(os.path.join(package, 'urdf', 'workcell.urdf')) as f:
-            urdf = f.read()
-        for old, new in (('<joint name="left_joint1" type="revolute">',
-                          '<joint name="left_joint1" type="continuous">'),
-                         ('<limit lower="-2.967060" upper="2.967060" velocity="1.0"',
-                          '<limit velocity="1.0"')):
-            self.assertIn(old, urdf)
-            urdf = urdf.replace(old, new, 1)
-        urdf_path = os.path.join(self.directory, 'continuous_joint1.urdf')
-        with open(urdf_path, 'w') as f:
-            f.write(urdf)
+        urdf_path = self.continuous_joint1_urdf()
         start = rospy.Time(100)
         wrapped = 3.1 + 0.083 - 2.0 * math.pi
         left = JointTrajectory(joint_names=LEFT_JOINTS)
@@ -567,12 +556,79 @@ class ReplayTrajectoryTest(unittest.TestCase):
                               display_bytes([left], start_state, True), '*', RawType), start,
                       raw=True, connection_header=header)
             bag.write('/right/plan', right, start)
-        result = rosrun('replay', '--json', '--urdf', urdf_path, '--scene',
-                        os.path.join(package, 'config', 'scene.yaml'), path)
+        result = self.replay_with(urdf_path, path)
         self.assertEqual(result.returncode, 0, result.stderr)
         report = json.loads(result.stdout)
         self.assertEqual([round(c['time_s'], 9) for c in report['per_cycle']], [0.0, 0.05, 0.1])
         self.assertEqual(report['jumped_cycles'], 0)
+
+    def continuous_joint1_urdf(self):
+        """The workcell's URDF with left_joint1 continuous (no position limits), written to the
+        test's directory: its path."""
+        with open(os.path.join(rospkg.RosPack().get_path(PKG), 'urdf', 'workcell.urdf')) as f:
+            urdf = f.read()
+        for old, new in (('<joint name="left_joint1" type="revolute">',
+                          '<joint name="left_joint1" type="continuous">'),
+                         ('<limit lower="-2.967060" upper="2.967060" velocity="1.0"',
+                          '<limit velocity="1.0"')):
+            self.assertIn(old, urdf)
+            urdf = urdf.replace(old, new, 1)
+        urdf_path = os.path.join(self.directory, 'continuous_joint1.urdf')
+        with open(urdf_path, 'w') as f:
+            f.write(urdf)
+        return urdf_path
+
+    @staticmethod
+    def replay_with(urdf_path, bag_path):
+        scene = os.path.join(rospkg.RosPack().get_path(PKG), 'config', 'scene.yaml')
+        return rosrun('replay', '--json', '--urdf', urdf_path, '--scene', scene, bag_path)
+
+    def test_a_raw_plan_turns_a_continuous_joint_as_its_positions_say(self):
+        # A trajectory controller takes a plan's positions literally: left_joint1 (continuous)
+        # from 2 to -2 rad turns through 0, past -pi/2, where the left arm points at the right
+        # arm (RIGHT_TOWARDS_LEFT, held by its own plan), not the short way through pi. Replay
+        # checks the turn it makes, a quarter turn or less a cycle (no 'input jumped' stop
+        # for a step either way round within the velocity limit); to 2 pi - 2 it turns the other
+        # way, clear of the right arm; a turn of 1000 rad between two points is refused.
+        urdf_path = self.continuous_joint1_urdf()
+        start = rospy.Time(100)
+        path = os.path.join(self.directory, 'plan_turning.bag')
+        for end_rad, cycle_times, warns in ((-2.0, [0.0, 4.0, 8.0, 12.0], True),
+                                            (2.0 * math.pi - 2.0, [0.0, 12.0], False)):
+            self.write_turning_plan(path, start, end_rad)
+            result = self.replay_with(urdf_path, path)
+            self.assertEqual(result.returncode, 0, result.stderr)
+            report = json.loads(result.stdout)
+            self.assertEqual([round(c['time_s'], 9) for c in report['per_cycle']], cycle_times)
+            self.assertEqual(report['jumped_cycles'], 0, end_rad)
+            self.assertEqual(report['messages'], 4)  # the points read, none put between
+            met = [sorted(w[:2]) for c in report['per_cycle']
+                   for w in c['warnings'] + c['between_samples']]
+            arms_met = any(a.startswith('left_link') and b.startswith('right_link')
+                           for a, b in met)
+            self.assertEqual(arms_met, warns, (end_rad, met))
+        self.write_turning_plan(path, start, 1000.0)
+        result = self.replay_with(urdf_path, path)
+        self.assertEqual(result.returncode, 1)
+        self.assertIn("point 1: joint 'left_joint1' turns 998.000000 rad from the point before "
+                      "it (expected at most 64 turns between two points)", result.stderr)
+
+    @staticmethod
+    def write_turning_plan(path, start, end_rad):
+        """Plans of both arms over 12 s: the left arm's joint1 from 2 rad to `end_rad`, its
+        shoulder at 0.5; the right arm held at RIGHT_TOWARDS_LEFT."""
+        left = JointTrajectory(joint_names=LEFT_JOINTS)
+        right = JointTrajectory(joint_names=RIGHT_JOINTS)
+        for plan in (left, right):
+            plan.header.stamp = start
+        for t, q1 in ((0.0, 2.0), (12.0, end_rad)):
+            left.points.append(JointTrajectoryPoint(positions=[q1, 0.5, 0, 0, 0, 0, 0],
+                                                    time_from_start=rospy.Duration(t)))
+            right.points.append(JointTrajectoryPoint(positions=RIGHT_TOWARDS_LEFT,
+                                                     time_from_start=rospy.Duration(t)))
+        with rosbag.Bag(path, 'w') as bag:
+            bag.write('/left/plan', left, start)
+            bag.write('/right/plan', right, start)
 
     def test_a_moveit_display_moving_the_base_is_refused(self):
         # A mobile manipulator's plan: its multi-DOF part moves the SRDF's virtual joint (the

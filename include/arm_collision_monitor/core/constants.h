@@ -181,6 +181,11 @@ inline constexpr double kJointLimitMargin = 0.01;
 /// turn a second five years to reach.
 inline constexpr double kMaxUnlimitedPosition_rad = 1e9;
 
+/// The most turns replay follows a joint without limits through between two points of a plan
+/// (a trajectory controller turns it as far as the positions say): 64, 400 rad, a quarter turn
+/// a planned cycle, at most 256 cycles between two points. More is refused as a corrupt plan.
+inline constexpr int kMostPlanTurns = 64;
+
 /// The largest magnitude a revolute or continuous mimic joint's position may reach over the
 /// positions the monitor accepts of the joint it mimics, rad (a prismatic mimic's travel is held
 /// to kMaxWorldEdge_m): 16 times kMaxUnlimitedPosition_rad, so that a x10 mimic of a continuous

@@ -271,12 +271,11 @@ void RefuseBaseMotion(const std::string& where,
 }
 
 // The plans of the bag at `path` on `topics`, in bag order, their joint names prefixed; those
-// of MoveIt's displays unwound as MoveIt executes them (`model`'s turning joints).
+// of MoveIt's displays unwound as MoveIt executes them (the plans' turning joints).
 PlanSources ReadPlans(const std::string& path, const rosbag::Bag& bag,
                       const std::vector<std::string>& topics, const JointPrefixes& prefixes,
-                      const KinematicModel& model, Plans* plans) {
-  std::set<std::string> turning;
-  for (const int link : model.TurningLinks()) turning.insert(model.joint(link).name);
+                      Plans* plans) {
+  const std::set<std::string>& turning = plans->turning();
   PlanSources sources;
   rosbag::View view(bag, rosbag::TypeQuery(kPlanTypes));
   std::string topic;  // of the message read
@@ -432,9 +431,12 @@ Input ReadBag(const std::string& path, const std::vector<std::string>& topics,
   }
   CheckTopics(path, &all, prefixed_topics, "--joint-prefix");
   Input result;
-  Plans plans(&result);
-  const PlanSources sources =
-      ReadPlans(path, bag, topics, joint_prefixes, workcell.kinematics, &plans);
+  std::set<std::string> turning;
+  for (const int link : workcell.kinematics.TurningLinks()) {
+    turning.insert(workcell.kinematics.joint(link).name);
+  }
+  Plans plans(&result, std::move(turning));
+  const PlanSources sources = ReadPlans(path, bag, topics, joint_prefixes, &plans);
   const auto planned = plans.InTimeOrder();
   Cycles cycles(path, workcell, &result);
   // Each sample at `stamp` (of plan `joints`, null for a recorded state, the bag's `message`)

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -15,6 +16,7 @@
 #include <sensor_msgs/JointState.h>
 #include <trajectory_msgs/JointTrajectory.h>
 
+#include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/core/load_error.h"
 #include "arm_collision_monitor/safety/joint_merger.h"
 #include "replay_output.h"
@@ -61,6 +63,7 @@ class Plans {
     ros::Time stamp;
     std::uint64_t order;            // read order, which decides between equal stamps
     std::vector<double> positions;  // one per name of its Joints
+    bool is_between = false;        // put between two points of the plan (AddBetween)
   };
   struct Joints {
     std::vector<std::string> names;
@@ -69,7 +72,12 @@ class Plans {
   };
 
   /// `counts`: its messages (points read) and refused and superseded points are counted.
-  explicit Plans(Input* counts) : counts_(counts) {}
+  /// `turning`: the model's joints without limits, which a trajectory controller turns from
+  /// point to point as the positions literally say, however far (AddBetween).
+  Plans(Input* counts, std::set<std::string> turning)
+      : counts_(counts), turning_(std::move(turning)) {}
+
+  const std::set<std::string>& turning() const { return turning_; }
 
   /// A trajectory starting at `start`; `where` names its message for a LoadError and a refused
   /// point. A point of the wrong size or out of ros::Time's range is refused and counted; one
@@ -102,6 +110,7 @@ class Plans {
                           std::to_string(point.positions[j]));
         }
       }
+      AddBetween(point_where, &joints, stamp, point.positions);
       joints.points.push_back({stamp, next_order_++, point.positions});
       joints.last = stamp;
       end = stamp;
@@ -195,6 +204,40 @@ class Plans {
     return false;
   }
 
+  // Before a point at `stamp` of `positions` (`where`): when a turning joint moves over half a
+  // turn from the plan's last point, which the monitor would take the short way round (a
+  // wrapped reading), the points between them on the straight joint-space path, each a quarter
+  // turn or less from the last, so that the monitor follows the turn as the controller makes
+  // it. A move of over kMostPlanTurns turns between two points is a LoadError.
+  void AddBetween(const std::string& where, Joints* joints, const ros::Time& stamp,
+                  const std::vector<double>& positions) {
+    if (joints->points.empty()) return;
+    const Point& last = joints->points.back();
+    double largest_move = 0.0;
+    for (std::size_t j = 0; j < positions.size(); ++j) {
+      if (turning_.count(joints->names[j]) == 0) continue;
+      const double move = std::abs(positions[j] - last.positions[j]);
+      if (move > kMostPlanTurns * kTurn) {
+        throw LoadError(where + ": joint '" + joints->names[j] + "' turns " +
+                        std::to_string(move) + " rad from the point before it (expected at "
+                        "most " + std::to_string(kMostPlanTurns) + " turns between two points)");
+      }
+      largest_move = std::max(largest_move, move);
+    }
+    if (!(largest_move > 0.5 * kTurn)) return;
+    const int pieces = static_cast<int>(std::ceil(largest_move / (0.25 * kTurn)));
+    const Point start = last;  // push_back below may move `last`
+    const double duration_s = (stamp - start.stamp).toSec();
+    for (int k = 1; k < pieces; ++k) {
+      const double s = static_cast<double>(k) / pieces;
+      Point between{start.stamp + ros::Duration(s * duration_s), next_order_++, positions, true};
+      for (std::size_t j = 0; j < positions.size(); ++j) {
+        between.positions[j] = start.positions[j] + s * (positions[j] - start.positions[j]);
+      }
+      joints->points.push_back(std::move(between));
+    }
+  }
+
   // The earlier plans' points after `start` lose the joints `names`; a point left without
   // joints goes.
   void Supersede(const std::vector<std::string>& names, const ros::Time& start) {
@@ -210,11 +253,12 @@ class Plans {
       std::vector<Point>& points = plans_[k].points;
       const auto after = std::stable_partition(points.begin(), points.end(),
                                                [&](const Point& p) { return !(p.stamp > start); });
-      counts_->superseded_points += static_cast<std::uint64_t>(points.end() - after);
+      counts_->superseded_points += static_cast<std::uint64_t>(
+          std::count_if(after, points.end(), [](const Point& p) { return !p.is_between; }));
       Joints rest{{}, {}, plans_[k].last};
       for (const std::size_t j : kept) rest.names.push_back(old_names[j]);
       for (auto point = after; !kept.empty() && point != points.end(); ++point) {
-        Point part{point->stamp, point->order, {}};
+        Point part{point->stamp, point->order, {}, point->is_between};
         for (const std::size_t j : kept) part.positions.push_back(point->positions[j]);
         rest.points.push_back(std::move(part));
       }
@@ -227,6 +271,7 @@ class Plans {
   std::vector<Joints> plans_;
   std::uint64_t next_order_ = 0;
   Input* counts_;
+  std::set<std::string> turning_;
   std::vector<double> under_way_;  // ForEachUnderWayAt's positions
 };
 
