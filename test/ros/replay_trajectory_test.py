@@ -723,6 +723,24 @@ class ReplayTrajectoryTest(unittest.TestCase):
         self.assertEqual(result.returncode, 0, result.stderr)
         self.assertRegex(report['first_refused_message'],
                          r', point 20: wrong_size \(7 positions for 14 joint names\)$')
+        # A plan naming a joint twice is refused when merged, point by point, each named too.
+        path = os.path.join(self.directory, 'twice_named.bag')
+        start = self.samples[0][0]
+        twice = JointTrajectory(joint_names=LEFT_JOINTS + LEFT_JOINTS[:1])
+        twice.header.stamp = self.samples[19][0]
+        for t in (0.5, 1.0):
+            twice.points.append(JointTrajectoryPoint(positions=self.samples[19][1][:8],
+                                                     time_from_start=rospy.Duration(t)))
+        with rosbag.Bag(path, 'w') as bag:
+            bag.write('/move_group/planned_path', trajectory_of(self.samples[:20], slice(0, 14),
+                                                                start), start)
+            bag.write('/left/plan', twice, self.samples[19][0])
+        result, report = self.replay(path)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertEqual(report['refused_messages'], {'wrong_size': 2})
+        self.assertRegex(report['first_refused_message'],
+                         r'^stamped [0-9.]+ s: \S+/twice_named\.bag: trajectory_msgs/JointTrajectory '
+                         r'on /left/plan at bag time [0-9.]+, point 0: wrong_size \(.*left_joint1')
 
     def test_a_bag_without_joint_input_names_both_types(self):
         path = os.path.join(self.directory, 'empty.bag')

@@ -69,7 +69,8 @@ class Cycles {
     input_.SetMimicJoints(workcell.kinematics.MimicJointNames());
   }
 
-  /// `sample`, of the bag's `message` (null: a planned point's, named when read), at `stamp`
+  /// `sample`, of the bag's `message` (null: a plan's, `plan`, at its `point`, null between
+  /// two: Plans::Describe names it), at `stamp`
   /// (an unstamped message's, its sample's stamp_s 0: the time the bag recorded it, unordered
   /// as the node takes it). A recorded message stamped further ahead of the time the bag
   /// recorded it than `offset_s` (the usual offset of its joints' stamps, UsualOffset) by
@@ -78,7 +79,8 @@ class Cycles {
   /// backwards. Stamps a constant time off the recorder's (a robot's own clock) are read as
   /// they are.
   void Add(const NamedPositions& sample, const ros::Time& stamp,
-           const rosbag::MessageInstance* message, double offset_s = 0.0) {
+           const rosbag::MessageInstance* message, double offset_s,
+           const Plans::Joints* plan = nullptr, const Plans::Point* point = nullptr) {
     double now_s = stamp.toSec();
     if (message != nullptr && sample.stamp_s != 0.0) {
       now_s -= std::max(stamp.toSec() - message->getTime().toSec() - offset_s, 0.0);
@@ -107,8 +109,11 @@ class Cycles {
         arrival_s_, message == nullptr, stamp.toSec(),
         [&] {
           const std::string why = input_.DescribeRefusal(sample, status, now_s);
-          return (message != nullptr ? MessageWhere(path_, *message) + ": " : std::string()) +
-                 MergeStatusName(status) + (why.empty() ? "" : " (" + why + ")");
+          const std::string source = message != nullptr ? MessageWhere(path_, *message)
+                                     : plan != nullptr  ? Plans::Describe(*plan, point)
+                                                        : std::string();
+          return (source.empty() ? source : source + ": ") + MergeStatusName(status) +
+                 (why.empty() ? "" : " (" + why + ")");
         },
         result_);
   }
@@ -439,15 +444,16 @@ Input ReadBag(const std::string& path, const std::vector<std::string>& topics,
   const PlanSources sources = ReadPlans(path, bag, topics, joint_prefixes, &plans);
   const auto planned = plans.InTimeOrder();
   Cycles cycles(path, workcell, &result);
-  // Each sample at `stamp` (of plan `joints`, null for a recorded state, the bag's `message`)
-  // with the other plans under way then.
+  // Each sample at `stamp` (of plan `joints` at its `point`, null for a recorded state, the
+  // bag's `message`) with the other plans under way then.
   auto add = [&](const NamedPositions& sample, const ros::Time& stamp,
-                 const Plans::Joints* joints, const rosbag::MessageInstance* message,
-                 double offset_s) {
-    cycles.Add(sample, stamp, message, offset_s);
-    plans.ForEachUnderWayAt(stamp, joints, [&](const NamedPositions& under_way) {
-      cycles.Add(under_way, stamp, nullptr);
-    });
+                 const Plans::Joints* joints, const Plans::Point* point,
+                 const rosbag::MessageInstance* message, double offset_s) {
+    cycles.Add(sample, stamp, message, offset_s, joints, point);
+    plans.ForEachUnderWayAt(
+        stamp, joints, [&](const NamedPositions& under_way, const Plans::Joints& plan) {
+          cycles.Add(under_way, stamp, nullptr, 0.0, &plan);
+        });
   };
   // The planned points before `stamp` (all that are left when null); at equal stamps the
   // recorded state comes first, in the same cycle.
@@ -457,7 +463,7 @@ Input ReadBag(const std::string& path, const std::vector<std::string>& topics,
          ++next) {
       const auto& [joints, point] = planned[next];
       add(NamedPositions{joints->names, point->positions, point->stamp.toSec()}, point->stamp,
-          joints, nullptr, 0.0);
+          joints, point, nullptr, 0.0);
     }
   };
   const JointOffsets offsets = ReadOffsets(bag, topics);
@@ -471,7 +477,7 @@ Input ReadBag(const std::string& path, const std::vector<std::string>& topics,
     // An unstamped message (0) was sampled when the bag recorded it, as the node takes it.
     const ros::Time stamp = msg->header.stamp.isZero() ? m.getTime() : msg->header.stamp;
     add_planned_before(&stamp);
-    add(ToNamedPositions(*msg), stamp, nullptr, &m, usual_s);
+    add(ToNamedPositions(*msg), stamp, nullptr, nullptr, &m, usual_s);
   }
   add_planned_before(nullptr);
   cycles.Finish(path, PlanHint(sources));

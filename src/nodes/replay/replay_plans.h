@@ -59,17 +59,30 @@ void NoteRefusal(double arrival_s, bool is_planned, double stamp_s, Describe des
 // replacement); their other joints stay.
 class Plans {
  public:
+  /// Point::index of a start state and of a point put between two (AddBetween).
+  static constexpr std::int64_t kStartState = -1;
+  static constexpr std::int64_t kBetween = -2;
   struct Point {
     ros::Time stamp;
     std::uint64_t order;            // read order, which decides between equal stamps
     std::vector<double> positions;  // one per name of its Joints
-    bool is_between = false;        // put between two points of the plan (AddBetween)
+    std::int64_t index;             // in its message's points, kStartState or kBetween
   };
   struct Joints {
     std::vector<std::string> names;
     std::vector<Point> points;
-    ros::Time last;  // no point is later
+    ros::Time last;     // no point is later
+    std::string where;  // its message (and trajectory)
   };
+
+  /// What names a sample of `joints` (its `point`; null: where the plan has its joints between
+  /// two points) in a refusal.
+  static std::string Describe(const Joints& joints, const Point* point) {
+    if (point == nullptr || point->index == kBetween) {
+      return joints.where + ", between two of its points";
+    }
+    return joints.where + (point->index >= 0 ? ", point " + std::to_string(point->index) : "");
+  }
 
   /// `counts`: its messages (points read) and refused and superseded points are counted.
   /// `turning`: the model's joints without limits, which a trajectory controller turns from
@@ -87,7 +100,7 @@ class Plans {
   ros::Time AddTrajectory(const trajectory_msgs::JointTrajectory& plan, const ros::Time& start,
                           const std::string& where) {
     Supersede(plan.joint_names, start);
-    Joints joints{plan.joint_names, {}, start};
+    Joints joints{plan.joint_names, {}, start, where};
     ros::Time end = start;
     for (std::size_t k = 0; k < plan.points.size(); ++k) {
       const trajectory_msgs::JointTrajectoryPoint& point = plan.points[k];
@@ -111,7 +124,7 @@ class Plans {
         }
       }
       AddBetween(point_where, &joints, stamp, point.positions);
-      joints.points.push_back({stamp, next_order_++, point.positions});
+      joints.points.push_back({stamp, next_order_++, point.positions, std::int64_t(k)});
       joints.last = stamp;
       end = stamp;
     }
@@ -124,11 +137,14 @@ class Plans {
   void AddState(const sensor_msgs::JointState& state, const ros::Time& stamp,
                 const std::string& where) {
     if (!IsReadable(state.name, state.position, stamp.toSec(), where + ", start state")) return;
-    plans_.push_back({state.name, {{stamp, next_order_++, state.position}}, stamp});
+    plans_.push_back({state.name,
+                      {{stamp, next_order_++, state.position, kStartState}},
+                      stamp,
+                      where + ", start state"});
   }
 
   /// For each plan under way at `stamp` (a point before or at it and one after it), but
-  /// `except`: its joints where its controller has them then, `f(NamedPositions)`, linear
+  /// `except`: its joints where its controller has them then, `f(NamedPositions, Joints)`, linear
   /// between its two points. So the cycles of plans of several arms (or of a plan beside
   /// recorded states) move every arm at once, on the straight joint-space path between
   /// consecutive cycles that the swept check takes, where holding the other arms at their last
@@ -151,7 +167,7 @@ class Plans {
       for (std::size_t j = 0; j < under_way_.size(); ++j) {
         under_way_[j] = p0.positions[j] + s * (p1.positions[j] - p0.positions[j]);
       }
-      f(NamedPositions{joints.names, under_way_, stamp.toSec()});
+      f(NamedPositions{joints.names, under_way_, stamp.toSec()}, joints);
     }
   }
 
@@ -230,7 +246,8 @@ class Plans {
     const double duration_s = (stamp - start.stamp).toSec();
     for (int k = 1; k < pieces; ++k) {
       const double s = static_cast<double>(k) / pieces;
-      Point between{start.stamp + ros::Duration(s * duration_s), next_order_++, positions, true};
+      Point between{start.stamp + ros::Duration(s * duration_s), next_order_++, positions,
+                    kBetween};
       for (std::size_t j = 0; j < positions.size(); ++j) {
         between.positions[j] = start.positions[j] + s * (positions[j] - start.positions[j]);
       }
@@ -254,11 +271,11 @@ class Plans {
       const auto after = std::stable_partition(points.begin(), points.end(),
                                                [&](const Point& p) { return !(p.stamp > start); });
       counts_->superseded_points += static_cast<std::uint64_t>(
-          std::count_if(after, points.end(), [](const Point& p) { return !p.is_between; }));
-      Joints rest{{}, {}, plans_[k].last};
+          std::count_if(after, points.end(), [](const Point& p) { return p.index != kBetween; }));
+      Joints rest{{}, {}, plans_[k].last, plans_[k].where};
       for (const std::size_t j : kept) rest.names.push_back(old_names[j]);
       for (auto point = after; !kept.empty() && point != points.end(); ++point) {
-        Point part{point->stamp, point->order, {}, point->is_between};
+        Point part{point->stamp, point->order, {}, point->index};
         for (const std::size_t j : kept) part.positions.push_back(point->positions[j]);
         rest.points.push_back(std::move(part));
       }
