@@ -124,7 +124,8 @@ class Plans {
         }
       }
       AddBetween(point_where, &joints, stamp, point.positions);
-      joints.points.push_back({stamp, next_order_++, point.positions, std::int64_t(k)});
+      joints.points.push_back({stamp, next_order_++, point.positions,
+                               static_cast<std::int64_t>(k)});
       joints.last = stamp;
       end = stamp;
     }
