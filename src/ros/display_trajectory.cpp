@@ -424,6 +424,24 @@ MultiDofPoses StartMultiDofPoses(const sensor_msgs::MultiDOFJointState& state) {
   return at;
 }
 
+std::string DescribeMultiDofAway(const MultiDofPoses& expected, MultiDofPoses* at,
+                                 std::string* joint) {
+  for (const auto& [name, pose] : expected) {
+    const auto [given, is_new] = at->emplace(name, pose);
+    if (is_new) continue;
+    *joint = name;
+    if (!IsValidPose(given->second) || !IsValidPose(pose)) {
+      return "puts '" + name + "' at a pose not finite, or with a zero quaternion";
+    }
+    const auto [m, rad] = PoseChange(pose, given->second);
+    if (m <= kSceneBaseAgreement_m && rad <= kSceneBaseAgreement_rad) continue;
+    char amount[96];
+    std::snprintf(amount, sizeof(amount), " %.6g m and %.6g rad away", m, rad);
+    return "puts '" + name + "'" + amount;
+  }
+  return "";
+}
+
 std::string DescribeMultiDofMotion(const trajectory_msgs::MultiDOFJointTrajectory& trajectory,
                                    MultiDofPoses* at) {
   const std::vector<std::string>& names = trajectory.joint_names;

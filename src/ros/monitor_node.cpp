@@ -211,7 +211,8 @@ void MonitorNode::OnJointState(const sensor_msgs::JointState::ConstPtr& msg, std
     // fast input shows here first.
     if (!msg->header.stamp.isZero()) input_ages_s_.Add((now - msg->header.stamp).toSec());
   } else {
-    const std::string why = input_->DescribeRefusal(input, status, now.toSec());
+    std::string why = input_->DescribeRefusal(input, status, now.toSec());
+    if (status == MergeStatus::kNoKnownJoints) why += NoKnownJointsHint(*names, topic);
     // The cycle's reason names the first refusal since the last cycle.
     if (pending_refusal_ == MergeStatus::kAccepted) {
       pending_refusal_ = status;
@@ -230,6 +231,17 @@ void MonitorNode::OnJointState(const sensor_msgs::JointState::ConstPtr& msg, std
        !monitor_->DescribeRefusal(input_->q()).empty())) {
     RunCycle(start);
   }
+}
+
+std::string MonitorNode::NoKnownJointsHint(const std::vector<std::string>& names,
+                                           std::size_t topic) const {
+  // The first names only: a message of 200,000 junk names is looked at no longer than a few.
+  constexpr std::size_t kHintedNames = 64;
+  const std::vector<std::string> first(names.begin(),
+                                       names.begin() + std::min(names.size(), kHintedNames));
+  const std::string prefixed = PrefixedNamesHint(workcell_->joint_names, first, "the model");
+  return " on " + subscribers_[topic].getTopic() + prefixed +
+         (prefixed.empty() ? "" : " (give each input topic its prefix: ~input_joint_prefixes)");
 }
 
 ros::Time MonitorNode::ClockNow() {

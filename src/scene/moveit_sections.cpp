@@ -386,10 +386,17 @@ PlanningSceneInput ReadPlanningScene(const YAML::Node& scene, const std::string&
     }
   });
   for (const HeaderFrames::Placed& placed : frames.placed) {
-    if (placed.is_used) {
-      workcell->warnings.push_back(
-          PlacedFrameNotice(placed, input.path, srdf.path, workcell->kinematics.link_name(0)));
+    if (!placed.is_used) continue;
+    workcell->warnings.push_back(
+        PlacedFrameNotice(placed, input.path, srdf.path, workcell->kinematics.link_name(0)));
+    PlacedRootSpec root{placed.joint.name, Eigen::Isometry3d::Identity(),
+                        input.path + " (no robot state: the origin)"};
+    if (placed.pose != nullptr) {
+      root.X_FR = placed.pose->X_PC;
+      root.where = input.path + ":" + std::to_string(placed.pose->line) +
+                   " (robot_state.multi_dof_joint_state)";
     }
+    workcell->placed_roots.push_back(std::move(root));
   }
   return input;
 }

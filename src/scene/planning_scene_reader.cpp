@@ -259,9 +259,6 @@ SceneCollisionObject ReadCollisionObject(const YAML::Node& node, const Where& en
   if (meshes) yaml_fields::RequireSequence(meshes, where.Child("meshes"));
   const std::size_t primitive_count = primitives ? primitives.size() : 0;
   const std::size_t mesh_count = meshes ? meshes.size() : 0;
-  if (primitive_count + mesh_count == 0) {
-    where.Fail(node, "no shape (expected primitives or meshes)");
-  }
   const auto X_FP =
       ReadShapePoses(node, "primitive_poses", "primitives", primitive_count, X_FO, where);
   for (std::size_t i = 0; i < primitive_count; ++i) {
@@ -444,6 +441,11 @@ PlanningSceneFile ReadPlanningSceneFile(const std::string& path) {
   return ReadPlanningSceneText(ReadWholeFile(path, "a readable planning-scene file"), path);
 }
 
+std::string ShapelessObjectNotice(const SceneCollisionObject& object) {
+  return object.element + " (line " + std::to_string(object.line) +
+         "): no shapes (subframes only, or none): nothing to check; skipped";
+}
+
 PlanningSceneFile ReadPlanningSceneText(const std::string& text, const std::string& path) {
   const std::string kTextSuffix = ".scene";
   if (path.size() >= kTextSuffix.size() &&
@@ -468,10 +470,15 @@ PlanningSceneFile ReadPlanningSceneText(const std::string& text, const std::stri
       yaml_fields::RequireSequence(objects, objects_where);
       std::set<std::string> ids;
       for (std::size_t i = 0; i < objects.size(); ++i) {
-        scene.objects.push_back(ReadCollisionObject(objects[i], objects_where.Entry(i)));
-        if (!ids.insert(scene.objects.back().id).second) {
-          objects_where.Entry(i).Fail(
-              objects[i], "id '" + scene.objects.back().id + "' repeated (expected unique ids)");
+        SceneCollisionObject object = ReadCollisionObject(objects[i], objects_where.Entry(i));
+        if (!ids.insert(object.id).second) {
+          objects_where.Entry(i).Fail(objects[i],
+                                      "id '" + object.id + "' repeated (expected unique ids)");
+        }
+        if (object.primitives.empty() && object.meshes.empty()) {
+          scene.notices.push_back(ShapelessObjectNotice(object));
+        } else {
+          scene.objects.push_back(std::move(object));
         }
       }
     }

@@ -251,12 +251,10 @@ PlanningSceneFile ReadSceneGeometryText(const std::string& text, const std::stri
       }
     }
     if (shape_count == 0) {
-      // MoveIt adds no object for it (its subframes name nothing): nothing to check.
-      scene.notices.push_back(object.element + " (line " + std::to_string(object.line) +
-                              "): no shapes; skipped, as MoveIt adds no object for it");
-      continue;
+      scene.notices.push_back(ShapelessObjectNotice(object));
+    } else {
+      scene.objects.push_back(std::move(object));
     }
-    scene.objects.push_back(std::move(object));
   }
   return scene;
 }

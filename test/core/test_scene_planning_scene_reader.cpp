@@ -215,8 +215,8 @@ TEST(PlanningSceneReader, BadSceneGeometryTextNamesLineObjectAndExpectation) {
       [](const std::string& path) { ReadPlanningSceneFile(path); });
 }
 
-// An object of no shapes (subframes only, as MoveIt can save one) is skipped with a notice, as
-// MoveIt adds no object for it; the next object's messages still name the skipped one.
+// An object of no shapes (subframes only, as MoveIt can save one) has nothing to check: it is
+// skipped with a notice; the next object's messages still name the skipped one.
 TEST(PlanningSceneReader, SceneGeometryTextObjectWithoutShapesIsSkipped) {
   const std::string held = "* held\n0 0 0\n0 0 0 1\n1\nsphere\n1\n0 0 0\n0 0 0 1\n0 0 0 0\n0\n";
   const std::string marks = "* marks\n0 0 0\n0 0 0 1\n0\n1\ntip 0 0 0.1 0 0 0 1\n";
@@ -225,8 +225,9 @@ TEST(PlanningSceneReader, SceneGeometryTextObjectWithoutShapesIsSkipped) {
   ASSERT_EQ(scene.objects.size(), 1u);
   EXPECT_EQ(scene.objects[0].id, "held");
   ASSERT_EQ(scene.notices.size(), 1u);
-  EXPECT_EQ(scene.notices[0], "object 'marks' (line 2): no shapes; skipped, as MoveIt adds no "
-                              "object for it");
+  EXPECT_EQ(scene.notices[0], "object 'marks' (line 2): no shapes (subframes only, or none): "
+                              "nothing to check; skipped");
+
   ExpectBadInputFilesRejected(
       "shapeless_bad.scene",
       {{"s\n" + marks + "+\n.\n", {":8:", "after object 'marks': '+'"}},
@@ -336,6 +337,22 @@ const std::string kObject = "world.collision_objects[0] 'a'";
 
 void ReadScene(const std::string& path) { ReadPlanningSceneFile(path); }
 
+// The same of a planning scene's object with subframes only, as rostopic echo writes it.
+TEST(PlanningSceneReader, ObjectWithoutShapesIsSkipped) {
+  const PlanningSceneFile scene = ReadPlanningSceneFile(WriteTempFile(
+      "shapeless.yaml", OneObject("id: a, subframe_names: [tip], subframe_poses: [{}]") +
+                            "    - {id: b, " + kBox + "}\n"));
+  ASSERT_EQ(scene.objects.size(), 1u);
+  EXPECT_EQ(scene.objects[0].id, "b");
+  ASSERT_EQ(scene.notices.size(), 1u);
+  EXPECT_EQ(scene.notices[0], kObject + " (line 3): no shapes (subframes only, or none): "
+                                        "nothing to check; skipped");
+  ExpectBadInputFilesRejected(
+      "shapeless_repeated.yaml", {{OneObject("id: a") + "    - {id: a, " + kBox + "}\n",
+                                   {"world.collision_objects[1]", "id 'a' repeated"}}},
+      ReadScene);
+}
+
 TEST(PlanningSceneReader, BadObjectsNameFileElementAndExpectation) {
   // The valid base case of the bad objects below.
   EXPECT_EQ(ReadPlanningSceneFile(WriteTempFile("good_scene.yaml", OneObject("id: a, " + kBox)))
@@ -348,7 +365,6 @@ TEST(PlanningSceneReader, BadObjectsNameFileElementAndExpectation) {
            {"world.collision_objects[0]", "without id", "id: NAME"}},
           {OneObject("id: a, " + kBox) + "    - {id: a, " + kBox + "}\n",
            {":4:", "world.collision_objects[1]", "id 'a' repeated", "unique ids"}},
-          {OneObject("id: a"), {kObject, "no shape", "primitives or meshes"}},
           {OneObject("id: a, primitives: [{type: 7, dimensions: [1]}], primitive_poses: [{}]"),
            {kObject + ".primitives[0].type", "unknown value '7'", "1 BOX, 2 SPHERE"}},
           {OneObject("id: a, primitives: [{type: prism, dimensions: [1]}], primitive_poses: [{}]"),

@@ -164,6 +164,15 @@ class InputFaultsTest(unittest.TestCase):
     def test_09_no_known_joint_refused(self):
         self.refused_with(MonitorReport.INPUT_NO_KNOWN_JOINTS,
                           lambda: left_only([0.1, 0.2], names=['elbow', 'wrist']))
+        # A driver's unprefixed names: the topic is named, and the model's prefixed joints.
+        self.refused_with(MonitorReport.INPUT_NO_KNOWN_JOINTS,
+                          lambda: left_only([0.1, 0.2], names=['joint1', 'joint2']),
+                          reason_prefix="input refused: no_known_joints (none of its 2 names is "
+                                        "a model joint, the first 'joint1' on "
+                                        "/left_arm/joint_states; the model has 'joint1' as "
+                                        "'left_joint1', 'right_joint1'; 'joint2' as "
+                                        "'left_joint2', 'right_joint2' (give each input topic "
+                                        "its prefix: ~input_joint_prefixes))")
 
     def test_09c_each_kind_of_refusal_is_logged(self):
         # Refusals are logged once a second at most, but the first of each kind always: a dual

@@ -121,6 +121,21 @@ class ReplayConfigTest(unittest.TestCase):
                       "7 model joints: " + ", ".join("'%s'" % j for j in RIGHT_JOINTS),
                       refused.stderr)
         self.assertIn('joint_defaults', refused.stderr)
+        # A gripper driver's NaN in every message of the right arm: the refusals are the cause,
+        # and the error says so.
+        nan_path = os.path.join(directory, 'right_nan.bag')
+        with rosbag.Bag(nan_path, 'w') as bag:
+            for k in range(3):
+                for names, position in ((LEFT_JOINTS, 0.0), (RIGHT_JOINTS, float('nan'))):
+                    msg = JointState(name=names, position=[position] * len(names))
+                    msg.header.stamp = rospy.Time(100) + rospy.Duration(0.05 * k)
+                    bag.write('/joint_states', msg, msg.header.stamp)
+        refused = rosrun('replay', '--json', '--scene', self.bundled_scene, nan_path)
+        self.assertEqual(refused.returncode, 1, refused.stderr)
+        self.assertRegex(refused.stderr, r"gives 7 model joints: 'right_joint1', .*; 3 messages or "
+                         r"planned points were refused \(3 non_finite\), the first stamped "
+                         r"100\.000000 s: \S+/right_nan\.bag: sensor_msgs/JointState on "
+                         r"/joint_states at bag time 100\.000000: non_finite")
         # The same scene with the right arm held at 0.
         scene_path = os.path.join(directory, 'scene.yaml')
         with open(self.bundled_scene) as f:
@@ -635,6 +650,23 @@ class ReplayConfigTest(unittest.TestCase):
             report = json.loads(result.stdout)
             self.assertEqual(report['refused_messages'], refused, (ahead_s, far))
             self.assertEqual(len(report['per_cycle']), 5 - (far == 0), (ahead_s, far))
+            # A clock off by more than the node's default input timeout is told of (a node on
+            # the recorder's clock refuses such stamps).
+            self.assertEqual(report['clock_offsets'],
+                             {'/joint_states': ahead_s} if ahead_s > 0.25 else {}, ahead_s)
+        text = rosrun('replay', '--scene', self.bundled_scene, path).stdout
+        self.assertNotIn('is stamped', text)
+        with rosbag.Bag(path, 'w') as bag:
+            for k in range(5):
+                recorded_at = rospy.Time(100) + rospy.Duration(0.05 * k)
+                msg = JointState(name=LEFT_JOINTS + RIGHT_JOINTS, position=[0.01 * k] * 14)
+                msg.header.stamp = recorded_at - rospy.Duration(5.0)
+                bag.write('/joint_states', msg, recorded_at)
+        text = rosrun('replay', '--scene', self.bundled_scene, path).stdout
+        self.assertIn('input: /joint_states is stamped 5.000 s behind the times the bag recorded '
+                      'it, as a rule: read as it is (a robot\'s clock off the recorder\'s), where '
+                      'a node on the recorder\'s clock refuses such stamps as stale beyond its '
+                      'input_timeout_s (0.25 s by default)', text)
 
     def test_between_samples_lines_past_the_first_20_are_counted(self):
         # The swing of test_between_samples_lines_say_what_they_are, there and back four times:

@@ -584,44 +584,65 @@ class ReplayTrajectoryTest(unittest.TestCase):
         return rosrun('replay', '--json', '--urdf', urdf_path, '--scene', scene, bag_path)
 
     def test_a_raw_plan_turns_a_continuous_joint_as_its_positions_say(self):
-        # A trajectory controller takes a plan's positions literally: left_joint1 (continuous)
-        # from 2 to -2 rad turns through 0, past -pi/2, where the left arm points at the right
-        # arm (RIGHT_TOWARDS_LEFT, held by its own plan), not the short way through pi. Replay
-        # checks the turn it makes, a quarter turn or less a cycle (no 'input jumped' stop
-        # for a step either way round within the velocity limit); to 2 pi - 2 it turns the other
-        # way, clear of the right arm; a turn of 1000 rad between two points is refused.
+        # A trajectory controller takes a plan's positions literally: left_joint1 (continuous,
+        # 1 rad/s) from 2 to -2 rad turns through 0, past -pi/2, where the left arm points at the
+        # right arm (RIGHT_TOWARDS_LEFT, held by its own plan), not the short way through pi.
+        # Replay checks the turn it makes, a quarter turn or less a cycle (no 'input jumped'
+        # stop for a step either way round within the velocity limit); to 2 pi - 2 it turns the
+        # other way, clear of the right arm; 20 rad in 12 s, within twice the limit, in 13
+        # steps. 400 rad in 12 s, beyond it, whose short way (2.1 rad) is within it: one point a
+        # quarter turn on shows the speed (a jump).
         urdf_path = self.continuous_joint1_urdf()
         start = rospy.Time(100)
         path = os.path.join(self.directory, 'plan_turning.bag')
-        for end_rad, cycle_times, warns in ((-2.0, [0.0, 4.0, 8.0, 12.0], True),
-                                            (2.0 * math.pi - 2.0, [0.0, 12.0], False)):
+        quarter_s = round(12.0 * 0.5 * math.pi / 400.0, 6)  # to the microsecond below
+        for end_rad, cycle_times, warns, jumps in (
+                (-2.0, [0.0, 4.0, 8.0, 12.0], True, False),
+                (2.0 * math.pi - 2.0, [0.0, 12.0], False, False),
+                (22.0, [round(12.0 * k / 13, 6) for k in range(14)], None, False),
+                (402.0, [0.0, quarter_s, 12.0], None, True)):
             self.write_turning_plan(path, start, end_rad)
             result = self.replay_with(urdf_path, path)
             self.assertEqual(result.returncode, 0, result.stderr)
             report = json.loads(result.stdout)
-            self.assertEqual([round(c['time_s'], 9) for c in report['per_cycle']], cycle_times)
-            self.assertEqual(report['jumped_cycles'], 0, end_rad)
+            self.assertEqual([round(c['time_s'], 6) for c in report['per_cycle']], cycle_times)
+            self.assertEqual(report['jumped_cycles'] > 0, jumps, end_rad)
             self.assertEqual(report['messages'], 4)  # the points read, none put between
             met = [sorted(w[:2]) for c in report['per_cycle']
                    for w in c['warnings'] + c['between_samples']]
             arms_met = any(a.startswith('left_link') and b.startswith('right_link')
                            for a, b in met)
-            self.assertEqual(arms_met, warns, (end_rad, met))
-        self.write_turning_plan(path, start, 1000.0)
+            if warns is not None:
+                self.assertEqual(arms_met, warns, (end_rad, met))
+        # A later plan naming the joint twice: its two points refused, not the points put
+        # between them.
+        self.write_turning_plan(path, start, 2.0, duration_s=1.0)
+        twice = JointTrajectory(joint_names=LEFT_JOINTS + LEFT_JOINTS[:1])
+        twice.header.stamp = start + rospy.Duration(1.0)
+        for t, q1 in ((0.0, 2.0), (12.0, -2.0)):
+            twice.points.append(JointTrajectoryPoint(positions=[q1, 0.5, 0, 0, 0, 0, 0, q1],
+                                                     time_from_start=rospy.Duration(t)))
+        with rosbag.Bag(path, 'a') as bag:
+            bag.write('/left/plan', twice, twice.header.stamp)
+        result = self.replay_with(urdf_path, path)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertEqual(json.loads(result.stdout)['refused_messages'], {'wrong_size': 2})
+        # 200,000 rad in 10^6 s (within the limit) needs over 100,000 points: refused.
+        self.write_turning_plan(path, start, 2.0e5, duration_s=1.0e6)
         result = self.replay_with(urdf_path, path)
         self.assertEqual(result.returncode, 1)
-        self.assertIn("point 1: joint 'left_joint1' turns 998.000000 rad from the point before "
-                      "it (expected at most 64 turns between two points)", result.stderr)
+        self.assertIn("/left/plan at bag time 100.000000, point 1: over 100000 points put between "
+                      "the plans' points to follow continuous joints' turns", result.stderr)
 
     @staticmethod
-    def write_turning_plan(path, start, end_rad):
-        """Plans of both arms over 12 s: the left arm's joint1 from 2 rad to `end_rad`, its
-        shoulder at 0.5; the right arm held at RIGHT_TOWARDS_LEFT."""
+    def write_turning_plan(path, start, end_rad, duration_s=12.0):
+        """Plans of both arms over `duration_s`: the left arm's joint1 from 2 rad to `end_rad`,
+        its shoulder at 0.5; the right arm held at RIGHT_TOWARDS_LEFT."""
         left = JointTrajectory(joint_names=LEFT_JOINTS)
         right = JointTrajectory(joint_names=RIGHT_JOINTS)
         for plan in (left, right):
             plan.header.stamp = start
-        for t, q1 in ((0.0, 2.0), (12.0, end_rad)):
+        for t, q1 in ((0.0, 2.0), (duration_s, end_rad)):
             left.points.append(JointTrajectoryPoint(positions=[q1, 0.5, 0, 0, 0, 0, 0],
                                                     time_from_start=rospy.Duration(t)))
             right.points.append(JointTrajectoryPoint(positions=RIGHT_TOWARDS_LEFT,
@@ -665,6 +686,64 @@ class ReplayTrajectoryTest(unittest.TestCase):
             self.assertIn(", trajectory 0: its multi_dof_joint_trajectory moves 'virtual_joint' "
                           'by up to %s m and 0 rad' % moved, result.stderr)
             self.assertIn('cannot check a plan that moves it', result.stderr)
+
+    def test_a_moveit_display_must_start_where_the_scene_placed_the_robot(self):
+        # The planning scene's objects in 'odom' (the frame a floating virtual joint moves the
+        # robot in) are placed with the robot where its robot state puts the joint, 0.3 m along
+        # y. A display starting there replays; one starting at odom's origin is refused, naming
+        # the scene's line, as is one whose start state leaves the base out and whose base
+        # trajectory stands at the origin (away from the scene's placement: moved).
+        package = rospkg.RosPack().get_path(PKG)
+        with open(os.path.join(package, 'config', 'scene.yaml')) as f:
+            scene = f.read()
+        files = {
+            'mobile.srdf': '<robot name="workcell"><virtual_joint name="base_joint" '
+                           'type="floating" parent_frame="odom" child_link="world"/></robot>\n',
+            'mobile_ps.yaml':
+                'robot_state:\n  multi_dof_joint_state:\n    joint_names: [base_joint]\n'
+                '    transforms: [{translation: {x: 0, y: 0.3, z: 0}, '
+                'rotation: {x: 0, y: 0, z: 0, w: 1}}]\n'
+                'world:\n  collision_objects:\n    - {id: post, header: {frame_id: odom}, '
+                'primitives: [{type: 1, dimensions: [0.1, 0.1, 0.1]}], '
+                'primitive_poses: [{position: {x: 3, y: 3, z: 0.05}}]}\n',
+            'mobile_scene.yaml': scene + '\nsrdf: mobile.srdf\nplanning_scene: mobile_ps.yaml\n',
+        }
+        for name, text in files.items():
+            with open(os.path.join(self.directory, name), 'w') as f:
+                f.write(text)
+        start_state = JointState(name=LEFT_JOINTS + RIGHT_JOINTS, position=self.samples[0][1])
+        plan = trajectory_of(self.samples[:5], slice(0, 14), self.samples[0][0])
+        path = os.path.join(self.directory, 'display_mobile.bag')
+
+        def pose(y):
+            transform = Transform()
+            transform.translation.y = y
+            transform.rotation.w = 1.0
+            return transform
+
+        away = (r"its start state puts 'base_joint' 0.3 m and 0 rad away from where \S+/"
+                r"mobile_ps\.yaml:4 \(robot_state\.multi_dof_joint_state\) places the robot; "
+                r"the monitor checks the arms against the planning scene's objects placed with "
+                r"the robot there")
+        moved = r"trajectory 0: its multi_dof_joint_trajectory moves 'base_joint' by up to 0\.3 m"
+        for start_y, base_y, error in ((0.3, 0.3, None), (0.0, 0.3, away), (None, 0.0, moved)):
+            base = MultiDOFJointTrajectory(joint_names=['base_joint'])
+            for k in range(2):
+                base.points.append(MultiDOFJointTrajectoryPoint(
+                    transforms=[pose(base_y)], time_from_start=rospy.Duration(0.1 * k)))
+            base_start = MultiDOFJointState(
+                joint_names=['base_joint'] if start_y is not None else [],
+                transforms=[pose(start_y)] if start_y is not None else [])
+            write_display(path, display_bytes([plan], start_state, True, base, base_start),
+                          display_definition(True), self.samples[0][0])
+            result = rosrun('replay', '--json', '--scene',
+                            os.path.join(self.directory, 'mobile_scene.yaml'), path)
+            if error is None:
+                self.assertEqual(result.returncode, 0, result.stderr)
+                self.assertEqual(json.loads(result.stdout)['cycles'], 5)
+                continue
+            self.assertEqual(result.returncode, 1, error)
+            self.assertRegex(result.stderr, error)
 
     def test_an_unreadable_display_names_the_message_and_field(self):
         start_state = JointState(name=LEFT_JOINTS + RIGHT_JOINTS, position=self.samples[0][1])

@@ -181,10 +181,10 @@ inline constexpr double kJointLimitMargin = 0.01;
 /// turn a second five years to reach.
 inline constexpr double kMaxUnlimitedPosition_rad = 1e9;
 
-/// The most turns replay follows a joint without limits through between two points of a plan
-/// (a trajectory controller turns it as far as the positions say): 64, 400 rad, a quarter turn
-/// a planned cycle, at most 256 cycles between two points. More is refused as a corrupt plan.
-inline constexpr int kMostPlanTurns = 64;
+/// The most points replay puts between the points of a bag's plans to follow continuous joints'
+/// turns (a quarter turn apart, within the joints' velocity limits): 100,000, 40,000 rad of
+/// turns, some 15 MB of points for two 7-joint arms. More is refused as a corrupt plan.
+inline constexpr std::int64_t kMostPointsBetween = 100000;
 
 /// The largest magnitude a revolute or continuous mimic joint's position may reach over the
 /// positions the monitor accepts of the joint it mimics, rad (a prismatic mimic's travel is held
@@ -195,6 +195,11 @@ inline constexpr int kMostPlanTurns = 64;
 /// bounds may miss: 2e-6 rad from 8.6e9 rad up to the bound (2 um a metre of lever), 1e-9 rad
 /// below 4e6 rad.
 inline constexpr double kMaxMimicPosition = 16.0 * kMaxUnlimitedPosition_rad;
+
+/// The node's default ~input_timeout_s, s: 5 cycles at 20 Hz. replay tells of a bag whose
+/// stamps are further off the times it recorded them (a robot's clock off the recorder's),
+/// which such a node would refuse.
+inline constexpr double kDefaultInputTimeout_s = 0.25;
 
 /// A step beyond max_step_m is no jump when the time since the last accepted sample shows every
 /// joint moved at most this many times its velocity limit allows (a planned path sampled
@@ -389,6 +394,11 @@ inline constexpr double kLooseMeshFitRatio = 2.0;
 /// above the rounding of poses written out and read back.
 inline constexpr double kMultiDofStill_m = 1e-9;
 inline constexpr double kMultiDofStill_rad = 1e-9;
+/// A plan's start state has the base where the planning scene placed it (replay) within this
+/// distance (m) and angle (rad): a scene file written by hand to six places, or a pose printed
+/// to float precision, still agrees; a thousandth of any tolerance zone.
+inline constexpr double kSceneBaseAgreement_m = 1e-6;
+inline constexpr double kSceneBaseAgreement_rad = 1e-6;
 /// A mesh (after scale) smaller than this across every axis, m, is reported as a likely unit
 /// error (typical robot parts are centimetres; a mesh in metres scaled by 0.001 is a speck): the
 /// fit is taken as it is, but the real part's contacts would be missed.

@@ -66,6 +66,13 @@ using MultiDofPoses = std::map<std::string, geometry_msgs::Transform>;
 /// The poses of a plan's start state (a DisplayedPlan's start_multi_dof).
 MultiDofPoses StartMultiDofPoses(const sensor_msgs::MultiDOFJointState& state);
 
+/// Empty when `at` has each joint of `expected` where `expected` has it, within
+/// kSceneBaseAgreement_m and _rad (one it lacks is set there); else the first that is
+/// not, `joint` set to its name, and how far ("puts 'base' 0.5 m and 0 rad away"), or a pose
+/// not finite or a zero quaternion.
+std::string DescribeMultiDofAway(const MultiDofPoses& expected, MultiDofPoses* at,
+                                 std::string* joint);
+
 /// Empty when every point of `trajectory` has each of its joints where `at` has it (a joint `at`
 /// lacks: where the trajectory's first point has it), within kMultiDofStill_m and
 /// kMultiDofStill_rad; else what moves and how far ("its multi_dof_joint_trajectory moves

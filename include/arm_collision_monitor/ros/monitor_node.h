@@ -28,6 +28,7 @@
 #include "arm_collision_monitor/MoveObject.h"
 #include "arm_collision_monitor/RemoveObject.h"
 #include "arm_collision_monitor/SetGraspTarget.h"
+#include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/core/timing_summary.h"
 #include "arm_collision_monitor/monitor/monitor.h"
 #include "arm_collision_monitor/ros/marker_builder.h"
@@ -50,7 +51,7 @@ struct NodeOptions {
   /// ~cycle_rate_hz: 0 = one cycle per message; else cycles at this rate on the newest input,
   /// and at once on a message whose reading the Monitor refuses (outside the joint limits)
   double cycle_rate_hz = 0.0;
-  double input_timeout_s = 0.25;   ///< ~input_timeout_s: staleness bound (5 cycles at 20 Hz)
+  double input_timeout_s = kDefaultInputTimeout_s;  ///< ~input_timeout_s: staleness bound
   /// ~frame_timeout_s: a frame-bound object's TF frame whose newest transform is older, or
   /// stamped further ahead of the node's clock, is stale (a static frame never is); 0 = never
   double frame_timeout_s = 0.5;
@@ -80,6 +81,10 @@ class MonitorNode {
 
   /// The constructor's publishers, services and diagnostic tasks.
   void Advertise();
+
+  /// What a message on input `topic` naming no model joint (`names`) is told besides: the
+  /// topic, and the model's joints that have its names with a prefix (PrefixedNamesHint).
+  std::string NoKnownJointsHint(const std::vector<std::string>& names, std::size_t topic) const;
 
   /// ros::Time::now(), after re-basing every time-derived state if it is earlier than the last
   /// time read (only with simulated time: a looping bag, a simulator reset). Every time-derived

@@ -99,8 +99,11 @@ struct PlanningSceneFile {
 /// reads an all-zero quaternion as the identity; here it must be written). Planes are rejected
 /// (no half-spaces in the monitor), as are mesh `resource` files (expected inline vertices).
 ///
+/// An object of no shapes (MoveIt keeps one for its subframes) has nothing to check: skipped with
+/// a notice (ShapelessObjectNotice).
+///
 /// Throws LoadError "path[:line]: element: what was expected" for a missing file, malformed
-/// YAML, an unknown key, a collision object without id, a repeated id or one with no shape, an
+/// YAML, an unknown key, a collision object without id, a repeated id, an
 /// unknown primitive type, a wrong number of dimensions, a dimension that is not a finite
 /// number > 0, shape and pose lists of different lengths, a bad quaternion, a mesh without
 /// triangles or with a vertex index out of range, and a matrix that is not square, symmetric and
@@ -112,14 +115,18 @@ PlanningSceneFile ReadPlanningSceneFile(const std::string& path);
 /// (ReadSceneGeometryText).
 PlanningSceneFile ReadPlanningSceneText(const std::string& text, const std::string& path);
 
+/// The notice of an object of no shapes, which the readers skip: "object 'ID' (line N): no
+/// shapes (subframes only, or none): nothing to check; skipped".
+std::string ShapelessObjectNotice(const SceneCollisionObject& object);
+
 /// Reads MoveIt's scene geometry text: a `.scene` file as RViz's Motion Planning panel exports
 /// it (PlanningScene::saveGeometryToStream), in the format of MoveIt 1.1 on (each object's pose
 /// and subframes) or the older one (shape poses in the planning frame), told apart as MoveIt
 /// does. Its objects become `objects` (frame_id "": the planning frame; `line`: the line of the
-/// object's `*`); it has no matrix and no notices. Shapes: box, sphere, cylinder and cone
-/// (dimensions into shape_msgs' order: the text's "radius length" becomes [height, radius]) and
-/// inline meshes; colours and subframes are read and dropped. Policies as above: planes, a
-/// repeated id, an object without shapes and a bad quaternion are errors.
+/// object's `*`); it has no matrix. Shapes: box, sphere, cylinder and cone (dimensions into
+/// shape_msgs' order: the text's "radius length" becomes [height, radius]) and inline meshes;
+/// colours and subframes are read and dropped. Policies as above: planes, a repeated id and a
+/// bad quaternion are errors, an object without shapes is skipped with a notice.
 ///
 /// Throws LoadError "path:line: element: what was expected" (element: "scene", "object 'ID'",
 /// "object 'ID' shape K") for a missing '.' at the end, an unknown marker or shape type, a

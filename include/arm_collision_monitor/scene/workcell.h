@@ -78,6 +78,16 @@ struct MeshFitCounts {
   int from_cache = 0;
 };
 
+/// Where a planning scene placed its objects with the robot: an SRDF's floating or planar
+/// virtual joint holding the root link, objects in whose parent frame the scene has.
+struct PlacedRootSpec {
+  std::string joint;
+  /// The root's pose in the joint's parent frame: robot_state.multi_dof_joint_state's, else the
+  /// origin (MoveIt's default).
+  Eigen::Isometry3d X_FR = Eigen::Isometry3d::Identity();
+  std::string where;  ///< the scene file, and the line of the pose when it gives one
+};
+
 /// Everything loaded at start-up (LoadWorkcell); the Monitor only reads it.
 struct Workcell {
   std::string urdf_path;
@@ -87,6 +97,9 @@ struct Workcell {
   /// where it says so ("robot.srdf:87: <virtual_joint name='base' type='floating'>"): never the
   /// root's frame, which the node's fixed_frame only renames.
   std::vector<std::pair<std::string, std::string>> moving_root_frames;
+  /// The virtual joints that placed planning-scene objects, where they placed them: a plan
+  /// replayed must start there, as the objects are checked where the scene placed them.
+  std::vector<PlacedRootSpec> placed_roots;
   Aabb world_W;  ///< the world cube the spatial index covers
   KinematicModel kinematics;
   std::vector<std::string> joint_names;   ///< actuated joints, in the order of Monitor's q

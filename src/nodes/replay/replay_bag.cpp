@@ -70,7 +70,7 @@ class Cycles {
   }
 
   /// `sample`, of the bag's `message` (null: a plan's, `plan`, at its `point`, null between
-  /// two: Plans::Describe names it), at `stamp`
+  /// two points: refused uncounted, as no message or point read), at `stamp`
   /// (an unstamped message's, its sample's stamp_s 0: the time the bag recorded it, unordered
   /// as the node takes it). A recorded message stamped further ahead of the time the bag
   /// recorded it than `offset_s` (the usual offset of its joints' stamps, UsualOffset) by
@@ -104,13 +104,16 @@ class Cycles {
       is_group_accepted_ = true;
       return;
     }
+    // A sample no message or point gave (a plan between its points) is refused with the points
+    // it lies between: no refused message of its own.
+    if (plan != nullptr && (point == nullptr || point->index == Plans::kBetween)) return;
     ++result_->refused[MergeStatusName(status)];
     NoteRefusal(
         arrival_s_, message == nullptr, stamp.toSec(),
         [&] {
           const std::string why = input_.DescribeRefusal(sample, status, now_s);
           const std::string source = message != nullptr ? MessageWhere(path_, *message)
-                                     : plan != nullptr  ? Plans::Describe(*plan, point)
+                                     : plan != nullptr  ? Plans::Describe(*plan, *point)
                                                         : std::string();
           return (source.empty() ? source : source + ": ") + MergeStatusName(status) +
                  (why.empty() ? "" : " (" + why + ")");
@@ -118,12 +121,23 @@ class Cycles {
         result_);
   }
 
-  /// Ends the last cycle; a LoadError naming the bag at `path`, every joint never given, and
-  /// `hint` (what the plans held that may explain it; "" for nothing).
+  /// Ends the last cycle; a LoadError naming the bag at `path`, every joint never given, the
+  /// refusals (which may be why), and `hint` (what the plans held that may explain it; "" for
+  /// nothing).
   void Finish(const std::string& path, const std::string& hint) {
     Flush();
     if (!input_.is_complete()) {
       const std::vector<std::string> missing = input_.MissingJoints();
+      std::string refused;
+      std::uint64_t refused_count = 0;
+      for (const auto& [status, count] : result_->refused) {
+        refused += (refused.empty() ? "" : ", ") + std::to_string(count) + " " + status;
+        refused_count += count;
+      }
+      if (refused_count > 0) {
+        refused = "; " + std::to_string(refused_count) + " messages or planned points were "
+                  "refused (" + refused + "), the first " + result_->first_refused_message;
+      }
       std::string unknown;
       const std::vector<std::string>& ignored = result_->ignored_names;
       if (!ignored.empty()) {
@@ -141,7 +155,7 @@ class Cycles {
       }
       throw LoadError(path + ": no accepted sensor_msgs/JointState message or trajectory point " +
                       "gives " + ModelJointsText(missing) + " (" +
-                      JointDefaultsHint(missing.size()) + ")" + unknown + hint);
+                      JointDefaultsHint(missing.size()) + ")" + refused + unknown + hint);
     }
   }
 
@@ -243,7 +257,7 @@ void PrefixNames(const JointPrefixes& prefixes, const std::string& topic,
 // before it has the joint (the first point: `last`, where the display's start state or its
 // trajectory before had it), so that the robot turns it the short way; a display of the plan
 // may carry them wrapped into [-pi, pi]. `last` gets the plan's last positions.
-void UnwindAsMoveItExecutes(const std::set<std::string>& turning,
+void UnwindAsMoveItExecutes(const std::map<std::string, double>& turning,
                             std::map<std::string, double>* last,
                             trajectory_msgs::JointTrajectory* plan) {
   for (std::size_t j = 0; j < plan->joint_names.size(); ++j) {
@@ -275,12 +289,36 @@ void RefuseBaseMotion(const std::string& where,
                   "the base standing still)");
 }
 
+// The base where `workcell`'s planning scene placed its objects with the robot, by virtual
+// joint (Workcell::placed_roots), and where each says so.
+std::pair<MultiDofPoses, std::map<std::string, std::string>> ScenePlacedBase(
+    const Workcell& workcell) {
+  std::pair<MultiDofPoses, std::map<std::string, std::string>> base;
+  for (const PlacedRootSpec& root : workcell.placed_roots) {
+    geometry_msgs::Transform& pose = base.first[root.joint];
+    const Eigen::Vector3d p = root.X_FR.translation();
+    const Eigen::Quaterniond r(root.X_FR.linear());
+    pose.translation.x = p.x();
+    pose.translation.y = p.y();
+    pose.translation.z = p.z();
+    pose.rotation.x = r.x();
+    pose.rotation.y = r.y();
+    pose.rotation.z = r.z();
+    pose.rotation.w = r.w();
+    base.second[root.joint] = root.where;
+  }
+  return base;
+}
+
 // The plans of the bag at `path` on `topics`, in bag order, their joint names prefixed; those
-// of MoveIt's displays unwound as MoveIt executes them (the plans' turning joints).
+// of MoveIt's displays unwound as MoveIt executes them (the plans' turning joints). A plan
+// whose base starts or moves away from where `workcell`'s planning scene placed its objects
+// with the robot is a LoadError.
 PlanSources ReadPlans(const std::string& path, const rosbag::Bag& bag,
                       const std::vector<std::string>& topics, const JointPrefixes& prefixes,
-                      Plans* plans) {
-  const std::set<std::string>& turning = plans->turning();
+                      const Workcell& workcell, Plans* plans) {
+  const auto [scene_base, scene_base_where] = ScenePlacedBase(workcell);
+  const std::map<std::string, double>& turning = plans->turning();
   PlanSources sources;
   rosbag::View view(bag, rosbag::TypeQuery(kPlanTypes));
   std::string topic;  // of the message read
@@ -318,8 +356,18 @@ PlanSources ReadPlans(const std::string& path, const rosbag::Bag& bag,
         at[state.name[j]] = state.position[j];
       }
       displayed_at = &at;
-      // The base where the start state has it, then where each trajectory leaves it.
+      // The base where the start state has it (which must be where the scene placed the
+      // objects with the robot), then where each trajectory leaves it.
       MultiDofPoses base_at = StartMultiDofPoses(displayed.start_multi_dof);
+      std::string joint;
+      const std::string away = DescribeMultiDofAway(scene_base, &base_at, &joint);
+      if (!away.empty()) {
+        throw LoadError(where + ": its start state " + away + " from where " +
+                        scene_base_where.at(joint) +
+                        " places the robot; the monitor checks the arms against the planning "
+                        "scene's objects placed with the robot there (save the scene with the "
+                        "robot where the plans start)");
+      }
       for (std::size_t k = 0; k < displayed.trajectories.size(); ++k) {
         const trajectory_msgs::JointTrajectory& plan = displayed.trajectories[k];
         const std::string where_k = where + ", trajectory " + std::to_string(k);
@@ -335,7 +383,7 @@ PlanSources ReadPlans(const std::string& path, const rosbag::Bag& bag,
           path, m, [&](const std::string& definition, const std::uint8_t* data, std::size_t size) {
             return ReadGoalTrajectory(type, definition, data, size, &multi_dof);
           });
-      MultiDofPoses base_at;
+      MultiDofPoses base_at = scene_base;  // where the scene placed the objects with it
       RefuseBaseMotion(where, multi_dof, &base_at);
       add(plan, plan.header.stamp.isZero() ? m.getTime() : plan.header.stamp, where);
     }
@@ -436,12 +484,13 @@ Input ReadBag(const std::string& path, const std::vector<std::string>& topics,
   }
   CheckTopics(path, &all, prefixed_topics, "--joint-prefix");
   Input result;
-  std::set<std::string> turning;
+  std::map<std::string, double> turning;
   for (const int link : workcell.kinematics.TurningLinks()) {
-    turning.insert(workcell.kinematics.joint(link).name);
+    const JointSpec& joint = workcell.kinematics.joint(link);
+    turning[joint.name] = joint.max_velocity;
   }
   Plans plans(&result, std::move(turning));
-  const PlanSources sources = ReadPlans(path, bag, topics, joint_prefixes, &plans);
+  const PlanSources sources = ReadPlans(path, bag, topics, joint_prefixes, workcell, &plans);
   const auto planned = plans.InTimeOrder();
   Cycles cycles(path, workcell, &result);
   // Each sample at `stamp` (of plan `joints` at its `point`, null for a recorded state, the
@@ -467,6 +516,13 @@ Input ReadBag(const std::string& path, const std::vector<std::string>& topics,
     }
   };
   const JointOffsets offsets = ReadOffsets(bag, topics);
+  for (const auto& [topic, of_topic] : offsets) {
+    double nearest_s = std::numeric_limits<double>::infinity();
+    for (const auto& [name, offset_s] : of_topic) {
+      if (std::abs(offset_s.front()) < std::abs(nearest_s)) nearest_s = offset_s.front();
+    }
+    if (std::abs(nearest_s) > kDefaultInputTimeout_s) result.clock_offsets[topic] = nearest_s;
+  }
   for (const rosbag::MessageInstance& m : rosbag::View(bag, rosbag::TypeQuery(kJointStateType))) {
     const auto msg = m.instantiate<sensor_msgs::JointState>();
     if (msg == nullptr || !IsRead(m, topics)) continue;

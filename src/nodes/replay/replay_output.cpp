@@ -2,11 +2,13 @@
 #include "replay_output.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <iterator>
 #include <string>
 #include <utility>
 
+#include "arm_collision_monitor/core/constants.h"
 #include "arm_collision_monitor/core/load_error.h"
 
 namespace arm_collision_monitor {
@@ -79,6 +81,13 @@ void PrintJsonCounts(const Options& options, const Input& input, std::size_t cyc
   std::printf("  \"superseded_points\": %llu,\n  \"position_less_messages\": %llu,\n",
               static_cast<unsigned long long>(input.superseded_points),
               static_cast<unsigned long long>(input.position_less));
+  std::printf("  \"clock_offsets\": {");
+  comma = false;
+  for (const auto& [topic, offset_s] : input.clock_offsets) {
+    std::printf("%s%s: %.9g", comma ? ", " : "", JsonString(topic).c_str(), offset_s);
+    comma = true;
+  }
+  std::printf("},\n");
   for (const auto& [key, names] : {std::pair{"ignored_columns", &input.ignored_columns},
                                    std::pair{"mimic_columns", &input.mimic_columns},
                                    std::pair{"ignored_names", &input.ignored_names},
@@ -309,6 +318,14 @@ void PrintInputLines(const Input& input, const std::vector<CycleResult>& cycles,
     std::printf("input: mimic joints in the messages, not read (their positions follow from the "
                 "joints they mimic in the URDF): %s\n",
                 noted(input.mimic_names, input.more_mimic_names).c_str());
+  }
+  for (const auto& [topic, offset_s] : input.clock_offsets) {
+    std::printf("input: %s is stamped %.3f s %s the times the bag recorded it, as a rule: read "
+                "as it is (a robot's clock off the recorder's), where a node on the recorder's "
+                "clock refuses such stamps as %s beyond its input_timeout_s (%.2f s by default): "
+                "set the robot's clock (chrony, NTP)\n",
+                topic.c_str(), std::abs(offset_s), offset_s < 0.0 ? "behind" : "ahead of",
+                offset_s < 0.0 ? "stale" : "future_stamp", kDefaultInputTimeout_s);
   }
   if (input.position_less > 0) {
     std::printf("input: %llu messages named joints without positions (ignored)\n",

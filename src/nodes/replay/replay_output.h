@@ -67,6 +67,10 @@ struct Input {
   std::vector<std::string> ignored_names, mimic_names;
   /// whether the bag gave more such names than those noted
   bool more_ignored_names = false, more_mimic_names = false;
+  /// a bag's topics whose JointState stamps are, as a rule, more than kDefaultInputTimeout_s off
+  /// the times the bag recorded them (s, negative: behind; of its joints' usual offsets the one
+  /// nearest 0): read as they are, where a node on the recorder's clock refuses them
+  std::map<std::string, double> clock_offsets;
 };
 
 /// The input's number of checked cycle `k` (the output's cycle numbers: with --every, the

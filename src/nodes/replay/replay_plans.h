@@ -7,7 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <set>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -75,22 +75,19 @@ class Plans {
     std::string where;  // its message (and trajectory)
   };
 
-  /// What names a sample of `joints` (its `point`; null: where the plan has its joints between
-  /// two points) in a refusal.
-  static std::string Describe(const Joints& joints, const Point* point) {
-    if (point == nullptr || point->index == kBetween) {
-      return joints.where + ", between two of its points";
-    }
-    return joints.where + (point->index >= 0 ? ", point " + std::to_string(point->index) : "");
+  /// What names a sample of `joints` read from its message (its `point`) in a refusal.
+  static std::string Describe(const Joints& joints, const Point& point) {
+    return joints.where + (point.index >= 0 ? ", point " + std::to_string(point.index) : "");
   }
 
   /// `counts`: its messages (points read) and refused and superseded points are counted.
-  /// `turning`: the model's joints without limits, which a trajectory controller turns from
-  /// point to point as the positions literally say, however far (AddBetween).
-  Plans(Input* counts, std::set<std::string> turning)
+  /// `turning`: the model's joints without position limits, each with its velocity limit (0:
+  /// none), which a trajectory controller turns from point to point as the positions literally
+  /// say, however far (AddBetween).
+  Plans(Input* counts, std::map<std::string, double> turning)
       : counts_(counts), turning_(std::move(turning)) {}
 
-  const std::set<std::string>& turning() const { return turning_; }
+  const std::map<std::string, double>& turning() const { return turning_; }
 
   /// A trajectory starting at `start`; `where` names its message for a LoadError and a refused
   /// point. A point of the wrong size or out of ros::Time's range is refused and counted; one
@@ -221,34 +218,52 @@ class Plans {
     return false;
   }
 
-  // Before a point at `stamp` of `positions` (`where`): when a turning joint moves over half a
-  // turn from the plan's last point, which the monitor would take the short way round (a
-  // wrapped reading), the points between them on the straight joint-space path, each a quarter
-  // turn or less from the last, so that the monitor follows the turn as the controller makes
-  // it. A move of over kMostPlanTurns turns between two points is a LoadError.
+  // Before a point at `stamp` of `positions` (`where`): where a turning joint with a velocity
+  // limit moves over half a turn from the plan's last point, which the monitor would take the
+  // short way round (a wrapped reading), points between them on the straight joint-space path,
+  // so that it follows the turn as a trajectory controller makes it. A quarter turn or less
+  // apart when each such turn keeps within kJumpVelocityFactor times its limit; else one, a
+  // quarter turn on, at the turn's speed, which the monitor sees beyond the limit (a jump). At
+  // most one a nanosecond; more than kMostPointsBetween in all is a LoadError.
   void AddBetween(const std::string& where, Joints* joints, const ros::Time& stamp,
                   const std::vector<double>& positions) {
     if (joints->points.empty()) return;
     const Point& last = joints->points.back();
+    // Both stamps are in ros::Time's range: the difference fits.
+    const auto duration_ns = static_cast<std::int64_t>(stamp.toNSec() - last.stamp.toNSec());
     double largest_move = 0.0;
+    bool is_too_fast = false;
     for (std::size_t j = 0; j < positions.size(); ++j) {
-      if (turning_.count(joints->names[j]) == 0) continue;
+      const auto turning = turning_.find(joints->names[j]);
+      if (turning == turning_.end() || !(turning->second > 0.0)) continue;
       const double move = std::abs(positions[j] - last.positions[j]);
-      if (move > kMostPlanTurns * kTurn) {
-        throw LoadError(where + ": joint '" + joints->names[j] + "' turns " +
-                        std::to_string(move) + " rad from the point before it (expected at "
-                        "most " + std::to_string(kMostPlanTurns) + " turns between two points)");
-      }
+      if (!(move > 0.5 * kTurn)) continue;
       largest_move = std::max(largest_move, move);
+      is_too_fast |= !(move <= kJumpVelocityFactor * turning->second * 1e-9 * duration_ns);
     }
-    if (!(largest_move > 0.5 * kTurn)) return;
-    const int pieces = static_cast<int>(std::ceil(largest_move / (0.25 * kTurn)));
+    if (!(largest_move > 0.0)) return;
+    const double quarter_of_move = 0.25 * kTurn / largest_move;
+    // At most duration_ns (< 2^63), so that it converts.
+    const auto pieces = static_cast<std::int64_t>(std::min(
+        is_too_fast ? 2.0 : std::ceil(1.0 / quarter_of_move), static_cast<double>(duration_ns)));
+    if (pieces - 1 > kMostPointsBetween - between_count_) {
+      throw LoadError(where + ": over " + std::to_string(kMostPointsBetween) + " points put "
+                      "between the plans' points to follow continuous joints' turns (expected "
+                      "plans that turn them less far)");
+    }
+    between_count_ += pieces - 1;
     const Point start = last;  // push_back below may move `last`
-    const double duration_s = (stamp - start.stamp).toSec();
-    for (int k = 1; k < pieces; ++k) {
-      const double s = static_cast<double>(k) / pieces;
-      Point between{start.stamp + ros::Duration(s * duration_s), next_order_++, positions,
-                    kBetween};
+    for (std::int64_t k = 1; k < pieces; ++k) {
+      // The stamp exactly (no overflow: pieces and the remainder are at most 2^17), at most
+      // one a nanosecond; a too fast turn's point a quarter turn on.
+      const std::int64_t at_ns =
+          is_too_fast ? static_cast<std::int64_t>(quarter_of_move * duration_ns)
+                      : duration_ns / pieces * k + duration_ns % pieces * k / pieces;
+      if (at_ns <= 0) continue;
+      const double s = static_cast<double>(at_ns) / duration_ns;
+      ros::Time at;
+      at.fromNSec(start.stamp.toNSec() + static_cast<std::uint64_t>(at_ns));
+      Point between{at, next_order_++, positions, kBetween};
       for (std::size_t j = 0; j < positions.size(); ++j) {
         between.positions[j] = start.positions[j] + s * (positions[j] - start.positions[j]);
       }
@@ -289,7 +304,8 @@ class Plans {
   std::vector<Joints> plans_;
   std::uint64_t next_order_ = 0;
   Input* counts_;
-  std::set<std::string> turning_;
+  std::map<std::string, double> turning_;
+  std::int64_t between_count_ = 0;  // points put between (AddBetween)
   std::vector<double> under_way_;  // ForEachUnderWayAt's positions
 };
 
