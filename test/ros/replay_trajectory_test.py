@@ -181,6 +181,14 @@ def follow_goal(trajectory):
     return definition, buff.getvalue()
 
 
+def pose_along_y(y):
+    """A geometry_msgs/Transform `y` m along y, not turned."""
+    transform = Transform()
+    transform.translation.y = y
+    transform.rotation.w = 1.0
+    return transform
+
+
 def trajectory_of(samples, joints, start):
     """The samples' positions of `joints` (a slice of LEFT_JOINTS + RIGHT_JOINTS) from `start`."""
     plan = JointTrajectory(joint_names=(LEFT_JOINTS + RIGHT_JOINTS)[joints])
@@ -660,19 +668,13 @@ class ReplayTrajectoryTest(unittest.TestCase):
         plan = trajectory_of(self.samples[:5], slice(0, 14), self.samples[0][0])
         path = os.path.join(self.directory, 'display_base.bag')
 
-        def pose(y):
-            transform = Transform()
-            transform.translation.y = y
-            transform.rotation.w = 1.0
-            return transform
-
         for step_m, start_y, moved in ((0.4, 0.0, '0.4'), (0.0, 0.3, '0.3'), (0.0, 0.0, None)):
             base = MultiDOFJointTrajectory(joint_names=['virtual_joint'])
             for k in range(2):
                 base.points.append(MultiDOFJointTrajectoryPoint(
-                    transforms=[pose(k * step_m)], time_from_start=rospy.Duration(0.1 * k)))
+                    transforms=[pose_along_y(k * step_m)], time_from_start=rospy.Duration(0.1 * k)))
             base_start = MultiDOFJointState(joint_names=['virtual_joint'],
-                                            transforms=[pose(start_y)])
+                                            transforms=[pose_along_y(start_y)])
             write_display(path, display_bytes([plan], start_state, True, base, base_start),
                           display_definition(True), self.samples[0][0])
             result, report = self.replay(path)
@@ -715,12 +717,6 @@ class ReplayTrajectoryTest(unittest.TestCase):
         plan = trajectory_of(self.samples[:5], slice(0, 14), self.samples[0][0])
         path = os.path.join(self.directory, 'display_mobile.bag')
 
-        def pose(y):
-            transform = Transform()
-            transform.translation.y = y
-            transform.rotation.w = 1.0
-            return transform
-
         away = (r"its start state puts 'base_joint' 0.3 m and 0 rad away from where \S+/"
                 r"mobile_ps\.yaml:4 \(robot_state\.multi_dof_joint_state\) places the robot; "
                 r"the monitor checks the arms against the planning scene's objects placed with "
@@ -730,10 +726,10 @@ class ReplayTrajectoryTest(unittest.TestCase):
             base = MultiDOFJointTrajectory(joint_names=['base_joint'])
             for k in range(2):
                 base.points.append(MultiDOFJointTrajectoryPoint(
-                    transforms=[pose(base_y)], time_from_start=rospy.Duration(0.1 * k)))
+                    transforms=[pose_along_y(base_y)], time_from_start=rospy.Duration(0.1 * k)))
             base_start = MultiDOFJointState(
                 joint_names=['base_joint'] if start_y is not None else [],
-                transforms=[pose(start_y)] if start_y is not None else [])
+                transforms=[pose_along_y(start_y)] if start_y is not None else [])
             write_display(path, display_bytes([plan], start_state, True, base, base_start),
                           display_definition(True), self.samples[0][0])
             result = rosrun('replay', '--json', '--scene',
@@ -818,8 +814,9 @@ class ReplayTrajectoryTest(unittest.TestCase):
         self.assertEqual(result.returncode, 0, result.stderr)
         self.assertEqual(report['refused_messages'], {'wrong_size': 2})
         self.assertRegex(report['first_refused_message'],
-                         r'^stamped [0-9.]+ s: \S+/twice_named\.bag: trajectory_msgs/JointTrajectory '
-                         r'on /left/plan at bag time [0-9.]+, point 0: wrong_size \(.*left_joint1')
+                         r'^stamped [0-9.]+ s: \S+/twice_named\.bag: '
+                         r'trajectory_msgs/JointTrajectory on /left/plan at bag time [0-9.]+, '
+                         r'point 0: wrong_size \(.*left_joint1')
 
     def test_a_bag_without_joint_input_names_both_types(self):
         path = os.path.join(self.directory, 'empty.bag')
