@@ -424,19 +424,29 @@ MultiDofPoses StartMultiDofPoses(const sensor_msgs::MultiDOFJointState& state) {
   return at;
 }
 
-std::string DescribeMultiDofAway(const MultiDofPoses& expected, MultiDofPoses* at,
+MultiDofPoses FirstMultiDofPoses(const trajectory_msgs::MultiDOFJointTrajectory& trajectory) {
+  MultiDofPoses at;
+  if (trajectory.points.empty()) return at;
+  const std::vector<geometry_msgs::Transform>& transforms = trajectory.points.front().transforms;
+  for (std::size_t j = 0; j < trajectory.joint_names.size() && j < transforms.size(); ++j) {
+    at[trajectory.joint_names[j]] = transforms[j];
+  }
+  return at;
+}
+
+std::string DescribeMultiDofAway(const MultiDofPoses& expected, const MultiDofPoses& at,
                                  std::string* joint) {
   for (const auto& [name, pose] : expected) {
-    const auto [given, is_new] = at->emplace(name, pose);
-    if (is_new) continue;
+    const auto given = at.find(name);
+    if (given == at.end()) continue;
     *joint = name;
     if (!IsValidPose(given->second) || !IsValidPose(pose)) {
-      return "puts '" + name + "' at a pose not finite, or with a zero quaternion";
+      return "puts '" + name + "' at a pose not finite, or of a zero quaternion, not where";
     }
     const auto [m, rad] = PoseChange(pose, given->second);
     if (m <= kSceneBaseAgreement_m && rad <= kSceneBaseAgreement_rad) continue;
     char amount[96];
-    std::snprintf(amount, sizeof(amount), " %.6g m and %.6g rad away", m, rad);
+    std::snprintf(amount, sizeof(amount), " %.6g m and %.6g rad from where", m, rad);
     return "puts '" + name + "'" + amount;
   }
   return "";

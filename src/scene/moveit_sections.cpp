@@ -413,8 +413,23 @@ std::vector<std::pair<PrimitiveId, PrimitiveId>> PlanningSceneAcmPairs(
                                  "(no allowed_collision_matrix entries): none imported");
     return {};
   }
-  const NamedCollisionRules rules{acm.allowed_pairs, acm.disallowed_pairs,
-                                  acm.default_allowed_names, {}};
+  NamedCollisionRules rules{acm.allowed_pairs, acm.disallowed_pairs, acm.default_allowed_names,
+                            {}};
+  // An object skipped for having no shapes has nothing to excuse: not an unknown name.
+  const std::vector<std::string>& shapeless = input.file.shapeless_ids;
+  const auto is_shapeless = [&](const std::string& name) {
+    return std::find(shapeless.begin(), shapeless.end(), name) != shapeless.end();
+  };
+  for (auto* pairs : {&rules.allowed_pairs, &rules.denied_pairs}) {
+    pairs->erase(std::remove_if(pairs->begin(), pairs->end(),
+                                [&](const auto& pair) {
+                                  return is_shapeless(pair.first) || is_shapeless(pair.second);
+                                }),
+                 pairs->end());
+  }
+  rules.default_allowed.erase(
+      std::remove_if(rules.default_allowed.begin(), rules.default_allowed.end(), is_shapeless),
+      rules.default_allowed.end());
   return ResolveCollisionRules(rules, input.path + ": allowed_collision_matrix", workcell);
 }
 

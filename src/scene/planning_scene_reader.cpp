@@ -477,6 +477,7 @@ PlanningSceneFile ReadPlanningSceneText(const std::string& text, const std::stri
         }
         if (object.primitives.empty() && object.meshes.empty()) {
           scene.notices.push_back(ShapelessObjectNotice(object));
+          scene.shapeless_ids.push_back(object.id);
         } else {
           scene.objects.push_back(std::move(object));
         }

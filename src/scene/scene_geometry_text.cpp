@@ -252,6 +252,7 @@ PlanningSceneFile ReadSceneGeometryText(const std::string& text, const std::stri
     }
     if (shape_count == 0) {
       scene.notices.push_back(ShapelessObjectNotice(object));
+      scene.shapeless_ids.push_back(object.id);
     } else {
       scene.objects.push_back(std::move(object));
     }

@@ -379,6 +379,30 @@ TEST(SceneMoveitInputs, PlanningSceneAcmIsImportedOnRequest) {
   EXPECT_TRUE(FindWarning(plain, "allowed_collision_matrix").empty());
 }
 
+// An object of no shapes (subframes only) is skipped, and the matrix's entries naming it are no
+// unknown names: it is in the file, with nothing to excuse.
+TEST(SceneMoveitInputs, PlanningSceneAcmNamingAShapelessObjectIsNoUnknownName) {
+  std::string scene = kAcmScene;
+  const std::string objects = "  collision_objects:\n";
+  scene.insert(scene.find(objects) + objects.size(),
+               "    - {id: marks, subframe_names: [tip], subframe_poses: [{}]}\n");
+  const std::string defaults = "  default_entry_names: [right_link6, ghost]\n"
+                               "  default_entry_values: [true, true]\n";
+  ASSERT_NE(scene.find(defaults), std::string::npos);
+  scene.replace(scene.find(defaults), defaults.size(),
+                "  default_entry_names: [right_link6, ghost, marks]\n"
+                "  default_entry_values: [true, true, true]\n");
+  const std::string ps = WriteTempFile("acm_shapeless_ps.yaml", scene);
+  const Workcell w = LoadWorkcell(
+      kUrdf, BundledSceneWith("acm2.yaml", "planning_scene: " + ps + "\nplanning_scene_acm: true"));
+  ExpectValid(w);
+  EXPECT_TRUE(Compatible(w, "right_link6", "crate"));
+  const std::string unknown = FindWarning(w, "allowed_collision_matrix: skipped 1 unknown name(s)");
+  EXPECT_NE(unknown.find("'ghost'"), std::string::npos) << unknown;
+  EXPECT_EQ(unknown.find("'marks'"), std::string::npos) << unknown;
+  EXPECT_FALSE(FindWarning(w, "'marks' (line 3): no shapes").empty());
+}
+
 // ---------------------------------------------------------------------------------------------
 // Typed objects:
 

@@ -656,12 +656,17 @@ class ReplayConfigTest(unittest.TestCase):
                              {'/joint_states': ahead_s} if ahead_s > 0.25 else {}, ahead_s)
         text = rosrun('replay', '--scene', self.bundled_scene, path).stdout
         self.assertNotIn('is stamped', text)
+        # The arms 5 s behind; a gripper driver on the same topic on the recorder's clock (no
+        # model joint) does not hide them.
         with rosbag.Bag(path, 'w') as bag:
             for k in range(5):
                 recorded_at = rospy.Time(100) + rospy.Duration(0.05 * k)
                 msg = JointState(name=LEFT_JOINTS + RIGHT_JOINTS, position=[0.01 * k] * 14)
                 msg.header.stamp = recorded_at - rospy.Duration(5.0)
                 bag.write('/joint_states', msg, recorded_at)
+                gripper = JointState(name=['gripper_finger'], position=[0.02])
+                gripper.header.stamp = recorded_at
+                bag.write('/joint_states', gripper, recorded_at)
         text = rosrun('replay', '--scene', self.bundled_scene, path).stdout
         self.assertIn('input: /joint_states is stamped 5.000 s behind the times the bag recorded '
                       'it, as a rule: read as it is (a robot\'s clock off the recorder\'s), where '

@@ -597,24 +597,25 @@ class ReplayTrajectoryTest(unittest.TestCase):
         # right arm (RIGHT_TOWARDS_LEFT, held by its own plan), not the short way through pi.
         # Replay checks the turn it makes, a quarter turn or less a cycle (no 'input jumped'
         # stop for a step either way round within the velocity limit); to 2 pi - 2 it turns the
-        # other way, clear of the right arm; 20 rad in 12 s, within twice the limit, in 13
-        # steps. 400 rad in 12 s, beyond it, whose short way (2.1 rad) is within it: one point a
-        # quarter turn on shows the speed (a jump).
+        # other way, clear of the right arm; 20 rad in 12 s in 13 steps. 400 rad in 12 s,
+        # beyond the limit, whose short way (2.1 rad) is within it, in 255 steps too: its
+        # passes by the right arm are checked (a single step a quarter turn on missed them).
         urdf_path = self.continuous_joint1_urdf()
         start = rospy.Time(100)
         path = os.path.join(self.directory, 'plan_turning.bag')
-        quarter_s = round(12.0 * 0.5 * math.pi / 400.0, 6)  # to the microsecond below
-        for end_rad, cycle_times, warns, jumps in (
-                (-2.0, [0.0, 4.0, 8.0, 12.0], True, False),
-                (2.0 * math.pi - 2.0, [0.0, 12.0], False, False),
-                (22.0, [round(12.0 * k / 13, 6) for k in range(14)], None, False),
-                (402.0, [0.0, quarter_s, 12.0], None, True)):
+        for end_rad, steps, warns, jumps in ((-2.0, 3, True, False),
+                                             (2.0 * math.pi - 2.0, 1, False, False),
+                                             (22.0, 13, None, False),
+                                             (402.0, 255, True, None)):
             self.write_turning_plan(path, start, end_rad)
             result = self.replay_with(urdf_path, path)
             self.assertEqual(result.returncode, 0, result.stderr)
             report = json.loads(result.stdout)
-            self.assertEqual([round(c['time_s'], 6) for c in report['per_cycle']], cycle_times)
-            self.assertEqual(report['jumped_cycles'] > 0, jumps, end_rad)
+            # To the microsecond: the stamps put between are whole nanoseconds.
+            self.assertEqual([round(c['time_s'], 6) for c in report['per_cycle']],
+                             [round(12.0 * k / steps, 6) for k in range(steps + 1)], end_rad)
+            if jumps is not None:
+                self.assertEqual(report['jumped_cycles'] > 0, jumps, end_rad)
             self.assertEqual(report['messages'], 4)  # the points read, none put between
             met = [sorted(w[:2]) for c in report['per_cycle']
                    for w in c['warnings'] + c['between_samples']]
@@ -622,6 +623,27 @@ class ReplayTrajectoryTest(unittest.TestCase):
                            for a, b in met)
             if warns is not None:
                 self.assertEqual(arms_met, warns, (end_rad, met))
+        # A plan replacing the left arm's while it turns (at 9.9 s of a turn from 0 to 3.1 rad
+        # in 10 s) starts where that one has it then, 3.07 rad, on to 4 rad: not from 0 rad,
+        # over half a turn either way round within the limit (an 'input jumped' stop).
+        with rosbag.Bag(path, 'w') as bag:
+            for t0, points in ((0.0, ((0.0, 0.0), (10.0, 3.1))), (9.9, ((1.0, 4.0), (5.0, 5.0)))):
+                left = JointTrajectory(joint_names=LEFT_JOINTS)
+                left.header.stamp = start + rospy.Duration(t0)
+                for t, q1 in points:
+                    left.points.append(JointTrajectoryPoint(positions=[q1, 0.5, 0, 0, 0, 0, 0],
+                                                            time_from_start=rospy.Duration(t)))
+                bag.write('/left/plan', left, left.header.stamp)
+            right = JointTrajectory(joint_names=RIGHT_JOINTS)
+            right.header.stamp = start
+            for t in (0.0, 30.0):
+                right.points.append(JointTrajectoryPoint(positions=[0.0] * 7,
+                                                         time_from_start=rospy.Duration(t)))
+            bag.write('/right/plan', right, start)
+        report = json.loads(self.replay_with(urdf_path, path).stdout)
+        self.assertEqual([round(c['time_s'], 6) for c in report['per_cycle']],
+                         [0.0, 9.9, 10.9, 14.9, 30.0])
+        self.assertEqual((report['jumped_cycles'], report['superseded_points']), (0, 1))
         # A later plan naming the joint twice: its two points refused, not the points put
         # between them.
         self.write_turning_plan(path, start, 2.0, duration_s=1.0)
@@ -694,7 +716,7 @@ class ReplayTrajectoryTest(unittest.TestCase):
         # robot in) are placed with the robot where its robot state puts the joint, 0.3 m along
         # y. A display starting there replays; one starting at odom's origin is refused, naming
         # the scene's line, as is one whose start state leaves the base out and whose base
-        # trajectory stands at the origin (away from the scene's placement: moved).
+        # trajectory stands at the origin.
         package = rospkg.RosPack().get_path(PKG)
         with open(os.path.join(package, 'config', 'scene.yaml')) as f:
             scene = f.read()
@@ -717,12 +739,15 @@ class ReplayTrajectoryTest(unittest.TestCase):
         plan = trajectory_of(self.samples[:5], slice(0, 14), self.samples[0][0])
         path = os.path.join(self.directory, 'display_mobile.bag')
 
-        away = (r"its start state puts 'base_joint' 0.3 m and 0 rad away from where \S+/"
-                r"mobile_ps\.yaml:4 \(robot_state\.multi_dof_joint_state\) places the robot; "
-                r"the monitor checks the arms against the planning scene's objects placed with "
-                r"the robot there")
-        moved = r"trajectory 0: its multi_dof_joint_trajectory moves 'base_joint' by up to 0\.3 m"
-        for start_y, base_y, error in ((0.3, 0.3, None), (0.0, 0.3, away), (None, 0.0, moved)):
+        placed = (r"from where \S+/mobile_ps\.yaml:4 \(robot_state\.multi_dof_joint_state\) "
+                  r"places the robot; the monitor checks the arms against the planning scene's "
+                  r"objects placed with the robot there")
+        away = r"its start state puts 'base_joint' 0.3 m and 0 rad " + placed
+        first = (r"trajectory 0: its multi_dof_joint_trajectory's first point puts 'base_joint' "
+                 r"0.3 m and 0 rad " + placed)
+        # A localised base's jitter (0.5 mm) passes.
+        for start_y, base_y, error in ((0.3, 0.3, None), (0.3005, 0.3005, None),
+                                       (0.0, 0.3, away), (None, 0.0, first)):
             base = MultiDOFJointTrajectory(joint_names=['base_joint'])
             for k in range(2):
                 base.points.append(MultiDOFJointTrajectoryPoint(

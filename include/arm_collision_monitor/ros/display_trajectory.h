@@ -66,11 +66,14 @@ using MultiDofPoses = std::map<std::string, geometry_msgs::Transform>;
 /// The poses of a plan's start state (a DisplayedPlan's start_multi_dof).
 MultiDofPoses StartMultiDofPoses(const sensor_msgs::MultiDOFJointState& state);
 
-/// Empty when `at` has each joint of `expected` where `expected` has it, within
-/// kSceneBaseAgreement_m and _rad (one it lacks is set there); else the first that is
-/// not, `joint` set to its name, and how far ("puts 'base' 0.5 m and 0 rad away"), or a pose
-/// not finite or a zero quaternion.
-std::string DescribeMultiDofAway(const MultiDofPoses& expected, MultiDofPoses* at,
+/// The poses of a multi-DOF trajectory's first point (none without points).
+MultiDofPoses FirstMultiDofPoses(const trajectory_msgs::MultiDOFJointTrajectory& trajectory);
+
+/// Empty when `at` has each joint of `expected` it has where `expected` has it, within
+/// kSceneBaseAgreement_m and _rad; else the first that is not, `joint` set to its name, and
+/// how far, to be followed by what gives `expected`: "puts 'base' 0.5 m and 0 rad from where"
+/// (or "... at a pose not finite, or of a zero quaternion, not where").
+std::string DescribeMultiDofAway(const MultiDofPoses& expected, const MultiDofPoses& at,
                                  std::string* joint);
 
 /// Empty when every point of `trajectory` has each of its joints where `at` has it (a joint `at`

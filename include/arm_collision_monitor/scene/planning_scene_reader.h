@@ -74,8 +74,10 @@ struct PlanningSceneFile {
   /// robot_state.multi_dof_joint_state, in file order (none in a `.scene` file).
   std::vector<SceneJointPose> joint_poses;
   /// Content the monitor does not use but the user should know was dropped, one sentence each:
-  /// a non-empty octomap, attached collision objects in robot_state.
+  /// a non-empty octomap, attached collision objects in robot_state, objects of no shapes.
   std::vector<std::string> notices;
+  /// The ids of the objects of no shapes (skipped: ShapelessObjectNotice).
+  std::vector<std::string> shapeless_ids;
 };
 
 /// Reads a planning-scene YAML file: the fields of moveit_msgs/PlanningScene as `rostopic echo`

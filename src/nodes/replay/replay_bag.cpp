@@ -185,7 +185,7 @@ class Cycles {
     }
     if (result_->q.empty()) first_stamp_ = group_stamp_;
     result_->q.push_back(input_.q());
-    result_->time_s.push_back((group_stamp_ - first_stamp_).toSec());
+    result_->time_s.push_back(1e-9 * static_cast<double>(NsBetween(first_stamp_, group_stamp_)));
     const std::vector<double>& stamps = input_.joint_stamps();
     Eigen::VectorXd joint_time_s(static_cast<Eigen::Index>(stamps.size()));
     for (std::size_t i = 0; i < stamps.size(); ++i) {
@@ -318,6 +318,19 @@ PlanSources ReadPlans(const std::string& path, const rosbag::Bag& bag,
                       const std::vector<std::string>& topics, const JointPrefixes& prefixes,
                       const Workcell& workcell, Plans* plans) {
   const auto [scene_base, scene_base_where] = ScenePlacedBase(workcell);
+  // A LoadError naming `what` of the plan at `where` (its start state, a base trajectory's
+  // first point) when its `poses` put the base elsewhere than the scene placed the objects with
+  // the robot.
+  auto refuse_away = [&](const std::string& where, const std::string& what,
+                         const MultiDofPoses& poses) {
+    std::string joint;
+    const std::string away = DescribeMultiDofAway(scene_base, poses, &joint);
+    if (away.empty()) return;
+    throw LoadError(where + ": " + what + " " + away + " " + scene_base_where.at(joint) +
+                    " places the robot; the monitor checks the arms against the planning "
+                    "scene's objects placed with the robot there (save the scene with the "
+                    "robot where the plans start)");
+  };
   const std::map<std::string, double>& turning = plans->turning();
   PlanSources sources;
   rosbag::View view(bag, rosbag::TypeQuery(kPlanTypes));
@@ -359,18 +372,13 @@ PlanSources ReadPlans(const std::string& path, const rosbag::Bag& bag,
       // The base where the start state has it (which must be where the scene placed the
       // objects with the robot), then where each trajectory leaves it.
       MultiDofPoses base_at = StartMultiDofPoses(displayed.start_multi_dof);
-      std::string joint;
-      const std::string away = DescribeMultiDofAway(scene_base, &base_at, &joint);
-      if (!away.empty()) {
-        throw LoadError(where + ": its start state " + away + " from where " +
-                        scene_base_where.at(joint) +
-                        " places the robot; the monitor checks the arms against the planning "
-                        "scene's objects placed with the robot there (save the scene with the "
-                        "robot where the plans start)");
-      }
+      refuse_away(where, "its start state", base_at);
+      base_at.insert(scene_base.begin(), scene_base.end());  // those it leaves out
       for (std::size_t k = 0; k < displayed.trajectories.size(); ++k) {
         const trajectory_msgs::JointTrajectory& plan = displayed.trajectories[k];
         const std::string where_k = where + ", trajectory " + std::to_string(k);
+        refuse_away(where_k, "its multi_dof_joint_trajectory's first point",
+                    FirstMultiDofPoses(displayed.multi_dof_trajectories[k]));
         RefuseBaseMotion(where_k, displayed.multi_dof_trajectories[k], &base_at);
         start = add(plan, plan.header.stamp.isZero() ? start : plan.header.stamp, where_k);
       }
@@ -383,6 +391,8 @@ PlanSources ReadPlans(const std::string& path, const rosbag::Bag& bag,
           path, m, [&](const std::string& definition, const std::uint8_t* data, std::size_t size) {
             return ReadGoalTrajectory(type, definition, data, size, &multi_dof);
           });
+      refuse_away(where, "its multi_dof_joint_trajectory's first point",
+                  FirstMultiDofPoses(multi_dof));
       MultiDofPoses base_at = scene_base;  // where the scene placed the objects with it
       RefuseBaseMotion(where, multi_dof, &base_at);
       add(plan, plan.header.stamp.isZero() ? m.getTime() : plan.header.stamp, where);
@@ -516,10 +526,19 @@ Input ReadBag(const std::string& path, const std::vector<std::string>& topics,
     }
   };
   const JointOffsets offsets = ReadOffsets(bag, topics);
+  // Of the model's joints only: a gripper's driver on the recorder's clock beside the arms'
+  // on the robot's does not hide the arms' offset.
+  const std::set<std::string> model_joints(workcell.joint_names.begin(),
+                                           workcell.joint_names.end());
   for (const auto& [topic, of_topic] : offsets) {
-    double nearest_s = std::numeric_limits<double>::infinity();
+    const auto prefix = joint_prefixes.find(topic);
+    double nearest_s = 0.0;
+    bool is_any = false;
     for (const auto& [name, offset_s] : of_topic) {
-      if (std::abs(offset_s.front()) < std::abs(nearest_s)) nearest_s = offset_s.front();
+      const std::string model_name = prefix != joint_prefixes.end() ? prefix->second + name : name;
+      if (model_joints.count(model_name) == 0) continue;
+      if (!is_any || std::abs(offset_s.front()) < std::abs(nearest_s)) nearest_s = offset_s.front();
+      is_any = true;
     }
     if (std::abs(nearest_s) > kDefaultInputTimeout_s) result.clock_offsets[topic] = nearest_s;
   }

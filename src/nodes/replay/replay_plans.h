@@ -37,6 +37,12 @@ inline bool PointStamp(const ros::Time& start,
   return true;
 }
 
+// The time from `a` to `b`, ns (ros::Duration's arithmetic throws beyond 2^31 s; ros::Time's
+// range, 2^32 s, fits).
+inline std::int64_t NsBetween(const ros::Time& a, const ros::Time& b) {
+  return static_cast<std::int64_t>(b.toNSec()) - static_cast<std::int64_t>(a.toNSec());
+}
+
 // Names the refusal of a sample stamped `stamp_s`, met at `arrival_s` of the replay's time, as
 // the first if none met earlier was: "stamped <t> s: " and what `describe` gives (made only
 // then). A message stamped backwards is met when it comes, after the later stamps before it;
@@ -160,7 +166,8 @@ class Plans {
           [](const ros::Time& t, const Point& point) { return t < point.stamp; });
       const Point& p0 = *(after - 1);
       const Point& p1 = *after;
-      const double s = (stamp - p0.stamp).toSec() / (p1.stamp - p0.stamp).toSec();
+      const double s = static_cast<double>(NsBetween(p0.stamp, stamp)) /
+                       static_cast<double>(NsBetween(p0.stamp, p1.stamp));
       under_way_.resize(p0.positions.size());
       for (std::size_t j = 0; j < under_way_.size(); ++j) {
         under_way_[j] = p0.positions[j] + s * (p1.positions[j] - p0.positions[j]);
@@ -221,46 +228,34 @@ class Plans {
   // Before a point at `stamp` of `positions` (`where`): where a turning joint with a velocity
   // limit moves over half a turn from the plan's last point, which the monitor would take the
   // short way round (a wrapped reading), points between them on the straight joint-space path,
-  // so that it follows the turn as a trajectory controller makes it. A quarter turn or less
-  // apart when each such turn keeps within kJumpVelocityFactor times its limit; else one, a
-  // quarter turn on, at the turn's speed, which the monitor sees beyond the limit (a jump). At
-  // most one a nanosecond; more than kMostPointsBetween in all is a LoadError.
+  // a quarter turn or less apart (at most one a nanosecond), so that it follows the turn as a
+  // trajectory controller makes it, however fast. More than kMostPointsBetween in all is a
+  // LoadError.
   void AddBetween(const std::string& where, Joints* joints, const ros::Time& stamp,
                   const std::vector<double>& positions) {
     if (joints->points.empty()) return;
-    const Point& last = joints->points.back();
-    // Both stamps are in ros::Time's range: the difference fits.
-    const auto duration_ns = static_cast<std::int64_t>(stamp.toNSec() - last.stamp.toNSec());
+    const Point start = joints->points.back();
     double largest_move = 0.0;
-    bool is_too_fast = false;
     for (std::size_t j = 0; j < positions.size(); ++j) {
       const auto turning = turning_.find(joints->names[j]);
       if (turning == turning_.end() || !(turning->second > 0.0)) continue;
-      const double move = std::abs(positions[j] - last.positions[j]);
-      if (!(move > 0.5 * kTurn)) continue;
-      largest_move = std::max(largest_move, move);
-      is_too_fast |= !(move <= kJumpVelocityFactor * turning->second * 1e-9 * duration_ns);
+      largest_move = std::max(largest_move, std::abs(positions[j] - start.positions[j]));
     }
-    if (!(largest_move > 0.0)) return;
-    const double quarter_of_move = 0.25 * kTurn / largest_move;
-    // At most duration_ns (< 2^63), so that it converts.
-    const auto pieces = static_cast<std::int64_t>(std::min(
-        is_too_fast ? 2.0 : std::ceil(1.0 / quarter_of_move), static_cast<double>(duration_ns)));
+    if (!(largest_move > 0.5 * kTurn)) return;
+    // At most duration_ns, the pieces convert.
+    const std::int64_t duration_ns = NsBetween(start.stamp, stamp);
+    const auto pieces = static_cast<std::int64_t>(
+        std::min(std::ceil(largest_move / (0.25 * kTurn)), static_cast<double>(duration_ns)));
     if (pieces - 1 > kMostPointsBetween - between_count_) {
       throw LoadError(where + ": over " + std::to_string(kMostPointsBetween) + " points put "
                       "between the plans' points to follow continuous joints' turns (expected "
                       "plans that turn them less far)");
     }
     between_count_ += pieces - 1;
-    const Point start = last;  // push_back below may move `last`
     for (std::int64_t k = 1; k < pieces; ++k) {
-      // The stamp exactly (no overflow: pieces and the remainder are at most 2^17), at most
-      // one a nanosecond; a too fast turn's point a quarter turn on.
-      const std::int64_t at_ns =
-          is_too_fast ? static_cast<std::int64_t>(quarter_of_move * duration_ns)
-                      : duration_ns / pieces * k + duration_ns % pieces * k / pieces;
-      if (at_ns <= 0) continue;
-      const double s = static_cast<double>(at_ns) / duration_ns;
+      // The stamp exactly (no overflow: pieces and the remainder are at most 2^17).
+      const std::int64_t at_ns = duration_ns / pieces * k + duration_ns % pieces * k / pieces;
+      const double s = static_cast<double>(at_ns) / static_cast<double>(duration_ns);
       ros::Time at;
       at.fromNSec(start.stamp.toNSec() + static_cast<std::uint64_t>(at_ns));
       Point between{at, next_order_++, positions, kBetween};
@@ -271,8 +266,8 @@ class Plans {
     }
   }
 
-  // The earlier plans' points after `start` lose the joints `names`; a point left without
-  // joints goes.
+  // The earlier plans' points after `start` lose the joints `names` (a point left without
+  // joints goes), and a plan under way then gets a point at `start`.
   void Supersede(const std::vector<std::string>& names, const ros::Time& start) {
     const std::size_t count = plans_.size();  // the parts split off below are already cut
     for (std::size_t k = 0; k < count; ++k) {
@@ -288,14 +283,32 @@ class Plans {
                                                [&](const Point& p) { return !(p.stamp > start); });
       counts_->superseded_points += static_cast<std::uint64_t>(
           std::count_if(after, points.end(), [](const Point& p) { return p.index != kBetween; }));
+      // Under way at `start` (a point before it, one after): where the controller has its
+      // joints then ends the cut plan and starts the rest, so that the new plan's first step
+      // starts there, not at the point before.
+      std::vector<Point> at_start;
+      if (after != points.begin() && after != points.end() && (after - 1)->stamp < start) {
+        const Point& p0 = *(after - 1);
+        const double s = static_cast<double>(NsBetween(p0.stamp, start)) /
+                         static_cast<double>(NsBetween(p0.stamp, after->stamp));
+        at_start.push_back({start, next_order_++, p0.positions, kBetween});
+        for (std::size_t j = 0; j < p0.positions.size(); ++j) {
+          at_start.back().positions[j] += s * (after->positions[j] - p0.positions[j]);
+        }
+      }
       Joints rest{{}, {}, plans_[k].last, plans_[k].where};
       for (const std::size_t j : kept) rest.names.push_back(old_names[j]);
-      for (auto point = after; !kept.empty() && point != points.end(); ++point) {
-        Point part{point->stamp, point->order, {}, point->index};
-        for (const std::size_t j : kept) part.positions.push_back(point->positions[j]);
+      auto add_part = [&](const Point& point) {
+        Point part{point.stamp, point.order, {}, point.index};
+        for (const std::size_t j : kept) part.positions.push_back(point.positions[j]);
         rest.points.push_back(std::move(part));
+      };
+      if (!kept.empty()) {
+        for (const Point& point : at_start) add_part(point);
+        std::for_each(after, points.end(), add_part);
       }
       points.erase(after, points.end());
+      points.insert(points.end(), at_start.begin(), at_start.end());
       plans_[k].last = start;
       if (!rest.points.empty()) plans_.push_back(std::move(rest));
     }
