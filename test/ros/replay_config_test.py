@@ -672,6 +672,17 @@ class ReplayConfigTest(unittest.TestCase):
                       'it, as a rule: read as it is (a robot\'s clock off the recorder\'s), where '
                       'a node on the recorder\'s clock refuses such stamps as stale beyond its '
                       'input_timeout_s (0.25 s by default)', text)
+        # Nor does an arm's driver on the recorder's clock hide the other arm's, on one topic.
+        with rosbag.Bag(path, 'w') as bag:
+            for k in range(5):
+                recorded_at = rospy.Time(100) + rospy.Duration(0.05 * k)
+                for names, ahead_s in ((LEFT_JOINTS, 5.0), (RIGHT_JOINTS, 0.0)):
+                    msg = JointState(name=names, position=[0.01 * k] * 7)
+                    msg.header.stamp = recorded_at + rospy.Duration(ahead_s)
+                    bag.write('/joint_states', msg, recorded_at)
+        report = json.loads(rosrun('replay', '--json', '--scene', self.bundled_scene,
+                                   path).stdout)
+        self.assertEqual(report['clock_offsets'], {'/joint_states': 5.0})
 
     def test_between_samples_lines_past_the_first_20_are_counted(self):
         # The swing of test_between_samples_lines_say_what_they_are, there and back four times:

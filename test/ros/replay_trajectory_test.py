@@ -433,6 +433,50 @@ class ReplayTrajectoryTest(unittest.TestCase):
         self.assertNotEqual(self.warned_pairs(report, 'warnings'),
                             self.warned_pairs(recorded, 'warnings'))
 
+    def test_a_plan_cut_at_one_of_its_points_moves_its_other_arm_on(self):
+        # Both arms swing towards each other in one plan (points at 0, 10 and 20 s, meeting
+        # about 15 s); a plan of the right arm alone from exactly 10 s, a point of the first,
+        # carries it on the same way. The left arm's rest of the first plan moves on from 10 s
+        # with the new plan's cycles: at 15 s the arms warn (held at its 10 s pose until 20 s, it
+        # warned only between samples). A plan of the left arm from 12 s then cuts that rest:
+        # the first plan's points it drops were counted superseded once already.
+        def plan(names, points, stamp):
+            trajectory = JointTrajectory(joint_names=names)
+            trajectory.header.stamp = stamp
+            for t, positions in points:
+                trajectory.points.append(JointTrajectoryPoint(positions=positions,
+                                                              time_from_start=rospy.Duration(t)))
+            return trajectory
+
+        def left(turn):
+            return [LEFT_TOWARDS_RIGHT[0] + turn] + LEFT_TOWARDS_RIGHT[1:]
+
+        def right(turn):
+            return [RIGHT_TOWARDS_LEFT[0] + turn] + RIGHT_TOWARDS_LEFT[1:]
+
+        start = rospy.Time(100)
+        path = os.path.join(self.directory, 'cut_at_point.bag')
+        both = plan(LEFT_JOINTS + RIGHT_JOINTS, [(0, left(-2) + right(2)),
+                                                 (10, left(-1) + right(1)),
+                                                 (20, left(1) + right(-1))], start)
+        cut = start + rospy.Duration(10)
+        for is_left_cut, superseded in ((False, 1), (True, 1)):
+            with rosbag.Bag(path, 'w') as bag:
+                bag.write('/plan', both, start)
+                carried_on = [(0, right(1)), (5, right(0)), (10, right(-1))]
+                bag.write('/plan', plan(RIGHT_JOINTS, carried_on, cut), cut)
+                if is_left_cut:
+                    later = start + rospy.Duration(17)
+                    bag.write('/plan', plan(LEFT_JOINTS, [(1, left(0.4))], later), later)
+            result = rosrun('replay', '--json', path)
+            self.assertEqual(result.returncode, 0, result.stderr)
+            report = json.loads(result.stdout)
+            self.assertEqual(report['superseded_points'], superseded, is_left_cut)
+            at_15 = [c for c in report['per_cycle'] if round(c['time_s'], 6) == 15.0]
+            self.assertEqual(len(at_15), 1)
+            self.assertTrue(any(w[0].startswith('left_link') and w[1].startswith('right_link')
+                                for w in at_15[0]['warnings']), at_15[0]['warnings'])
+
     def test_states_and_plans_of_the_same_joints_need_a_topic(self):
         # What `rosbag record -a` keeps of a robot: its joint states and the plan it was sent.
         # Both give the same joints; replay asks which to check, and checks either.
@@ -747,7 +791,7 @@ class ReplayTrajectoryTest(unittest.TestCase):
                  r"0.3 m and 0 rad " + placed)
         # A localised base's jitter (0.5 mm) passes.
         for start_y, base_y, error in ((0.3, 0.3, None), (0.3005, 0.3005, None),
-                                       (0.0, 0.3, away), (None, 0.0, first)):
+                                       (None, 0.3005, None), (0.0, 0.3, away), (None, 0.0, first)):
             base = MultiDOFJointTrajectory(joint_names=['base_joint'])
             for k in range(2):
                 base.points.append(MultiDOFJointTrajectoryPoint(

@@ -373,10 +373,11 @@ PlanSources ReadPlans(const std::string& path, const rosbag::Bag& bag,
       // objects with the robot), then where each trajectory leaves it.
       MultiDofPoses base_at = StartMultiDofPoses(displayed.start_multi_dof);
       refuse_away(where, "its start state", base_at);
-      base_at.insert(scene_base.begin(), scene_base.end());  // those it leaves out
       for (std::size_t k = 0; k < displayed.trajectories.size(); ++k) {
         const trajectory_msgs::JointTrajectory& plan = displayed.trajectories[k];
         const std::string where_k = where + ", trajectory " + std::to_string(k);
+        // Its first point, within the agreement of the scene's placement, is where the base
+        // stands for those the start state leaves out (DescribeMultiDofMotion).
         refuse_away(where_k, "its multi_dof_joint_trajectory's first point",
                     FirstMultiDofPoses(displayed.multi_dof_trajectories[k]));
         RefuseBaseMotion(where_k, displayed.multi_dof_trajectories[k], &base_at);
@@ -393,7 +394,7 @@ PlanSources ReadPlans(const std::string& path, const rosbag::Bag& bag,
           });
       refuse_away(where, "its multi_dof_joint_trajectory's first point",
                   FirstMultiDofPoses(multi_dof));
-      MultiDofPoses base_at = scene_base;  // where the scene placed the objects with it
+      MultiDofPoses base_at;  // where its first point has it
       RefuseBaseMotion(where, multi_dof, &base_at);
       add(plan, plan.header.stamp.isZero() ? m.getTime() : plan.header.stamp, where);
     }
@@ -526,21 +527,19 @@ Input ReadBag(const std::string& path, const std::vector<std::string>& topics,
     }
   };
   const JointOffsets offsets = ReadOffsets(bag, topics);
-  // Of the model's joints only: a gripper's driver on the recorder's clock beside the arms'
-  // on the robot's does not hide the arms' offset.
+  // The model's joint farthest off (a gripper's driver on the recorder's clock beside an arm's
+  // on the robot's does not hide the arm's offset; names of no model joint do not count).
   const std::set<std::string> model_joints(workcell.joint_names.begin(),
                                            workcell.joint_names.end());
   for (const auto& [topic, of_topic] : offsets) {
     const auto prefix = joint_prefixes.find(topic);
-    double nearest_s = 0.0;
-    bool is_any = false;
+    double farthest_s = 0.0;
     for (const auto& [name, offset_s] : of_topic) {
       const std::string model_name = prefix != joint_prefixes.end() ? prefix->second + name : name;
       if (model_joints.count(model_name) == 0) continue;
-      if (!is_any || std::abs(offset_s.front()) < std::abs(nearest_s)) nearest_s = offset_s.front();
-      is_any = true;
+      if (std::abs(offset_s.front()) > std::abs(farthest_s)) farthest_s = offset_s.front();
     }
-    if (std::abs(nearest_s) > kDefaultInputTimeout_s) result.clock_offsets[topic] = nearest_s;
+    if (std::abs(farthest_s) > kDefaultInputTimeout_s) result.clock_offsets[topic] = farthest_s;
   }
   for (const rosbag::MessageInstance& m : rosbag::View(bag, rosbag::TypeQuery(kJointStateType))) {
     const auto msg = m.instantiate<sensor_msgs::JointState>();

@@ -68,8 +68,8 @@ struct Input {
   /// whether the bag gave more such names than those noted
   bool more_ignored_names = false, more_mimic_names = false;
   /// a bag's topics whose JointState stamps are, as a rule, more than kDefaultInputTimeout_s off
-  /// the times the bag recorded them (s, negative: behind; of its joints' usual offsets the one
-  /// nearest 0): read as they are, where a node on the recorder's clock refuses them
+  /// the times the bag recorded them (s, negative: behind; of its model joints' usual offsets
+  /// the farthest): read as they are, where a node on the recorder's clock refuses them
   std::map<std::string, double> clock_offsets;
 };
 

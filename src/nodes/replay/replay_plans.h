@@ -73,6 +73,7 @@ class Plans {
     std::uint64_t order;            // read order, which decides between equal stamps
     std::vector<double> positions;  // one per name of its Joints
     std::int64_t index;             // in its message's points, kStartState or kBetween
+    bool is_superseded = false;     // split off a plan a later one cut (counted then)
   };
   struct Joints {
     std::vector<std::string> names;
@@ -281,13 +282,15 @@ class Plans {
       std::vector<Point>& points = plans_[k].points;
       const auto after = std::stable_partition(points.begin(), points.end(),
                                                [&](const Point& p) { return !(p.stamp > start); });
-      counts_->superseded_points += static_cast<std::uint64_t>(
-          std::count_if(after, points.end(), [](const Point& p) { return p.index != kBetween; }));
-      // Under way at `start` (a point before it, one after): where the controller has its
-      // joints then ends the cut plan and starts the rest, so that the new plan's first step
-      // starts there, not at the point before.
+      // Each point read once: the rest split off an earlier cut was counted then.
+      counts_->superseded_points += static_cast<std::uint64_t>(std::count_if(
+          after, points.end(), [](const Point& p) { return p.index >= 0 && !p.is_superseded; }));
+      // Under way at `start` (a point at or before it, one after): where the controller has
+      // its joints then ends the cut plan (a point put there, unless one is) and starts the
+      // rest, so that the new plan's first step starts there, not at the point before, and the
+      // rest's joints move on from it with the new plan's cycles.
       std::vector<Point> at_start;
-      if (after != points.begin() && after != points.end() && (after - 1)->stamp < start) {
+      if (after != points.begin() && after != points.end()) {
         const Point& p0 = *(after - 1);
         const double s = static_cast<double>(NsBetween(p0.stamp, start)) /
                          static_cast<double>(NsBetween(p0.stamp, after->stamp));
@@ -299,7 +302,7 @@ class Plans {
       Joints rest{{}, {}, plans_[k].last, plans_[k].where};
       for (const std::size_t j : kept) rest.names.push_back(old_names[j]);
       auto add_part = [&](const Point& point) {
-        Point part{point.stamp, point.order, {}, point.index};
+        Point part{point.stamp, point.order, {}, point.index, true};
         for (const std::size_t j : kept) part.positions.push_back(point.positions[j]);
         rest.points.push_back(std::move(part));
       };
@@ -307,8 +310,9 @@ class Plans {
         for (const Point& point : at_start) add_part(point);
         std::for_each(after, points.end(), add_part);
       }
+      const bool is_at_point = after != points.begin() && !((after - 1)->stamp < start);
       points.erase(after, points.end());
-      points.insert(points.end(), at_start.begin(), at_start.end());
+      if (!is_at_point) points.insert(points.end(), at_start.begin(), at_start.end());
       plans_[k].last = start;
       if (!rest.points.empty()) plans_.push_back(std::move(rest));
     }
