@@ -283,8 +283,9 @@ class Plans {
       const auto after = std::stable_partition(points.begin(), points.end(),
                                                [&](const Point& p) { return !(p.stamp > start); });
       // Each point read once: the rest split off an earlier cut was counted then.
-      counts_->superseded_points += static_cast<std::uint64_t>(std::count_if(
-          after, points.end(), [](const Point& p) { return p.index >= 0 && !p.is_superseded; }));
+      counts_->superseded_points += static_cast<std::uint64_t>(
+          std::count_if(after, points.end(),
+                        [](const Point& p) { return p.index != kBetween && !p.is_superseded; }));
       // Under way at `start` (a point at or before it, one after): where the controller has
       // its joints then ends the cut plan (a point put there, unless one is) and starts the
       // rest, so that the new plan's first step starts there, not at the point before, and the
@@ -294,7 +295,8 @@ class Plans {
         const Point& p0 = *(after - 1);
         const double s = static_cast<double>(NsBetween(p0.stamp, start)) /
                          static_cast<double>(NsBetween(p0.stamp, after->stamp));
-        at_start.push_back({start, next_order_++, p0.positions, kBetween});
+        // As old as the cut plan: a plan read since (but the new one) keeps its own at `start`.
+        at_start.push_back({start, p0.order, p0.positions, kBetween});
         for (std::size_t j = 0; j < p0.positions.size(); ++j) {
           at_start.back().positions[j] += s * (after->positions[j] - p0.positions[j]);
         }
