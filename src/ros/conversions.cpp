@@ -30,6 +30,20 @@ std::string ToRigidTransform(const geometry_msgs::Transform& transform, Eigen::I
   return "";
 }
 
+geometry_msgs::Transform ToTransformMsg(const Eigen::Isometry3d& X) {
+  geometry_msgs::Transform transform;
+  const Eigen::Vector3d p = X.translation();
+  const Eigen::Quaterniond r(X.linear());
+  transform.translation.x = p.x();
+  transform.translation.y = p.y();
+  transform.translation.z = p.z();
+  transform.rotation.x = r.x();
+  transform.rotation.y = r.y();
+  transform.rotation.z = r.z();
+  transform.rotation.w = r.w();
+  return transform;
+}
+
 void ToWarningMsg(const std::vector<PrimitiveSpec>& primitives, const Warning& in,
                   CollisionWarning* out) {
   const PrimitiveSpec& a = primitives[in.a];

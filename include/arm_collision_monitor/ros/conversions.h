@@ -33,6 +33,9 @@ std::uint8_t ToInputStatusMsg(SafetyStatus status);
 /// or non-finite quaternion, a non-finite translation), leaving `X` alone.
 std::string ToRigidTransform(const geometry_msgs::Transform& transform, Eigen::Isometry3d* X);
 
+/// A rigid pose as a geometry_msgs/Transform (ToRigidTransform's inverse).
+geometry_msgs::Transform ToTransformMsg(const Eigen::Isometry3d& X);
+
 /// The merger's view of `msg` (borrows its arrays: valid while `msg` lives); the stamp in
 /// seconds, 0 when unset.
 inline NamedPositions ToNamedPositions(const sensor_msgs::JointState& msg) {

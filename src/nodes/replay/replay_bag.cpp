@@ -289,26 +289,32 @@ void RefuseBaseMotion(const std::string& where,
                   "the base standing still)");
 }
 
-// The base where `workcell`'s planning scene placed its objects with the robot, by virtual
-// joint (Workcell::placed_roots), and where each says so.
-std::pair<MultiDofPoses, std::map<std::string, std::string>> ScenePlacedBase(
-    const Workcell& workcell) {
-  std::pair<MultiDofPoses, std::map<std::string, std::string>> base;
-  for (const PlacedRootSpec& root : workcell.placed_roots) {
-    geometry_msgs::Transform& pose = base.first[root.joint];
-    const Eigen::Vector3d p = root.X_FR.translation();
-    const Eigen::Quaterniond r(root.X_FR.linear());
-    pose.translation.x = p.x();
-    pose.translation.y = p.y();
-    pose.translation.z = p.z();
-    pose.rotation.x = r.x();
-    pose.rotation.y = r.y();
-    pose.rotation.z = r.z();
-    pose.rotation.w = r.w();
-    base.second[root.joint] = root.where;
+// Where a planning scene placed its objects with the robot: the base's pose by virtual joint
+// (Workcell::placed_roots), and where the scene says so.
+struct ScenePlacement {
+  MultiDofPoses poses;
+  std::map<std::string, std::string> where;
+
+  explicit ScenePlacement(const Workcell& workcell) {
+    for (const PlacedRootSpec& root : workcell.placed_roots) {
+      poses[root.joint] = ToTransformMsg(root.X_FR);
+      where[root.joint] = root.where;
+    }
   }
-  return base;
-}
+
+  /// A LoadError naming `what` of the plan at `plan_where` (its start state, a base
+  /// trajectory's first point) when its `at` puts the base elsewhere than here.
+  void RefuseAway(const std::string& plan_where, const std::string& what,
+                  const MultiDofPoses& at) const {
+    std::string joint;
+    const std::string away = DescribeMultiDofAway(poses, at, &joint);
+    if (away.empty()) return;
+    throw LoadError(plan_where + ": " + what + " " + away + " " + where.at(joint) +
+                    " places the robot; the monitor checks the arms against the planning "
+                    "scene's objects placed with the robot there (save the scene with the "
+                    "robot where the plans start)");
+  }
+};
 
 // The plans of the bag at `path` on `topics`, in bag order, their joint names prefixed; those
 // of MoveIt's displays unwound as MoveIt executes them (the plans' turning joints). A plan
@@ -317,20 +323,7 @@ std::pair<MultiDofPoses, std::map<std::string, std::string>> ScenePlacedBase(
 PlanSources ReadPlans(const std::string& path, const rosbag::Bag& bag,
                       const std::vector<std::string>& topics, const JointPrefixes& prefixes,
                       const Workcell& workcell, Plans* plans) {
-  const auto [scene_base, scene_base_where] = ScenePlacedBase(workcell);
-  // A LoadError naming `what` of the plan at `where` (its start state, a base trajectory's
-  // first point) when its `poses` put the base elsewhere than the scene placed the objects with
-  // the robot.
-  auto refuse_away = [&](const std::string& where, const std::string& what,
-                         const MultiDofPoses& poses) {
-    std::string joint;
-    const std::string away = DescribeMultiDofAway(scene_base, poses, &joint);
-    if (away.empty()) return;
-    throw LoadError(where + ": " + what + " " + away + " " + scene_base_where.at(joint) +
-                    " places the robot; the monitor checks the arms against the planning "
-                    "scene's objects placed with the robot there (save the scene with the "
-                    "robot where the plans start)");
-  };
+  const ScenePlacement placed(workcell);
   const std::map<std::string, double>& turning = plans->turning();
   PlanSources sources;
   rosbag::View view(bag, rosbag::TypeQuery(kPlanTypes));
@@ -372,14 +365,14 @@ PlanSources ReadPlans(const std::string& path, const rosbag::Bag& bag,
       // The base where the start state has it (which must be where the scene placed the
       // objects with the robot), then where each trajectory leaves it.
       MultiDofPoses base_at = StartMultiDofPoses(displayed.start_multi_dof);
-      refuse_away(where, "its start state", base_at);
+      placed.RefuseAway(where, "its start state", base_at);
       for (std::size_t k = 0; k < displayed.trajectories.size(); ++k) {
         const trajectory_msgs::JointTrajectory& plan = displayed.trajectories[k];
         const std::string where_k = where + ", trajectory " + std::to_string(k);
         // Its first point, within the agreement of the scene's placement, is where the base
         // stands for those the start state leaves out (DescribeMultiDofMotion).
-        refuse_away(where_k, "its multi_dof_joint_trajectory's first point",
-                    FirstMultiDofPoses(displayed.multi_dof_trajectories[k]));
+        placed.RefuseAway(where_k, "its multi_dof_joint_trajectory's first point",
+                          FirstMultiDofPoses(displayed.multi_dof_trajectories[k]));
         RefuseBaseMotion(where_k, displayed.multi_dof_trajectories[k], &base_at);
         start = add(plan, plan.header.stamp.isZero() ? start : plan.header.stamp, where_k);
       }
@@ -392,8 +385,8 @@ PlanSources ReadPlans(const std::string& path, const rosbag::Bag& bag,
           path, m, [&](const std::string& definition, const std::uint8_t* data, std::size_t size) {
             return ReadGoalTrajectory(type, definition, data, size, &multi_dof);
           });
-      refuse_away(where, "its multi_dof_joint_trajectory's first point",
-                  FirstMultiDofPoses(multi_dof));
+      placed.RefuseAway(where, "its multi_dof_joint_trajectory's first point",
+                        FirstMultiDofPoses(multi_dof));
       MultiDofPoses base_at;  // where its first point has it
       RefuseBaseMotion(where, multi_dof, &base_at);
       add(plan, plan.header.stamp.isZero() ? m.getTime() : plan.header.stamp, where);
