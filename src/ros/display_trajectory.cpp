@@ -344,6 +344,16 @@ bool IsValidPose(const geometry_msgs::Transform& pose) {
   return std::isfinite(t.x + t.y + t.z) && std::isfinite(norm2) && norm2 > 0.0;
 }
 
+// Each name's transform, as far as both lists go.
+MultiDofPoses PosesByName(const std::vector<std::string>& names,
+                          const std::vector<geometry_msgs::Transform>& transforms) {
+  MultiDofPoses at;
+  for (std::size_t j = 0; j < names.size() && j < transforms.size(); ++j) {
+    at[names[j]] = transforms[j];
+  }
+  return at;
+}
+
 // The distance (m) and the rotation angle (rad) from valid pose `a` to valid pose `b`. Eigen's
 // angular distance is 2 atan2(|v|, |w|) of their quotient (w, v): exact for small turns too
 // (acos of the dot product reads a turn below ~2e-8 rad as none), for quaternions of any norm.
@@ -417,21 +427,12 @@ DisplayedPlan ReadDisplayTrajectory(const std::string& definition, const std::ui
 }
 
 MultiDofPoses StartMultiDofPoses(const sensor_msgs::MultiDOFJointState& state) {
-  MultiDofPoses at;
-  for (std::size_t j = 0; j < state.joint_names.size() && j < state.transforms.size(); ++j) {
-    at[state.joint_names[j]] = state.transforms[j];
-  }
-  return at;
+  return PosesByName(state.joint_names, state.transforms);
 }
 
 MultiDofPoses FirstMultiDofPoses(const trajectory_msgs::MultiDOFJointTrajectory& trajectory) {
-  MultiDofPoses at;
-  if (trajectory.points.empty()) return at;
-  const std::vector<geometry_msgs::Transform>& transforms = trajectory.points.front().transforms;
-  for (std::size_t j = 0; j < trajectory.joint_names.size() && j < transforms.size(); ++j) {
-    at[trajectory.joint_names[j]] = transforms[j];
-  }
-  return at;
+  if (trajectory.points.empty()) return {};
+  return PosesByName(trajectory.joint_names, trajectory.points.front().transforms);
 }
 
 std::string DescribeMultiDofAway(const MultiDofPoses& expected, const MultiDofPoses& at,
